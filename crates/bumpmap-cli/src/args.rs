@@ -1,0 +1,273 @@
+//! Command-line arguments. The help texts are the user manual: they say what each option
+//! means in the papers' terms and what the default is.
+
+use std::path::PathBuf;
+
+use bumpmap_io::Channel;
+use bumpmap_math::{Encoding, Kernel, MipMode, Wrap, YConvention};
+use clap::{Args, Parser, Subcommand, ValueEnum};
+
+#[derive(Parser, Debug)]
+#[command(
+    name = "bumpmap",
+    version,
+    about = "Bump mapping toolkit and renderer after Kilgard (2000), the Cg Tutorial ch. 8 and Peercy et al. (1997)",
+    long_about = "Bump mapping toolkit and renderer.\n\n\
+Makes tangent-space normal maps from height fields, with mip chains that keep the length of the \
+averaged normal in alpha so bumpy surfaces dim correctly at a distance (Kilgard 2000, §2.4.2); \
+builds normalization cube maps; and renders bump-mapped objects.\n\n\
+Start with `bumpmap demo`, which writes example outputs into ./out/demo.\n\n\
+Texture convention: the first row of an image file is texture coordinate t = 0 (OpenGL's \
+glTexImage2D order), so the normal map's +Y (green) points toward the next row."
+)]
+pub struct Cli {
+    #[command(subcommand)]
+    pub command: Command,
+}
+
+#[derive(Subcommand, Debug)]
+pub enum Command {
+    /// Height field → normal map (and its mip chain)
+    Normalmap(NormalmapArgs),
+    /// Write a normalization cube map, or measure the accuracy of its lookup
+    Cubemap(CubemapArgs),
+    /// Measure speed (median of several runs); --json prints one machine-readable line
+    Bench(BenchArgs),
+    /// Run everything on built-in defaults and write the results into a folder
+    Demo(DemoArgs),
+}
+
+#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum KernelArg {
+    /// F(u+1) − F(u): the paper's right/up differences (Kilgard Appendix E)
+    Forward,
+    /// (F(u+1) − F(u−1)) / 2
+    Central,
+    /// 3×3 Sobel
+    Sobel3,
+    /// 5×5 Sobel
+    Sobel5,
+    /// 3×3 Prewitt (what DirectXTex uses)
+    Prewitt3,
+    /// 3×3 Scharr
+    Scharr3,
+    /// 7×7 derivative of a Gaussian, σ = 1 (Peercy et al.)
+    Gaussian7,
+}
+
+impl From<KernelArg> for Kernel {
+    fn from(k: KernelArg) -> Self {
+        match k {
+            KernelArg::Forward => Kernel::Forward,
+            KernelArg::Central => Kernel::Central,
+            KernelArg::Sobel3 => Kernel::Sobel3,
+            KernelArg::Sobel5 => Kernel::Sobel5,
+            KernelArg::Prewitt3 => Kernel::Prewitt3,
+            KernelArg::Scharr3 => Kernel::Scharr3,
+            KernelArg::Gaussian7 => Kernel::Gaussian7,
+        }
+    }
+}
+
+#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum WrapArg {
+    /// The field tiles: edges read the opposite edge
+    Repeat,
+    /// Edges repeat the last texel
+    Clamp,
+    /// Kilgard's border case: the input is one texel wider and taller than the output
+    Border,
+}
+
+impl From<WrapArg> for Wrap {
+    fn from(w: WrapArg) -> Self {
+        match w {
+            WrapArg::Repeat => Wrap::Repeat,
+            WrapArg::Clamp => Wrap::Clamp,
+            WrapArg::Border => Wrap::Border,
+        }
+    }
+}
+
+#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum EncodingArg {
+    /// round(127.5·n + 127.5): symmetric, what modern tools write
+    Unorm,
+    /// (byte)(128 + 127·n), truncated: the paper's Appendices D–F, byte for byte
+    Kilgard,
+}
+
+impl From<EncodingArg> for Encoding {
+    fn from(e: EncodingArg) -> Self {
+        match e {
+            EncodingArg::Unorm => Encoding::Unorm,
+            EncodingArg::Kilgard => Encoding::Kilgard,
+        }
+    }
+}
+
+#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum YArg {
+    /// Green = +Y toward the next row (t up): OpenGL, glTF, Blender, Unity
+    Opengl,
+    /// Green flipped: DirectX, Unreal, 3ds Max
+    Directx,
+}
+
+impl From<YArg> for YConvention {
+    fn from(y: YArg) -> Self {
+        match y {
+            YArg::Opengl => YConvention::OpenGl,
+            YArg::Directx => YConvention::DirectX,
+        }
+    }
+}
+
+#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum MipModeArg {
+    /// RGB = normalized mean of the covered normals, A = its length (Kilgard §5.3)
+    LengthInAlpha,
+    /// RGB = normalized mean, A = 255: what most tools do (too bright at a distance)
+    Renormalize,
+}
+
+impl From<MipModeArg> for MipMode {
+    fn from(m: MipModeArg) -> Self {
+        match m {
+            MipModeArg::LengthInAlpha => MipMode::LengthInAlpha,
+            MipModeArg::Renormalize => MipMode::Renormalize,
+        }
+    }
+}
+
+#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ChannelArg {
+    Luminance,
+    Red,
+    Green,
+    Blue,
+    Alpha,
+}
+
+impl From<ChannelArg> for Channel {
+    fn from(c: ChannelArg) -> Self {
+        match c {
+            ChannelArg::Luminance => Channel::Luminance,
+            ChannelArg::Red => Channel::Red,
+            ChannelArg::Green => Channel::Green,
+            ChannelArg::Blue => Channel::Blue,
+            ChannelArg::Alpha => Channel::Alpha,
+        }
+    }
+}
+
+/// Options that decide how heights become normals; shared by every command that makes one.
+#[derive(Args, Debug, Clone)]
+pub struct NormalMapOpts {
+    /// Finite-difference kernel for ∂F/∂u and ∂F/∂v
+    #[arg(long, value_enum, default_value = "forward")]
+    pub kernel: KernelArg,
+    /// Bump height: heights are in [0,1], derivatives per texel, n ∝ (−scale·∂F/∂u, −scale·∂F/∂v, 1)
+    #[arg(long, default_value_t = 4.0, allow_negative_numbers = true)]
+    pub scale: f32,
+    /// What the kernel reads beyond the edges
+    #[arg(long, value_enum, default_value = "repeat")]
+    pub wrap: WrapArg,
+    /// Byte encoding of the normal's components
+    #[arg(long, value_enum, default_value = "unorm")]
+    pub encoding: EncodingArg,
+    /// Which way green points
+    #[arg(long = "y-convention", value_enum, default_value = "opengl")]
+    pub y_convention: YArg,
+    /// Which channel of a colour image holds the heights (greyscale images: their grey value)
+    #[arg(long, value_enum, default_value = "luminance")]
+    pub channel: ChannelArg,
+}
+
+impl NormalMapOpts {
+    pub fn options(&self) -> bumpmap_math::NormalMapOptions {
+        bumpmap_math::NormalMapOptions {
+            kernel: self.kernel.into(),
+            scale: self.scale,
+            wrap: self.wrap.into(),
+            y_convention: self.y_convention.into(),
+            encoding: self.encoding.into(),
+        }
+    }
+}
+
+#[derive(Args, Debug)]
+#[command(after_help = "Examples:\n  \
+bumpmap normalmap heights.png -o normals.png --mips        # normals.png, normals.mip1.png, …\n  \
+bumpmap normalmap bricks@512 -o bricks.ktx2 --mips         # a preset, all levels in one file\n  \
+bumpmap normalmap textures/ -o normals/ --scale 8          # every image in a folder, in parallel\n\n\
+IN is an image file (PNG, TGA, BMP, JPEG, TIFF, PNM; 8 or 16 bits), a folder of them, or a \
+preset: bricks, pinwheel, dimples, noise:SEED, each optionally @SIZE (default 256).")]
+pub struct NormalmapArgs {
+    /// Height field: image file, folder, or preset (bricks, pinwheel, dimples, noise:SEED[@SIZE])
+    pub input: String,
+    /// Output: .png (level 0; with --mips also OUT.mip1.png, …), .dds or .ktx2 (all levels), or a folder
+    #[arg(short, long)]
+    pub output: PathBuf,
+    /// Also make every smaller level down to 1×1
+    #[arg(long)]
+    pub mips: bool,
+    /// What the smaller levels store
+    #[arg(long = "mip-mode", value_enum, default_value = "length-in-alpha")]
+    pub mip_mode: MipModeArg,
+    #[command(flatten)]
+    pub map: NormalMapOpts,
+}
+
+#[derive(Args, Debug)]
+#[command(after_help = "Examples:\n  \
+bumpmap cubemap --size 32 --encoding kilgard -o cube/   # cube/px.png … cube/nz.png\n  \
+bumpmap cubemap --size 64 -o normcube.dds\n  \
+bumpmap cubemap --accuracy                               # worst angular error table\n\n\
+Faces are +X, −X, +Y, −Y, +Z, −Z with Kilgard Table 1 addressing; rows in memory order.")]
+pub struct CubemapArgs {
+    /// Texels along each face's edge
+    #[arg(long, default_value_t = 32, value_parser = clap::value_parser!(u32).range(1..=4096))]
+    pub size: u32,
+    /// Byte encoding of the vectors
+    #[arg(long, value_enum, default_value = "unorm")]
+    pub encoding: EncodingArg,
+    /// A folder (six PNG faces), or a .dds / .ktx2 cube-map file
+    #[arg(short, long, required_unless_present = "accuracy")]
+    pub output: Option<PathBuf>,
+    /// Print the worst angular error of the bilinear lookup for face sizes 8–128, both encodings
+    #[arg(long)]
+    pub accuracy: bool,
+}
+
+#[derive(Args, Debug)]
+pub struct BenchArgs {
+    #[command(subcommand)]
+    pub what: BenchWhat,
+}
+
+#[derive(Subcommand, Debug)]
+pub enum BenchWhat {
+    /// 8-bit height field → normal map + full mip chain, and the read-once/write-once floor
+    Normalmap {
+        /// Edge length of the square height field
+        #[arg(long, default_value_t = 4096, value_parser = clap::value_parser!(u32).range(1..=16384))]
+        size: u32,
+        /// Timed runs (after one warm-up)
+        #[arg(long, default_value_t = 9, value_parser = clap::value_parser!(u32).range(1..))]
+        runs: u32,
+        /// Worker threads (default: all cores)
+        #[arg(long)]
+        threads: Option<usize>,
+        /// Print one JSON line instead of prose
+        #[arg(long)]
+        json: bool,
+    },
+}
+
+#[derive(Args, Debug)]
+pub struct DemoArgs {
+    /// Folder to write into (created if missing)
+    #[arg(short, long, default_value = "out/demo")]
+    pub output: PathBuf,
+}

@@ -1,0 +1,28 @@
+//! `bumpmap`: normal maps, cube maps, tangent frames and bump-mapped renders from the command
+//! line. Each subcommand lives in its own module; this file only parses and dispatches, and
+//! turns errors into one line on stderr and a non-zero exit code.
+
+mod args;
+mod bench;
+mod cubemap;
+mod demo;
+mod error;
+mod normalmap;
+
+use clap::Parser;
+
+use crate::args::{Cli, Command};
+
+fn main() {
+    let cli = Cli::parse();
+    let result = match cli.command {
+        Command::Normalmap(a) => normalmap::run(&a),
+        Command::Cubemap(a) => cubemap::run(&a),
+        Command::Bench(a) => bench::run(&a),
+        Command::Demo(a) => demo::run(&a),
+    };
+    if let Err(e) = result {
+        eprintln!("error: {e}");
+        std::process::exit(1);
+    }
+}

@@ -1,0 +1,139 @@
+//! `bumpmap normalmap`: one height field, or a folder of them, into normal maps.
+
+use std::path::{Path, PathBuf};
+
+use bumpmap_io::atomic::ensure_not_input;
+use bumpmap_io::image_file::{PngLayout, save_png};
+use bumpmap_io::texture_file::{Rgba8Image, TextureLayout, write_dds, write_ktx2};
+use bumpmap_io::{Channel, HeightSource};
+use bumpmap_math::normalmap::normal_map_level0;
+use bumpmap_math::{HeightField, MipChain, MipMode, NormalMapOptions};
+use indicatif::{ProgressBar, ProgressStyle};
+use rayon::prelude::*;
+
+use crate::args::NormalmapArgs;
+use crate::error::CliError;
+
+/// Image extensions a folder walk picks up.
+const IMAGE_EXTENSIONS: [&str; 9] = ["png", "tga", "bmp", "jpg", "jpeg", "tif", "tiff", "pgm", "ppm"];
+
+pub fn run(args: &NormalmapArgs) -> Result<(), CliError> {
+    let options = args.map.options();
+    let channel: Channel = args.map.channel.into();
+    let input = Path::new(&args.input);
+    if input.is_dir() {
+        return run_folder(input, args, &options, channel);
+    }
+    let source = HeightSource::parse(&args.input);
+    if let Some(path) = source.path() {
+        ensure_not_input(&args.output, &[path])?;
+    }
+    let field = source.load(channel)?;
+    let levels = make(&field, &options, args.mips, args.mip_mode.into(), &args.input)?;
+    write(&args.output, &levels)
+}
+
+/// Level 0, or the whole chain.
+pub fn make(
+    field: &HeightField,
+    options: &NormalMapOptions,
+    mips: bool,
+    mode: MipMode,
+    name: &str,
+) -> Result<MipChain, CliError> {
+    let err = |source| CliError::NormalMap { path: name.to_string(), source };
+    if mips {
+        MipChain::from_height(field, options, mode).map_err(err)
+    } else {
+        let level = normal_map_level0(field, options).map_err(err)?;
+        Ok(MipChain { levels: vec![level], encoding: options.encoding })
+    }
+}
+
+/// The file name of level `k` for a PNG output: `n.png`, `n.mip1.png`, `n.mip2.png`, …
+pub fn level_path(out: &Path, k: usize) -> PathBuf {
+    if k == 0 {
+        return out.to_path_buf();
+    }
+    let stem = out.file_stem().unwrap_or_default().to_string_lossy();
+    out.with_file_name(format!("{stem}.mip{k}.png"))
+}
+
+/// Writes a chain by the output's extension: PNG files, or one DDS / KTX2 file.
+pub fn write(out: &Path, chain: &MipChain) -> Result<(), CliError> {
+    let ext = out.extension().map(|e| e.to_string_lossy().to_ascii_lowercase()).unwrap_or_default();
+    let images = || TextureLayout {
+        faces: vec![
+            chain.levels.iter().map(|l| Rgba8Image { width: l.width, height: l.height, bytes: l.as_bytes() }).collect(),
+        ],
+    };
+    match ext.as_str() {
+        "png" => {
+            for (k, level) in chain.levels.iter().enumerate() {
+                save_png(&level_path(out, k), level.width, level.height, PngLayout::Rgba8, level.as_bytes())?;
+            }
+            Ok(())
+        }
+        "dds" => Ok(write_dds(out, &images())?),
+        "ktx2" => Ok(write_ktx2(out, &images())?),
+        _ => {
+            Err(bumpmap_io::IoError::UnsupportedOutput { path: out.to_path_buf(), expected: ".png, .dds or .ktx2" }
+                .into())
+        }
+    }
+}
+
+fn run_folder(
+    input: &Path,
+    args: &NormalmapArgs,
+    options: &NormalMapOptions,
+    channel: Channel,
+) -> Result<(), CliError> {
+    let out_dir = &args.output;
+    if out_dir.extension().is_some() && !out_dir.is_dir() {
+        return Err(CliError::Path { path: out_dir.clone(), reason: "a folder input needs a folder output".into() });
+    }
+    let read_err = |e: std::io::Error| CliError::Path { path: input.to_path_buf(), reason: e.to_string() };
+    let mut files: Vec<PathBuf> = std::fs::read_dir(input)
+        .map_err(read_err)?
+        .filter_map(|e| e.ok().map(|e| e.path()))
+        .filter(|p| {
+            p.is_file()
+                && p.extension()
+                    .is_some_and(|e| IMAGE_EXTENSIONS.contains(&e.to_string_lossy().to_ascii_lowercase().as_str()))
+        })
+        .collect();
+    files.sort();
+    if files.is_empty() {
+        return Err(CliError::Path { path: input.to_path_buf(), reason: "no image files in this folder".into() });
+    }
+    std::fs::create_dir_all(out_dir).map_err(|e| CliError::Path { path: out_dir.clone(), reason: e.to_string() })?;
+    if std::fs::canonicalize(out_dir).ok() == std::fs::canonicalize(input).ok() {
+        return Err(CliError::Path {
+            path: out_dir.clone(),
+            reason: "output folder is the input folder; outputs would mix with inputs".into(),
+        });
+    }
+    let bar = ProgressBar::new(files.len() as u64)
+        .with_style(ProgressStyle::with_template("{bar:40} {pos}/{len} {wide_msg}").expect("valid template"));
+    let failed: usize = files
+        .par_iter()
+        .map(|file| {
+            let out = out_dir.join(format!("{}.png", file.file_stem().unwrap_or_default().to_string_lossy()));
+            let result = ensure_not_input(&out, &[file])
+                .map_err(CliError::from)
+                .and_then(|_| Ok(bumpmap_io::load_height_field(file, channel)?))
+                .and_then(|field| make(&field, options, args.mips, args.mip_mode.into(), &file.display().to_string()))
+                .and_then(|chain| write(&out, &chain));
+            bar.inc(1);
+            bar.set_message(file.file_name().unwrap_or_default().to_string_lossy().into_owned());
+            result.map_err(|e| bar.suspend(|| eprintln!("error: {e}"))).is_err() as usize
+        })
+        .sum();
+    bar.finish_and_clear();
+    if failed > 0 {
+        return Err(CliError::Batch { failed, total: files.len() });
+    }
+    eprintln!("wrote {} normal maps into {}", files.len(), out_dir.display());
+    Ok(())
+}

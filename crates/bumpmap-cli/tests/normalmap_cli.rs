@@ -1,0 +1,137 @@
+//! `bumpmap normalmap` and `bumpmap cubemap` end to end: outputs, and bad input failing cleanly.
+
+mod common;
+
+use common::*;
+
+#[test]
+fn png_with_mips_writes_every_level() {
+    let dir = scratch("png_with_mips");
+    let input = dir.join("h.png");
+    write_gray_png(&input, 12, 5, |x, y| ((x * 20 + y * 7) % 256) as u8);
+    let out = dir.join("n.png");
+    let o = bumpmap(&["normalmap", input.to_str().unwrap(), "-o", out.to_str().unwrap(), "--mips"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    // 12×5 → 6×2 → 3×1 → 1×1.
+    assert_eq!(listing(&dir), ["h.png", "n.mip1.png", "n.mip2.png", "n.mip3.png", "n.png"]);
+    let sizes: Vec<_> = ["n.png", "n.mip1.png", "n.mip2.png", "n.mip3.png"]
+        .iter()
+        .map(|f| image::image_dimensions(dir.join(f)).unwrap())
+        .collect();
+    assert_eq!(sizes, [(12, 5), (6, 2), (3, 1), (1, 1)]);
+    let level0 = image::open(&out).unwrap().to_rgba8();
+    assert!(level0.pixels().all(|p| p.0[3] == 255), "level 0 alpha is 255");
+    assert!(level0.pixels().any(|p| p.0[0] != 128), "a sloped field must tilt normals");
+}
+
+#[test]
+fn one_by_one_image_is_a_flat_normal() {
+    let dir = scratch("one_by_one");
+    let input = dir.join("one.png");
+    write_gray_png(&input, 1, 1, |_, _| 77);
+    let out = dir.join("n.png");
+    let o = bumpmap(&["normalmap", input.to_str().unwrap(), "-o", out.to_str().unwrap(), "--mips"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let img = image::open(&out).unwrap().to_rgba8();
+    assert_eq!(img.dimensions(), (1, 1));
+    assert_eq!(img.get_pixel(0, 0).0, [128, 128, 255, 255], "a wrapped 1×1 field has no slope");
+    assert_eq!(listing(&dir), ["n.png", "one.png"], "a 1×1 chain has only level 0");
+}
+
+/// Runs `normalmap IN -o out.png` and checks it fails naming `IN`, without a panic or any new file.
+fn fails_cleanly(dir: &std::path::Path, input: &std::path::Path, expect: &str) {
+    let before = listing(dir);
+    let out = dir.join("out.png");
+    let o = bumpmap(&["normalmap", input.to_str().unwrap(), "-o", out.to_str().unwrap()]);
+    let err = stderr(&o);
+    assert_eq!(o.status.code(), Some(1), "{err}");
+    assert!(err.contains(&input.display().to_string()), "message must name the file: {err}");
+    assert!(err.contains(expect), "message must say '{expect}': {err}");
+    assert!(!err.contains("panicked"), "{err}");
+    assert_eq!(listing(dir), before, "no partial or stray output");
+}
+
+#[test]
+fn bad_inputs_fail_with_a_clear_message_and_no_output() {
+    let dir = scratch("bad_inputs");
+    let good = dir.join("good.png");
+    write_gray_png(&good, 64, 64, |x, y| (x ^ y) as u8);
+    let bytes = std::fs::read(&good).unwrap();
+
+    let truncated = dir.join("truncated.png");
+    std::fs::write(&truncated, &bytes[..bytes.len() / 2]).unwrap();
+    fails_cleanly(&dir, &truncated, "not a readable image");
+
+    let corrupt = dir.join("corrupt.png");
+    std::fs::write(&corrupt, b"this is not an image at all, just text").unwrap();
+    fails_cleanly(&dir, &corrupt, "not a readable image");
+
+    let empty = dir.join("empty.png");
+    std::fs::write(&empty, png_header_only(0, 0)).unwrap();
+    fails_cleanly(&dir, &empty, "");
+
+    let huge = dir.join("huge.png");
+    std::fs::write(&huge, png_header_only(65535, 65535)).unwrap();
+    fails_cleanly(&dir, &huge, "65535x65535");
+
+    fails_cleanly(&dir, &dir.join("missing.png"), "cannot read");
+}
+
+#[test]
+fn output_equal_to_input_is_refused_and_the_input_survives() {
+    let dir = scratch("same_path");
+    let input = dir.join("h.png");
+    write_gray_png(&input, 8, 8, |x, _| x as u8 * 30);
+    let before = std::fs::read(&input).unwrap();
+    let sneaky = dir.join(".").join("h.png");
+    let o = bumpmap(&["normalmap", input.to_str().unwrap(), "-o", sneaky.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(1));
+    assert!(stderr(&o).contains("overwrite the input"), "{}", stderr(&o));
+    assert_eq!(std::fs::read(&input).unwrap(), before);
+    assert_eq!(listing(&dir), ["h.png"]);
+}
+
+#[test]
+fn folder_in_folder_out_processes_every_image() {
+    let dir = scratch("folder");
+    let input = dir.join("in");
+    std::fs::create_dir_all(&input).unwrap();
+    for i in 0..4 {
+        write_gray_png(&input.join(format!("h{i}.png")), 16, 16, |x, y| (x * y * (i + 1)) as u8);
+    }
+    std::fs::write(input.join("notes.txt"), "not an image").unwrap();
+    let out = dir.join("out");
+    let o = bumpmap(&["normalmap", input.to_str().unwrap(), "-o", out.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert_eq!(listing(&out), ["h0.png", "h1.png", "h2.png", "h3.png"]);
+}
+
+#[test]
+fn presets_and_containers() {
+    let dir = scratch("containers");
+    for ext in ["dds", "ktx2"] {
+        let out = dir.join(format!("b.{ext}"));
+        let o = bumpmap(&["normalmap", "bricks@64", "-o", out.to_str().unwrap(), "--mips", "--encoding", "kilgard"]);
+        assert!(o.status.success(), "{}", stderr(&o));
+        // 64² RGBA8 with 7 levels: 4·(4096+1024+256+64+16+4+1) = 21,844 bytes of texels.
+        let len = std::fs::metadata(&out).unwrap().len();
+        assert!(len > 21_844 && len < 21_844 + 400, "{ext}: {len} bytes");
+    }
+    let o = bumpmap(&["normalmap", "bricks", "-o", dir.join("x.jpg").to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(1));
+    assert!(stderr(&o).contains("unsupported output format"));
+}
+
+#[test]
+fn cubemap_faces_match_the_library() {
+    let dir = scratch("cubemap");
+    let o = bumpmap(&["cubemap", "--size", "32", "--encoding", "kilgard", "-o", dir.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert_eq!(listing(&dir), ["nx.png", "ny.png", "nz.png", "px.png", "py.png", "pz.png"]);
+    // The files hold the same bytes as the Cg Toolkit's cube map, face by face.
+    let golden = include_bytes!("../../bumpmap-math/tests/golden/cg_toolkit_normcm_32_rgb8.raw");
+    for (i, face) in ["px", "nx", "py", "ny", "pz", "nz"].iter().enumerate() {
+        let img = image::open(dir.join(format!("{face}.png"))).unwrap().to_rgb8();
+        assert_eq!(img.as_raw().as_slice(), &golden[i * 3072..(i + 1) * 3072], "face {face}");
+    }
+}

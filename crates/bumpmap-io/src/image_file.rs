@@ -1,0 +1,196 @@
+//! Image files: height fields and colour textures in, PNG out.
+//!
+//! Rows are taken in file order: the first row of an image file is texel row 0, which is
+//! texture coordinate t = 0 in OpenGL's convention (so a PNG viewer shows t growing downward).
+//! Sizes are checked against [`MAX_DIMENSION`] from the header, before any pixel is decoded.
+
+use std::path::{Path, PathBuf};
+
+use bumpmap_math::{HeightField, HeightPreset};
+use image::{DynamicImage, ImageReader, Limits};
+
+use crate::atomic::write_atomic;
+use crate::error::IoError;
+
+/// The largest width or height accepted for any image, in or out.
+pub const MAX_DIMENSION: u32 = 16384;
+
+/// Which channel of a colour image holds the heights.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum Channel {
+    /// The grey value of a greyscale image, Rec. 709 luminance of a colour one.
+    #[default]
+    Luminance,
+    Red,
+    Green,
+    Blue,
+    Alpha,
+}
+
+impl Channel {
+    pub fn name(self) -> &'static str {
+        match self {
+            Channel::Luminance => "luminance",
+            Channel::Red => "red",
+            Channel::Green => "green",
+            Channel::Blue => "blue",
+            Channel::Alpha => "alpha",
+        }
+    }
+}
+
+/// Where a height field comes from: a built-in preset or an image file.
+#[derive(Clone, Debug, PartialEq)]
+pub enum HeightSource {
+    Preset { preset: HeightPreset, size: usize },
+    File(PathBuf),
+}
+
+impl HeightSource {
+    /// A preset name (`bricks`, `noise:7`, optionally `@SIZE` as in `bricks@512`) when it parses
+    /// as one and no file of that name exists; otherwise a path.
+    pub fn parse(spec: &str) -> Self {
+        let (name, size) = match spec.rsplit_once('@') {
+            Some((n, s)) if s.parse::<usize>().is_ok() => (n, s.parse().unwrap()),
+            _ => (spec, HeightPreset::DEFAULT_SIZE),
+        };
+        match HeightPreset::parse(name) {
+            Some(preset) if !Path::new(spec).exists() && size > 0 && size <= MAX_DIMENSION as usize => {
+                HeightSource::Preset { preset, size }
+            }
+            _ => HeightSource::File(PathBuf::from(spec)),
+        }
+    }
+
+    pub fn load(&self, channel: Channel) -> Result<HeightField, IoError> {
+        match self {
+            HeightSource::Preset { preset, size } => Ok(preset.render(*size, *size)),
+            HeightSource::File(path) => load_height_field(path, channel),
+        }
+    }
+
+    /// The file, if this source is one.
+    pub fn path(&self) -> Option<&Path> {
+        match self {
+            HeightSource::File(p) => Some(p),
+            HeightSource::Preset { .. } => None,
+        }
+    }
+}
+
+fn decode(path: &Path) -> Result<DynamicImage, IoError> {
+    let open = || {
+        ImageReader::open(path)
+            .map_err(|source| IoError::Read { path: path.to_path_buf(), source })?
+            .with_guessed_format()
+            .map_err(|source| IoError::Read { path: path.to_path_buf(), source })
+    };
+    let bad = |e: image::ImageError| IoError::Decode { path: path.to_path_buf(), reason: e.to_string() };
+    let (width, height) = open()?.into_dimensions().map_err(bad)?;
+    if width == 0 || height == 0 {
+        return Err(IoError::Empty { path: path.to_path_buf(), width, height });
+    }
+    if width > MAX_DIMENSION || height > MAX_DIMENSION {
+        return Err(IoError::TooLarge {
+            path: path.to_path_buf(),
+            width: width as u64,
+            height: height as u64,
+            max: MAX_DIMENSION,
+        });
+    }
+    let mut reader = open()?;
+    let mut limits = Limits::default();
+    limits.max_image_width = Some(MAX_DIMENSION);
+    limits.max_image_height = Some(MAX_DIMENSION);
+    limits.max_alloc = Some(4 << 30);
+    reader.limits(limits);
+    reader.decode().map_err(bad)
+}
+
+/// Loads heights in [0, 1] from one channel of an 8- or 16-bit image (`v/255` or `v/65535`).
+pub fn load_height_field(path: &Path, channel: Channel) -> Result<HeightField, IoError> {
+    let img = decode(path)?;
+    let (w, h) = (img.width() as usize, img.height() as usize);
+    let color = img.color();
+    let missing =
+        || IoError::NoSuchChannel { path: path.to_path_buf(), channel: channel.name(), has: format!("{color:?}") };
+    let has_color = color.has_color();
+    if (matches!(channel, Channel::Red | Channel::Green | Channel::Blue) && !has_color)
+        || (channel == Channel::Alpha && !color.has_alpha())
+    {
+        return Err(missing());
+    }
+    let sixteen = color.bytes_per_pixel() / color.channel_count() >= 2;
+    let pick = |c: [f32; 4]| match channel {
+        Channel::Luminance if !has_color => c[0],
+        Channel::Luminance => 0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2],
+        Channel::Red => c[0],
+        Channel::Green => c[1],
+        Channel::Blue => c[2],
+        Channel::Alpha => c[3],
+    };
+    let field = if sixteen {
+        if !has_color && channel == Channel::Luminance {
+            HeightField::from_u16(w, h, img.to_luma16().as_raw())
+        } else {
+            let rgba = img.to_rgba16();
+            HeightField::new(w, h, rgba.pixels().map(|p| pick(p.0.map(|v| v as f32 / 65535.0))).collect())
+        }
+    } else if !has_color && channel == Channel::Luminance {
+        HeightField::from_u8(w, h, img.to_luma8().as_raw())
+    } else {
+        let rgba = img.to_rgba8();
+        HeightField::new(w, h, rgba.pixels().map(|p| pick(p.0.map(|v| v as f32 / 255.0))).collect())
+    };
+    Ok(field.expect("decoded image has consistent dimensions"))
+}
+
+/// Loads any image as 8-bit RGBA (decals, gloss maps). Returns (width, height, texels).
+pub fn load_rgba8(path: &Path) -> Result<(usize, usize, Vec<[u8; 4]>), IoError> {
+    let img = decode(path)?.to_rgba8();
+    let (w, h) = (img.width() as usize, img.height() as usize);
+    Ok((w, h, img.pixels().map(|p| p.0).collect()))
+}
+
+/// Pixel layouts [`save_png`] writes.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum PngLayout {
+    Gray8,
+    Rgb8,
+    Rgba8,
+}
+
+/// Writes an 8-bit PNG atomically. `bytes` holds `width·height` pixels, row 0 first.
+pub fn save_png(path: &Path, width: usize, height: usize, layout: PngLayout, bytes: &[u8]) -> Result<(), IoError> {
+    use image::ImageEncoder;
+    let color = match layout {
+        PngLayout::Gray8 => image::ExtendedColorType::L8,
+        PngLayout::Rgb8 => image::ExtendedColorType::Rgb8,
+        PngLayout::Rgba8 => image::ExtendedColorType::Rgba8,
+    };
+    debug_assert_eq!(bytes.len(), width * height * color.bits_per_pixel() as usize / 8);
+    write_atomic(path, |w| {
+        image::codecs::png::PngEncoder::new_with_quality(
+            w,
+            image::codecs::png::CompressionType::Fast,
+            image::codecs::png::FilterType::Adaptive,
+        )
+        .write_image(bytes, width as u32, height as u32, color)
+        .map_err(std::io::Error::other)
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn preset_specs_parse() {
+        assert_eq!(HeightSource::parse("bricks"), HeightSource::Preset { preset: HeightPreset::Bricks, size: 256 });
+        assert_eq!(
+            HeightSource::parse("noise:9@64"),
+            HeightSource::Preset { preset: HeightPreset::Noise(9), size: 64 }
+        );
+        assert_eq!(HeightSource::parse("my/heights.png"), HeightSource::File("my/heights.png".into()));
+    }
+}

@@ -1,0 +1,14 @@
+//! The only crate that knows file formats.
+//!
+//! Height fields and colour images in (anything `image` decodes, with size limits checked
+//! before decoding), PNG out, DDS and KTX2 containers for mip chains and cube maps, OBJ and
+//! glTF meshes. Every write goes to a temporary file in the destination folder and is renamed
+//! into place, so a failure never leaves a partial file, and no write may replace an input.
+
+pub mod atomic;
+pub mod error;
+pub mod image_file;
+pub mod texture_file;
+
+pub use error::IoError;
+pub use image_file::{Channel, HeightSource, load_height_field, load_rgba8};

@@ -1,0 +1,174 @@
+//! Finite-difference kernels for ∂F/∂u and ∂F/∂v, and how they treat the field's edges.
+//!
+//! Every kernel is normalized so that on the ramp F = a·u it returns exactly `a` per texel:
+//! `--scale` then means the same thing for every kernel. A kernel is a list of taps for ∂F/∂u;
+//! ∂F/∂v uses the same taps transposed. Derivatives point toward increasing texel index (the
+//! next column, the next row: Kilgard Appendix E's "right" and "up").
+
+/// Which finite difference approximates the partial derivatives of the height field.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default)]
+pub enum Kernel {
+    /// `F(u+1) − F(u)`: the paper's right/up differences (Kilgard Appendix E). Its result sits
+    /// half a texel to the right and up of the texel centre (Kilgard §5.4).
+    #[default]
+    Forward,
+    /// `(F(u+1) − F(u−1)) / 2`.
+    Central,
+    /// 3×3 Sobel.
+    Sobel3,
+    /// 5×5 Sobel: derivative [−1 −2 0 2 1] times smoothing [1 4 6 4 1].
+    Sobel5,
+    /// 3×3 Prewitt.
+    Prewitt3,
+    /// 3×3 Scharr: derivative [−1 0 1] times smoothing [3 10 3].
+    Scharr3,
+    /// Peercy's 7×7 derivative of a Gaussian (σ = 1 texel).
+    Gaussian7,
+}
+
+/// One tap of a derivative kernel: the height at texel offset (dx, dy) times `weight`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Tap {
+    pub dx: i32,
+    pub dy: i32,
+    pub weight: f32,
+}
+
+impl Kernel {
+    pub const ALL: [Kernel; 7] = [
+        Kernel::Forward,
+        Kernel::Central,
+        Kernel::Sobel3,
+        Kernel::Sobel5,
+        Kernel::Prewitt3,
+        Kernel::Scharr3,
+        Kernel::Gaussian7,
+    ];
+
+    pub fn name(self) -> &'static str {
+        match self {
+            Kernel::Forward => "forward",
+            Kernel::Central => "central",
+            Kernel::Sobel3 => "sobel3",
+            Kernel::Sobel5 => "sobel5",
+            Kernel::Prewitt3 => "prewitt3",
+            Kernel::Scharr3 => "scharr3",
+            Kernel::Gaussian7 => "gaussian7",
+        }
+    }
+
+    pub fn parse(name: &str) -> Option<Self> {
+        Self::ALL.into_iter().find(|k| k.name().eq_ignore_ascii_case(name))
+    }
+
+    /// How far the kernel reaches from the centre texel, in texels.
+    pub fn radius(self) -> i32 {
+        match self {
+            Kernel::Forward | Kernel::Central | Kernel::Sobel3 | Kernel::Prewitt3 | Kernel::Scharr3 => 1,
+            Kernel::Sobel5 => 2,
+            Kernel::Gaussian7 => 3,
+        }
+    }
+
+    /// The taps of ∂F/∂u, zero weights left out. ∂F/∂v is the transpose.
+    pub fn taps_du(self) -> Vec<Tap> {
+        match self {
+            // Exactly two taps in this order, so `1·F(u+1) + (−1)·F(u)` rounds like the paper's
+            // `c − cx` (negation is exact): the byte-exact Appendix E test depends on it.
+            Kernel::Forward => vec![Tap { dx: 1, dy: 0, weight: 1.0 }, Tap { dx: 0, dy: 0, weight: -1.0 }],
+            Kernel::Central => separable(&[-1.0, 0.0, 1.0], &[1.0]),
+            Kernel::Sobel3 => separable(&[-1.0, 0.0, 1.0], &[1.0, 2.0, 1.0]),
+            Kernel::Sobel5 => separable(&[-1.0, -2.0, 0.0, 2.0, 1.0], &[1.0, 4.0, 6.0, 4.0, 1.0]),
+            Kernel::Prewitt3 => separable(&[-1.0, 0.0, 1.0], &[1.0, 1.0, 1.0]),
+            Kernel::Scharr3 => separable(&[-1.0, 0.0, 1.0], &[3.0, 10.0, 3.0]),
+            Kernel::Gaussian7 => {
+                let g: Vec<f32> = (-3..=3).map(|i: i32| (-(i * i) as f32 / 2.0).exp()).collect();
+                let d: Vec<f32> = (-3..=3).zip(&g).map(|(i, g)| i as f32 * g).collect();
+                separable(&d, &g)
+            }
+        }
+    }
+
+    /// The taps of ∂F/∂v: those of ∂F/∂u with dx and dy swapped.
+    pub fn taps_dv(self) -> Vec<Tap> {
+        self.taps_du().into_iter().map(|t| Tap { dx: t.dy, dy: t.dx, weight: t.weight }).collect()
+    }
+}
+
+/// Outer product of a centred derivative row and a centred smoothing column, normalized so a
+/// unit ramp along u gives 1.
+fn separable(derivative: &[f32], smoothing: &[f32]) -> Vec<Tap> {
+    let (rd, rs) = ((derivative.len() / 2) as i32, (smoothing.len() / 2) as i32);
+    let ramp: f32 = derivative.iter().enumerate().map(|(i, w)| (i as i32 - rd) as f32 * w).sum::<f32>()
+        * smoothing.iter().sum::<f32>();
+    let mut taps = Vec::new();
+    for (j, s) in smoothing.iter().enumerate() {
+        for (i, d) in derivative.iter().enumerate() {
+            let weight = d * s / ramp;
+            if weight != 0.0 {
+                taps.push(Tap { dx: i as i32 - rd, dy: j as i32 - rs, weight });
+            }
+        }
+    }
+    taps
+}
+
+/// What a kernel reads beyond the edge of the height field.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default)]
+pub enum Wrap {
+    /// The field tiles (`GL_REPEAT`): indices wrap around. The paper's default.
+    #[default]
+    Repeat,
+    /// Indices clamp to the nearest edge texel.
+    Clamp,
+    /// Kilgard Appendix E's border case: the input is one texel wider and taller than the
+    /// output, and the extra last column and row are read instead of wrapping. Taps that still
+    /// fall outside the input clamp.
+    Border,
+}
+
+impl Wrap {
+    pub fn name(self) -> &'static str {
+        match self {
+            Wrap::Repeat => "repeat",
+            Wrap::Clamp => "clamp",
+            Wrap::Border => "border",
+        }
+    }
+
+    /// Maps a possibly out-of-range index into `0..n`. `n` must be positive.
+    #[inline(always)]
+    pub fn index(self, i: i64, n: usize) -> usize {
+        debug_assert!(n > 0);
+        match self {
+            Wrap::Repeat => i.rem_euclid(n as i64) as usize,
+            Wrap::Clamp | Wrap::Border => i.clamp(0, n as i64 - 1) as usize,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_kernel_returns_the_slope_of_a_ramp() {
+        for k in Kernel::ALL {
+            let du: f32 = k.taps_du().iter().map(|t| t.dx as f32 * 0.25 * t.weight).sum();
+            let dv_on_u_ramp: f32 = k.taps_dv().iter().map(|t| t.dx as f32 * t.weight).sum();
+            // Normalization is a single division; f32 rounding of ≤ 49 taps stays below 1e-6.
+            assert!((du - 0.25).abs() < 1e-6, "{}: ramp 0.25/texel gave {du}", k.name());
+            assert!(dv_on_u_ramp.abs() < 1e-6, "{}: ∂F/∂v of a u-ramp gave {dv_on_u_ramp}", k.name());
+            assert!(k.taps_du().iter().all(|t| t.dx.abs() <= k.radius() && t.dy.abs() <= k.radius()));
+            assert_eq!(Kernel::parse(k.name()), Some(k));
+        }
+    }
+
+    #[test]
+    fn wrap_modes_index_as_documented() {
+        assert_eq!(Wrap::Repeat.index(-1, 5), 4);
+        assert_eq!(Wrap::Repeat.index(5, 5), 0);
+        assert_eq!(Wrap::Clamp.index(-3, 5), 0);
+        assert_eq!(Wrap::Clamp.index(9, 5), 4);
+    }
+}

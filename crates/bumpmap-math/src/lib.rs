@@ -1,0 +1,26 @@
+//! Pure mathematics of bump mapping: everything the techniques need that is not a pipeline.
+//!
+//! This crate knows no file formats and draws no pixels. It turns height fields into normal
+//! maps and mip chains (Kilgard §2.4.2, §2.6, §5.3, Appendices E–F), builds and samples
+//! normalization cube maps (Kilgard §5.2, Appendix D, Table 1), describes surfaces and their
+//! tangent frames (Cg Tutorial §8.2–8.4, Peercy §2) and computes the per-vertex tangent-space
+//! light and half-angle vectors (Kilgard §5.1, Appendix C).
+//!
+//! Conventions (pinned by tests):
+//! - texture coordinate `t` grows with the row index of texel memory (row 0 is t = 0);
+//! - normals follow Kilgard Eq. 25, `n ∝ (-∂F/∂u, -∂F/∂v, 1)`;
+//! - tangent frames are `T = normalize(∂P/∂s)`, `B = N × T` (times the handedness `w`).
+
+pub mod cubemap;
+pub mod encoding;
+pub mod height;
+pub mod kernel;
+pub mod mip;
+pub mod normalmap;
+
+pub use cubemap::{CubeFace, NormalizationCubeMap};
+pub use encoding::Encoding;
+pub use height::{HeightField, HeightPreset};
+pub use kernel::{Kernel, Wrap};
+pub use mip::{MipChain, MipMode};
+pub use normalmap::{NormalMapOptions, NormalMapRgba8, YConvention};
