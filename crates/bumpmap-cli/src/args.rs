@@ -33,6 +33,8 @@ pub enum Command {
     Cubemap(CubemapArgs),
     /// Measure speed (median of several runs); --json prints one machine-readable line
     Bench(BenchArgs),
+    /// Render a bump-mapped scene
+    Render(Box<RenderArgs>),
     /// Run everything on built-in defaults and write the results into a folder
     Demo(DemoArgs),
 }
@@ -270,4 +272,190 @@ pub struct DemoArgs {
     /// Folder to write into (created if missing)
     #[arg(short, long, default_value = "out/demo")]
     pub output: PathBuf,
+}
+
+/// Three numbers, `X,Y,Z`.
+pub fn parse_vec3(s: &str) -> Result<glam::Vec3, String> {
+    let v: Vec<f32> = s
+        .split(',')
+        .map(|p| p.trim().parse::<f32>().map_err(|_| format!("'{p}' is not a number")))
+        .collect::<Result<_, _>>()?;
+    match v.as_slice() {
+        [x, y, z] if v.iter().all(|c| c.is_finite()) => Ok(glam::Vec3::new(*x, *y, *z)),
+        _ => Err(format!("expected X,Y,Z (three finite numbers), got '{s}'")),
+    }
+}
+
+/// Two numbers, `A,B`.
+pub fn parse_pair(s: &str) -> Result<(f32, f32), String> {
+    let v: Vec<f32> = s
+        .split(',')
+        .map(|p| p.trim().parse::<f32>().map_err(|_| format!("'{p}' is not a number")))
+        .collect::<Result<_, _>>()?;
+    match v.as_slice() {
+        [a, b] if a.is_finite() && b.is_finite() => Ok((*a, *b)),
+        _ => Err(format!("expected A,B (two finite numbers), got '{s}'")),
+    }
+}
+
+/// Two positive integers, `U,V`.
+pub fn parse_counts(s: &str) -> Result<(usize, usize), String> {
+    let (a, b) = s.split_once(',').ok_or_else(|| format!("expected U,V, got '{s}'"))?;
+    let p = |x: &str| {
+        x.trim()
+            .parse::<usize>()
+            .ok()
+            .filter(|&n| (1..=4096).contains(&n))
+            .ok_or_else(|| format!("'{x}' is not a count in 1..=4096"))
+    };
+    Ok((p(a)?, p(b)?))
+}
+
+/// `[dir:]X,Y,Z[@R,G,B]`: a positional light (or a direction toward a directional one) and its
+/// colour.
+pub fn parse_light(s: &str) -> Result<bumpmap_raster::scene::SceneLight, String> {
+    use bumpmap_math::lighting::Light;
+    let (pos, color) = match s.split_once('@') {
+        Some((p, c)) => (p, parse_vec3(c)?),
+        None => (s, glam::Vec3::ONE),
+    };
+    if color.min_element() < 0.0 {
+        return Err(format!("light colour must not be negative, got '{s}'"));
+    }
+    let light = match pos.strip_prefix("dir:") {
+        Some(d) => {
+            let d = parse_vec3(d)?;
+            if d.length() == 0.0 {
+                return Err("a directional light needs a non-zero direction".into());
+            }
+            Light::Directional(d.normalize())
+        }
+        None => Light::Positional(parse_vec3(pos)?),
+    };
+    Ok(bumpmap_raster::scene::SceneLight { light, color })
+}
+
+#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum TechniqueArg {
+    /// The paper's three passes on the emulated GeForce 256 (register combiners, cube map)
+    Kilgard,
+}
+
+#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum FilterArg {
+    /// GL_NEAREST: blocky, no mipmaps
+    Nearest,
+    /// GL_LINEAR: bilinear, no mipmaps (shimmers at a distance)
+    Linear,
+    /// GL_LINEAR_MIPMAP_LINEAR: the paper's choice
+    Trilinear,
+}
+
+#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum PrecisionArg {
+    /// Single-precision combiners
+    Float,
+    /// The GeForce 256's 9-bit signed fixed point
+    Fixed9,
+}
+
+#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum SpecularArg {
+    /// max(0, H·N')^8 by repeated squaring (Appendix H)
+    Power8,
+    /// max(0, 4·(H·N' − ¾))² (§5.5), a tighter highlight
+    Ramp,
+}
+
+#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ViewerArg {
+    Local,
+    Infinite,
+}
+
+#[derive(Args, Debug, Clone)]
+#[command(after_help = "Examples:\n  \
+bumpmap render                                         # the paper's torus, out/render.png\n  \
+bumpmap render --passes -o torus.png                   # also torus.decal.png, .diffuse.png, .specular.png\n  \
+bumpmap render --scene wall-floor --light -1,2,3        # the Cg Tutorial's Figure 8-4\n  \
+bumpmap render --height-field dimples --bump-scale 8 --decal none\n  \
+bumpmap render --light 4,0,3@1,0.6,0.4 --light dir:-1,0,1@0.3,0.3,0.6\n\n\
+Lights are [dir:]X,Y,Z[@R,G,B] in world space: a point light's position, or with dir: the \
+direction toward a light at infinity.")]
+pub struct RenderArgs {
+    /// torus, wall, floor, wall-floor, patch, sphere, or mesh:FILE (.obj, .gltf, .glb)
+    #[arg(long, default_value = "torus")]
+    pub scene: String,
+    #[arg(long, value_enum, default_value = "kilgard")]
+    pub technique: TechniqueArg,
+    /// Output PNG
+    #[arg(short, long, default_value = "out/render.png")]
+    pub output: PathBuf,
+    /// Square image size (pixels)
+    #[arg(long, default_value_t = 512, conflicts_with_all = ["width", "height"])]
+    pub size: usize,
+    #[arg(long, requires = "height")]
+    pub width: Option<usize>,
+    #[arg(long, requires = "width")]
+    pub height: Option<usize>,
+    /// Eye position (default: the scene's)
+    #[arg(long, value_parser = parse_vec3, allow_hyphen_values = true)]
+    pub eye: Option<glam::Vec3>,
+    /// Point looked at (default: the scene's)
+    #[arg(long, value_parser = parse_vec3, allow_hyphen_values = true)]
+    pub target: Option<glam::Vec3>,
+    /// Vertical field of view in degrees
+    #[arg(long, default_value_t = 45.0)]
+    pub fov: f32,
+    /// A light, repeatable: [dir:]X,Y,Z[@R,G,B] (default: the scene's)
+    #[arg(long = "light", value_parser = parse_light, allow_hyphen_values = true)]
+    pub lights: Vec<bumpmap_raster::scene::SceneLight>,
+    /// Local or infinite viewer for the half-angle vector
+    #[arg(long, value_enum, default_value = "local")]
+    pub viewer: ViewerArg,
+    /// Height field: image file or preset (bricks, pinwheel, dimples, noise:SEED[@SIZE])
+    #[arg(long = "height-field", default_value = "bricks")]
+    pub height_field: String,
+    /// Bump height (the normal map's --scale)
+    #[arg(long = "bump-scale", default_value_t = 4.0, allow_negative_numbers = true)]
+    pub bump_scale: f32,
+    /// Decal image, or "none" (default: brick decal for the bricks preset, none otherwise)
+    #[arg(long)]
+    pub decal: Option<String>,
+    /// Ambient intensity I_ambient
+    #[arg(long, default_value_t = 0.2)]
+    pub ambient: f32,
+    /// Diffuse coefficient k_diffuse
+    #[arg(long, default_value_t = 0.8)]
+    pub diffuse: f32,
+    /// Specular coefficient (0 drops the specular pass)
+    #[arg(long, default_value_t = 1.0)]
+    pub specular: f32,
+    /// Torus radii R,r (hole centre to tube centre, tube)
+    #[arg(long = "torus-radii", value_parser = parse_pair, default_value = "2,0.7")]
+    pub torus_radii: (f32, f32),
+    /// Quads along u and v (default: the scene's; torus 128,64)
+    #[arg(long, value_parser = parse_counts)]
+    pub tessellation: Option<(usize, usize)>,
+    /// Texture repeats along s and t (default: the scene's; torus 6,2)
+    #[arg(long, value_parser = parse_pair)]
+    pub repeat: Option<(f32, f32)>,
+    /// Texture filtering of the normal map and decal
+    #[arg(long, value_enum, default_value = "trilinear")]
+    pub filter: FilterArg,
+    /// Also write the framebuffer after each pass (Figure 12): OUT.decal.png, OUT.diffuse.png, …
+    #[arg(long)]
+    pub passes: bool,
+    /// Leave out Eq. 12's self-shadowing term (Figure 14, left)
+    #[arg(long = "no-self-shadow")]
+    pub no_self_shadow: bool,
+    /// Register-combiner arithmetic
+    #[arg(long, value_enum, default_value = "float")]
+    pub precision: PrecisionArg,
+    /// Specular form of the third pass
+    #[arg(long = "specular-mode", value_enum, default_value = "power8")]
+    pub specular_mode: SpecularArg,
+    /// Face size of the normalization cube map
+    #[arg(long = "cube-size", default_value_t = 32, value_parser = clap::value_parser!(u32).range(1..=1024))]
+    pub cube_size: u32,
 }

@@ -10,6 +10,8 @@ pub enum CliError {
     NormalMap { path: String, source: bumpmap_math::normalmap::NormalMapError },
     #[error("{}: {reason}", path.display())]
     Path { path: PathBuf, reason: String },
+    #[error("{0}")]
+    Render(String),
     #[error("{failed} of {total} files failed (see the messages above)")]
     Batch { failed: usize, total: usize },
 }

@@ -7,7 +7,9 @@ mod bench;
 mod cubemap;
 mod demo;
 mod error;
+mod mesh;
 mod normalmap;
+mod render;
 
 use clap::Parser;
 
@@ -19,6 +21,7 @@ fn main() {
         Command::Normalmap(a) => normalmap::run(&a),
         Command::Cubemap(a) => cubemap::run(&a),
         Command::Bench(a) => bench::run(&a),
+        Command::Render(a) => render::run(&a),
         Command::Demo(a) => demo::run(&a),
     };
     if let Err(e) = result {

@@ -184,27 +184,51 @@ impl HeightPreset {
     }
 }
 
-/// Brick height at (u, v) in [0, 1)²; `w`, `h` give the texel size for the bevel width.
-fn bricks(u: f32, v: f32, w: f32, h: f32, rough: &ValueNoise) -> f32 {
+/// Where (u, v) ∈ [0, 1)² falls in the brick layout: distance to the nearest mortar joint in
+/// texels (negative inside the mortar) for a `w`×`h` texture, and the brick's row and column.
+fn brick_cell(u: f32, v: f32, w: f32, h: f32) -> (f32, u64, u64) {
     const ACROSS: f32 = 4.0;
     const ROWS: f32 = 8.0;
     let row = (v * ROWS).floor();
     let shift = if row as i32 % 2 == 1 { 0.5 } else { 0.0 };
     let bu = (u * ACROSS + shift).rem_euclid(ACROSS);
     let col = bu.floor();
-    // Distance to the brick's edge in texels; the mortar joint is 1/32 of a brick tall.
+    // The mortar joint is 1/16 of a brick row tall and as wide in texels.
     let (fu, fv) = (bu.fract(), (v * ROWS).fract());
     let mortar = 1.0 / 16.0;
-    let du = (fu.min(1.0 - fu) - mortar * 0.5 * ROWS / ACROSS) * w / ACROSS;
+    let du = (fu.min(1.0 - fu) - mortar * 0.5 * h * ACROSS / (ROWS * w)) * w / ACROSS;
     let dv = (fv.min(1.0 - fv) - mortar * 0.5) * h / ROWS;
-    let edge = du.min(dv);
+    (du.min(dv), row as u64, col as u64)
+}
+
+/// Brick height at (u, v) in [0, 1)²; `w`, `h` give the texel size for the bevel width.
+fn bricks(u: f32, v: f32, w: f32, h: f32, rough: &ValueNoise) -> f32 {
+    let (edge, row, col) = brick_cell(u, v, w, h);
     let bevel = (w / 128.0).max(1.0);
     let face = (edge / bevel).clamp(0.0, 1.0);
     // Every third brick (by a hash of its cell) is rough.
-    let cell = (row as u64) * 31 + col as u64;
-    let roughness = if hash(cell, 7).is_multiple_of(3) { 0.35 } else { 0.0 };
+    let roughness = if hash(row * 31 + col, 7).is_multiple_of(3) { 0.2 } else { 0.0 };
     let grain = rough.fractal(u, v, 3) - 0.5;
     0.2 + 0.8 * face * (1.0 - roughness * 0.5 + roughness * grain)
+}
+
+/// The decal that goes with [`HeightPreset::Bricks`]: red bricks, each tinted a little
+/// differently, in light grey mortar. RGBA8 (A = 255), row-major, row 0 = t = 0.
+pub fn bricks_decal(width: usize, height: usize) -> Vec<[u8; 4]> {
+    let (w, h) = (width as f32, height as f32);
+    let mut out = Vec::with_capacity(width * height);
+    for y in 0..height {
+        for x in 0..width {
+            let (edge, row, col) = brick_cell((x as f32 + 0.5) / w, (y as f32 + 0.5) / h, w, h);
+            let tint = 0.75 + 0.35 * (hash(row * 31 + col, 11) >> 40) as f32 / (1u64 << 24) as f32;
+            let brick = [0.72 * tint, 0.28 * tint, 0.18 * tint];
+            let mortar = [0.78, 0.76, 0.72];
+            let k = edge.clamp(0.0, 1.0);
+            let c = [0, 1, 2].map(|i| ((k * brick[i] + (1.0 - k) * mortar[i]).clamp(0.0, 1.0) * 255.0 + 0.5) as u8);
+            out.push([c[0], c[1], c[2], 255]);
+        }
+    }
+    out
 }
 
 fn pinwheel(u: f32, v: f32, texels: f32) -> f32 {

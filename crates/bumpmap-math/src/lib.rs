@@ -15,12 +15,15 @@ pub mod cubemap;
 pub mod encoding;
 pub mod height;
 pub mod kernel;
+pub mod lighting;
+pub mod mesh;
 pub mod mip;
 pub mod normalmap;
+pub mod surface;
 
 pub use cubemap::{CubeFace, NormalizationCubeMap};
 pub use encoding::Encoding;
-pub use height::{HeightField, HeightPreset};
+pub use height::{HeightField, HeightPreset, bricks_decal};
 pub use kernel::{Kernel, Wrap};
 pub use mip::{MipChain, MipMode};
 pub use normalmap::{NormalMapOptions, NormalMapRgba8, YConvention};

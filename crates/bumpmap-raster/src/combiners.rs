@@ -1,0 +1,648 @@
+//! NV_register_combiners (v1.7), as the extension specification defines it (SPECS.md §1).
+//!
+//! A [`CombinerSetup`] is plain data, written the way `glCombinerInputNV` / `glCombinerOutputNV`
+//! calls read, so Kilgard's Appendices G and H can be checked line by line (`setups.rs`).
+//! [`Combiners::new`] validates it against every INVALID_OPERATION / INVALID_VALUE rule of the
+//! spec; [`Combiners::run`] evaluates it over a batch of fragments in structure-of-arrays
+//! lanes, one pass of each operation over all lanes, so the setup is interpreted per batch and
+//! never per pixel. Precision is float by default or `Fixed9`, which rounds like the 9-bit
+//! signed NV10 datapath. Not emulated: NV_register_combiners2's per-stage constants, and the
+//! GeForce 256's wrong results above 2 with the colour-sum clamp off.
+
+use glam::Vec4;
+
+/// Fragments evaluated together.
+pub const LANES: usize = 64;
+/// One value per lane.
+pub type Lanes = [f32; LANES];
+
+/// The combiner registers (SPECS.md §1 table), in a fixed order for indexing.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Register {
+    Zero,
+    ConstantColor0,
+    ConstantColor1,
+    Fog,
+    PrimaryColor,
+    SecondaryColor,
+    Spare0,
+    Spare1,
+    Texture0,
+    Texture1,
+    Texture2,
+    Texture3,
+}
+
+/// Number of registers in a [`RegisterFile`].
+pub const REGISTERS: usize = 12;
+
+impl Register {
+    /// Whether a general combiner may write it (ZERO, the constants and FOG are read-only).
+    pub fn writable(self) -> bool {
+        !matches!(self, Register::Zero | Register::ConstantColor0 | Register::ConstantColor1 | Register::Fog)
+    }
+
+    /// The register of texture unit `i` (0–3).
+    pub fn texture(i: usize) -> Register {
+        [Register::Texture0, Register::Texture1, Register::Texture2, Register::Texture3][i]
+    }
+}
+
+/// The eight input mappings (spec table NV_register_combiners.4), applied per component.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum InputMapping {
+    /// max(0, e)
+    UnsignedIdentity,
+    /// 1 − min(max(0, e), 1)
+    UnsignedInvert,
+    /// 2·max(0, e) − 1
+    ExpandNormal,
+    /// −2·max(0, e) + 1
+    ExpandNegate,
+    /// max(0, e) − ½
+    HalfBiasNormal,
+    /// −max(0, e) + ½
+    HalfBiasNegate,
+    /// e
+    SignedIdentity,
+    /// −e
+    SignedNegate,
+}
+
+impl InputMapping {
+    #[inline(always)]
+    pub fn apply(self, e: f32) -> f32 {
+        match self {
+            InputMapping::UnsignedIdentity => e.max(0.0),
+            InputMapping::UnsignedInvert => 1.0 - e.clamp(0.0, 1.0),
+            InputMapping::ExpandNormal => 2.0 * e.max(0.0) - 1.0,
+            InputMapping::ExpandNegate => -2.0 * e.max(0.0) + 1.0,
+            InputMapping::HalfBiasNormal => e.max(0.0) - 0.5,
+            InputMapping::HalfBiasNegate => -e.max(0.0) + 0.5,
+            InputMapping::SignedIdentity => e,
+            InputMapping::SignedNegate => -e,
+        }
+    }
+}
+
+/// Which components of a register a variable reads.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum ComponentUsage {
+    /// R, G, B (RGB portion and final combiner A–F only).
+    Rgb,
+    /// The alpha, replicated to RGB on the RGB portion.
+    Alpha,
+    /// The blue, as the alpha portion's value (alpha portion and final G only).
+    Blue,
+}
+
+/// One variable's source: register, mapping and component usage (`glCombinerInputNV`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct Input {
+    pub register: Register,
+    pub mapping: InputMapping,
+    pub usage: ComponentUsage,
+}
+
+impl Input {
+    pub const fn new(register: Register, mapping: InputMapping, usage: ComponentUsage) -> Self {
+        Self { register, mapping, usage }
+    }
+
+    /// ZERO under UNSIGNED_INVERT: the constant 1.
+    pub const fn one(usage: ComponentUsage) -> Self {
+        Self::new(Register::Zero, InputMapping::UnsignedInvert, usage)
+    }
+
+    /// ZERO under UNSIGNED_IDENTITY: the constant 0.
+    pub const fn zero(usage: ComponentUsage) -> Self {
+        Self::new(Register::Zero, InputMapping::UnsignedIdentity, usage)
+    }
+}
+
+/// `GL_SCALE_BY_*` of a portion's outputs.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Scale {
+    None,
+    ByTwo,
+    ByFour,
+    ByOneHalf,
+}
+
+impl Scale {
+    fn factor(self) -> f32 {
+        match self {
+            Scale::None => 1.0,
+            Scale::ByTwo => 2.0,
+            Scale::ByFour => 4.0,
+            Scale::ByOneHalf => 0.5,
+        }
+    }
+}
+
+/// `GL_BIAS_BY_NEGATIVE_ONE_HALF_NV` or none.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Bias {
+    None,
+    MinusOneHalf,
+}
+
+/// One portion's outputs (`glCombinerOutputNV`). `None` as a destination is `GL_DISCARD_NV`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct Outputs {
+    pub ab: Option<Register>,
+    pub cd: Option<Register>,
+    pub sum: Option<Register>,
+    pub scale: Scale,
+    pub bias: Bias,
+    pub ab_dot: bool,
+    pub cd_dot: bool,
+    /// The mux: `spare0.alpha < ½ ? AB : CD` instead of AB + CD.
+    pub mux_sum: bool,
+}
+
+impl Outputs {
+    /// All three discarded, no scale, bias, dot products or mux.
+    pub const DISCARD: Outputs = Outputs {
+        ab: None,
+        cd: None,
+        sum: None,
+        scale: Scale::None,
+        bias: Bias::None,
+        ab_dot: false,
+        cd_dot: false,
+        mux_sum: false,
+    };
+}
+
+/// The RGB or alpha half of a general combiner stage.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct Portion {
+    pub a: Input,
+    pub b: Input,
+    pub c: Input,
+    pub d: Input,
+    pub outputs: Outputs,
+}
+
+impl Portion {
+    /// The spec's initial state: A = PRIMARY_COLOR, B = ZERO inverted (1), C = D = 0, sum → SPARE0.
+    pub const fn initial(usage: ComponentUsage) -> Self {
+        Portion {
+            a: Input::new(Register::PrimaryColor, InputMapping::UnsignedIdentity, usage),
+            b: Input::one(usage),
+            c: Input::zero(usage),
+            d: Input::zero(usage),
+            outputs: Outputs { sum: Some(Register::Spare0), ..Outputs::DISCARD },
+        }
+    }
+}
+
+/// A general combiner stage: its RGB and alpha portions.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct GeneralStage {
+    pub rgb: Portion,
+    pub alpha: Portion,
+}
+
+impl Default for GeneralStage {
+    fn default() -> Self {
+        Self { rgb: Portion::initial(ComponentUsage::Rgb), alpha: Portion::initial(ComponentUsage::Alpha) }
+    }
+}
+
+/// A final-combiner variable's source: a register or one of the two pseudo-registers.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum FinalSource {
+    Register(Register),
+    /// `GL_E_TIMES_F_NV`: E·F after their mappings (A–D only).
+    ETimesF,
+    /// `GL_SPARE0_PLUS_SECONDARY_COLOR_NV` (B–D only).
+    Spare0PlusSecondary,
+}
+
+/// One final-combiner variable (`glFinalCombinerInputNV`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct FinalInput {
+    pub source: FinalSource,
+    /// Only `UnsignedIdentity` and `UnsignedInvert` are legal here.
+    pub mapping: InputMapping,
+    pub usage: ComponentUsage,
+}
+
+impl FinalInput {
+    pub const fn reg(register: Register, usage: ComponentUsage) -> Self {
+        Self { source: FinalSource::Register(register), mapping: InputMapping::UnsignedIdentity, usage }
+    }
+
+    pub const ZERO: FinalInput = FinalInput::reg(Register::Zero, ComponentUsage::Rgb);
+    pub const E_TIMES_F: FinalInput = FinalInput {
+        source: FinalSource::ETimesF,
+        mapping: InputMapping::UnsignedIdentity,
+        usage: ComponentUsage::Rgb,
+    };
+}
+
+/// The final combiner: `rgb = min(A·B + (1−A)·C + D, 1)`, `alpha = G`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct FinalCombiner {
+    pub a: FinalInput,
+    pub b: FinalInput,
+    pub c: FinalInput,
+    pub d: FinalInput,
+    pub e: FinalInput,
+    pub f: FinalInput,
+    pub g: FinalInput,
+    /// `GL_COLOR_SUM_CLAMP_NV` (default true): clamp spare0 + secondary to [0, 1].
+    pub color_sum_clamp: bool,
+}
+
+impl Default for FinalCombiner {
+    /// The spec's initial state: the GL 1.2 colour sum and fog.
+    fn default() -> Self {
+        FinalCombiner {
+            a: FinalInput::reg(Register::Fog, ComponentUsage::Alpha),
+            b: FinalInput { source: FinalSource::Spare0PlusSecondary, ..FinalInput::ZERO },
+            c: FinalInput::reg(Register::Fog, ComponentUsage::Rgb),
+            d: FinalInput::ZERO,
+            e: FinalInput::ZERO,
+            f: FinalInput::ZERO,
+            g: FinalInput::reg(Register::Spare0, ComponentUsage::Alpha),
+            color_sum_clamp: true,
+        }
+    }
+}
+
+/// The whole register-combiner state of one pass.
+#[derive(Clone, Debug, PartialEq)]
+pub struct CombinerSetup {
+    /// The enabled general stages; `len()` is `GL_NUM_GENERAL_COMBINERS_NV`.
+    pub stages: Vec<GeneralStage>,
+    pub final_combiner: FinalCombiner,
+    /// `GL_CONSTANT_COLOR0_NV` / `1_NV`, clamped to [0, 1] when set (as the GL does).
+    pub constant0: Vec4,
+    pub constant1: Vec4,
+}
+
+impl Default for CombinerSetup {
+    fn default() -> Self {
+        Self {
+            stages: vec![GeneralStage::default()],
+            final_combiner: FinalCombiner::default(),
+            constant0: Vec4::ZERO,
+            constant1: Vec4::ZERO,
+        }
+    }
+}
+
+/// `GL_MAX_GENERAL_COMBINERS_NV` of a GeForce 256.
+pub const MAX_GENERAL_COMBINERS: usize = 2;
+
+/// RGB or alpha, for error messages.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum PortionName {
+    Rgb,
+    Alpha,
+}
+
+impl std::fmt::Display for PortionName {
+    fn fmt(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+        f.write_str(match self {
+            PortionName::Rgb => "RGB",
+            PortionName::Alpha => "alpha",
+        })
+    }
+}
+
+/// The setups the specification rejects, with the GL error it names.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+pub enum CombinerError {
+    #[error("INVALID_VALUE: NUM_GENERAL_COMBINERS_NV = {0}, must be 1..={MAX_GENERAL_COMBINERS}")]
+    StageCount(usize),
+    #[error("INVALID_OPERATION: stage {stage} RGB portion, variable {var}: BLUE component usage")]
+    BlueOnRgb { stage: usize, var: char },
+    #[error("INVALID_OPERATION: stage {stage} alpha portion, variable {var}: RGB component usage")]
+    RgbOnAlpha { stage: usize, var: char },
+    #[error(
+        "INVALID_OPERATION: stage {stage} {portion} portion, variable {var}: FOG alpha is only readable by the final combiner"
+    )]
+    FogAlphaInGeneral { stage: usize, portion: PortionName, var: char },
+    #[error("INVALID_VALUE: stage {stage} alpha portion: dot products exist only on the RGB portion")]
+    DotOnAlpha { stage: usize },
+    #[error("INVALID_OPERATION: stage {stage} {portion} portion: scale {scale:?} cannot be combined with bias −½")]
+    ScaleWithBias { stage: usize, portion: PortionName, scale: Scale },
+    #[error("INVALID_OPERATION: stage {stage} {portion} portion writes {register:?} more than once")]
+    DuplicateOutput { stage: usize, portion: PortionName, register: Register },
+    #[error("INVALID_ENUM: stage {stage} {portion} portion writes read-only register {register:?}")]
+    NotWritable { stage: usize, portion: PortionName, register: Register },
+    #[error(
+        "INVALID_OPERATION: final combiner variable {var}: mapping {mapping:?} (only UNSIGNED_IDENTITY or UNSIGNED_INVERT)"
+    )]
+    FinalMapping { var: char, mapping: InputMapping },
+    #[error("INVALID_OPERATION: final combiner variable {var} cannot read {from:?}")]
+    FinalSourceNotAllowed { var: char, from: FinalSource },
+    #[error("INVALID_OPERATION: final combiner variable {var}: component usage {usage:?} not allowed")]
+    FinalUsage { var: char, usage: ComponentUsage },
+}
+
+impl CombinerSetup {
+    /// Checks every rule of the specification; the first violation is returned.
+    pub fn validate(&self) -> Result<(), CombinerError> {
+        if self.stages.is_empty() || self.stages.len() > MAX_GENERAL_COMBINERS {
+            return Err(CombinerError::StageCount(self.stages.len()));
+        }
+        for (stage, s) in self.stages.iter().enumerate() {
+            for (portion, p) in [(PortionName::Rgb, &s.rgb), (PortionName::Alpha, &s.alpha)] {
+                for (var, input) in [('A', p.a), ('B', p.b), ('C', p.c), ('D', p.d)] {
+                    match (portion, input.usage) {
+                        (PortionName::Rgb, ComponentUsage::Blue) => {
+                            return Err(CombinerError::BlueOnRgb { stage, var });
+                        }
+                        (PortionName::Alpha, ComponentUsage::Rgb) => {
+                            return Err(CombinerError::RgbOnAlpha { stage, var });
+                        }
+                        _ => {}
+                    }
+                    if input.register == Register::Fog && input.usage == ComponentUsage::Alpha {
+                        return Err(CombinerError::FogAlphaInGeneral { stage, portion, var });
+                    }
+                }
+                let o = &p.outputs;
+                if portion == PortionName::Alpha && (o.ab_dot || o.cd_dot) {
+                    return Err(CombinerError::DotOnAlpha { stage });
+                }
+                if o.bias == Bias::MinusOneHalf && matches!(o.scale, Scale::ByOneHalf | Scale::ByFour) {
+                    return Err(CombinerError::ScaleWithBias { stage, portion, scale: o.scale });
+                }
+                let written: Vec<Register> = [o.ab, o.cd, o.sum].into_iter().flatten().collect();
+                for (i, &register) in written.iter().enumerate() {
+                    if !register.writable() {
+                        return Err(CombinerError::NotWritable { stage, portion, register });
+                    }
+                    if written[..i].contains(&register) {
+                        return Err(CombinerError::DuplicateOutput { stage, portion, register });
+                    }
+                }
+            }
+        }
+        let f = &self.final_combiner;
+        for (var, input) in [('A', f.a), ('B', f.b), ('C', f.c), ('D', f.d), ('E', f.e), ('F', f.f), ('G', f.g)] {
+            if !matches!(input.mapping, InputMapping::UnsignedIdentity | InputMapping::UnsignedInvert) {
+                return Err(CombinerError::FinalMapping { var, mapping: input.mapping });
+            }
+            let pseudo = !matches!(input.source, FinalSource::Register(_));
+            let allowed = match input.source {
+                FinalSource::Register(_) => true,
+                FinalSource::ETimesF => ('A'..='D').contains(&var),
+                FinalSource::Spare0PlusSecondary => ('B'..='D').contains(&var),
+            };
+            if !allowed {
+                return Err(CombinerError::FinalSourceNotAllowed { var, from: input.source });
+            }
+            let usage_ok = match (var, input.usage) {
+                ('G', ComponentUsage::Rgb) => false,
+                ('G', _) => true,
+                (_, ComponentUsage::Blue) => false,
+                (_, ComponentUsage::Alpha) => !pseudo,
+                (_, ComponentUsage::Rgb) => true,
+            };
+            if !usage_ok {
+                return Err(CombinerError::FinalUsage { var, usage: input.usage });
+            }
+        }
+        Ok(())
+    }
+}
+
+/// Arithmetic precision of the emulated datapath.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum Precision {
+    /// Single-precision floats in [−1, 1] (the spec is written as if this).
+    #[default]
+    Float,
+    /// NV10's 9-bit signed fixed point: every mapped input and every stage output is rounded to
+    /// a multiple of 1/255 in [−1, 1] (8 bits of magnitude plus a sign, so 8-bit texels and 1
+    /// stay exact).
+    Fixed9,
+}
+
+/// The per-batch register set: RGBA lanes for each register.
+pub struct RegisterFile {
+    pub regs: [[Lanes; 4]; REGISTERS],
+}
+
+impl RegisterFile {
+    pub fn new() -> Box<Self> {
+        Box::new(Self { regs: [[[0.0; LANES]; 4]; REGISTERS] })
+    }
+
+    pub fn reg_mut(&mut self, r: Register) -> &mut [Lanes; 4] {
+        &mut self.regs[r as usize]
+    }
+}
+
+/// A validated setup, ready to evaluate.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Combiners {
+    setup: CombinerSetup,
+    precision: Precision,
+}
+
+#[inline(always)]
+fn quantize(x: f32) -> f32 {
+    (x.clamp(-1.0, 1.0) * 255.0).round() / 255.0
+}
+
+impl Combiners {
+    /// Validates `setup`; constants are clamped to [0, 1] as `glCombinerParameterfvNV` does.
+    pub fn new(mut setup: CombinerSetup, precision: Precision) -> Result<Self, CombinerError> {
+        setup.validate()?;
+        setup.constant0 = setup.constant0.clamp(Vec4::ZERO, Vec4::ONE);
+        setup.constant1 = setup.constant1.clamp(Vec4::ZERO, Vec4::ONE);
+        Ok(Self { setup, precision })
+    }
+
+    pub fn setup(&self) -> &CombinerSetup {
+        &self.setup
+    }
+
+    /// Fills the registers the pipeline does not supply per fragment: ZERO, the constants, and
+    /// FOG (colour 0, factor 1: fog disabled).
+    pub fn load_constants(&self, regs: &mut RegisterFile, n: usize) {
+        for (r, v) in [
+            (Register::Zero, Vec4::ZERO),
+            (Register::ConstantColor0, self.setup.constant0),
+            (Register::ConstantColor1, self.setup.constant1),
+            (Register::Fog, Vec4::new(0.0, 0.0, 0.0, 1.0)),
+        ] {
+            let reg = regs.reg_mut(r);
+            for c in 0..4 {
+                reg[c][..n].fill(v[c]);
+            }
+        }
+    }
+
+    /// Evaluates lanes `0..n`: the general stages in order, then the final combiner, writing
+    /// RGBA into `out`. The caller has loaded the texture registers, PRIMARY and SECONDARY,
+    /// SPARE0's alpha (texture 0's alpha) and the constants ([`Combiners::load_constants`]).
+    pub fn run(&self, regs: &mut RegisterFile, n: usize, out: &mut [Lanes; 4]) {
+        debug_assert!(n <= LANES);
+        let fixed = self.precision == Precision::Fixed9;
+        for stage in &self.setup.stages {
+            // Both portions read this stage's inputs; their writes form the next stage's set.
+            let rgb = eval_portion(regs, &stage.rgb, true, n, fixed);
+            let alpha = eval_portion(regs, &stage.alpha, false, n, fixed);
+            for (values, portion, is_rgb) in [(&rgb, &stage.rgb, true), (&alpha, &stage.alpha, false)] {
+                let o = &portion.outputs;
+                for (dst, v) in [(o.ab, &values[0]), (o.cd, &values[1]), (o.sum, &values[2])] {
+                    if let Some(dst) = dst {
+                        let reg = regs.reg_mut(dst);
+                        let channels = if is_rgb { 0..3 } else { 3..4 };
+                        for c in channels {
+                            reg[c][..n].copy_from_slice(&v[c][..n]);
+                        }
+                    }
+                }
+            }
+        }
+        self.final_combiner(regs, n, out);
+    }
+
+    fn final_combiner(&self, regs: &RegisterFile, n: usize, out: &mut [Lanes; 4]) {
+        let f = &self.setup.final_combiner;
+        let fetch = |input: &FinalInput, ef: Option<&[Lanes; 3]>, dst: &mut [Lanes; 3]| {
+            for c in 0..3 {
+                let d = &mut dst[c][..n];
+                match input.source {
+                    FinalSource::Register(r) => {
+                        let ch = if input.usage == ComponentUsage::Rgb { c } else { 3 };
+                        d.copy_from_slice(&regs.regs[r as usize][ch][..n]);
+                    }
+                    FinalSource::ETimesF => d.copy_from_slice(&ef.expect("E·F computed first")[c][..n]),
+                    FinalSource::Spare0PlusSecondary => {
+                        let (s, t) = (
+                            &regs.regs[Register::Spare0 as usize][c],
+                            &regs.regs[Register::SecondaryColor as usize][c],
+                        );
+                        for i in 0..n {
+                            let v = s[i].max(0.0) + t[i].max(0.0);
+                            d[i] = if f.color_sum_clamp { v.min(1.0) } else { v };
+                        }
+                    }
+                }
+                map_lanes(input.mapping, d);
+            }
+        };
+        let mut e = [[0.0; LANES]; 3];
+        let mut fv = [[0.0; LANES]; 3];
+        fetch(&f.e, None, &mut e);
+        fetch(&f.f, None, &mut fv);
+        let mut ef = [[0.0; LANES]; 3];
+        for c in 0..3 {
+            for i in 0..n {
+                ef[c][i] = e[c][i] * fv[c][i];
+            }
+        }
+        let (mut a, mut b, mut cc, mut d) =
+            ([[0.0; LANES]; 3], [[0.0; LANES]; 3], [[0.0; LANES]; 3], [[0.0; LANES]; 3]);
+        fetch(&f.a, Some(&ef), &mut a);
+        fetch(&f.b, Some(&ef), &mut b);
+        fetch(&f.c, Some(&ef), &mut cc);
+        fetch(&f.d, Some(&ef), &mut d);
+        for c in 0..3 {
+            for i in 0..n {
+                out[c][i] = (a[c][i] * b[c][i] + (1.0 - a[c][i]) * cc[c][i] + d[c][i]).min(1.0);
+            }
+        }
+        // G reads alpha or blue; pseudo-registers are not allowed for G.
+        let FinalSource::Register(r) = f.g.source else { unreachable!("validated") };
+        let ch = if f.g.usage == ComponentUsage::Blue { 2 } else { 3 };
+        out[3][..n].copy_from_slice(&regs.regs[r as usize][ch][..n]);
+        map_lanes(f.g.mapping, &mut out[3][..n]);
+    }
+}
+
+#[inline(always)]
+fn map_lanes(mapping: InputMapping, v: &mut [f32]) {
+    // One loop per mapping: the match is per batch, the loop body is branch-free.
+    match mapping {
+        InputMapping::UnsignedIdentity => v.iter_mut().for_each(|x| *x = InputMapping::UnsignedIdentity.apply(*x)),
+        InputMapping::UnsignedInvert => v.iter_mut().for_each(|x| *x = InputMapping::UnsignedInvert.apply(*x)),
+        InputMapping::ExpandNormal => v.iter_mut().for_each(|x| *x = InputMapping::ExpandNormal.apply(*x)),
+        InputMapping::ExpandNegate => v.iter_mut().for_each(|x| *x = InputMapping::ExpandNegate.apply(*x)),
+        InputMapping::HalfBiasNormal => v.iter_mut().for_each(|x| *x = InputMapping::HalfBiasNormal.apply(*x)),
+        InputMapping::HalfBiasNegate => v.iter_mut().for_each(|x| *x = InputMapping::HalfBiasNegate.apply(*x)),
+        InputMapping::SignedIdentity => {}
+        InputMapping::SignedNegate => v.iter_mut().for_each(|x| *x = -*x),
+    }
+}
+
+/// Evaluates one portion: returns its AB, CD and sum outputs (RGBA lanes; only RGB or only A
+/// meaningful), after bias, scale and clamp.
+fn eval_portion(regs: &RegisterFile, p: &Portion, rgb: bool, n: usize, fixed: bool) -> [[Lanes; 4]; 3] {
+    let channels: &[usize] = if rgb { &[0, 1, 2] } else { &[3] };
+    // Mapped variables A–D, per channel.
+    let mut vars = [[[0.0f32; LANES]; 4]; 4];
+    for (k, input) in [p.a, p.b, p.c, p.d].iter().enumerate() {
+        let reg = &regs.regs[input.register as usize];
+        for &c in channels {
+            let src = match input.usage {
+                ComponentUsage::Rgb => c,
+                ComponentUsage::Alpha => 3,
+                ComponentUsage::Blue => 2,
+            };
+            let v = &mut vars[k][c][..n];
+            v.copy_from_slice(&reg[src][..n]);
+            map_lanes(input.mapping, v);
+            if fixed {
+                v.iter_mut().for_each(|x| *x = quantize(*x));
+            }
+        }
+    }
+    let o = &p.outputs;
+    let mut out = [[[0.0f32; LANES]; 4]; 3];
+    let product = |x: &[Lanes; 4], y: &[Lanes; 4], dot: bool, dst: &mut [Lanes; 4]| {
+        if dot {
+            for i in 0..n {
+                let d = x[0][i] * y[0][i] + x[1][i] * y[1][i] + x[2][i] * y[2][i];
+                dst[0][i] = d;
+                dst[1][i] = d;
+                dst[2][i] = d;
+            }
+        } else {
+            for &c in channels {
+                for i in 0..n {
+                    dst[c][i] = x[c][i] * y[c][i];
+                }
+            }
+        }
+    };
+    let [ab, cd, sum] = &mut out;
+    product(&vars[0], &vars[1], o.ab_dot, ab);
+    product(&vars[2], &vars[3], o.cd_dot, cd);
+    let spare0_alpha = &regs.regs[Register::Spare0 as usize][3];
+    for &c in channels {
+        for i in 0..n {
+            sum[c][i] = if o.mux_sum {
+                // Spec (Aug 2000 sense): spare0 alpha < ½ selects AB, otherwise CD.
+                if spare0_alpha[i] < 0.5 { ab[c][i] } else { cd[c][i] }
+            } else {
+                ab[c][i] + cd[c][i]
+            };
+        }
+    }
+    // Bias before scale, then clamp to [−1, 1].
+    let (bias, scale) = (if o.bias == Bias::MinusOneHalf { -0.5 } else { 0.0 }, o.scale.factor());
+    for v in out.iter_mut() {
+        for &c in channels {
+            for x in v[c][..n].iter_mut() {
+                let y = ((*x + bias) * scale).clamp(-1.0, 1.0);
+                *x = if fixed { quantize(y) } else { y };
+            }
+        }
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests;

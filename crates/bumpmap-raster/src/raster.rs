@@ -1,0 +1,355 @@
+//! Triangle rasterization: clipping in homogeneous space, fixed-point setup with a top-left
+//! fill rule, binning into the framebuffer's tiles, and 2×2 quads shaded in batches.
+//!
+//! What a GL 1.2 implementation guarantees and this one keeps: no gaps or double hits along
+//! shared edges (integer edge functions on 1/256-pixel snapped vertices, top-left rule);
+//! perspective-correct varyings; window depth interpolated linearly in screen space and
+//! computed identically for identical vertices, so `DepthFunc::Equal` holds across passes;
+//! near-plane (and far-plane) clipping; back-face culling. Pixel centres are at half-integers.
+//! Quads include helper pixels outside the triangle so a shader can take derivatives (λ) once
+//! per quad. Not done: line and point primitives, polygon offset, scissor, stencil.
+
+use glam::Vec4;
+use rayon::prelude::*;
+
+use crate::combiners::{LANES, Lanes};
+use crate::framebuffer::{Blend, DepthFunc, Framebuffer, TILE, Tile};
+
+/// Varyings per vertex (texture coordinates, light and half-angle vectors, …).
+pub const MAX_VARYINGS: usize = 16;
+/// Quads per shading batch.
+pub const QUADS: usize = LANES / 4;
+
+/// A vertex after the vertex stage: clip-space position and its varyings.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Vertex {
+    pub clip: Vec4,
+    pub varyings: [f32; MAX_VARYINGS],
+}
+
+/// Fixed-function state of one draw call.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct DrawState {
+    pub depth_func: DepthFunc,
+    pub depth_write: bool,
+    pub blend: Blend,
+    /// `glColorMask(r, g, b, a)`.
+    pub color_mask: [bool; 4],
+    pub cull_back: bool,
+}
+
+impl DrawState {
+    /// Depth LESS with writes, no blending, back faces culled: an ordinary first pass.
+    pub const OPAQUE: DrawState = DrawState {
+        depth_func: DepthFunc::Less,
+        depth_write: true,
+        blend: Blend::REPLACE,
+        color_mask: [true; 4],
+        cull_back: true,
+    };
+}
+
+/// Fragments of up to [`QUADS`] 2×2 quads in structure-of-arrays lanes: lane `4q + k` is pixel
+/// k of quad q, k = 0 (x, y), 1 (x+1, y), 2 (x, y+1), 3 (x+1, y+1).
+pub struct FragmentBatch {
+    pub quads: usize,
+    pub varyings: [Lanes; MAX_VARYINGS],
+    /// Covered by the triangle, inside the frame, and passing the depth test.
+    pub live: [bool; LANES],
+    pub depth: Lanes,
+    origin: [(u16, u16); QUADS],
+}
+
+impl FragmentBatch {
+    fn new() -> Box<Self> {
+        Box::new(Self {
+            quads: 0,
+            varyings: [[0.0; LANES]; MAX_VARYINGS],
+            live: [false; LANES],
+            depth: [0.0; LANES],
+            origin: [(0, 0); QUADS],
+        })
+    }
+
+    /// Number of lanes in use (`4 · quads`).
+    pub fn lanes(&self) -> usize {
+        4 * self.quads
+    }
+}
+
+/// Computes fragment colours for a batch. Implemented by the techniques' pixel stages.
+pub trait FragmentShader: Sync {
+    /// Per-thread working memory (register files, temporaries), made once per tile task.
+    type Scratch: Send;
+    fn scratch(&self) -> Self::Scratch;
+    /// Writes RGBA for lanes `0..batch.lanes()` into `out`; dead lanes may hold anything.
+    fn shade(&self, batch: &FragmentBatch, scratch: &mut Self::Scratch, out: &mut [Lanes; 4]);
+}
+
+const SUBPIXEL_BITS: u32 = 8;
+const SUBPIXEL: f32 = (1 << SUBPIXEL_BITS) as f32;
+/// Guard band: x and y are clipped at ±GUARD·w, keeping fixed-point products within i64.
+const GUARD: f32 = 8.0;
+
+/// A triangle ready to rasterize.
+struct Setup {
+    x: [i64; 3],
+    y: [i64; 3],
+    bias: [i64; 3],
+    inv_area: f32,
+    z: [f32; 3],
+    inv_w: [f32; 3],
+    var_w: [[f32; MAX_VARYINGS]; 3],
+    bbox: [usize; 4],
+}
+
+impl Setup {
+    /// Edge function of the edge from vertex a to vertex b at fixed-point (px, py).
+    #[inline(always)]
+    fn edge(&self, a: usize, b: usize, px: i64, py: i64) -> i64 {
+        (self.x[b] - self.x[a]) * (py - self.y[a]) - (self.y[b] - self.y[a]) * (px - self.x[a])
+    }
+}
+
+/// Draws indexed triangles with `state`, shading with `shader`. Triangles whose indices are out
+/// of range or whose positions are not finite are skipped.
+pub fn draw<S: FragmentShader>(
+    fb: &mut Framebuffer,
+    vertices: &[Vertex],
+    triangles: &[[u32; 3]],
+    state: &DrawState,
+    shader: &S,
+) {
+    let (w, h) = (fb.width, fb.height);
+    let setups: Vec<Setup> = triangles
+        .par_chunks(512)
+        .map(|chunk| {
+            let mut out = Vec::with_capacity(chunk.len());
+            for tri in chunk {
+                let Some(v) = tri.iter().map(|&i| vertices.get(i as usize).copied()).collect::<Option<Vec<_>>>() else {
+                    continue;
+                };
+                clip_and_setup([v[0], v[1], v[2]], w, h, state.cull_back, &mut out);
+            }
+            out
+        })
+        .collect::<Vec<Vec<Setup>>>()
+        .into_iter()
+        .flatten()
+        .collect();
+
+    // Bin each triangle into the tiles its bounding box touches, keeping submission order.
+    let tiles_x = fb.tiles_x;
+    let mut bins: Vec<Vec<u32>> = vec![Vec::new(); fb.tiles.len()];
+    for (i, s) in setups.iter().enumerate() {
+        let [x0, y0, x1, y1] = s.bbox;
+        for ty in y0 / TILE..y1.div_ceil(TILE) {
+            for tx in x0 / TILE..x1.div_ceil(TILE) {
+                bins[ty * tiles_x + tx].push(i as u32);
+            }
+        }
+    }
+    fb.tiles.par_iter_mut().zip(bins.par_iter()).filter(|(_, bin)| !bin.is_empty()).for_each_init(
+        || (FragmentBatch::new(), shader.scratch(), Box::new([[0.0f32; LANES]; 4])),
+        |(batch, scratch, colors), (tile, bin)| {
+            for &i in bin {
+                raster_triangle(&setups[i as usize], tile, state, shader, batch, scratch, colors);
+            }
+        },
+    );
+}
+
+/// Clips against the near, far and guard-band planes, then sets up each resulting triangle.
+fn clip_and_setup(v: [Vertex; 3], w: usize, h: usize, cull_back: bool, out: &mut Vec<Setup>) {
+    if v.iter().any(|v| !v.clip.is_finite()) {
+        return;
+    }
+    let planes = [
+        Vec4::new(0.0, 0.0, 1.0, 1.0),    // near: z + w ≥ 0
+        Vec4::new(0.0, 0.0, -1.0, 1.0),   // far: w − z ≥ 0
+        Vec4::new(1.0, 0.0, 0.0, GUARD),  // left guard band
+        Vec4::new(-1.0, 0.0, 0.0, GUARD), // right
+        Vec4::new(0.0, 1.0, 0.0, GUARD),  // bottom
+        Vec4::new(0.0, -1.0, 0.0, GUARD), // top
+        Vec4::new(0.0, 0.0, 0.0, 1.0),    // w > 0 (kept slightly positive below)
+    ];
+    let inside = |p: Vec4, plane: Vec4| plane.dot(p) - if plane == planes[6] { 1e-7 } else { 0.0 };
+    if v.iter().all(|v| planes.iter().all(|&pl| inside(v.clip, pl) >= 0.0)) {
+        setup(&v, w, h, cull_back, out);
+        return;
+    }
+    let mut poly: Vec<Vertex> = v.to_vec();
+    for &plane in &planes {
+        let mut next = Vec::with_capacity(poly.len() + 1);
+        for i in 0..poly.len() {
+            let (a, b) = (poly[i], poly[(i + 1) % poly.len()]);
+            let (da, db) = (inside(a.clip, plane), inside(b.clip, plane));
+            if da >= 0.0 {
+                next.push(a);
+            }
+            if (da >= 0.0) != (db >= 0.0) {
+                let t = da / (da - db);
+                let mut m = a;
+                m.clip = a.clip + (b.clip - a.clip) * t;
+                for k in 0..MAX_VARYINGS {
+                    m.varyings[k] = a.varyings[k] + (b.varyings[k] - a.varyings[k]) * t;
+                }
+                next.push(m);
+            }
+        }
+        poly = next;
+        if poly.len() < 3 {
+            return;
+        }
+    }
+    for i in 1..poly.len() - 1 {
+        setup(&[poly[0], poly[i], poly[i + 1]], w, h, cull_back, out);
+    }
+}
+
+fn setup(v: &[Vertex; 3], w: usize, h: usize, cull_back: bool, out: &mut Vec<Setup>) {
+    let mut x = [0i64; 3];
+    let mut y = [0i64; 3];
+    let mut z = [0f32; 3];
+    let mut inv_w = [0f32; 3];
+    for i in 0..3 {
+        let c = v[i].clip;
+        let iw = 1.0 / c.w;
+        let (nx, ny, nz) = (c.x * iw, c.y * iw, c.z * iw);
+        x[i] = ((nx + 1.0) * 0.5 * w as f32 * SUBPIXEL).round() as i64;
+        y[i] = ((1.0 - ny) * 0.5 * h as f32 * SUBPIXEL).round() as i64;
+        z[i] = ((nz + 1.0) * 0.5).clamp(0.0, 1.0);
+        inv_w[i] = iw;
+    }
+    // Signed area in y-down window coordinates: negative = counter-clockwise as seen = front.
+    let area = (x[1] - x[0]) * (y[2] - y[0]) - (y[1] - y[0]) * (x[2] - x[0]);
+    if area == 0 || (area > 0 && cull_back) {
+        return;
+    }
+    let mut order = [0usize, 1, 2];
+    if area < 0 {
+        order = [0, 2, 1];
+    }
+    let pick = |a: [i64; 3]| order.map(|i| a[i]);
+    let (x, y) = (pick(x), pick(y));
+    let pickf = |a: [f32; 3]| order.map(|i| a[i]);
+    let (z, inv_w) = (pickf(z), pickf(inv_w));
+    let var_w = order.map(|i| {
+        let mut a = v[i].varyings;
+        a.iter_mut().for_each(|t| *t *= inv_w_of(v, i));
+        a
+    });
+    let area = area.abs();
+    // Top-left rule: an edge (a → b) owns the pixels on it if it is a top edge (horizontal,
+    // going right) or a left edge (going up in y-down coordinates).
+    let owns = |a: usize, b: usize| {
+        let (dx, dy) = (x[b] - x[a], y[b] - y[a]);
+        (dy == 0 && dx > 0) || dy < 0
+    };
+    let bias = [if owns(1, 2) { 0 } else { -1 }, if owns(2, 0) { 0 } else { -1 }, if owns(0, 1) { 0 } else { -1 }];
+    let to_px = |v: i64, max: usize| ((v >> SUBPIXEL_BITS).clamp(0, max as i64)) as usize;
+    let bbox = [
+        to_px(*x.iter().min().unwrap(), w),
+        to_px(*y.iter().min().unwrap(), h),
+        to_px(*x.iter().max().unwrap() + (1 << SUBPIXEL_BITS), w),
+        to_px(*y.iter().max().unwrap() + (1 << SUBPIXEL_BITS), h),
+    ];
+    if bbox[0] >= bbox[2] || bbox[1] >= bbox[3] {
+        return;
+    }
+    out.push(Setup { x, y, bias, inv_area: (1.0 / area as f64) as f32, z, inv_w, var_w, bbox });
+}
+
+#[inline(always)]
+fn inv_w_of(v: &[Vertex; 3], i: usize) -> f32 {
+    1.0 / v[i].clip.w
+}
+
+#[allow(clippy::too_many_arguments)]
+fn raster_triangle<S: FragmentShader>(
+    s: &Setup,
+    tile: &mut Tile,
+    state: &DrawState,
+    shader: &S,
+    batch: &mut FragmentBatch,
+    scratch: &mut S::Scratch,
+    colors: &mut [Lanes; 4],
+) {
+    let x0 = s.bbox[0].max(tile.x0) & !1;
+    let y0 = s.bbox[1].max(tile.y0) & !1;
+    let x1 = s.bbox[2].min(tile.x0 + tile.width);
+    let y1 = s.bbox[3].min(tile.y0 + tile.height);
+    batch.quads = 0;
+    let half = 1i64 << (SUBPIXEL_BITS - 1);
+    for qy in (y0..y1).step_by(2) {
+        for qx in (x0..x1).step_by(2) {
+            let q = batch.quads;
+            let mut any = false;
+            for k in 0..4 {
+                let (px, py) = (qx + (k & 1), qy + (k >> 1));
+                let (fx, fy) = (((px as i64) << SUBPIXEL_BITS) + half, ((py as i64) << SUBPIXEL_BITS) + half);
+                let e = [s.edge(1, 2, fx, fy), s.edge(2, 0, fx, fy), s.edge(0, 1, fx, fy)];
+                let covered = e[0] + s.bias[0] >= 0 && e[1] + s.bias[1] >= 0 && e[2] + s.bias[2] >= 0;
+                let b = e.map(|e| e as f32 * s.inv_area);
+                let lane = 4 * q + k;
+                let z = b[0] * s.z[0] + b[1] * s.z[1] + b[2] * s.z[2];
+                batch.depth[lane] = z;
+                let in_tile = px < tile.x0 + tile.width && py < tile.y0 + tile.height;
+                let live = covered && in_tile && {
+                    let idx = (py - tile.y0) * tile.width + (px - tile.x0);
+                    state.depth_func.passes(z, tile.depth[idx])
+                };
+                batch.live[lane] = live;
+                any |= live;
+                // Perspective-correct varyings (helper lanes too, for derivatives).
+                let iw = b[0] * s.inv_w[0] + b[1] * s.inv_w[1] + b[2] * s.inv_w[2];
+                let wc = 1.0 / iw;
+                for (j, var) in batch.varyings.iter_mut().enumerate() {
+                    var[lane] = (b[0] * s.var_w[0][j] + b[1] * s.var_w[1][j] + b[2] * s.var_w[2][j]) * wc;
+                }
+            }
+            if any {
+                batch.origin[q] = (qx as u16, qy as u16);
+                batch.quads += 1;
+                if batch.quads == QUADS {
+                    flush(tile, state, shader, batch, scratch, colors);
+                }
+            }
+        }
+    }
+    flush(tile, state, shader, batch, scratch, colors);
+}
+
+fn flush<S: FragmentShader>(
+    tile: &mut Tile,
+    state: &DrawState,
+    shader: &S,
+    batch: &mut FragmentBatch,
+    scratch: &mut S::Scratch,
+    colors: &mut [Lanes; 4],
+) {
+    if batch.quads == 0 {
+        return;
+    }
+    shader.shade(batch, scratch, colors);
+    for q in 0..batch.quads {
+        let (qx, qy) = batch.origin[q];
+        for k in 0..4 {
+            let lane = 4 * q + k;
+            if !batch.live[lane] {
+                continue;
+            }
+            let (px, py) = (qx as usize + (k & 1), qy as usize + (k >> 1));
+            let idx = (py - tile.y0) * tile.width + (px - tile.x0);
+            if state.depth_write {
+                tile.depth[idx] = batch.depth[lane];
+            }
+            let src = [colors[0][lane], colors[1][lane], colors[2][lane], colors[3][lane]];
+            tile.color[idx] = state.blend.apply(src, tile.color[idx], state.color_mask);
+        }
+    }
+    batch.quads = 0;
+}
+
+#[cfg(test)]
+mod tests;

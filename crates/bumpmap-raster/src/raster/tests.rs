@@ -1,0 +1,162 @@
+//! Rasterizer invariants: watertight fill rule, perspective-correct varyings, repeatable depth,
+//! clipping and culling, and robustness to bad vertices.
+
+use super::*;
+use crate::framebuffer::BlendFactor;
+
+/// Outputs varying 0 in red and a constant elsewhere.
+struct Show(f32);
+
+impl FragmentShader for Show {
+    type Scratch = ();
+    fn scratch(&self) {}
+    fn shade(&self, batch: &FragmentBatch, _: &mut (), out: &mut [Lanes; 4]) {
+        for lane in 0..batch.lanes() {
+            out[0][lane] = batch.varyings[0][lane];
+            out[1][lane] = self.0;
+            out[2][lane] = self.0;
+            out[3][lane] = 1.0;
+        }
+    }
+}
+
+fn vertex(x: f32, y: f32, z: f32, w: f32, var0: f32) -> Vertex {
+    let mut varyings = [0.0; MAX_VARYINGS];
+    varyings[0] = var0;
+    Vertex { clip: Vec4::new(x * w, y * w, z * w, w), varyings }
+}
+
+#[test]
+fn shared_edges_have_no_gaps_and_no_double_hits() {
+    // A jittered 7×5 grid of triangles covering [-0.8, 0.8]², drawn additively with 1/255 each.
+    let (nx, ny) = (7, 5);
+    let mut verts = Vec::new();
+    for j in 0..=ny {
+        for i in 0..=nx {
+            let jitter = |k: usize| if k == 0 || k == nx.max(ny) { 0.0 } else { ((k * 7919) % 13) as f32 * 0.004 };
+            let x = -0.8 + 1.6 * i as f32 / nx as f32 + if i > 0 && i < nx { jitter(i + j) } else { 0.0 };
+            let y = -0.8 + 1.6 * j as f32 / ny as f32 + if j > 0 && j < ny { jitter(i * 3 + j) } else { 0.0 };
+            verts.push(vertex(x, y, 0.0, 1.0, 0.0));
+        }
+    }
+    let row = nx as u32 + 1;
+    let mut tris = Vec::new();
+    for j in 0..ny as u32 {
+        for i in 0..nx as u32 {
+            let (a, b, c, d) = (j * row + i, j * row + i + 1, (j + 1) * row + i + 1, (j + 1) * row + i);
+            tris.push([a, b, c]);
+            tris.push([a, c, d]);
+        }
+    }
+    let mut fb = Framebuffer::new(203, 141).unwrap();
+    let state = DrawState {
+        depth_func: DepthFunc::Always,
+        depth_write: false,
+        blend: Blend::new(BlendFactor::One, BlendFactor::One),
+        color_mask: [true; 4],
+        cull_back: true,
+    };
+    draw(&mut fb, &verts, &tris, &state, &Show(1.0 / 255.0));
+    let img = fb.to_rgba8();
+    // Pixel centres strictly inside the square's interior get exactly one hit.
+    let (w, h) = (203.0f32, 141.0f32);
+    let mut inside = 0;
+    for (i, p) in img.iter().enumerate() {
+        let (px, py) = ((i % 203) as f32 + 0.5, (i / 203) as f32 + 0.5);
+        let (x, y) = (px / w * 2.0 - 1.0, 1.0 - py / h * 2.0);
+        if x.abs() < 0.79 && y.abs() < 0.79 {
+            assert_eq!(p[1], 1, "pixel {i} hit {} times", p[1]);
+            inside += 1;
+        } else if x.abs() > 0.81 || y.abs() > 0.81 {
+            assert_eq!(p[1], 0, "pixel {i} outside was hit");
+        }
+    }
+    assert!(inside > 15_000);
+}
+
+#[test]
+fn varyings_are_perspective_correct() {
+    // A quad from w = 1 (bottom) to w = 4 (top) with varying 0 running 0 → 1 bottom to top.
+    let verts = [
+        vertex(-1.0, -1.0, 0.0, 1.0, 0.0),
+        vertex(1.0, -1.0, 0.0, 1.0, 0.0),
+        vertex(1.0, 1.0, 0.0, 4.0, 1.0),
+        vertex(-1.0, 1.0, 0.0, 4.0, 1.0),
+    ];
+    let mut fb = Framebuffer::new(64, 64).unwrap();
+    draw(&mut fb, &verts, &[[0, 1, 2], [0, 2, 3]], &DrawState::OPAQUE, &Show(0.0));
+    // At screen fraction f from the bottom, perspective gives v = f/w1 / ((1−f)/w0 + f/w1).
+    for row in [8usize, 32, 56] {
+        let f = 1.0 - (row as f32 + 0.5) / 64.0;
+        let v = (f / 4.0) / ((1.0 - f) + f / 4.0);
+        let got = fb.pixel(20, row)[0] as f32 / 255.0;
+        assert!((got - v).abs() <= 0.6 / 255.0, "row {row}: {got} vs {v}");
+        assert!((got - f).abs() > 0.05 || row == 8 || row == 56, "not affine");
+    }
+}
+
+#[test]
+fn equal_depth_holds_across_passes_and_culling_works() {
+    let mesh = bumpmap_math::surface::Surface::default_torus().tessellate(48, 24, glam::Vec2::ONE);
+    let view = glam::Mat4::look_at_rh(glam::Vec3::new(0.0, -6.0, 4.0), glam::Vec3::ZERO, glam::Vec3::Z);
+    let proj = glam::Mat4::perspective_rh_gl(0.7, 1.0, 0.5, 30.0);
+    let verts: Vec<Vertex> = mesh
+        .positions
+        .iter()
+        .map(|p| Vertex { clip: proj * view * p.extend(1.0), varyings: [0.5; MAX_VARYINGS] })
+        .collect();
+    let mut fb = Framebuffer::new(160, 160).unwrap();
+    draw(&mut fb, &verts, &mesh.indices, &DrawState::OPAQUE, &Show(0.2));
+    let first = fb.to_rgba8();
+    let drawn = first.iter().filter(|p| p[3] == 255).count();
+    assert!(drawn > 5000, "torus covers {drawn} pixels");
+    let equal = DrawState { depth_func: DepthFunc::Equal, depth_write: false, ..DrawState::OPAQUE };
+    draw(&mut fb, &verts, &mesh.indices, &equal, &Show(0.9));
+    let second = fb.to_rgba8();
+    for (a, b) in first.iter().zip(&second) {
+        if a[3] == 255 {
+            assert_eq!(b[1], 230, "every pixel of pass 1 passes EQUAL in pass 2");
+        }
+    }
+    // A clockwise triangle is a back face: culled by default, drawn without culling.
+    let tri = [vertex(-0.5, -0.5, 0.0, 1.0, 0.0), vertex(0.0, 0.5, 0.0, 1.0, 0.0), vertex(0.5, -0.5, 0.0, 1.0, 0.0)];
+    let mut fb2 = Framebuffer::new(32, 32).unwrap();
+    draw(&mut fb2, &tri, &[[0, 1, 2]], &DrawState::OPAQUE, &Show(0.2));
+    assert!(fb2.to_rgba8().iter().all(|p| p[3] == 0), "back face culled");
+    draw(&mut fb2, &tri, &[[0, 1, 2]], &DrawState { cull_back: false, ..DrawState::OPAQUE }, &Show(0.2));
+    assert_eq!(
+        fb2.to_rgba8().iter().filter(|p| p[3] == 255).count(),
+        16 * 16 / 2,
+        "exactly the triangle's area: half of a 16×16 box"
+    );
+}
+
+#[test]
+fn clipping_and_bad_vertices_never_crash() {
+    let mut fb = Framebuffer::new(64, 64).unwrap();
+    let proj = glam::Mat4::perspective_rh_gl(1.0, 1.0, 0.1, 100.0);
+    let v = |p: glam::Vec3| Vertex { clip: proj * p.extend(1.0), varyings: [0.0; MAX_VARYINGS] };
+    // Crossing the near plane: a large floor under the eye, CCW seen from above.
+    let floor =
+        [v(glam::Vec3::new(-5.0, -1.0, 5.0)), v(glam::Vec3::new(5.0, -1.0, 5.0)), v(glam::Vec3::new(0.0, -1.0, -20.0))];
+    draw(&mut fb, &floor, &[[0, 1, 2]], &DrawState { cull_back: false, ..DrawState::OPAQUE }, &Show(1.0));
+    let covered = fb.to_rgba8().iter().filter(|p| p[3] == 255).count();
+    assert!(covered > 500 && covered < 64 * 64, "clipped floor covers {covered}");
+    // Entirely behind the eye, NaN, infinite and huge coordinates, out-of-range indices.
+    let mut fb = Framebuffer::new(64, 64).unwrap();
+    let behind =
+        [v(glam::Vec3::new(0.0, 0.0, 1.0)), v(glam::Vec3::new(1.0, 0.0, 1.0)), v(glam::Vec3::new(0.0, 1.0, 1.0))];
+    let nan = [vertex(f32::NAN, 0.0, 0.0, 1.0, 0.0), vertex(1.0, 0.0, 0.0, 1.0, 0.0), vertex(0.0, 1.0, 0.0, 1.0, 0.0)];
+    let huge = [vertex(-1e6, -1e6, 0.0, 1.0, 0.0), vertex(1e6, -1e6, 0.0, 1.0, 0.0), vertex(0.0, 1e6, 0.0, 1.0, 0.0)];
+    let absurd =
+        [vertex(-1e30, -1e30, 0.0, 1.0, 0.0), vertex(1e30, -1e30, 0.0, 1.0, 0.0), vertex(0.0, 1e30, 0.0, 1.0, 0.0)];
+    let state = DrawState { cull_back: false, ..DrawState::OPAQUE };
+    draw(&mut fb, &behind, &[[0, 1, 2]], &state, &Show(1.0));
+    assert!(fb.to_rgba8().iter().all(|p| p[3] == 0), "behind the eye draws nothing");
+    draw(&mut fb, &nan, &[[0, 1, 2], [0, 1, 7]], &state, &Show(1.0));
+    assert!(fb.to_rgba8().iter().all(|p| p[3] == 0), "NaN vertices and bad indices draw nothing");
+    draw(&mut fb, &huge, &[[0, 1, 2]], &state, &Show(1.0));
+    assert!(fb.to_rgba8().iter().all(|p| p[3] == 255), "a huge triangle, clipped to the guard band, covers the frame");
+    // 1e30 is beyond f32's precision for clipping: whatever it draws, it must not crash.
+    draw(&mut fb, &absurd, &[[0, 1, 2]], &state, &Show(1.0));
+}

@@ -1,0 +1,135 @@
+//! What is rendered, independent of how: camera, lights, objects with their meshes and
+//! materials, and the vertex stage every technique shares (clip positions and per-vertex
+//! tangent-space vectors, Kilgard §5.1, Appendix C).
+//!
+//! A technique turns a `Scene` into passes; a backend draws them. Nothing here knows about
+//! register combiners or framebuffers.
+
+use std::sync::Arc;
+
+use glam::{Mat4, Vec3};
+
+use bumpmap_math::lighting::{Light, ObjectLighting, TangentFrame, Viewer};
+use bumpmap_math::mesh::Mesh;
+
+use crate::raster::{MAX_VARYINGS, Vertex};
+use crate::texture::Texture2d;
+
+/// Varying slots the vertex stage fills.
+pub mod var {
+    /// Texture coordinates s, t.
+    pub const S: usize = 0;
+    pub const T: usize = 1;
+    /// Tangent-space unit light vector L (3 slots).
+    pub const L: usize = 2;
+    /// Tangent-space unit half-angle vector H (3 slots).
+    pub const H: usize = 5;
+    /// Tangent-space unit vector toward the eye V (3 slots).
+    pub const V: usize = 8;
+    /// Distance to a positional light (0 for a directional one).
+    pub const LIGHT_DISTANCE: usize = 11;
+    /// Slots in use.
+    pub const COUNT: usize = 12;
+}
+
+/// A perspective camera (`gluLookAt` + `gluPerspective`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Camera {
+    pub eye: Vec3,
+    pub target: Vec3,
+    pub up: Vec3,
+    pub fov_y_degrees: f32,
+    pub near: f32,
+    pub far: f32,
+}
+
+impl Camera {
+    /// `clip_from_world` for an image of the given aspect ratio (width / height).
+    pub fn clip_from_world(&self, aspect: f32) -> Mat4 {
+        Mat4::perspective_rh_gl(self.fov_y_degrees.to_radians(), aspect, self.near, self.far)
+            * Mat4::look_at_rh(self.eye, self.target, self.up)
+    }
+}
+
+/// Local or infinite viewer for the half-angle vector (Kilgard §6).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum ViewerModel {
+    #[default]
+    Local,
+    Infinite,
+}
+
+/// A light and its colour.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SceneLight {
+    pub light: Light,
+    pub color: Vec3,
+}
+
+/// Surface appearance: a normal map with its mip chain, an optional decal and the lighting
+/// coefficients of Kilgard Eq. 11 and 16.
+#[derive(Clone, Debug)]
+pub struct Material {
+    /// RGB = range-compressed normal (unorm encoding), A = length of the filtered normal.
+    pub normal_map: Arc<Texture2d>,
+    pub decal: Option<Arc<Texture2d>>,
+    pub ambient: Vec3,
+    pub diffuse: Vec3,
+    pub specular: Vec3,
+    pub shininess: f32,
+}
+
+/// A mesh placed in the world. The mesh must have normals, texture coordinates and tangents.
+#[derive(Clone, Debug)]
+pub struct SceneObject {
+    pub mesh: Arc<Mesh>,
+    pub world_from_object: Mat4,
+    pub material: Material,
+}
+
+/// Everything a technique renders.
+#[derive(Clone, Debug)]
+pub struct Scene {
+    pub camera: Camera,
+    pub viewer: ViewerModel,
+    pub lights: Vec<SceneLight>,
+    pub objects: Vec<SceneObject>,
+}
+
+impl Scene {
+    /// The vertex stage for one object and one light: clip position, texture coordinates and
+    /// the tangent-space L, H and V of every vertex.
+    pub fn vertices(&self, object: &SceneObject, light: &SceneLight, aspect: f32) -> Vec<Vertex> {
+        use rayon::prelude::*;
+        let mesh = &object.mesh;
+        debug_assert_eq!(mesh.tangents.len(), mesh.positions.len(), "meshes carry tangents");
+        let clip_from_object = self.camera.clip_from_world(aspect) * object.world_from_object;
+        let viewer = match self.viewer {
+            ViewerModel::Local => Viewer::Local(self.camera.eye),
+            ViewerModel::Infinite => Viewer::Infinite((self.camera.eye - self.camera.target).normalize_or(Vec3::Z)),
+        };
+        let lighting = ObjectLighting::new(object.world_from_object, light.light, viewer);
+        (0..mesh.positions.len())
+            .into_par_iter()
+            .map(|i| {
+                let p = mesh.positions[i];
+                let n = mesh.normals[i];
+                let t = mesh.tangents[i];
+                let frame = TangentFrame { t: t.truncate(), b: t.w * n.cross(t.truncate()), n };
+                let (l, h) = lighting.tangent_space(p, &frame);
+                let v = frame.tangent_from_object(lighting.to_eye(p)).normalize_or(Vec3::Z);
+                let mut varyings = [0.0; MAX_VARYINGS];
+                varyings[var::S] = mesh.texcoords[i].x;
+                varyings[var::T] = mesh.texcoords[i].y;
+                varyings[var::L..var::L + 3].copy_from_slice(&l.to_array());
+                varyings[var::H..var::H + 3].copy_from_slice(&h.to_array());
+                varyings[var::V..var::V + 3].copy_from_slice(&v.to_array());
+                varyings[var::LIGHT_DISTANCE] = match light.light {
+                    Light::Positional(_) => lighting.to_light(p).length(),
+                    Light::Directional(_) => 0.0,
+                };
+                Vertex { clip: clip_from_object * p.extend(1.0), varyings }
+            })
+            .collect()
+    }
+}

@@ -1,0 +1,196 @@
+//! The built-in scenes: the paper's torus (Figures 11, 12, 14), the Cg Tutorial's wall and
+//! floor (Figure 8-4), Peercy's stretched patch (Figure 4), a sphere, and any mesh.
+
+use std::sync::Arc;
+
+use glam::{Mat4, Vec2, Vec3};
+
+use bumpmap_math::lighting::Light;
+use bumpmap_math::mesh::Mesh;
+use bumpmap_math::surface::{BicubicPatch, Surface};
+use bumpmap_math::{HeightField, MipChain, MipMode, NormalMapOptions, bricks_decal};
+
+use crate::error::RasterError;
+use crate::scene::{Camera, Material, Scene, SceneLight, SceneObject, ViewerModel};
+use crate::texture::Texture2d;
+
+/// Which geometry a scene shows.
+#[derive(Clone, Debug, PartialEq)]
+pub enum SceneKind {
+    Torus,
+    Wall,
+    Floor,
+    WallFloor,
+    Patch,
+    Sphere,
+    /// A loaded mesh (with normals, texture coordinates and tangents), centred and scaled to
+    /// fit a unit-radius ball.
+    Mesh(Arc<Mesh>),
+}
+
+impl SceneKind {
+    /// Parses the built-in names (`mesh:FILE` is the CLI's business).
+    pub fn parse(name: &str) -> Option<Self> {
+        Some(match name {
+            "torus" => SceneKind::Torus,
+            "wall" => SceneKind::Wall,
+            "floor" => SceneKind::Floor,
+            "wall-floor" => SceneKind::WallFloor,
+            "patch" => SceneKind::Patch,
+            "sphere" => SceneKind::Sphere,
+            _ => return None,
+        })
+    }
+}
+
+/// Everything adjustable about a built-in scene; `None` picks the scene's own default.
+#[derive(Clone, Debug)]
+pub struct SceneParams {
+    pub eye: Option<Vec3>,
+    pub target: Option<Vec3>,
+    pub fov_y_degrees: f32,
+    pub lights: Vec<SceneLight>,
+    pub viewer: ViewerModel,
+    pub height_field: HeightField,
+    pub normal_map: NormalMapOptions,
+    pub decal: Option<Texture2d>,
+    /// Use the brick decal that matches the brick height field when no decal is given.
+    pub default_decal: bool,
+    pub ambient: Vec3,
+    pub diffuse: Vec3,
+    pub specular: Vec3,
+    pub shininess: f32,
+    pub torus_radii: (f32, f32),
+    pub tessellation: Option<(usize, usize)>,
+    pub repeat: Option<Vec2>,
+}
+
+impl Default for SceneParams {
+    /// The llvmpipe peer's settings: ambient 0.2, k_d 0.8, bump scale 4, bricks 256².
+    fn default() -> Self {
+        Self {
+            eye: None,
+            target: None,
+            fov_y_degrees: 45.0,
+            lights: Vec::new(),
+            viewer: ViewerModel::Local,
+            height_field: bumpmap_math::HeightPreset::Bricks.render(256, 256),
+            normal_map: NormalMapOptions::default(),
+            decal: None,
+            default_decal: true,
+            ambient: Vec3::splat(0.2),
+            diffuse: Vec3::splat(0.8),
+            specular: Vec3::ONE,
+            shininess: 8.0,
+            torus_radii: (2.0, 0.7),
+            tessellation: None,
+            repeat: None,
+        }
+    }
+}
+
+/// The default light of each scene: the peer's orbit start for the torus, upper left for the
+/// flat scenes.
+pub fn default_light(kind: &SceneKind) -> Light {
+    match kind {
+        SceneKind::Torus => {
+            let a = -2.2f32;
+            Light::Positional(Vec3::new(4.0 * a.cos(), 4.0 * a.sin(), 3.0))
+        }
+        SceneKind::Wall | SceneKind::WallFloor => Light::Positional(Vec3::new(-1.5, 1.2, 2.5)),
+        SceneKind::Floor => Light::Positional(Vec3::new(-1.5, 2.5, 1.0)),
+        _ => Light::Positional(Vec3::new(-3.0, -3.0, 4.0)),
+    }
+}
+
+/// Builds a scene. Fails only when the height field cannot become a normal map.
+pub fn build(kind: &SceneKind, params: &SceneParams) -> Result<Scene, RasterError> {
+    let chain = MipChain::from_height(&params.height_field, &params.normal_map, MipMode::LengthInAlpha)
+        .map_err(|e| RasterError::Scene(format!("height field: {e}")))?;
+    let normal_map = Arc::new(Texture2d::from_mip_chain(&chain));
+    let decal = match (&params.decal, params.default_decal) {
+        (Some(d), _) => Some(Arc::new(d.clone().with_box_mipmaps())),
+        (None, true) => {
+            let (w, h) = (params.height_field.width(), params.height_field.height());
+            Some(Arc::new(Texture2d::from_rgba8(w, h, bricks_decal(w, h)).with_box_mipmaps()))
+        }
+        (None, false) => None,
+    };
+    let material = Material {
+        normal_map,
+        decal,
+        ambient: params.ambient,
+        diffuse: params.diffuse,
+        specular: params.specular,
+        shininess: params.shininess,
+    };
+    let object = |surface: Surface, tess: (usize, usize), repeat: Vec2, world_from_object: Mat4| SceneObject {
+        mesh: Arc::new(surface.tessellate(
+            params.tessellation.unwrap_or(tess).0,
+            params.tessellation.unwrap_or(tess).1,
+            params.repeat.unwrap_or(repeat),
+        )),
+        world_from_object,
+        material: material.clone(),
+    };
+    let (objects, eye, target, up) = match kind {
+        SceneKind::Torus => {
+            let (major, minor) = params.torus_radii;
+            let torus = object(Surface::Torus { major, minor }, (128, 64), Vec2::new(6.0, 2.0), Mat4::IDENTITY);
+            (vec![torus], Vec3::new(0.0, -5.6, 5.0), Vec3::new(0.0, 0.0, -0.35), Vec3::Z)
+        }
+        SceneKind::Wall => {
+            let wall = object(Surface::Wall { width: 4.0, height: 4.0 }, (8, 8), Vec2::new(2.0, 2.0), Mat4::IDENTITY);
+            (vec![wall], Vec3::new(0.0, 0.0, 6.0), Vec3::ZERO, Vec3::Y)
+        }
+        SceneKind::Floor => {
+            let floor = object(Surface::Floor { width: 4.0, depth: 4.0 }, (8, 8), Vec2::new(2.0, 2.0), Mat4::IDENTITY);
+            (vec![floor], Vec3::new(0.0, 4.0, 5.0), Vec3::ZERO, Vec3::Y)
+        }
+        SceneKind::WallFloor => {
+            // Figure 8-4: a wall standing on the far edge of a floor, one light for both.
+            let wall = object(
+                Surface::Wall { width: 4.0, height: 3.0 },
+                (8, 8),
+                Vec2::new(2.0, 1.5),
+                Mat4::from_translation(Vec3::new(0.0, 1.5, -2.0)),
+            );
+            let floor = object(Surface::Floor { width: 4.0, depth: 4.0 }, (8, 8), Vec2::new(2.0, 2.0), Mat4::IDENTITY);
+            (vec![wall, floor], Vec3::new(0.0, 2.2, 5.0), Vec3::new(0.0, 0.8, -1.0), Vec3::Y)
+        }
+        SceneKind::Patch => {
+            let patch = object(Surface::Patch(BicubicPatch::stretched()), (8, 8), Vec2::new(4.0, 1.0), Mat4::IDENTITY);
+            (vec![patch], Vec3::new(0.3, -1.6, 3.2), Vec3::ZERO, Vec3::Z)
+        }
+        SceneKind::Sphere => {
+            let sphere = object(Surface::Sphere { radius: 1.5 }, (64, 32), Vec2::new(4.0, 2.0), Mat4::IDENTITY);
+            (vec![sphere], Vec3::new(0.0, -5.0, 1.5), Vec3::ZERO, Vec3::Z)
+        }
+        SceneKind::Mesh(mesh) => {
+            let (lo, hi) = mesh.positions.iter().fold((Vec3::MAX, Vec3::MIN), |(lo, hi), &p| (lo.min(p), hi.max(p)));
+            let centre = (lo + hi) * 0.5;
+            let radius = ((hi - lo).length() * 0.5).max(1e-6);
+            let world_from_object = Mat4::from_scale(Vec3::splat(1.5 / radius)) * Mat4::from_translation(-centre);
+            let object = SceneObject { mesh: mesh.clone(), world_from_object, material: material.clone() };
+            (vec![object], Vec3::new(0.0, -2.5, 3.5), Vec3::ZERO, Vec3::Z)
+        }
+    };
+    let lights = if params.lights.is_empty() {
+        vec![SceneLight { light: default_light(kind), color: Vec3::ONE }]
+    } else {
+        params.lights.clone()
+    };
+    Ok(Scene {
+        camera: Camera {
+            eye: params.eye.unwrap_or(eye),
+            target: params.target.unwrap_or(target),
+            up,
+            fov_y_degrees: params.fov_y_degrees,
+            near: 0.5,
+            far: 50.0,
+        },
+        viewer: params.viewer,
+        lights,
+        objects,
+    })
+}

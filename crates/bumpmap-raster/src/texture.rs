@@ -1,0 +1,341 @@
+//! Texture units with OpenGL 1.2 rules: 2D mipmapped textures and cube maps, NEAREST, LINEAR and
+//! the mipmap filters with λ from screen-space derivatives, REPEAT and CLAMP_TO_EDGE
+//! (SPECS.md §2–3, GL 1.2 §3.8).
+//!
+//! Texels stay 8-bit; a sample is returned as floats in [0, 1], which is what the register
+//! combiners receive. There is no border colour (CLAMP, not CLAMP_TO_EDGE, is not emulated), no
+//! LOD bias (not core in 1.2), no anisotropy, and cube maps do not filter across faces.
+
+use glam::{Vec3, Vec4};
+
+use bumpmap_math::{CubeFace, MipChain, NormalizationCubeMap};
+
+/// One mip level: `width`×`height` RGBA8 texels, row 0 = t = 0.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Level {
+    pub width: usize,
+    pub height: usize,
+    pub texels: Vec<[u8; 4]>,
+}
+
+/// A 2D texture: level 0 and optionally every smaller level. RGB textures are stored with
+/// A = 255, which is what the GL's RGB → register mapping gives (R, G, B, 1).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Texture2d {
+    pub levels: Vec<Level>,
+}
+
+impl Texture2d {
+    /// Wraps the levels of a normal-map mip chain.
+    pub fn from_mip_chain(chain: &MipChain) -> Self {
+        Self {
+            levels: chain
+                .levels
+                .iter()
+                .map(|l| Level { width: l.width, height: l.height, texels: l.texels.clone() })
+                .collect(),
+        }
+    }
+
+    /// A single-level texture. Panics if the sizes disagree.
+    pub fn from_rgba8(width: usize, height: usize, texels: Vec<[u8; 4]>) -> Self {
+        assert_eq!(texels.len(), width * height, "texel count");
+        Self { levels: vec![Level { width, height, texels }] }
+    }
+
+    /// Adds a box-filtered mip chain below level 0 (`gluBuild2DMipmaps`-style: each level the
+    /// 2×2 mean of the one above, odd sizes folding their last texel into the last footprint).
+    pub fn with_box_mipmaps(mut self) -> Self {
+        use bumpmap_math::mip::{footprint, next_size};
+        self.levels.truncate(1);
+        loop {
+            let l = self.levels.last().expect("level 0");
+            if l.width == 1 && l.height == 1 {
+                return self;
+            }
+            let (w, h) = (next_size(l.width), next_size(l.height));
+            let mut texels = Vec::with_capacity(w * h);
+            for j in 0..h {
+                for i in 0..w {
+                    let (mut sum, mut n) = ([0u32; 4], 0);
+                    for y in footprint(j, l.height) {
+                        for x in footprint(i, l.width) {
+                            let t = l.texels[y * l.width + x];
+                            for c in 0..4 {
+                                sum[c] += t[c] as u32;
+                            }
+                            n += 1;
+                        }
+                    }
+                    texels.push(sum.map(|s| ((s + n / 2) / n) as u8));
+                }
+            }
+            self.levels.push(Level { width: w, height: h, texels });
+        }
+    }
+
+    pub fn width(&self) -> usize {
+        self.levels[0].width
+    }
+
+    pub fn height(&self) -> usize {
+        self.levels[0].height
+    }
+}
+
+/// `GL_TEXTURE_MIN_FILTER` values.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum MinFilter {
+    Nearest,
+    Linear,
+    NearestMipmapNearest,
+    LinearMipmapNearest,
+    NearestMipmapLinear,
+    LinearMipmapLinear,
+}
+
+/// `GL_TEXTURE_MAG_FILTER` values.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum MagFilter {
+    Nearest,
+    Linear,
+}
+
+/// `GL_TEXTURE_WRAP_S/T` values emulated here.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum WrapMode {
+    Repeat,
+    ClampToEdge,
+}
+
+/// Filter and wrap state of a texture unit.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Sampler {
+    pub min: MinFilter,
+    pub mag: MagFilter,
+    pub wrap_s: WrapMode,
+    pub wrap_t: WrapMode,
+}
+
+impl Sampler {
+    /// `GL_LINEAR_MIPMAP_LINEAR` / `GL_LINEAR`, repeating: the paper's normal-map and decal state.
+    pub const TRILINEAR_REPEAT: Sampler = Sampler {
+        min: MinFilter::LinearMipmapLinear,
+        mag: MagFilter::Linear,
+        wrap_s: WrapMode::Repeat,
+        wrap_t: WrapMode::Repeat,
+    };
+    /// `GL_LINEAR` both ways, repeating, no mipmaps.
+    pub const LINEAR_REPEAT: Sampler =
+        Sampler { min: MinFilter::Linear, mag: MagFilter::Linear, wrap_s: WrapMode::Repeat, wrap_t: WrapMode::Repeat };
+    /// `GL_NEAREST` both ways, repeating.
+    pub const NEAREST_REPEAT: Sampler = Sampler {
+        min: MinFilter::Nearest,
+        mag: MagFilter::Nearest,
+        wrap_s: WrapMode::Repeat,
+        wrap_t: WrapMode::Repeat,
+    };
+    /// `GL_LINEAR`, `GL_CLAMP_TO_EDGE`: the normalization cube map's state (Appendix D).
+    pub const LINEAR_CLAMP: Sampler = Sampler {
+        min: MinFilter::Linear,
+        mag: MagFilter::Linear,
+        wrap_s: WrapMode::ClampToEdge,
+        wrap_t: WrapMode::ClampToEdge,
+    };
+
+    /// The magnification/minification switch-over point c (GL 1.2 §3.8.8).
+    fn switch_over(&self) -> f32 {
+        let nearest_mip = matches!(self.min, MinFilter::NearestMipmapNearest | MinFilter::NearestMipmapLinear);
+        if self.mag == MagFilter::Linear && nearest_mip { 0.5 } else { 0.0 }
+    }
+}
+
+#[inline(always)]
+fn texel_f32(t: [u8; 4]) -> Vec4 {
+    Vec4::new(t[0] as f32, t[1] as f32, t[2] as f32, t[3] as f32) * (1.0 / 255.0)
+}
+
+/// Integer texel index along one axis for NEAREST.
+#[inline(always)]
+fn nearest_index(s: f32, n: usize, wrap: WrapMode) -> usize {
+    match wrap {
+        WrapMode::Repeat => (((s - s.floor()) * n as f32) as usize).min(n - 1),
+        WrapMode::ClampToEdge => ((s * n as f32).floor().max(0.0) as usize).min(n - 1),
+    }
+}
+
+/// The two texel indices and the weight of the second for LINEAR along one axis.
+#[inline(always)]
+fn linear_indices(s: f32, n: usize, wrap: WrapMode) -> (usize, usize, f32) {
+    let nf = n as f32;
+    match wrap {
+        WrapMode::Repeat => {
+            let u = (s - s.floor()) * nf - 0.5;
+            let f = u.floor();
+            let i0 = (f as i64).rem_euclid(n as i64) as usize;
+            let i1 = if i0 + 1 == n { 0 } else { i0 + 1 };
+            (i0, i1, u - f)
+        }
+        WrapMode::ClampToEdge => {
+            // s ∈ [1/2N, 1 − 1/2N] at every level, so the filter never leaves the image.
+            let u = (s * nf).clamp(0.5, nf - 0.5) - 0.5;
+            let f = u.floor();
+            let i0 = f as usize;
+            ((i0).min(n - 1), (i0 + 1).min(n - 1), u - f)
+        }
+    }
+}
+
+impl Level {
+    #[inline(always)]
+    fn texel(&self, x: usize, y: usize) -> [u8; 4] {
+        self.texels[y * self.width + x]
+    }
+
+    #[inline(always)]
+    fn nearest(&self, s: f32, t: f32, sampler: &Sampler) -> Vec4 {
+        texel_f32(
+            self.texel(nearest_index(s, self.width, sampler.wrap_s), nearest_index(t, self.height, sampler.wrap_t)),
+        )
+    }
+
+    #[inline(always)]
+    fn linear(&self, s: f32, t: f32, sampler: &Sampler) -> Vec4 {
+        let (i0, i1, a) = linear_indices(s, self.width, sampler.wrap_s);
+        let (j0, j1, b) = linear_indices(t, self.height, sampler.wrap_t);
+        let (t00, t10, t01, t11) = (
+            texel_f32(self.texel(i0, j0)),
+            texel_f32(self.texel(i1, j0)),
+            texel_f32(self.texel(i0, j1)),
+            texel_f32(self.texel(i1, j1)),
+        );
+        (t00 * (1.0 - a) + t10 * a) * (1.0 - b) + (t01 * (1.0 - a) + t11 * a) * b
+    }
+
+    #[inline(always)]
+    fn filter(&self, s: f32, t: f32, linear: bool, sampler: &Sampler) -> Vec4 {
+        if linear { self.linear(s, t, sampler) } else { self.nearest(s, t, sampler) }
+    }
+}
+
+/// Samples a 2D texture at (s, t) with level of detail λ (GL 1.2 §3.8.8–3.8.9).
+#[inline]
+pub fn sample_2d(tex: &Texture2d, sampler: &Sampler, s: f32, t: f32, lambda: f32) -> Vec4 {
+    let base = &tex.levels[0];
+    if lambda <= sampler.switch_over() || !lambda.is_finite() && lambda < 0.0 {
+        return base.filter(s, t, sampler.mag == MagFilter::Linear, sampler);
+    }
+    let q = (tex.levels.len() - 1) as f32;
+    let pick = |d: f32| &tex.levels[d.min(q) as usize];
+    match sampler.min {
+        MinFilter::Nearest => base.nearest(s, t, sampler),
+        MinFilter::Linear => base.linear(s, t, sampler),
+        MinFilter::NearestMipmapNearest | MinFilter::LinearMipmapNearest => {
+            let d = if lambda <= 0.5 { 0.0 } else { ((lambda + 0.5).ceil() - 1.0).min(q) };
+            pick(d).filter(s, t, sampler.min == MinFilter::LinearMipmapNearest, sampler)
+        }
+        MinFilter::NearestMipmapLinear | MinFilter::LinearMipmapLinear => {
+            let linear = sampler.min == MinFilter::LinearMipmapLinear;
+            if lambda >= q {
+                return pick(q).filter(s, t, linear, sampler);
+            }
+            let d1 = lambda.floor();
+            let f = lambda - d1;
+            let t1 = pick(d1).filter(s, t, linear, sampler);
+            if f == 0.0 {
+                return t1;
+            }
+            t1 * (1.0 - f) + pick(d1 + 1.0).filter(s, t, linear, sampler) * f
+        }
+    }
+}
+
+/// λ = log2 ρ for one 2×2 quad, ρ the larger screen-space footprint length in texels (GL 1.2
+/// Eq. 3.14), from the texture coordinates of the quad's pixels (0,0), (1,0) and (0,1).
+#[inline]
+pub fn lambda_2d(tex: &Texture2d, s: [f32; 3], t: [f32; 3]) -> f32 {
+    let (w, h) = (tex.width() as f32, tex.height() as f32);
+    let (dudx, dvdx) = ((s[1] - s[0]) * w, (t[1] - t[0]) * h);
+    let (dudy, dvdy) = ((s[2] - s[0]) * w, (t[2] - t[0]) * h);
+    let rho2 = (dudx * dudx + dvdx * dvdx).max(dudy * dudy + dvdy * dvdy);
+    0.5 * rho2.log2()
+}
+
+/// A cube map: six square faces in GL order, each a 2D texture.
+#[derive(Clone, Debug, PartialEq)]
+pub struct TextureCube {
+    pub faces: [Texture2d; 6],
+}
+
+impl TextureCube {
+    /// The normalization cube map as a texture (A = 255: an RGB texture).
+    pub fn from_normalization(map: &NormalizationCubeMap) -> Self {
+        let n = map.size;
+        Self {
+            faces: map
+                .faces
+                .clone()
+                .map(|f| Texture2d::from_rgba8(n, n, f.into_iter().map(|[r, g, b]| [r, g, b, 255]).collect())),
+        }
+    }
+}
+
+/// Samples a cube map with the direction (s, t, r): face and face coordinates per Kilgard
+/// Table 1, then ordinary 2D filtering on that face. A zero or non-finite direction returns
+/// transparent black.
+#[inline]
+pub fn sample_cube(tex: &TextureCube, sampler: &Sampler, r: Vec3, lambda: f32) -> Vec4 {
+    match CubeFace::select(r) {
+        Some((face, s, t)) => sample_2d(&tex.faces[face as usize], sampler, s, t, lambda),
+        None => Vec4::ZERO,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn ramp(w: usize, h: usize) -> Texture2d {
+        Texture2d::from_rgba8(w, h, (0..w * h).map(|i| [(i % w * 10) as u8, (i / w * 10) as u8, 0, 255]).collect())
+    }
+
+    #[test]
+    fn linear_at_texel_centres_returns_texels_and_blends_between() {
+        let tex = ramp(4, 4);
+        let s = Sampler::LINEAR_REPEAT;
+        let c = sample_2d(&tex, &s, 1.5 / 4.0, 2.5 / 4.0, 0.0) * 255.0;
+        assert!((c.x - 10.0).abs() < 1e-3 && (c.y - 20.0).abs() < 1e-3, "{c}");
+        let mid = sample_2d(&tex, &s, 2.0 / 4.0, 2.5 / 4.0, 0.0) * 255.0;
+        assert!((mid.x - 15.0).abs() < 1e-3, "{mid}");
+        // REPEAT: s = 0 sits between the last and first columns.
+        let wrap = sample_2d(&tex, &s, 0.0, 0.5 / 4.0, 0.0) * 255.0;
+        assert!((wrap.x - 15.0).abs() < 1e-3, "{wrap}");
+        // CLAMP_TO_EDGE: s = 0 is the first column exactly.
+        let clamp = sample_2d(&tex, &Sampler::LINEAR_CLAMP, 0.0, 0.5 / 4.0, 0.0) * 255.0;
+        assert!(clamp.x.abs() < 1e-3, "{clamp}");
+    }
+
+    #[test]
+    fn nearest_picks_the_texel_containing_s() {
+        let tex = ramp(4, 1);
+        let s = Sampler::NEAREST_REPEAT;
+        assert_eq!((sample_2d(&tex, &s, 0.26, 0.5, 0.0).x * 255.0).round(), 10.0);
+        assert_eq!((sample_2d(&tex, &s, 0.99, 0.5, 0.0).x * 255.0).round(), 30.0);
+        assert_eq!((sample_2d(&tex, &s, 1.01, 0.5, 0.0).x * 255.0).round(), 0.0, "REPEAT uses frac(s)");
+    }
+
+    #[test]
+    fn trilinear_blends_levels_by_frac_lambda() {
+        let mut tex = Texture2d::from_rgba8(2, 2, vec![[200, 0, 0, 255]; 4]);
+        tex.levels.push(Level { width: 1, height: 1, texels: vec![[100, 0, 0, 255]] });
+        let s = Sampler::TRILINEAR_REPEAT;
+        let at = |l| (sample_2d(&tex, &s, 0.3, 0.3, l).x * 255.0).round();
+        assert_eq!(at(-1.0), 200.0, "magnification uses level 0");
+        assert_eq!(at(0.25), 175.0);
+        assert_eq!(at(0.5), 150.0);
+        assert_eq!(at(7.0), 100.0, "λ beyond the last level clamps to it");
+        // λ from a quad whose s grows by one texel per pixel is 0; two texels, 1.
+        assert_eq!(lambda_2d(&tex, [0.0, 0.5, 0.0], [0.0, 0.0, 0.5]), 0.0);
+        assert_eq!(lambda_2d(&tex, [0.0, 1.0, 0.0], [0.0, 0.0, 0.25]), 1.0);
+    }
+}
