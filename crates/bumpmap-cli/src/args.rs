@@ -332,13 +332,51 @@ pub fn parse_light(s: &str) -> Result<bumpmap_raster::scene::SceneLight, String>
         }
         None => Light::Positional(parse_vec3(pos)?),
     };
-    Ok(bumpmap_raster::scene::SceneLight { light, color })
+    Ok(bumpmap_raster::scene::SceneLight { color, ..bumpmap_raster::scene::SceneLight::white(light) })
 }
 
 #[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
 pub enum TechniqueArg {
     /// The paper's three passes on the emulated GeForce 256 (register combiners, cube map)
     Kilgard,
+    /// One float pass per light with the full lighting model (Kilgard §6, Cg Tutorial)
+    SinglePass,
+}
+
+#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum NormalizeArg {
+    /// normalize() in float
+    Math,
+    /// the normalization cube map, as the paper does
+    Cube,
+}
+
+#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum SelfShadowArg {
+    /// Eq. 12: clamp(8·L_z, 0, 1)
+    Ramp,
+    /// 1 where L_z > 0
+    Step,
+    /// none (Figure 14, left)
+    Off,
+}
+
+#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum HalfAngleArg {
+    /// per vertex, interpolated (Appendix C)
+    Vertex,
+    /// normalize(L̂ + V̂) per fragment (Cg Tutorial §8.1.4)
+    Fragment,
+}
+
+#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum SpecularShadowArg {
+    /// times s_self, zero where H_z < 0 (the paper's mux)
+    Kilgard,
+    /// zero unless N'·L > 0 and L_z > 0 (Cg Tutorial §8.5)
+    Cg,
+    /// none
+    Off,
 }
 
 #[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
@@ -458,4 +496,57 @@ pub struct RenderArgs {
     /// Face size of the normalization cube map
     #[arg(long = "cube-size", default_value_t = 32, value_parser = clap::value_parser!(u32).range(1..=1024))]
     pub cube_size: u32,
+    /// single-pass: how L and H are renormalized per fragment
+    #[arg(long, value_enum, default_value = "math")]
+    pub normalize: NormalizeArg,
+    /// single-pass: the self-shadowing factor (kilgard: see --no-self-shadow)
+    #[arg(long = "self-shadow", value_enum, default_value = "ramp")]
+    pub self_shadow: SelfShadowArg,
+    /// single-pass: per-vertex or per-fragment half-angle vector
+    #[arg(long = "half-angle", value_enum, default_value = "vertex")]
+    pub half_angle: HalfAngleArg,
+    /// Specular exponent (kilgard's combiners are fixed at 8)
+    #[arg(long, default_value_t = 8.0)]
+    pub shininess: f32,
+    /// single-pass: geometric self-shadowing of the specular term
+    #[arg(long = "specular-shadow", value_enum, default_value = "kilgard")]
+    pub specular_shadow: SpecularShadowArg,
+    /// single-pass: gloss map scaling the specular: decal-alpha, bricks (shiny bricks, dull mortar) or an image (red channel, same size as the decal)
+    #[arg(long)]
+    pub gloss: Option<String>,
+    /// single-pass: attenuation with distance: C,L,Q (1/(C + L·d + Q·d²)), exp:D or exp2:D
+    #[arg(long, value_parser = parse_attenuation)]
+    pub attenuation: Option<bumpmap_raster::scene::Attenuation>,
+    /// single-pass: make every positional light a spotlight aimed along DX,DY,DZ
+    #[arg(long, value_parser = parse_vec3, allow_hyphen_values = true)]
+    pub spot: Option<glam::Vec3>,
+    /// Spotlight cone half-angle in degrees, in (0, 90)
+    #[arg(long = "spot-cutoff", default_value_t = 25.0)]
+    pub spot_cutoff: f32,
+    /// Spotlight fall-off exponent (cos^E), ≥ 0
+    #[arg(long = "spot-exponent", default_value_t = 2.0)]
+    pub spot_exponent: f32,
+    /// Pattern projected by the spotlight: an image or a height-field preset (e.g. pinwheel)
+    #[arg(long = "spot-pattern")]
+    pub spot_pattern: Option<String>,
+}
+
+/// `C,L,Q`, `exp:D` or `exp2:D`.
+pub fn parse_attenuation(s: &str) -> Result<bumpmap_raster::scene::Attenuation, String> {
+    use bumpmap_raster::scene::Attenuation;
+    let num = |x: &str| x.trim().parse::<f32>().map_err(|_| format!("'{x}' is not a number"));
+    if s == "none" {
+        return Ok(Attenuation::None);
+    }
+    if let Some(d) = s.strip_prefix("exp2:") {
+        return Ok(Attenuation::ExponentialSquared { density: num(d)? });
+    }
+    if let Some(d) = s.strip_prefix("exp:") {
+        return Ok(Attenuation::Exponential { density: num(d)? });
+    }
+    let v: Vec<f32> = s.split(',').map(num).collect::<Result<_, _>>()?;
+    match v.as_slice() {
+        [c, l, q] => Ok(Attenuation::Polynomial { constant: *c, linear: *l, quadratic: *q }),
+        _ => Err(format!("expected none, C,L,Q, exp:D or exp2:D, got '{s}'")),
+    }
 }

@@ -9,13 +9,17 @@ use bumpmap_io::{Channel, HeightSource};
 use bumpmap_math::NormalMapOptions;
 use bumpmap_raster::combiners::Precision;
 use bumpmap_raster::kilgard::{self, KilgardOptions, SpecularMode};
-use bumpmap_raster::scene::{Scene, ViewerModel};
+use bumpmap_raster::scene::{Scene, Spot, ViewerModel};
 use bumpmap_raster::scenes::{self, SceneKind, SceneParams};
+use bumpmap_raster::single_pass::{self, Gloss, HalfAngle, Normalize, SelfShadow, SinglePassOptions, SpecularShadow};
 use bumpmap_raster::texture::{Sampler, Texture2d};
 use bumpmap_raster::{Framebuffer, RasterError};
 use glam::{Vec2, Vec3};
 
-use crate::args::{FilterArg, PrecisionArg, RenderArgs, SpecularArg, TechniqueArg, ViewerArg};
+use crate::args::{
+    FilterArg, HalfAngleArg, NormalizeArg, PrecisionArg, RenderArgs, SelfShadowArg, SpecularArg, SpecularShadowArg,
+    TechniqueArg, ViewerArg,
+};
 use crate::error::CliError;
 
 pub fn run(args: &RenderArgs) -> Result<(), CliError> {
@@ -86,11 +90,44 @@ pub fn build_scene(args: &RenderArgs) -> Result<Scene, CliError> {
     if !(major > 0.0 && minor > 0.0) {
         return Err(CliError::Render(format!("--torus-radii must be positive, got {major},{minor}")));
     }
+    if !(args.shininess > 0.0 && args.shininess.is_finite()) {
+        return Err(CliError::Render(format!("--shininess must be a positive number, got {}", args.shininess)));
+    }
+    let pattern = match args.spot_pattern.as_deref() {
+        None => None,
+        Some(spec) => {
+            let field = HeightSource::parse(spec).load(Channel::Luminance)?;
+            let bytes = field.to_u8();
+            Some(Arc::new(Texture2d::from_rgba8(
+                field.width(),
+                field.height(),
+                bytes.iter().map(|&v| [v, v, v, 255]).collect(),
+            )))
+        }
+    };
+    let mut lights = args.lights.clone();
+    if lights.is_empty() && (args.attenuation.is_some() || args.spot.is_some()) {
+        lights.push(bumpmap_raster::scene::SceneLight::white(bumpmap_raster::scenes::default_light(&kind)));
+    }
+    for light in &mut lights {
+        if let Some(a) = args.attenuation {
+            light.attenuation = a;
+        }
+        if let Some(direction) = args.spot {
+            light.spot = Some(Spot {
+                direction,
+                cutoff_degrees: args.spot_cutoff,
+                exponent: args.spot_exponent,
+                pattern: pattern.clone(),
+            });
+        }
+        single_pass::validate_light(light).map_err(raster_err)?;
+    }
     let params = SceneParams {
         eye: args.eye,
         target: args.target,
         fov_y_degrees: args.fov,
-        lights: args.lights.clone(),
+        lights,
         viewer: match args.viewer {
             ViewerArg::Local => ViewerModel::Local,
             ViewerArg::Infinite => ViewerModel::Infinite,
@@ -102,7 +139,7 @@ pub fn build_scene(args: &RenderArgs) -> Result<Scene, CliError> {
         ambient: Vec3::splat(args.ambient),
         diffuse: Vec3::splat(args.diffuse),
         specular: Vec3::splat(args.specular),
-        shininess: 8.0,
+        shininess: args.shininess,
         torus_radii: (major, minor),
         tessellation: args.tessellation,
         repeat: args.repeat.map(|(s, t)| Vec2::new(s, t)),
@@ -113,14 +150,32 @@ pub fn build_scene(args: &RenderArgs) -> Result<Scene, CliError> {
     scenes::build(&kind, &params).map_err(raster_err)
 }
 
-/// The technique's options from the arguments.
-pub fn kilgard_options(args: &RenderArgs) -> KilgardOptions {
-    KilgardOptions {
-        sampler: match args.filter {
-            FilterArg::Nearest => Sampler::NEAREST_REPEAT,
-            FilterArg::Linear => Sampler::LINEAR_REPEAT,
-            FilterArg::Trilinear => Sampler::TRILINEAR_REPEAT,
-        },
+/// The three-pass technique's options; refuses what its combiners cannot do.
+pub fn kilgard_options(args: &RenderArgs) -> Result<KilgardOptions, CliError> {
+    let unsupported = |what: &str| {
+        Err(CliError::Render(format!(
+            "--technique kilgard cannot do {what}: the paper's combiners have no room for it; use --technique single-pass"
+        )))
+    };
+    if args.shininess != 8.0 {
+        return unsupported("--shininess other than 8 (use --specular-mode ramp for a tighter highlight)");
+    }
+    if args.gloss.is_some() {
+        return unsupported("--gloss");
+    }
+    if args.attenuation.is_some() || args.spot.is_some() {
+        return unsupported("attenuation or spotlights");
+    }
+    if args.normalize != NormalizeArg::Math
+        || args.half_angle != HalfAngleArg::Vertex
+        || args.self_shadow != SelfShadowArg::Ramp
+    {
+        return unsupported(
+            "--normalize, --half-angle or --self-shadow (it always normalizes by cube map, per vertex H, ramp or --no-self-shadow)",
+        );
+    }
+    Ok(KilgardOptions {
+        sampler: sampler(args.filter),
         self_shadow: !args.no_self_shadow,
         specular: match args.specular_mode {
             SpecularArg::Power8 => SpecularMode::EighthPower,
@@ -132,6 +187,60 @@ pub fn kilgard_options(args: &RenderArgs) -> KilgardOptions {
         },
         cube_size: args.cube_size as usize,
         ..Default::default()
+    })
+}
+
+/// The single-pass technique's options.
+pub fn single_pass_options(args: &RenderArgs) -> Result<SinglePassOptions, CliError> {
+    let gloss = match args.gloss.as_deref() {
+        None | Some("none") => Gloss::None,
+        Some("decal-alpha") => Gloss::DecalAlpha,
+        Some("bricks") => {
+            let (w, h) = (256, 256);
+            let g: Vec<[u8; 4]> =
+                bumpmap_math::height::bricks_gloss(w, h).into_iter().map(|v| [v, v, v, 255]).collect();
+            Gloss::Map(Arc::new(Texture2d::from_rgba8(w, h, g).with_box_mipmaps()))
+        }
+        Some(path) => {
+            let (w, h, texels) = bumpmap_io::load_rgba8(Path::new(path))?;
+            Gloss::Map(Arc::new(Texture2d::from_rgba8(w, h, texels).with_box_mipmaps()))
+        }
+    };
+    if args.specular_mode != SpecularArg::Power8 {
+        return Err(CliError::Render(
+            "--specular-mode ramp belongs to --technique kilgard; single-pass takes --shininess".into(),
+        ));
+    }
+    Ok(SinglePassOptions {
+        sampler: sampler(args.filter),
+        normalize: match args.normalize {
+            NormalizeArg::Math => Normalize::Math,
+            NormalizeArg::Cube => Normalize::Cube,
+        },
+        self_shadow: match (args.no_self_shadow, args.self_shadow) {
+            (true, _) | (_, SelfShadowArg::Off) => SelfShadow::Off,
+            (_, SelfShadowArg::Ramp) => SelfShadow::Ramp,
+            (_, SelfShadowArg::Step) => SelfShadow::Step,
+        },
+        half_angle: match args.half_angle {
+            HalfAngleArg::Vertex => HalfAngle::Vertex,
+            HalfAngleArg::Fragment => HalfAngle::Fragment,
+        },
+        specular_shadow: match args.specular_shadow {
+            SpecularShadowArg::Kilgard => SpecularShadow::Kilgard,
+            SpecularShadowArg::Cg => SpecularShadow::CgTutorial,
+            SpecularShadowArg::Off => SpecularShadow::Off,
+        },
+        gloss,
+        cube_size: args.cube_size as usize,
+    })
+}
+
+fn sampler(filter: FilterArg) -> Sampler {
+    match filter {
+        FilterArg::Nearest => Sampler::NEAREST_REPEAT,
+        FilterArg::Linear => Sampler::LINEAR_REPEAT,
+        FilterArg::Trilinear => Sampler::TRILINEAR_REPEAT,
     }
 }
 
@@ -139,12 +248,13 @@ pub fn kilgard_options(args: &RenderArgs) -> KilgardOptions {
 pub fn render_to(scene: &Scene, args: &RenderArgs, fb: &mut Framebuffer, out: &Path) -> Result<Vec<PathBuf>, CliError> {
     let mut passes: Vec<(String, Vec<u8>)> = Vec::new();
     match args.technique {
-        TechniqueArg::Kilgard => kilgard::render(scene, &kilgard_options(args), fb, |name, fb| {
+        TechniqueArg::Kilgard => kilgard::render(scene, &kilgard_options(args)?, fb, |name, fb| {
             if args.passes {
                 passes.push((name.to_string(), rgb(fb)));
             }
         })
         .map_err(raster_err)?,
+        TechniqueArg::SinglePass => single_pass::render(scene, &single_pass_options(args)?, fb).map_err(raster_err)?,
     }
     if let Some(dir) = out.parent().filter(|d| !d.as_os_str().is_empty()) {
         std::fs::create_dir_all(dir).map_err(|e| CliError::Path { path: dir.to_path_buf(), reason: e.to_string() })?;

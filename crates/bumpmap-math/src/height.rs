@@ -231,6 +231,22 @@ pub fn bricks_decal(width: usize, height: usize) -> Vec<[u8; 4]> {
     out
 }
 
+/// A gloss map for [`HeightPreset::Bricks`]: 255 on brick faces, 40 in the mortar, with the
+/// same soft edge as the height field.
+pub fn bricks_gloss(width: usize, height: usize) -> Vec<u8> {
+    let (w, h) = (width as f32, height as f32);
+    let bevel = (w / 128.0).max(1.0);
+    let mut out = Vec::with_capacity(width * height);
+    for y in 0..height {
+        for x in 0..width {
+            let (edge, _, _) = brick_cell((x as f32 + 0.5) / w, (y as f32 + 0.5) / h, w, h);
+            let face = (edge / bevel).clamp(0.0, 1.0);
+            out.push((40.0 + 215.0 * face + 0.5) as u8);
+        }
+    }
+    out
+}
+
 fn pinwheel(u: f32, v: f32, texels: f32) -> f32 {
     const BLADES: f32 = 8.0;
     let r = (u * u + v * v).sqrt();

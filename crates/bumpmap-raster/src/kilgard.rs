@@ -95,7 +95,9 @@ pub fn render(
             sampler: options.sampler,
         });
         let has_specular = m.specular.max_element() > 0.0;
-        let equal = DrawState { depth_func: DepthFunc::Equal, depth_write: false, ..DrawState::OPAQUE };
+        // The three passes read texture coordinates, L and H: varyings 0..var::V.
+        let opaque = DrawState { varyings: var::V, ..DrawState::OPAQUE };
+        let equal = DrawState { depth_func: DepthFunc::Equal, depth_write: false, ..opaque };
         for (i, light) in scene.lights.iter().enumerate() {
             let vertices = scene.vertices(object, light, aspect);
             let kd = (m.diffuse * light.color).extend(0.0);
@@ -108,7 +110,7 @@ pub fn render(
                 // Pass 1: the decal.
                 if let Some(decal) = &decal_unit {
                     let shader = FixedFunction { units: vec![decal.clone()], combiners: combiners(setups::decal())? };
-                    draw_object(fb, &vertices, object, &DrawState::OPAQUE, &shader);
+                    draw_object(fb, &vertices, object, &opaque, &shader);
                     on_pass(PASS_NAMES[0], fb);
                 }
                 // Pass 2: ambient + diffuse, s_self to alpha.
@@ -117,11 +119,7 @@ pub fn render(
                 } else {
                     setups::ambient_and_diffuse_unshadowed(ambient, kd)
                 };
-                let state = if decal_unit.is_some() {
-                    DrawState { blend: Blend::MODULATE, ..equal }
-                } else {
-                    DrawState::OPAQUE
-                };
+                let state = if decal_unit.is_some() { DrawState { blend: Blend::MODULATE, ..equal } } else { opaque };
                 let shader = FixedFunction {
                     units: vec![normal_unit.clone(), cube_unit(var::L)],
                     combiners: combiners(diffuse)?,

@@ -11,7 +11,8 @@
 //! What is drawn and how:
 //! - [`scene`], [`scenes`]: scene descriptions and the built-in scenes;
 //! - [`setups`]: the paper's combiner setups (Kilgard Appendices G and H) as data;
-//! - [`kilgard`]: the paper's three-pass technique.
+//! - [`kilgard`]: the paper's three-pass technique;
+//! - [`single_pass`]: the same lighting model (and more) in one float pass per light.
 
 pub mod combiners;
 pub mod error;
@@ -22,6 +23,7 @@ pub mod raster;
 pub mod scene;
 pub mod scenes;
 pub mod setups;
+pub mod single_pass;
 pub mod texture;
 
 pub use error::RasterError;

@@ -16,7 +16,7 @@ use crate::combiners::{LANES, Lanes};
 use crate::framebuffer::{Blend, DepthFunc, Framebuffer, TILE, Tile};
 
 /// Varyings per vertex (texture coordinates, light and half-angle vectors, …).
-pub const MAX_VARYINGS: usize = 16;
+pub const MAX_VARYINGS: usize = 20;
 /// Quads per shading batch.
 pub const QUADS: usize = LANES / 4;
 
@@ -36,6 +36,8 @@ pub struct DrawState {
     /// `glColorMask(r, g, b, a)`.
     pub color_mask: [bool; 4],
     pub cull_back: bool,
+    /// How many varyings (from slot 0) the shader reads; only these are interpolated.
+    pub varyings: usize,
 }
 
 impl DrawState {
@@ -46,6 +48,7 @@ impl DrawState {
         blend: Blend::REPLACE,
         color_mask: [true; 4],
         cull_back: true,
+        varyings: MAX_VARYINGS,
     };
 }
 
@@ -304,7 +307,7 @@ fn raster_triangle<S: FragmentShader>(
                 // Perspective-correct varyings (helper lanes too, for derivatives).
                 let iw = b[0] * s.inv_w[0] + b[1] * s.inv_w[1] + b[2] * s.inv_w[2];
                 let wc = 1.0 / iw;
-                for (j, var) in batch.varyings.iter_mut().enumerate() {
+                for (j, var) in batch.varyings.iter_mut().enumerate().take(state.varyings) {
                     var[lane] = (b[0] * s.var_w[0][j] + b[1] * s.var_w[1][j] + b[2] * s.var_w[2][j]) * wc;
                 }
             }

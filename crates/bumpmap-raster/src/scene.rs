@@ -28,8 +28,12 @@ pub mod var {
     pub const V: usize = 8;
     /// Distance to a positional light (0 for a directional one).
     pub const LIGHT_DISTANCE: usize = 11;
+    /// Tangent-space direction of a spotlight's axis (3 slots).
+    pub const SPOT: usize = 12;
+    /// Projective coordinates (s, t, q) of the spotlight's pattern (3 slots).
+    pub const PROJ: usize = 15;
     /// Slots in use.
-    pub const COUNT: usize = 12;
+    pub const COUNT: usize = 18;
 }
 
 /// A perspective camera (`gluLookAt` + `gluPerspective`).
@@ -59,11 +63,77 @@ pub enum ViewerModel {
     Infinite,
 }
 
-/// A light and its colour.
-#[derive(Clone, Copy, Debug, PartialEq)]
+/// A light, its colour, its fall-off with distance and an optional spotlight cone.
+#[derive(Clone, Debug, PartialEq)]
 pub struct SceneLight {
     pub light: Light,
     pub color: Vec3,
+    pub attenuation: Attenuation,
+    pub spot: Option<Spot>,
+}
+
+impl SceneLight {
+    /// A white light with no attenuation and no cone.
+    pub fn white(light: Light) -> Self {
+        Self { light, color: Vec3::ONE, attenuation: Attenuation::None, spot: None }
+    }
+}
+
+/// Fall-off with the distance d to a positional light (Kilgard §5.6).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Attenuation {
+    None,
+    /// OpenGL's `1 / (constant + linear·d + quadratic·d²)`.
+    Polynomial {
+        constant: f32,
+        linear: f32,
+        quadratic: f32,
+    },
+    /// The fog-coordinate style `exp(−density·d)`.
+    Exponential {
+        density: f32,
+    },
+    /// `exp(−(density·d)²)`.
+    ExponentialSquared {
+        density: f32,
+    },
+}
+
+impl Attenuation {
+    /// The factor at distance `d`, in [0, 1] for valid parameters.
+    #[inline]
+    pub fn factor(&self, d: f32) -> f32 {
+        match *self {
+            Attenuation::None => 1.0,
+            Attenuation::Polynomial { constant, linear, quadratic } => {
+                (1.0 / (constant + linear * d + quadratic * d * d)).clamp(0.0, 1.0)
+            }
+            Attenuation::Exponential { density } => (-density * d).exp(),
+            Attenuation::ExponentialSquared { density } => (-(density * d).powi(2)).exp(),
+        }
+    }
+}
+
+/// A spotlight: a cone around `direction` (world space, pointing away from the light) with
+/// GL's `cos^exponent` fall-off, and optionally a pattern projected from the light (Segal et
+/// al., Kilgard §5.6) through a square frustum whose half-angle is the cutoff.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Spot {
+    pub direction: Vec3,
+    /// Half-angle of the cone in degrees, in (0, 90).
+    pub cutoff_degrees: f32,
+    pub exponent: f32,
+    pub pattern: Option<Arc<Texture2d>>,
+}
+
+impl Spot {
+    /// The light's `clip_from_world` for projecting the pattern from `position`.
+    pub fn clip_from_world(&self, position: Vec3) -> Mat4 {
+        let d = self.direction.normalize();
+        let up = if d.cross(Vec3::Z).length() > 1e-3 { Vec3::Z } else { Vec3::Y };
+        Mat4::perspective_rh_gl(2.0 * self.cutoff_degrees.to_radians(), 1.0, 0.05, 1000.0)
+            * Mat4::look_at_rh(position, position + d, up)
+    }
 }
 
 /// Surface appearance: a normal map with its mip chain, an optional decal and the lighting
@@ -109,6 +179,7 @@ impl Scene {
             ViewerModel::Infinite => Viewer::Infinite((self.camera.eye - self.camera.target).normalize_or(Vec3::Z)),
         };
         let lighting = ObjectLighting::new(object.world_from_object, light.light, viewer);
+        let object_from_world = object.world_from_object.inverse();
         (0..mesh.positions.len())
             .into_par_iter()
             .map(|i| {
@@ -125,9 +196,16 @@ impl Scene {
                 varyings[var::H..var::H + 3].copy_from_slice(&h.to_array());
                 varyings[var::V..var::V + 3].copy_from_slice(&v.to_array());
                 varyings[var::LIGHT_DISTANCE] = match light.light {
-                    Light::Positional(_) => lighting.to_light(p).length(),
+                    Light::Positional(_) => (object.world_from_object.transform_vector3(lighting.to_light(p))).length(),
                     Light::Directional(_) => 0.0,
                 };
+                if let (Some(spot), Light::Positional(at)) = (&light.spot, light.light) {
+                    let axis = object_from_world.transform_vector3(spot.direction);
+                    let axis = frame.tangent_from_object(axis).normalize_or(Vec3::Z);
+                    varyings[var::SPOT..var::SPOT + 3].copy_from_slice(&axis.to_array());
+                    let c = spot.clip_from_world(at) * (object.world_from_object * p.extend(1.0));
+                    varyings[var::PROJ..var::PROJ + 3].copy_from_slice(&[0.5 * (c.x + c.w), 0.5 * (c.y + c.w), c.w]);
+                }
                 Vertex { clip: clip_from_object * p.extend(1.0), varyings }
             })
             .collect()

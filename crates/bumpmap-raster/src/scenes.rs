@@ -97,7 +97,9 @@ pub fn default_light(kind: &SceneKind) -> Light {
             let a = -2.2f32;
             Light::Positional(Vec3::new(4.0 * a.cos(), 4.0 * a.sin(), 3.0))
         }
-        SceneKind::Wall | SceneKind::WallFloor => Light::Positional(Vec3::new(-1.5, 1.2, 2.5)),
+        SceneKind::Wall => Light::Positional(Vec3::new(-2.0, 1.5, 2.0)),
+        SceneKind::WallFloor => Light::Positional(Vec3::new(-2.5, 2.8, 0.5)),
+        SceneKind::Patch => Light::Positional(Vec3::new(-3.0, -1.0, 1.2)),
         SceneKind::Floor => Light::Positional(Vec3::new(-1.5, 2.5, 1.0)),
         _ => Light::Positional(Vec3::new(-3.0, -3.0, 4.0)),
     }
@@ -160,7 +162,7 @@ pub fn build(kind: &SceneKind, params: &SceneParams) -> Result<Scene, RasterErro
         }
         SceneKind::Patch => {
             let patch = object(Surface::Patch(BicubicPatch::stretched()), (8, 8), Vec2::new(4.0, 1.0), Mat4::IDENTITY);
-            (vec![patch], Vec3::new(0.3, -1.6, 3.2), Vec3::ZERO, Vec3::Z)
+            (vec![patch], Vec3::new(0.4, -3.2, 4.0), Vec3::ZERO, Vec3::Z)
         }
         SceneKind::Sphere => {
             let sphere = object(Surface::Sphere { radius: 1.5 }, (64, 32), Vec2::new(4.0, 2.0), Mat4::IDENTITY);
@@ -175,11 +177,8 @@ pub fn build(kind: &SceneKind, params: &SceneParams) -> Result<Scene, RasterErro
             (vec![object], Vec3::new(0.0, -2.5, 3.5), Vec3::ZERO, Vec3::Z)
         }
     };
-    let lights = if params.lights.is_empty() {
-        vec![SceneLight { light: default_light(kind), color: Vec3::ONE }]
-    } else {
-        params.lights.clone()
-    };
+    let lights =
+        if params.lights.is_empty() { vec![SceneLight::white(default_light(kind))] } else { params.lights.clone() };
     Ok(Scene {
         camera: Camera {
             eye: params.eye.unwrap_or(eye),
