@@ -296,7 +296,9 @@ impl FragmentShader for SinglePass<'_> {
                 SelfShadow::Step => (l.z > 0.0) as u8 as f32,
                 SelfShadow::Off => 1.0,
             };
-            let n_dot_l = l.dot(n);
+            // Dot products of the (not exactly unit) expanded vectors clamp to [−1, 1] as the
+            // combiners' outputs do, so a quantized normal cannot brighten past the paper's.
+            let n_dot_l = l.dot(n).clamp(-1.0, 1.0);
             let spec_gate = match o.specular_shadow {
                 SpecularShadow::Kilgard => s_self * (h.z >= 0.0) as u8 as f32,
                 SpecularShadow::CgTutorial => (n_dot_l > 0.0 && l.z > 0.0) as u8 as f32,
@@ -318,7 +320,7 @@ impl FragmentShader for SinglePass<'_> {
             }
             // Eq. 11 with the filtered (shortened) normal, Eq. 16 with the renormalized one.
             let diffuse = (self.ambient + self.diffuse * (light * s_self * n_dot_l.max(0.0) * len)).min(Vec3::ONE);
-            let specular = self.specular * (light * spec_gate * gloss[lane].x * h.dot(n).max(0.0).powf(self.shininess));
+            let specular = self.specular * (light * spec_gate * gloss[lane].x * h.dot(n).clamp(0.0, 1.0).powf(self.shininess));
             let d = decals[lane];
             let c = Vec3::new(d.x, d.y, d.z) * diffuse + specular;
             out[0][lane] = c.x;
