@@ -35,6 +35,8 @@ pub enum Command {
     Bench(BenchArgs),
     /// Render a bump-mapped scene
     Render(Box<RenderArgs>),
+    /// Generate tangent frames for a mesh and write glTF with a TANGENT attribute
+    Tangents(TangentsArgs),
     /// Run everything on built-in defaults and write the results into a folder
     Demo(DemoArgs),
 }
@@ -261,6 +263,44 @@ pub enum BenchWhat {
         /// Worker threads (default: all cores)
         #[arg(long)]
         threads: Option<usize>,
+        /// Print one JSON line instead of prose
+        #[arg(long)]
+        json: bool,
+    },
+    /// Tangents for a wavy textured grid of N triangles (the MikkTSpace peer's mesh)
+    Tangents {
+        /// Triangles (rounded to a 1000-column grid)
+        #[arg(long, default_value_t = 1_000_000, value_parser = clap::value_parser!(u32).range(2000..=50_000_000))]
+        triangles: u32,
+        #[arg(long, value_enum, default_value = "ours")]
+        mode: TangentModeArg,
+        #[arg(long, default_value_t = 5, value_parser = clap::value_parser!(u32).range(1..))]
+        runs: u32,
+        /// Worker threads (default: all cores)
+        #[arg(long)]
+        threads: Option<usize>,
+        /// Print one JSON line instead of prose
+        #[arg(long)]
+        json: bool,
+    },
+    /// Frames per second of a scene, the light orbiting as in the llvmpipe peer
+    Render {
+        #[arg(long, default_value = "torus")]
+        scene: String,
+        #[arg(long, value_enum, default_value = "kilgard")]
+        technique: TechniqueArg,
+        /// Square framebuffer size
+        #[arg(long, default_value_t = 1024)]
+        size: usize,
+        /// Worker threads (default: all cores)
+        #[arg(long)]
+        threads: Option<usize>,
+        /// Frames per timed run
+        #[arg(long, default_value_t = 30, value_parser = clap::value_parser!(u32).range(1..))]
+        frames: u32,
+        /// Timed runs (after one warm-up run)
+        #[arg(long, default_value_t = 5, value_parser = clap::value_parser!(u32).range(1..))]
+        runs: u32,
         /// Print one JSON line instead of prose
         #[arg(long)]
         json: bool,
@@ -549,4 +589,32 @@ pub fn parse_attenuation(s: &str) -> Result<bumpmap_raster::scene::Attenuation, 
         [c, l, q] => Ok(Attenuation::Polynomial { constant: *c, linear: *l, quadratic: *q }),
         _ => Err(format!("expected none, C,L,Q, exp:D or exp2:D, got '{s}'")),
     }
+}
+
+#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum TangentModeArg {
+    /// Per-triangle ∂P/∂s blended at vertices, split at mirror seams (Cg Tutorial §8.4); parallel
+    Ours,
+    /// The reference MikkTSpace algorithm (what Blender, Substance and glTF viewers use)
+    Mikktspace,
+}
+
+#[derive(Args, Debug)]
+#[command(after_help = "Examples:\n  \
+bumpmap tangents model.obj -o model.glb\n  \
+bumpmap tangents scan.gltf -o scan_tangents.gltf --mode mikktspace\n\n\
+Reads OBJ, glTF or GLB (positions, normals, texture coordinates; normals are computed when \
+missing). Writes positions, normals, TEXCOORD_0, TANGENT (VEC4, w = ±1 handedness) and indices, \
+and reports degenerate, mirrored and split geometry.")]
+pub struct TangentsArgs {
+    /// Mesh file: .obj, .gltf or .glb
+    pub input: PathBuf,
+    /// Output: .gltf (with a .bin beside it) or .glb
+    #[arg(short, long)]
+    pub output: PathBuf,
+    #[arg(long, value_enum, default_value = "ours")]
+    pub mode: TangentModeArg,
+    /// Ours: tangents further apart than this many degrees split a vertex
+    #[arg(long = "split-angle", default_value_t = 60.0)]
+    pub split_angle: f32,
 }

@@ -8,7 +8,7 @@ use std::time::Instant;
 use bumpmap_math::{HeightField, HeightPreset, MipChain, MipMode, NormalMapOptions, mip::next_size};
 use rayon::prelude::*;
 
-use crate::args::{BenchArgs, BenchWhat};
+use crate::args::{BenchArgs, BenchWhat, TechniqueArg};
 use crate::error::CliError;
 
 /// Median, min and max of a set of durations in milliseconds.
@@ -36,6 +36,12 @@ pub fn run(args: &BenchArgs) -> Result<(), CliError> {
     match args.what {
         BenchWhat::Normalmap { size, runs, threads, json } => {
             with_threads(threads, || bench_normalmap(size as usize, runs, json))
+        }
+        BenchWhat::Tangents { triangles, mode, runs, threads, json } => {
+            with_threads(threads, || bench_tangents(triangles as usize, mode, runs, json))
+        }
+        BenchWhat::Render { ref scene, technique, size, threads, frames, runs, json } => {
+            with_threads(threads, || bench_render(scene, technique, size, frames, runs, json))
         }
     }
 }
@@ -88,6 +94,114 @@ fn bench_normalmap(size: usize, runs: u32, json: bool) -> Result<(), CliError> {
         );
         println!("  floor (read the input once, write every output byte once): median {:.2} ms", floor.median);
         println!("  ratio to the floor: {:.2}x", work.median / floor.median);
+    }
+    Ok(())
+}
+
+/// Tangents for the peer's wavy grid (`bumpmap_math::mesh::wavy_grid`); the timed region is
+/// `generate_tangents` alone, validation included, as the peer times `genTangSpaceDefault`.
+fn bench_tangents(triangles: usize, mode: crate::args::TangentModeArg, runs: u32, json: bool) -> Result<(), CliError> {
+    use bumpmap_math::tangent::{TangentMode, TangentOptions, generate_tangents};
+    let nx = 1000;
+    let ny = (triangles / (2 * nx)).max(1);
+    let mesh = bumpmap_math::mesh::wavy_grid(nx, ny);
+    let mode = match mode {
+        crate::args::TangentModeArg::Ours => TangentMode::Ours,
+        crate::args::TangentModeArg::Mikktspace => TangentMode::MikkTSpace,
+    };
+    let options = TangentOptions { mode, ..Default::default() };
+    let mut result = None;
+    let stats = time_runs(runs, || {
+        result = Some(generate_tangents(&mesh, &options));
+    });
+    let (out, _) = result.expect("ran").map_err(|e| CliError::Render(e.to_string()))?;
+    let threads = rayon::current_num_threads();
+    let name = if mode == TangentMode::Ours { "ours" } else { "mikktspace" };
+    let tris = mesh.triangle_count();
+    if json {
+        println!(
+            "{{\"bench\":\"tangents\",\"mode\":\"{name}\",\"triangles\":{tris},\"vertices_out\":{},\"threads\":{threads},\"runs\":{runs},\"median_ms\":{:.3},\"min_ms\":{:.3},\"max_ms\":{:.3}}}",
+            out.vertex_count(),
+            stats.median,
+            stats.min,
+            stats.max
+        );
+    } else {
+        println!("tangents ({name}) for a {tris}-triangle wavy grid, {threads} threads, {runs} runs");
+        println!(
+            "  median {:.1} ms (min {:.1}, max {:.1}): {:.2} M triangles/s",
+            stats.median,
+            stats.min,
+            stats.max,
+            tris as f64 / stats.median / 1e3
+        );
+    }
+    Ok(())
+}
+
+/// Renders `frames` frames per run with the light orbiting the torus axis as the llvmpipe peer
+/// does (`(4 cos a, 4 sin a, 3)`, a from −2.2 around the circle). Scene setup (normal map, decal,
+/// tessellation) is not timed; per frame: the vertex stage, clearing and every pass are.
+fn bench_render(
+    scene_name: &str,
+    technique: TechniqueArg,
+    size: usize,
+    frames: u32,
+    runs: u32,
+    json: bool,
+) -> Result<(), CliError> {
+    use clap::Parser;
+    let cli =
+        crate::args::Cli::try_parse_from(["bumpmap", "render", "--scene", scene_name, "--size", &size.to_string()])
+            .map_err(|e| CliError::Render(e.to_string()))?;
+    let crate::args::Command::Render(mut args) = cli.command else { unreachable!("parsed a render command") };
+    args.technique = technique;
+    let mut scene = crate::render::build_scene(&args)?;
+    let mut fb = bumpmap_raster::Framebuffer::new(size, size).map_err(|e| CliError::Render(e.to_string()))?;
+    let kilgard = crate::render::kilgard_options(&args)?;
+    let single = crate::render::single_pass_options(&args)?;
+    let mut frame = |k: u32| -> Result<(), CliError> {
+        let a = -2.2 + std::f32::consts::TAU * k as f32 / frames as f32;
+        scene.lights[0].light =
+            bumpmap_math::lighting::Light::Positional(glam::Vec3::new(4.0 * a.cos(), 4.0 * a.sin(), 3.0));
+        let r = match technique {
+            TechniqueArg::Kilgard => bumpmap_raster::kilgard::render(&scene, &kilgard, &mut fb, |_, _| {}),
+            TechniqueArg::SinglePass => bumpmap_raster::single_pass::render(&scene, &single, &mut fb),
+        };
+        r.map_err(|e| CliError::Render(e.to_string()))
+    };
+    let mut err = None;
+    let stats = time_runs(runs, || {
+        for k in 0..frames {
+            if let Err(e) = frame(k) {
+                err = Some(e);
+            }
+        }
+    });
+    if let Some(e) = err {
+        return Err(e);
+    }
+    let threads = rayon::current_num_threads();
+    let fps = frames as f64 / (stats.median / 1e3);
+    let name = match technique {
+        TechniqueArg::Kilgard => "kilgard",
+        TechniqueArg::SinglePass => "single-pass",
+    };
+    if json {
+        println!(
+            "{{\"bench\":\"render\",\"scene\":\"{scene_name}\",\"technique\":\"{name}\",\"size\":{size},\"threads\":{threads},\"frames\":{frames},\"runs\":{runs},\"fps\":{fps:.2},\"ms_per_frame\":{:.3},\"fps_min\":{:.2},\"fps_max\":{:.2}}}",
+            stats.median / frames as f64,
+            frames as f64 / (stats.max / 1e3),
+            frames as f64 / (stats.min / 1e3)
+        );
+    } else {
+        println!("render {scene_name} with {name}, {size}x{size}, {threads} threads, {runs} runs of {frames} frames");
+        println!(
+            "  {fps:.1} frames/s ({:.2} ms/frame; slowest run {:.1} fps, fastest {:.1})",
+            stats.median / frames as f64,
+            frames as f64 / (stats.max / 1e3),
+            frames as f64 / (stats.min / 1e3)
+        );
     }
     Ok(())
 }

@@ -22,6 +22,7 @@ fn main() {
         Command::Cubemap(a) => cubemap::run(&a),
         Command::Bench(a) => bench::run(&a),
         Command::Render(a) => render::run(&a),
+        Command::Tangents(a) => mesh::run(&a),
         Command::Demo(a) => demo::run(&a),
     };
     if let Err(e) = result {

@@ -8,7 +8,9 @@
 pub mod atomic;
 pub mod error;
 pub mod image_file;
+pub mod mesh_file;
 pub mod texture_file;
 
 pub use error::IoError;
 pub use image_file::{Channel, HeightSource, load_height_field, load_rgba8};
+pub use mesh_file::{LoadedMesh, load_mesh, save_gltf};

@@ -20,6 +20,7 @@ pub mod mesh;
 pub mod mip;
 pub mod normalmap;
 pub mod surface;
+pub mod tangent;
 
 pub use cubemap::{CubeFace, NormalizationCubeMap};
 pub use encoding::Encoding;

@@ -16,7 +16,83 @@ pub struct Mesh {
     pub indices: Vec<[u32; 3]>,
 }
 
+/// The largest mesh accepted: 50 million triangles or vertices.
+pub const MAX_ELEMENTS: usize = 50_000_000;
+
+/// Why a mesh cannot be used.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum MeshError {
+    #[error("the mesh has no triangles")]
+    Empty,
+    #[error("triangle {triangle} uses vertex {index}, but there are only {vertices} vertices")]
+    IndexOutOfRange { triangle: usize, index: u32, vertices: usize },
+    #[error("{what} of vertex {vertex} is not finite ({value})")]
+    NonFinite { what: &'static str, vertex: usize, value: String },
+    #[error("{what} has {got} entries for {vertices} vertices")]
+    CountMismatch { what: &'static str, got: usize, vertices: usize },
+    #[error("the mesh has no texture coordinates: tangent frames follow them, so there are none to make")]
+    NoTexcoords,
+    #[error("the mesh has no normals")]
+    NoNormals,
+    #[error("MikkTSpace failed: {0}")]
+    MikkTSpace(String),
+    #[error("{what}: {count} exceeds the limit of {max}")]
+    TooLarge { what: &'static str, count: u64, max: usize },
+}
+
 impl Mesh {
+    /// Checks counts, index ranges and that every value is finite.
+    pub fn validate(&self) -> Result<(), MeshError> {
+        let n = self.positions.len();
+        if self.indices.is_empty() {
+            return Err(MeshError::Empty);
+        }
+        for (what, count) in [("vertices", n), ("triangles", self.indices.len())] {
+            if count > MAX_ELEMENTS {
+                return Err(MeshError::TooLarge { what, count: count as u64, max: MAX_ELEMENTS });
+            }
+        }
+        for (what, got) in [
+            ("normals", self.normals.len()),
+            ("texture coordinates", self.texcoords.len()),
+            ("tangents", self.tangents.len()),
+        ] {
+            if got != 0 && got != n {
+                return Err(MeshError::CountMismatch { what, got, vertices: n });
+            }
+        }
+        if let Some((triangle, &index)) =
+            self.indices.iter().enumerate().find_map(|(i, t)| t.iter().find(|&&v| v as usize >= n).map(|v| (i, v)))
+        {
+            return Err(MeshError::IndexOutOfRange { triangle, index, vertices: n });
+        }
+        let bad = |what, vertex, value: String| Err(MeshError::NonFinite { what, vertex, value });
+        if let Some(i) = self.positions.iter().position(|p| !p.is_finite()) {
+            return bad("position", i, self.positions[i].to_string());
+        }
+        if let Some(i) = self.normals.iter().position(|p| !p.is_finite()) {
+            return bad("normal", i, self.normals[i].to_string());
+        }
+        if let Some(i) = self.texcoords.iter().position(|p| !p.is_finite()) {
+            return bad("texture coordinate", i, self.texcoords[i].to_string());
+        }
+        Ok(())
+    }
+
+    /// Replaces the normals by area-weighted averages of the incident triangles' normals: the
+    /// documented fallback for files without normals.
+    pub fn compute_normals(&mut self) {
+        let mut sums = vec![Vec3::ZERO; self.positions.len()];
+        for t in &self.indices {
+            let [a, b, c] = t.map(|i| self.positions[i as usize]);
+            let n = (b - a).cross(c - a);
+            for &i in t {
+                sums[i as usize] += n;
+            }
+        }
+        self.normals = sums.into_iter().map(|n| n.normalize_or(Vec3::Z)).collect();
+    }
+
     pub fn vertex_count(&self) -> usize {
         self.positions.len()
     }
@@ -30,4 +106,28 @@ impl Mesh {
         let t = self.tangents[i];
         t.w * self.normals[i].cross(t.truncate())
     }
+}
+
+/// The tangent benchmark's mesh, the same as the MikkTSpace peer's: an `nx`×`ny`-quad grid over
+/// [0, 20]×[0, 10] with heights `0.2·sin x·cos y`, analytic normals and UVs repeating every 2
+/// units (1000×500 quads = 1,000,000 triangles).
+pub fn wavy_grid(nx: usize, ny: usize) -> Mesh {
+    let mut m = Mesh::default();
+    for i in 0..=nx {
+        for j in 0..=ny {
+            let (x, y) = (20.0 * i as f32 / nx as f32, 10.0 * j as f32 / ny as f32);
+            m.positions.push(Vec3::new(x, y, 0.2 * x.sin() * y.cos()));
+            m.normals.push(Vec3::new(-0.2 * x.cos() * y.cos(), 0.2 * x.sin() * y.sin(), 1.0).normalize());
+            m.texcoords.push(Vec2::new(x / 2.0, y / 2.0));
+        }
+    }
+    let row = ny as u32 + 1;
+    for i in 0..nx as u32 {
+        for j in 0..ny as u32 {
+            let (a, b) = (i * row + j, (i + 1) * row + j);
+            m.indices.push([a, b, b + 1]);
+            m.indices.push([a, b + 1, a + 1]);
+        }
+    }
+    m
 }

@@ -320,7 +320,8 @@ impl FragmentShader for SinglePass<'_> {
             }
             // Eq. 11 with the filtered (shortened) normal, Eq. 16 with the renormalized one.
             let diffuse = (self.ambient + self.diffuse * (light * s_self * n_dot_l.max(0.0) * len)).min(Vec3::ONE);
-            let specular = self.specular * (light * spec_gate * gloss[lane].x * h.dot(n).clamp(0.0, 1.0).powf(self.shininess));
+            let specular =
+                self.specular * (light * spec_gate * gloss[lane].x * h.dot(n).clamp(0.0, 1.0).powf(self.shininess));
             let d = decals[lane];
             let c = Vec3::new(d.x, d.y, d.z) * diffuse + specular;
             out[0][lane] = c.x;

@@ -27,7 +27,11 @@ fn render_single(size: usize, normalize: Normalize) -> Vec<[u8; 4]> {
 
 /// Per-channel RGB differences of the pixels both images cover.
 fn rgb_diffs(a: &[[u8; 4]], b: &[[u8; 4]]) -> Vec<u8> {
-    a.iter().zip(b).filter(|(p, q)| p[..3] != [0, 0, 0] || q[..3] != [0, 0, 0]).flat_map(|(p, q)| (0..3).map(move |c| p[c].abs_diff(q[c]))).collect()
+    a.iter()
+        .zip(b)
+        .filter(|(p, q)| p[..3] != [0, 0, 0] || q[..3] != [0, 0, 0])
+        .flat_map(|(p, q)| (0..3).map(move |c| p[c].abs_diff(q[c])))
+        .collect()
 }
 
 #[test]
@@ -79,7 +83,9 @@ fn check_golden(name: &str, size: usize, rgba: &[[u8; 4]]) {
         image::RgbImage::from_raw(size as u32, size as u32, rgb).unwrap().save(&golden_path).unwrap();
         return;
     }
-    let golden = image::open(&golden_path).unwrap_or_else(|e| panic!("{}: {e} (run with BUMPMAP_BLESS=1 to create)", golden_path.display())).to_rgb8();
+    let golden = image::open(&golden_path)
+        .unwrap_or_else(|e| panic!("{}: {e} (run with BUMPMAP_BLESS=1 to create)", golden_path.display()))
+        .to_rgb8();
     assert_eq!(golden.dimensions(), (size as u32, size as u32));
     let diff: Vec<u8> = golden.as_raw().iter().zip(&rgb).map(|(a, b)| a.abs_diff(*b)).collect();
     let max = *diff.iter().max().unwrap();
@@ -91,7 +97,11 @@ fn check_golden(name: &str, size: usize, rgba: &[[u8; 4]]) {
         image::RgbImage::from_raw(size as u32, size as u32, rgb).unwrap().save(&actual).unwrap();
         let amplified: Vec<u8> = diff.iter().map(|&d| d.saturating_mul(32)).collect();
         image::RgbImage::from_raw(size as u32, size as u32, amplified).unwrap().save(&diff_path).unwrap();
-        panic!("{name}: max difference {max}, {off} pixels differ; see {} and {}", actual.display(), diff_path.display());
+        panic!(
+            "{name}: max difference {max}, {off} pixels differ; see {} and {}",
+            actual.display(),
+            diff_path.display()
+        );
     }
 }
 
