@@ -124,7 +124,7 @@ fn load_gltf(path: &Path) -> Result<LoadedMesh, IoError> {
                 Some(r) => r.into_u32().collect(),
                 None => (0..n as u32).collect(),
             };
-            if indices.len() % 3 != 0 {
+            if !indices.len().is_multiple_of(3) {
                 return Err(mesh_err(path, format!("{} indices is not a whole number of triangles", indices.len())));
             }
             if let Some(&bad) = indices.iter().find(|&&i| i as usize >= n) {
@@ -165,7 +165,7 @@ pub fn save_gltf(path: &Path, mesh: &Mesh) -> Result<(), IoError> {
     let mut push = |bytes: Vec<u8>, target: u32| {
         let offset = bin.len();
         bin.extend_from_slice(&bytes);
-        while bin.len() % 4 != 0 {
+        while !bin.len().is_multiple_of(4) {
             bin.push(0);
         }
         views.push(format!(r#"{{"buffer":0,"byteOffset":{offset},"byteLength":{},"target":{target}}}"#, bytes.len()));
@@ -213,7 +213,7 @@ pub fn save_gltf(path: &Path, mesh: &Mesh) -> Result<(), IoError> {
         return write_atomic(path, |w| w.write_all(json.as_bytes()));
     }
     let mut json = json.into_bytes();
-    while json.len() % 4 != 0 {
+    while !json.len().is_multiple_of(4) {
         json.push(b' ');
     }
     let total = 12 + 8 + json.len() + 8 + bin.len();
