@@ -1,0 +1,86 @@
+//! `bumpmap render` end to end: images that are not empty, and bad options failing cleanly.
+
+mod common;
+
+use common::*;
+
+fn mean_and_colours(path: &std::path::Path) -> (f64, usize) {
+    let img = image::open(path).unwrap().to_rgb8();
+    let mean = img.as_raw().iter().map(|&v| v as f64).sum::<f64>() / img.as_raw().len() as f64;
+    let colours = img.pixels().map(|p| p.0).collect::<std::collections::HashSet<_>>().len();
+    (mean, colours)
+}
+
+#[test]
+fn renders_every_scene_with_both_techniques() {
+    let dir = scratch("render_scenes");
+    let cube = concat!(env!("CARGO_MANIFEST_DIR"), "/../bumpmap-io/tests/data/mikktspace/doomcone_smooth.obj");
+    let mesh = format!("mesh:{cube}");
+    for scene in ["torus", "wall", "floor", "wall-floor", "patch", "sphere", mesh.as_str()] {
+        for technique in ["kilgard", "single-pass"] {
+            let out = dir.join(format!("{}_{technique}.png", scene.len()));
+            let o = bumpmap(&["render", "--scene", scene, "--technique", technique, "--size", "96", "-o", out.to_str().unwrap()]);
+            assert!(o.status.success(), "{scene} {technique}: {}", stderr(&o));
+            let (mean, colours) = mean_and_colours(&out);
+            assert!(mean > 5.0 && colours > 50, "{scene} {technique}: image looks empty (mean {mean}, {colours} colours)");
+        }
+    }
+}
+
+#[test]
+fn passes_writes_one_image_per_pass() {
+    let dir = scratch("render_passes");
+    let out = dir.join("t.png");
+    let o = bumpmap(&["render", "--passes", "--size", "64", "-o", out.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert_eq!(listing(&dir), ["t.decal.png", "t.diffuse.png", "t.png", "t.specular.png"]);
+    let (decal, _) = mean_and_colours(&dir.join("t.decal.png"));
+    let (diffuse, _) = mean_and_colours(&dir.join("t.diffuse.png"));
+    let (full, _) = mean_and_colours(&out);
+    assert!(diffuse < decal, "pass 2 modulates the decal by light ≤ 1");
+    assert!(full > diffuse, "pass 3 adds the specular");
+}
+
+/// `render ARGS… -o out.png` must exit 1 with `expect` in the message, no panic, no file.
+fn refused(args: &[&str], expect: &str) {
+    let dir = scratch("render_refused");
+    let out = dir.join("out.png");
+    let mut all = vec!["render", "-o", out.to_str().unwrap()];
+    if !args.contains(&"--size") {
+        all.extend(["--size", "32"]);
+    }
+    all.extend_from_slice(args);
+    let o = bumpmap(&all);
+    let err = stderr(&o);
+    assert_ne!(o.status.code(), Some(0), "{args:?} must fail");
+    assert!(err.contains(expect), "{args:?}: message must say '{expect}': {err}");
+    assert!(!err.contains("panicked"), "{err}");
+    assert!(listing(&dir).is_empty(), "{args:?}: no output file");
+}
+
+#[test]
+fn bad_options_are_refused_with_clear_messages() {
+    refused(&["--size", "100000"], "framebuffer 100000x100000 refused");
+    refused(&["--technique", "single-pass", "--shininess", "0"], "shininess");
+    refused(&["--technique", "single-pass", "--shininess", "NaN"], "shininess");
+    refused(&["--shininess", "16"], "kilgard cannot do --shininess");
+    refused(&["--light", "dir:0,0,0"], "non-zero direction");
+    refused(&["--light", "1,2"], "X,Y,Z");
+    refused(&["--technique", "single-pass", "--spot", "0,0,-1", "--spot-cutoff", "95"], "cutoff");
+    refused(&["--technique", "single-pass", "--gloss", concat!(env!("CARGO_MANIFEST_DIR"), "/../bumpmap-math/tests/golden/none.png")], "cannot read");
+    refused(&["--scene", "teapot"], "unknown scene");
+    refused(&["--scene", "mesh:/no/such/file.obj"], "cannot read");
+    refused(&["--eye", "1,1,1", "--target", "1,1,1"], "must differ");
+}
+
+#[test]
+fn gloss_map_of_another_size_than_the_decal_is_an_error() {
+    let dir = scratch("render_gloss_size");
+    let gloss = dir.join("gloss.png");
+    write_gray_png(&gloss, 100, 50, |x, _| x as u8);
+    let out = dir.join("out.png");
+    let o = bumpmap(&["render", "--technique", "single-pass", "--gloss", gloss.to_str().unwrap(), "--size", "32", "-o", out.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(1));
+    assert!(stderr(&o).contains("gloss map is 100x50 but the decal is 256x256"), "{}", stderr(&o));
+    assert!(!out.exists());
+}
