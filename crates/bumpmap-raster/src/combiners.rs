@@ -426,14 +426,29 @@ pub enum Precision {
     Fixed9,
 }
 
-/// The per-batch register set: RGBA lanes for each register.
+/// The per-batch register set: RGBA lanes for each register, and the combiners' temporaries
+/// (kept here so a batch allocates and clears nothing).
 pub struct RegisterFile {
     pub regs: [[Lanes; 4]; REGISTERS],
+    tmp: Temporaries,
+}
+
+struct Temporaries {
+    /// Mapped variables A–D of one portion.
+    vars: [[Lanes; 4]; 4],
+    /// AB, CD and sum outputs of the RGB and the alpha portion.
+    rgb: [[Lanes; 4]; 3],
+    alpha: [[Lanes; 4]; 3],
+    /// Final combiner variables A–F and E·F.
+    fin: [[Lanes; 3]; 7],
 }
 
 impl RegisterFile {
     pub fn new() -> Box<Self> {
-        Box::new(Self { regs: [[[0.0; LANES]; 4]; REGISTERS] })
+        Box::new(Self {
+            regs: [[[0.0; LANES]; 4]; REGISTERS],
+            tmp: Temporaries { vars: [[[0.0; LANES]; 4]; 4], rgb: [[[0.0; LANES]; 4]; 3], alpha: [[[0.0; LANES]; 4]; 3], fin: [[[0.0; LANES]; 3]; 7] },
+        })
     }
 
     pub fn reg_mut(&mut self, r: Register) -> &mut [Lanes; 4] {
@@ -485,70 +500,63 @@ impl Combiners {
     /// Evaluates lanes `0..n`: the general stages in order, then the final combiner, writing
     /// RGBA into `out`. The caller has loaded the texture registers, PRIMARY and SECONDARY,
     /// SPARE0's alpha (texture 0's alpha) and the constants ([`Combiners::load_constants`]).
-    pub fn run(&self, regs: &mut RegisterFile, n: usize, out: &mut [Lanes; 4]) {
+    pub fn run(&self, file: &mut RegisterFile, n: usize, out: &mut [Lanes; 4]) {
         debug_assert!(n <= LANES);
         let fixed = self.precision == Precision::Fixed9;
+        let RegisterFile { regs, tmp } = file;
         for stage in &self.setup.stages {
             // Both portions read this stage's inputs; their writes form the next stage's set.
-            let rgb = eval_portion(regs, &stage.rgb, true, n, fixed);
-            let alpha = eval_portion(regs, &stage.alpha, false, n, fixed);
-            for (values, portion, is_rgb) in [(&rgb, &stage.rgb, true), (&alpha, &stage.alpha, false)] {
+            eval_portion(regs, &stage.rgb, true, n, fixed, &mut tmp.vars, &mut tmp.rgb);
+            eval_portion(regs, &stage.alpha, false, n, fixed, &mut tmp.vars, &mut tmp.alpha);
+            for (values, portion, channels) in [(&tmp.rgb, &stage.rgb, 0..3), (&tmp.alpha, &stage.alpha, 3..4)] {
                 let o = &portion.outputs;
                 for (dst, v) in [(o.ab, &values[0]), (o.cd, &values[1]), (o.sum, &values[2])] {
                     if let Some(dst) = dst {
-                        let reg = regs.reg_mut(dst);
-                        let channels = if is_rgb { 0..3 } else { 3..4 };
-                        for c in channels {
-                            reg[c][..n].copy_from_slice(&v[c][..n]);
+                        for c in channels.clone() {
+                            regs[dst as usize][c][..n].copy_from_slice(&v[c][..n]);
                         }
                     }
                 }
             }
         }
-        self.final_combiner(regs, n, out);
+        self.final_combiner(regs, &mut tmp.fin, n, out);
     }
 
-    fn final_combiner(&self, regs: &RegisterFile, n: usize, out: &mut [Lanes; 4]) {
+    fn final_combiner(&self, regs: &[[Lanes; 4]; REGISTERS], fin: &mut [[Lanes; 3]; 7], n: usize, out: &mut [Lanes; 4]) {
         let f = &self.setup.final_combiner;
+        let clamp_sum = f.color_sum_clamp;
         let fetch = |input: &FinalInput, ef: Option<&[Lanes; 3]>, dst: &mut [Lanes; 3]| {
             for c in 0..3 {
                 let d = &mut dst[c][..n];
                 match input.source {
                     FinalSource::Register(r) => {
                         let ch = if input.usage == ComponentUsage::Rgb { c } else { 3 };
-                        d.copy_from_slice(&regs.regs[r as usize][ch][..n]);
+                        d.copy_from_slice(&regs[r as usize][ch][..n]);
                     }
                     FinalSource::ETimesF => d.copy_from_slice(&ef.expect("E·F computed first")[c][..n]),
                     FinalSource::Spare0PlusSecondary => {
-                        let (s, t) = (
-                            &regs.regs[Register::Spare0 as usize][c],
-                            &regs.regs[Register::SecondaryColor as usize][c],
-                        );
+                        let (s, t) = (&regs[Register::Spare0 as usize][c], &regs[Register::SecondaryColor as usize][c]);
                         for i in 0..n {
                             let v = s[i].max(0.0) + t[i].max(0.0);
-                            d[i] = if f.color_sum_clamp { v.min(1.0) } else { v };
+                            d[i] = if clamp_sum { v.min(1.0) } else { v };
                         }
                     }
                 }
                 map_lanes(input.mapping, d);
             }
         };
-        let mut e = [[0.0; LANES]; 3];
-        let mut fv = [[0.0; LANES]; 3];
-        fetch(&f.e, None, &mut e);
-        fetch(&f.f, None, &mut fv);
-        let mut ef = [[0.0; LANES]; 3];
+        let [a, b, cc, d, e, fv, ef] = fin;
+        fetch(&f.e, None, e);
+        fetch(&f.f, None, fv);
         for c in 0..3 {
             for i in 0..n {
                 ef[c][i] = e[c][i] * fv[c][i];
             }
         }
-        let (mut a, mut b, mut cc, mut d) =
-            ([[0.0; LANES]; 3], [[0.0; LANES]; 3], [[0.0; LANES]; 3], [[0.0; LANES]; 3]);
-        fetch(&f.a, Some(&ef), &mut a);
-        fetch(&f.b, Some(&ef), &mut b);
-        fetch(&f.c, Some(&ef), &mut cc);
-        fetch(&f.d, Some(&ef), &mut d);
+        fetch(&f.a, Some(ef), a);
+        fetch(&f.b, Some(ef), b);
+        fetch(&f.c, Some(ef), cc);
+        fetch(&f.d, Some(ef), d);
         for c in 0..3 {
             for i in 0..n {
                 out[c][i] = (a[c][i] * b[c][i] + (1.0 - a[c][i]) * cc[c][i] + d[c][i]).min(1.0);
@@ -557,7 +565,7 @@ impl Combiners {
         // G reads alpha or blue; pseudo-registers are not allowed for G.
         let FinalSource::Register(r) = f.g.source else { unreachable!("validated") };
         let ch = if f.g.usage == ComponentUsage::Blue { 2 } else { 3 };
-        out[3][..n].copy_from_slice(&regs.regs[r as usize][ch][..n]);
+        out[3][..n].copy_from_slice(&regs[r as usize][ch][..n]);
         map_lanes(f.g.mapping, &mut out[3][..n]);
     }
 }
@@ -577,14 +585,20 @@ fn map_lanes(mapping: InputMapping, v: &mut [f32]) {
     }
 }
 
-/// Evaluates one portion: returns its AB, CD and sum outputs (RGBA lanes; only RGB or only A
+/// Evaluates one portion into `out`: its AB, CD and sum outputs (RGBA lanes; only RGB or only A
 /// meaningful), after bias, scale and clamp.
-fn eval_portion(regs: &RegisterFile, p: &Portion, rgb: bool, n: usize, fixed: bool) -> [[Lanes; 4]; 3] {
+fn eval_portion(
+    regs: &[[Lanes; 4]; REGISTERS],
+    p: &Portion,
+    rgb: bool,
+    n: usize,
+    fixed: bool,
+    vars: &mut [[Lanes; 4]; 4],
+    out: &mut [[Lanes; 4]; 3],
+) {
     let channels: &[usize] = if rgb { &[0, 1, 2] } else { &[3] };
-    // Mapped variables A–D, per channel.
-    let mut vars = [[[0.0f32; LANES]; 4]; 4];
     for (k, input) in [p.a, p.b, p.c, p.d].iter().enumerate() {
-        let reg = &regs.regs[input.register as usize];
+        let reg = &regs[input.register as usize];
         for &c in channels {
             let src = match input.usage {
                 ComponentUsage::Rgb => c,
@@ -600,7 +614,6 @@ fn eval_portion(regs: &RegisterFile, p: &Portion, rgb: bool, n: usize, fixed: bo
         }
     }
     let o = &p.outputs;
-    let mut out = [[[0.0f32; LANES]; 4]; 3];
     let product = |x: &[Lanes; 4], y: &[Lanes; 4], dot: bool, dst: &mut [Lanes; 4]| {
         if dot {
             for i in 0..n {
@@ -617,23 +630,25 @@ fn eval_portion(regs: &RegisterFile, p: &Portion, rgb: bool, n: usize, fixed: bo
             }
         }
     };
-    let [ab, cd, sum] = &mut out;
+    let [ab, cd, sum] = out;
     product(&vars[0], &vars[1], o.ab_dot, ab);
     product(&vars[2], &vars[3], o.cd_dot, cd);
-    let spare0_alpha = &regs.regs[Register::Spare0 as usize][3];
+    let spare0_alpha = &regs[Register::Spare0 as usize][3];
     for &c in channels {
-        for i in 0..n {
-            sum[c][i] = if o.mux_sum {
-                // Spec (Aug 2000 sense): spare0 alpha < ½ selects AB, otherwise CD.
-                if spare0_alpha[i] < 0.5 { ab[c][i] } else { cd[c][i] }
-            } else {
-                ab[c][i] + cd[c][i]
-            };
+        if o.mux_sum {
+            // Spec (Aug 2000 sense): spare0 alpha < ½ selects AB, otherwise CD.
+            for i in 0..n {
+                sum[c][i] = if spare0_alpha[i] < 0.5 { ab[c][i] } else { cd[c][i] };
+            }
+        } else {
+            for i in 0..n {
+                sum[c][i] = ab[c][i] + cd[c][i];
+            }
         }
     }
     // Bias before scale, then clamp to [−1, 1].
     let (bias, scale) = (if o.bias == Bias::MinusOneHalf { -0.5 } else { 0.0 }, o.scale.factor());
-    for v in out.iter_mut() {
+    for v in [ab, cd, sum] {
         for &c in channels {
             for x in v[c][..n].iter_mut() {
                 let y = ((*x + bias) * scale).clamp(-1.0, 1.0);
@@ -641,7 +656,6 @@ fn eval_portion(regs: &RegisterFile, p: &Portion, rgb: bool, n: usize, fixed: bo
             }
         }
     }
-    out
 }
 
 #[cfg(test)]

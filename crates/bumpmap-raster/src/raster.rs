@@ -153,11 +153,12 @@ pub fn draw<S: FragmentShader>(
         }
     }
     fb.tiles.par_iter_mut().zip(bins.par_iter()).filter(|(_, bin)| !bin.is_empty()).for_each_init(
-        || (FragmentBatch::new(), shader.scratch(), Box::new([[0.0f32; LANES]; 4])),
-        |(batch, scratch, colors), (tile, bin)| {
+        || TileTask { batch: FragmentBatch::new(), scratch: shader.scratch(), colors: Box::new([[0.0f32; LANES]; 4]), pending: [0; TILE] },
+        |task, (tile, bin)| {
             for &i in bin {
-                raster_triangle(&setups[i as usize], tile, state, shader, batch, scratch, colors);
+                raster_triangle(&setups[i as usize], tile, state, shader, task);
             }
+            flush(tile, state, shader, task);
         },
     );
 }
@@ -268,73 +269,112 @@ fn inv_w_of(v: &[Vertex; 3], i: usize) -> f32 {
     1.0 / v[i].clip.w
 }
 
-#[allow(clippy::too_many_arguments)]
-fn raster_triangle<S: FragmentShader>(
-    s: &Setup,
-    tile: &mut Tile,
-    state: &DrawState,
-    shader: &S,
-    batch: &mut FragmentBatch,
-    scratch: &mut S::Scratch,
-    colors: &mut [Lanes; 4],
-) {
+/// Per-thread state of a tile task: the batch being filled, the shader's scratch, the output
+/// colours and which pixels of the tile have a fragment waiting in the batch.
+struct TileTask<S> {
+    batch: Box<FragmentBatch>,
+    scratch: S,
+    colors: Box<[Lanes; 4]>,
+    /// One bit per pixel of the tile, row by row: set while a live lane for it is batched.
+    pending: [u64; TILE],
+}
+
+impl<S> TileTask<S> {
+    /// Whether any of a quad's pixels (tile-local) has a fragment waiting.
+    #[inline(always)]
+    fn overlaps(&self, lx: usize, ly: usize) -> bool {
+        let bits = 0b11u64 << lx;
+        (self.pending[ly] | self.pending[(ly + 1).min(TILE - 1)]) & bits != 0
+    }
+}
+
+/// Rasterizes one triangle into a tile's batch. Quads from consecutive triangles share a batch;
+/// it is shaded when full, at the end of the tile, or before a quad that touches a pixel whose
+/// fragment is still waiting (so depth tests and blending see earlier triangles' results in
+/// submission order).
+fn raster_triangle<S: FragmentShader>(s: &Setup, tile: &mut Tile, state: &DrawState, shader: &S, task: &mut TileTask<S::Scratch>) {
     let x0 = s.bbox[0].max(tile.x0) & !1;
     let y0 = s.bbox[1].max(tile.y0) & !1;
     let x1 = s.bbox[2].min(tile.x0 + tile.width);
     let y1 = s.bbox[3].min(tile.y0 + tile.height);
-    batch.quads = 0;
     let half = 1i64 << (SUBPIXEL_BITS - 1);
+    let one = 1i64 << SUBPIXEL_BITS;
+    // Edge steps per pixel in x and y, for edges (1→2), (2→0), (0→1).
+    let step_x = [-(s.y[2] - s.y[1]) * one, -(s.y[0] - s.y[2]) * one, -(s.y[1] - s.y[0]) * one];
+    let step_y = [(s.x[2] - s.x[1]) * one, (s.x[0] - s.x[2]) * one, (s.x[1] - s.x[0]) * one];
+    let (tx1, ty1) = (tile.x0 + tile.width, tile.y0 + tile.height);
     for qy in (y0..y1).step_by(2) {
+        let fy = ((qy as i64) << SUBPIXEL_BITS) + half;
         for qx in (x0..x1).step_by(2) {
-            let q = batch.quads;
-            let mut any = false;
+            let fx = ((qx as i64) << SUBPIXEL_BITS) + half;
+            let e0 = [s.edge(1, 2, fx, fy), s.edge(2, 0, fx, fy), s.edge(0, 1, fx, fy)];
+            // Coverage of the quad's four pixels.
+            let mut edges = [[0i64; 3]; 4];
+            let mut covered = [false; 4];
             for k in 0..4 {
+                let (dx, dy) = ((k & 1) as i64, (k >> 1) as i64);
+                for i in 0..3 {
+                    edges[k][i] = e0[i] + dx * step_x[i] + dy * step_y[i];
+                }
                 let (px, py) = (qx + (k & 1), qy + (k >> 1));
-                let (fx, fy) = (((px as i64) << SUBPIXEL_BITS) + half, ((py as i64) << SUBPIXEL_BITS) + half);
-                let e = [s.edge(1, 2, fx, fy), s.edge(2, 0, fx, fy), s.edge(0, 1, fx, fy)];
-                let covered = e[0] + s.bias[0] >= 0 && e[1] + s.bias[1] >= 0 && e[2] + s.bias[2] >= 0;
-                let b = e.map(|e| e as f32 * s.inv_area);
+                covered[k] = px < tx1 && py < ty1 && (0..3).all(|i| edges[k][i] + s.bias[i] >= 0);
+            }
+            if !covered.iter().any(|&c| c) {
+                continue;
+            }
+            let (lx, ly) = (qx - tile.x0, qy - tile.y0);
+            if task.overlaps(lx, ly) {
+                flush(tile, state, shader, task);
+            }
+            let q = task.batch.quads;
+            let batch = &mut task.batch;
+            let mut any = false;
+            let mut bary = [[0f32; 3]; 4];
+            for k in 0..4 {
+                let b = edges[k].map(|e| e as f32 * s.inv_area);
+                bary[k] = b;
                 let lane = 4 * q + k;
                 let z = b[0] * s.z[0] + b[1] * s.z[1] + b[2] * s.z[2];
                 batch.depth[lane] = z;
-                let in_tile = px < tile.x0 + tile.width && py < tile.y0 + tile.height;
-                let live = covered && in_tile && {
-                    let idx = (py - tile.y0) * tile.width + (px - tile.x0);
+                let live = covered[k] && {
+                    let idx = (ly + (k >> 1)) * tile.width + lx + (k & 1);
                     state.depth_func.passes(z, tile.depth[idx])
                 };
                 batch.live[lane] = live;
                 any |= live;
-                // Perspective-correct varyings (helper lanes too, for derivatives).
-                let iw = b[0] * s.inv_w[0] + b[1] * s.inv_w[1] + b[2] * s.inv_w[2];
-                let wc = 1.0 / iw;
+            }
+            if !any {
+                continue;
+            }
+            // Perspective-correct varyings for all four lanes (helpers too, for derivatives).
+            for (k, b) in bary.iter().enumerate() {
+                let lane = 4 * q + k;
+                let wc = 1.0 / (b[0] * s.inv_w[0] + b[1] * s.inv_w[1] + b[2] * s.inv_w[2]);
+                let w = [b[0] * wc, b[1] * wc, b[2] * wc];
                 for (j, var) in batch.varyings.iter_mut().enumerate().take(state.varyings) {
-                    var[lane] = (b[0] * s.var_w[0][j] + b[1] * s.var_w[1][j] + b[2] * s.var_w[2][j]) * wc;
+                    var[lane] = w[0] * s.var_w[0][j] + w[1] * s.var_w[1][j] + w[2] * s.var_w[2][j];
+                }
+                if batch.live[lane] {
+                    task.pending[ly + (k >> 1)] |= 1 << (lx + (k & 1));
                 }
             }
-            if any {
-                batch.origin[q] = (qx as u16, qy as u16);
-                batch.quads += 1;
-                if batch.quads == QUADS {
-                    flush(tile, state, shader, batch, scratch, colors);
-                }
+            batch.origin[q] = (qx as u16, qy as u16);
+            batch.quads += 1;
+            if batch.quads == QUADS {
+                flush(tile, state, shader, task);
             }
         }
     }
-    flush(tile, state, shader, batch, scratch, colors);
 }
 
-fn flush<S: FragmentShader>(
-    tile: &mut Tile,
-    state: &DrawState,
-    shader: &S,
-    batch: &mut FragmentBatch,
-    scratch: &mut S::Scratch,
-    colors: &mut [Lanes; 4],
-) {
+/// Shades the batch and writes its live fragments: depth (if enabled) and blended colour.
+fn flush<S: FragmentShader>(tile: &mut Tile, state: &DrawState, shader: &S, task: &mut TileTask<S::Scratch>) {
+    let TileTask { batch, scratch, colors, pending } = task;
     if batch.quads == 0 {
         return;
     }
     shader.shade(batch, scratch, colors);
+    let blend = state.blend;
     for q in 0..batch.quads {
         let (qx, qy) = batch.origin[q];
         for k in 0..4 {
@@ -348,10 +388,11 @@ fn flush<S: FragmentShader>(
                 tile.depth[idx] = batch.depth[lane];
             }
             let src = [colors[0][lane], colors[1][lane], colors[2][lane], colors[3][lane]];
-            tile.color[idx] = state.blend.apply(src, tile.color[idx], state.color_mask);
+            tile.color[idx] = blend.apply(src, tile.color[idx], state.color_mask);
         }
     }
     batch.quads = 0;
+    *pending = [0; TILE];
 }
 
 #[cfg(test)]

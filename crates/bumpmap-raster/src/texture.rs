@@ -11,11 +11,15 @@ use glam::{Vec3, Vec4};
 use bumpmap_math::{CubeFace, MipChain, NormalizationCubeMap};
 
 /// One mip level: `width`×`height` RGBA8 texels, row 0 = t = 0.
+///
+/// Beside the bytes the level keeps each texel as four floats (`b/255`, exactly the values the
+/// bytes stand for): a filter tap is then one 16-byte load instead of four conversions.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Level {
     pub width: usize,
     pub height: usize,
-    pub texels: Vec<[u8; 4]>,
+    texels: Vec<[u8; 4]>,
+    values: Vec<Vec4>,
 }
 
 /// A 2D texture: level 0 and optionally every smaller level. RGB textures are stored with
@@ -32,7 +36,7 @@ impl Texture2d {
             levels: chain
                 .levels
                 .iter()
-                .map(|l| Level { width: l.width, height: l.height, texels: l.texels.clone() })
+                .map(|l| Level::new(l.width, l.height, l.texels.clone()))
                 .collect(),
         }
     }
@@ -40,7 +44,7 @@ impl Texture2d {
     /// A single-level texture. Panics if the sizes disagree.
     pub fn from_rgba8(width: usize, height: usize, texels: Vec<[u8; 4]>) -> Self {
         assert_eq!(texels.len(), width * height, "texel count");
-        Self { levels: vec![Level { width, height, texels }] }
+        Self { levels: vec![Level::new(width, height, texels)] }
     }
 
     /// Adds a box-filtered mip chain below level 0 (`gluBuild2DMipmaps`-style: each level the
@@ -70,7 +74,7 @@ impl Texture2d {
                     texels.push(sum.map(|s| ((s + n / 2) / n) as u8));
                 }
             }
-            self.levels.push(Level { width: w, height: h, texels });
+            self.levels.push(Level::new(w, h, texels));
         }
     }
 
@@ -150,66 +154,74 @@ impl Sampler {
     }
 }
 
-#[inline(always)]
-fn texel_f32(t: [u8; 4]) -> Vec4 {
-    Vec4::new(t[0] as f32, t[1] as f32, t[2] as f32, t[3] as f32) * (1.0 / 255.0)
-}
-
 /// Integer texel index along one axis for NEAREST.
 #[inline(always)]
 fn nearest_index(s: f32, n: usize, wrap: WrapMode) -> usize {
-    match wrap {
-        WrapMode::Repeat => (((s - s.floor()) * n as f32) as usize).min(n - 1),
-        WrapMode::ClampToEdge => ((s * n as f32).floor().max(0.0) as usize).min(n - 1),
-    }
+    let nf = n as f32;
+    let i = match wrap {
+        WrapMode::Repeat => ((s - s.floor()) * nf) as usize,
+        WrapMode::ClampToEdge => (s * nf).max(0.0) as usize,
+    };
+    i.min(n - 1)
 }
 
 /// The two texel indices and the weight of the second for LINEAR along one axis.
 #[inline(always)]
 fn linear_indices(s: f32, n: usize, wrap: WrapMode) -> (usize, usize, f32) {
     let nf = n as f32;
+    let u = match wrap {
+        WrapMode::Repeat => (s - s.floor()) * nf - 0.5,
+        // s ∈ [1/2N, 1 − 1/2N] at every level, so the filter never leaves the image.
+        WrapMode::ClampToEdge => (s * nf).clamp(0.5, nf - 0.5) - 0.5,
+    };
+    let f = u.floor();
+    let a = u - f;
+    // u ∈ [−½, N − ½), so floor(u) ∈ [−1, N − 1]: one comparison wraps or clamps it.
+    let i = f as i64;
     match wrap {
         WrapMode::Repeat => {
-            let u = (s - s.floor()) * nf - 0.5;
-            let f = u.floor();
-            let i0 = (f as i64).rem_euclid(n as i64) as usize;
-            let i1 = if i0 + 1 == n { 0 } else { i0 + 1 };
-            (i0, i1, u - f)
+            let i0 = if i < 0 { n - 1 } else { (i as usize).min(n - 1) };
+            (i0, if i0 + 1 == n { 0 } else { i0 + 1 }, a)
         }
         WrapMode::ClampToEdge => {
-            // s ∈ [1/2N, 1 − 1/2N] at every level, so the filter never leaves the image.
-            let u = (s * nf).clamp(0.5, nf - 0.5) - 0.5;
-            let f = u.floor();
-            let i0 = f as usize;
-            ((i0).min(n - 1), (i0 + 1).min(n - 1), u - f)
+            let i0 = (i.max(0) as usize).min(n - 1);
+            (i0, (i0 + 1).min(n - 1), a)
         }
     }
 }
 
 impl Level {
+    /// A level from its texels. Panics if the count is not `width·height`.
+    pub fn new(width: usize, height: usize, texels: Vec<[u8; 4]>) -> Self {
+        assert_eq!(texels.len(), width * height, "texel count of a {width}x{height} level");
+        let values = texels.iter().map(|t| Vec4::new(t[0] as f32, t[1] as f32, t[2] as f32, t[3] as f32) * (1.0 / 255.0)).collect();
+        Self { width, height, texels, values }
+    }
+
+    /// The RGBA8 texels, row-major.
+    pub fn texels(&self) -> &[[u8; 4]] {
+        &self.texels
+    }
+
     #[inline(always)]
-    fn texel(&self, x: usize, y: usize) -> [u8; 4] {
-        self.texels[y * self.width + x]
+    fn value(&self, x: usize, y: usize) -> Vec4 {
+        self.values[y * self.width + x]
     }
 
     #[inline(always)]
     fn nearest(&self, s: f32, t: f32, sampler: &Sampler) -> Vec4 {
-        texel_f32(
-            self.texel(nearest_index(s, self.width, sampler.wrap_s), nearest_index(t, self.height, sampler.wrap_t)),
-        )
+        self.value(nearest_index(s, self.width, sampler.wrap_s), nearest_index(t, self.height, sampler.wrap_t))
     }
 
     #[inline(always)]
     fn linear(&self, s: f32, t: f32, sampler: &Sampler) -> Vec4 {
         let (i0, i1, a) = linear_indices(s, self.width, sampler.wrap_s);
         let (j0, j1, b) = linear_indices(t, self.height, sampler.wrap_t);
-        let (t00, t10, t01, t11) = (
-            texel_f32(self.texel(i0, j0)),
-            texel_f32(self.texel(i1, j0)),
-            texel_f32(self.texel(i0, j1)),
-            texel_f32(self.texel(i1, j1)),
-        );
-        (t00 * (1.0 - a) + t10 * a) * (1.0 - b) + (t01 * (1.0 - a) + t11 * a) * b
+        let (r0, r1) = (j0 * self.width, j1 * self.width);
+        let v = &self.values;
+        let top = v[r0 + i0] + (v[r0 + i1] - v[r0 + i0]) * a;
+        let bottom = v[r1 + i0] + (v[r1 + i1] - v[r1 + i0]) * a;
+        top + (bottom - top) * b
     }
 
     #[inline(always)]
@@ -219,7 +231,7 @@ impl Level {
 }
 
 /// Samples a 2D texture at (s, t) with level of detail λ (GL 1.2 §3.8.8–3.8.9).
-#[inline]
+#[inline(always)]
 pub fn sample_2d(tex: &Texture2d, sampler: &Sampler, s: f32, t: f32, lambda: f32) -> Vec4 {
     let base = &tex.levels[0];
     if lambda <= sampler.switch_over() || !lambda.is_finite() && lambda < 0.0 {
@@ -327,7 +339,7 @@ mod tests {
     #[test]
     fn trilinear_blends_levels_by_frac_lambda() {
         let mut tex = Texture2d::from_rgba8(2, 2, vec![[200, 0, 0, 255]; 4]);
-        tex.levels.push(Level { width: 1, height: 1, texels: vec![[100, 0, 0, 255]] });
+        tex.levels.push(Level::new(1, 1, vec![[100, 0, 0, 255]]));
         let s = Sampler::TRILINEAR_REPEAT;
         let at = |l| (sample_2d(&tex, &s, 0.3, 0.3, l).x * 255.0).round();
         assert_eq!(at(-1.0), 200.0, "magnification uses level 0");
