@@ -570,6 +570,28 @@ impl Combiners {
     }
 }
 
+/// `dst[i] = mapping(src[i])`, one loop per mapping.
+#[inline(always)]
+fn map_into(mapping: InputMapping, src: &[f32], dst: &mut [f32]) {
+    macro_rules! each {
+        ($m:expr) => {
+            for (d, &s) in dst.iter_mut().zip(src) {
+                *d = $m.apply(s);
+            }
+        };
+    }
+    match mapping {
+        InputMapping::UnsignedIdentity => each!(InputMapping::UnsignedIdentity),
+        InputMapping::UnsignedInvert => each!(InputMapping::UnsignedInvert),
+        InputMapping::ExpandNormal => each!(InputMapping::ExpandNormal),
+        InputMapping::ExpandNegate => each!(InputMapping::ExpandNegate),
+        InputMapping::HalfBiasNormal => each!(InputMapping::HalfBiasNormal),
+        InputMapping::HalfBiasNegate => each!(InputMapping::HalfBiasNegate),
+        InputMapping::SignedIdentity => dst.copy_from_slice(src),
+        InputMapping::SignedNegate => each!(InputMapping::SignedNegate),
+    }
+}
+
 #[inline(always)]
 fn map_lanes(mapping: InputMapping, v: &mut [f32]) {
     // One loop per mapping: the match is per batch, the loop body is branch-free.
@@ -606,8 +628,7 @@ fn eval_portion(
                 ComponentUsage::Blue => 2,
             };
             let v = &mut vars[k][c][..n];
-            v.copy_from_slice(&reg[src][..n]);
-            map_lanes(input.mapping, v);
+            map_into(input.mapping, &reg[src][..n], v);
             if fixed {
                 v.iter_mut().for_each(|x| *x = quantize(*x));
             }

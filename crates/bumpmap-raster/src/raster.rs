@@ -374,7 +374,56 @@ fn flush<S: FragmentShader>(tile: &mut Tile, state: &DrawState, shader: &S, task
         return;
     }
     shader.shade(batch, scratch, colors);
-    let blend = state.blend;
+    // The blend equation is chosen once per batch; the common ones get their own loop.
+    use crate::framebuffer::BlendFactor as F;
+    let all = state.color_mask == [true; 4];
+    match (state.blend.src, state.blend.dst) {
+        (F::One, F::Zero) if all => write_lanes(tile, state, batch, colors, |s, _| s),
+        (F::DstColor, F::Zero) if all => write_lanes(tile, state, batch, colors, |s, d| s.map2(d, |a, b| a * b)),
+        (F::DstAlpha, F::One) if all => write_lanes(tile, state, batch, colors, |s, d| s.map2(d, |a, b| a * d[3] + b)),
+        (F::One, F::One) if all => write_lanes(tile, state, batch, colors, |s, d| s.map2(d, |a, b| a + b)),
+        _ => {
+            let (blend, mask) = (state.blend, state.color_mask);
+            write_lanes_bytes(tile, state, batch, colors, |s, stored| blend.apply(s, stored, mask))
+        }
+    }
+    batch.quads = 0;
+    *pending = [0; TILE];
+}
+
+/// Pairs of RGBA values combined channel by channel.
+trait Map2 {
+    fn map2(self, other: Self, f: impl Fn(f32, f32) -> f32) -> Self;
+}
+
+impl Map2 for [f32; 4] {
+    #[inline(always)]
+    fn map2(self, other: Self, f: impl Fn(f32, f32) -> f32) -> Self {
+        [f(self[0], other[0]), f(self[1], other[1]), f(self[2], other[2]), f(self[3], other[3])]
+    }
+}
+
+/// Rounds a value in any range to a framebuffer byte (clamped to [0, 1] first).
+#[inline(always)]
+fn to_byte(v: f32) -> u8 {
+    #[allow(clippy::manual_clamp)] // NaN must become 0, which max/min do and clamp does not
+    let v = v.max(0.0).min(1.0) * 255.0 + 0.5;
+    // SAFETY: v is finite and in [0.5, 255.5].
+    unsafe { v.to_int_unchecked::<i32>() as u8 }
+}
+
+/// Writes every live lane: depth if enabled, colour = `f(src clamped to [0,1], dst)` rounded.
+#[inline(always)]
+fn write_lanes(tile: &mut Tile, state: &DrawState, batch: &FragmentBatch, colors: &[Lanes; 4], f: impl Fn([f32; 4], [f32; 4]) -> [f32; 4]) {
+    write_lanes_bytes(tile, state, batch, colors, |src, stored| {
+        let src = src.map(|v| v.clamp(0.0, 1.0));
+        let dst = stored.map(|b| b as f32 * (1.0 / 255.0));
+        f(src, dst).map(to_byte)
+    })
+}
+
+#[inline(always)]
+fn write_lanes_bytes(tile: &mut Tile, state: &DrawState, batch: &FragmentBatch, colors: &[Lanes; 4], f: impl Fn([f32; 4], [u8; 4]) -> [u8; 4]) {
     for q in 0..batch.quads {
         let (qx, qy) = batch.origin[q];
         for k in 0..4 {
@@ -388,11 +437,9 @@ fn flush<S: FragmentShader>(tile: &mut Tile, state: &DrawState, shader: &S, task
                 tile.depth[idx] = batch.depth[lane];
             }
             let src = [colors[0][lane], colors[1][lane], colors[2][lane], colors[3][lane]];
-            tile.color[idx] = blend.apply(src, tile.color[idx], state.color_mask);
+            tile.color[idx] = f(src, tile.color[idx]);
         }
     }
-    batch.quads = 0;
-    *pending = [0; TILE];
 }
 
 #[cfg(test)]
