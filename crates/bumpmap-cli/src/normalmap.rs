@@ -137,3 +137,9 @@ fn run_folder(
     eprintln!("wrote {} normal maps into {}", files.len(), out_dir.display());
     Ok(())
 }
+
+/// Writes a small text file atomically.
+pub fn write_text(path: &Path, text: &str) -> Result<(), CliError> {
+    use std::io::Write;
+    Ok(bumpmap_io::atomic::write_atomic(path, |w| w.write_all(text.as_bytes()))?)
+}

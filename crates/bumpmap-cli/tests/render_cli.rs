@@ -19,10 +19,23 @@ fn renders_every_scene_with_both_techniques() {
     for scene in ["torus", "wall", "floor", "wall-floor", "patch", "sphere", mesh.as_str()] {
         for technique in ["kilgard", "single-pass"] {
             let out = dir.join(format!("{}_{technique}.png", scene.len()));
-            let o = bumpmap(&["render", "--scene", scene, "--technique", technique, "--size", "96", "-o", out.to_str().unwrap()]);
+            let o = bumpmap(&[
+                "render",
+                "--scene",
+                scene,
+                "--technique",
+                technique,
+                "--size",
+                "96",
+                "-o",
+                out.to_str().unwrap(),
+            ]);
             assert!(o.status.success(), "{scene} {technique}: {}", stderr(&o));
             let (mean, colours) = mean_and_colours(&out);
-            assert!(mean > 5.0 && colours > 50, "{scene} {technique}: image looks empty (mean {mean}, {colours} colours)");
+            assert!(
+                mean > 5.0 && colours > 50,
+                "{scene} {technique}: image looks empty (mean {mean}, {colours} colours)"
+            );
         }
     }
 }
@@ -67,7 +80,15 @@ fn bad_options_are_refused_with_clear_messages() {
     refused(&["--light", "dir:0,0,0"], "non-zero direction");
     refused(&["--light", "1,2"], "X,Y,Z");
     refused(&["--technique", "single-pass", "--spot", "0,0,-1", "--spot-cutoff", "95"], "cutoff");
-    refused(&["--technique", "single-pass", "--gloss", concat!(env!("CARGO_MANIFEST_DIR"), "/../bumpmap-math/tests/golden/none.png")], "cannot read");
+    refused(
+        &[
+            "--technique",
+            "single-pass",
+            "--gloss",
+            concat!(env!("CARGO_MANIFEST_DIR"), "/../bumpmap-math/tests/golden/none.png"),
+        ],
+        "cannot read",
+    );
     refused(&["--scene", "teapot"], "unknown scene");
     refused(&["--scene", "mesh:/no/such/file.obj"], "cannot read");
     refused(&["--eye", "1,1,1", "--target", "1,1,1"], "must differ");
@@ -79,7 +100,17 @@ fn gloss_map_of_another_size_than_the_decal_is_an_error() {
     let gloss = dir.join("gloss.png");
     write_gray_png(&gloss, 100, 50, |x, _| x as u8);
     let out = dir.join("out.png");
-    let o = bumpmap(&["render", "--technique", "single-pass", "--gloss", gloss.to_str().unwrap(), "--size", "32", "-o", out.to_str().unwrap()]);
+    let o = bumpmap(&[
+        "render",
+        "--technique",
+        "single-pass",
+        "--gloss",
+        gloss.to_str().unwrap(),
+        "--size",
+        "32",
+        "-o",
+        out.to_str().unwrap(),
+    ]);
     assert_eq!(o.status.code(), Some(1));
     assert!(stderr(&o).contains("gloss map is 100x50 but the decal is 256x256"), "{}", stderr(&o));
     assert!(!out.exists());

@@ -447,7 +447,12 @@ impl RegisterFile {
     pub fn new() -> Box<Self> {
         Box::new(Self {
             regs: [[[0.0; LANES]; 4]; REGISTERS],
-            tmp: Temporaries { vars: [[[0.0; LANES]; 4]; 4], rgb: [[[0.0; LANES]; 4]; 3], alpha: [[[0.0; LANES]; 4]; 3], fin: [[[0.0; LANES]; 3]; 7] },
+            tmp: Temporaries {
+                vars: [[[0.0; LANES]; 4]; 4],
+                rgb: [[[0.0; LANES]; 4]; 3],
+                alpha: [[[0.0; LANES]; 4]; 3],
+                fin: [[[0.0; LANES]; 3]; 7],
+            },
         })
     }
 
@@ -522,7 +527,13 @@ impl Combiners {
         self.final_combiner(regs, &mut tmp.fin, n, out);
     }
 
-    fn final_combiner(&self, regs: &[[Lanes; 4]; REGISTERS], fin: &mut [[Lanes; 3]; 7], n: usize, out: &mut [Lanes; 4]) {
+    fn final_combiner(
+        &self,
+        regs: &[[Lanes; 4]; REGISTERS],
+        fin: &mut [[Lanes; 3]; 7],
+        n: usize,
+        out: &mut [Lanes; 4],
+    ) {
         let f = &self.setup.final_combiner;
         let clamp_sum = f.color_sum_clamp;
         let fetch = |input: &FinalInput, ef: Option<&[Lanes; 3]>, dst: &mut [Lanes; 3]| {

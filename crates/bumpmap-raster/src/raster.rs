@@ -153,7 +153,12 @@ pub fn draw<S: FragmentShader>(
         }
     }
     fb.tiles.par_iter_mut().zip(bins.par_iter()).filter(|(_, bin)| !bin.is_empty()).for_each_init(
-        || TileTask { batch: FragmentBatch::new(), scratch: shader.scratch(), colors: Box::new([[0.0f32; LANES]; 4]), pending: [0; TILE] },
+        || TileTask {
+            batch: FragmentBatch::new(),
+            scratch: shader.scratch(),
+            colors: Box::new([[0.0f32; LANES]; 4]),
+            pending: [0; TILE],
+        },
         |task, (tile, bin)| {
             for &i in bin {
                 raster_triangle(&setups[i as usize], tile, state, shader, task);
@@ -292,7 +297,13 @@ impl<S> TileTask<S> {
 /// it is shaded when full, at the end of the tile, or before a quad that touches a pixel whose
 /// fragment is still waiting (so depth tests and blending see earlier triangles' results in
 /// submission order).
-fn raster_triangle<S: FragmentShader>(s: &Setup, tile: &mut Tile, state: &DrawState, shader: &S, task: &mut TileTask<S::Scratch>) {
+fn raster_triangle<S: FragmentShader>(
+    s: &Setup,
+    tile: &mut Tile,
+    state: &DrawState,
+    shader: &S,
+    task: &mut TileTask<S::Scratch>,
+) {
     let x0 = s.bbox[0].max(tile.x0) & !1;
     let y0 = s.bbox[1].max(tile.y0) & !1;
     let x1 = s.bbox[2].min(tile.x0 + tile.width);
@@ -414,7 +425,13 @@ fn to_byte(v: f32) -> u8 {
 
 /// Writes every live lane: depth if enabled, colour = `f(src clamped to [0,1], dst)` rounded.
 #[inline(always)]
-fn write_lanes(tile: &mut Tile, state: &DrawState, batch: &FragmentBatch, colors: &[Lanes; 4], f: impl Fn([f32; 4], [f32; 4]) -> [f32; 4]) {
+fn write_lanes(
+    tile: &mut Tile,
+    state: &DrawState,
+    batch: &FragmentBatch,
+    colors: &[Lanes; 4],
+    f: impl Fn([f32; 4], [f32; 4]) -> [f32; 4],
+) {
     write_lanes_bytes(tile, state, batch, colors, |src, stored| {
         let src = src.map(|v| v.clamp(0.0, 1.0));
         let dst = stored.map(|b| b as f32 * (1.0 / 255.0));
@@ -423,7 +440,13 @@ fn write_lanes(tile: &mut Tile, state: &DrawState, batch: &FragmentBatch, colors
 }
 
 #[inline(always)]
-fn write_lanes_bytes(tile: &mut Tile, state: &DrawState, batch: &FragmentBatch, colors: &[Lanes; 4], f: impl Fn([f32; 4], [u8; 4]) -> [u8; 4]) {
+fn write_lanes_bytes(
+    tile: &mut Tile,
+    state: &DrawState,
+    batch: &FragmentBatch,
+    colors: &[Lanes; 4],
+    f: impl Fn([f32; 4], [u8; 4]) -> [u8; 4],
+) {
     for q in 0..batch.quads {
         let (qx, qy) = batch.origin[q];
         for k in 0..4 {

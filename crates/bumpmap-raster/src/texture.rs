@@ -32,13 +32,7 @@ pub struct Texture2d {
 impl Texture2d {
     /// Wraps the levels of a normal-map mip chain.
     pub fn from_mip_chain(chain: &MipChain) -> Self {
-        Self {
-            levels: chain
-                .levels
-                .iter()
-                .map(|l| Level::new(l.width, l.height, l.texels.clone()))
-                .collect(),
-        }
+        Self { levels: chain.levels.iter().map(|l| Level::new(l.width, l.height, l.texels.clone())).collect() }
     }
 
     /// A single-level texture. Panics if the sizes disagree.
@@ -194,7 +188,10 @@ impl Level {
     /// A level from its texels. Panics if the count is not `width·height`.
     pub fn new(width: usize, height: usize, texels: Vec<[u8; 4]>) -> Self {
         assert_eq!(texels.len(), width * height, "texel count of a {width}x{height} level");
-        let values = texels.iter().map(|t| Vec4::new(t[0] as f32, t[1] as f32, t[2] as f32, t[3] as f32) * (1.0 / 255.0)).collect();
+        let values = texels
+            .iter()
+            .map(|t| Vec4::new(t[0] as f32, t[1] as f32, t[2] as f32, t[3] as f32) * (1.0 / 255.0))
+            .collect();
         Self { width, height, texels, values }
     }
 

@@ -1,0 +1,51 @@
+#!/usr/bin/env bash
+# Runs every peer in ../shared/peers and the matching `bumpmap bench` back to back, in one run,
+# and prints the ratios that BENCHMARKS.md quotes. Install the peers first (`sh setup.sh` in the
+# peers folder, as root). Usage: scripts/compare_peers.sh [PEERS_DIR] [OUT_DIR]
+set -euo pipefail
+cd "$(dirname "$0")/.."
+PEERS=${1:-../shared/peers}
+OUT=${2:-target/peers}
+mkdir -p "$OUT"
+# The peers write into their own out/ folder; work on a copy so the shared one stays read-only.
+work=$(mktemp -d)
+cp -r "$PEERS"/. "$work"
+chmod -R u+w "$work"
+cargo build --release --quiet
+B=target/release/bumpmap
+quiet() { python3 "$work/cpuload.py" 0.15 300 || echo "warning: other processes are busy; figures will be noisy"; }
+
+echo "== normal map: 4096² 8-bit heights -> normal map + 13 mips" >&2
+quiet; python3 "$work/numpy_normalmap.py" --size 4096 --runs 5 | tail -n 1 > "$OUT/numpy_normalmap.json"
+quiet; $B bench normalmap --size 4096 --runs 9 --json > "$OUT/bumpmap_normalmap.json"
+
+echo "== tangents: 1,000,000-triangle grid" >&2
+src=$(ls -d "$work"/out/pymikktspace-0.3.0/_external/MikkTSpace 2>/dev/null || true)
+quiet; python3 "$work/mikktspace_bench.py" --tris 1000000 --runs 1 --c-runs 5 ${src:+--c-src "$src"} | tail -n 1 > "$OUT/mikktspace.json"
+quiet; $B bench tangents --triangles 1000000 --runs 5 --json > "$OUT/bumpmap_tangents_ours.json"
+quiet; $B bench tangents --triangles 1000000 --runs 3 --mode mikktspace --json > "$OUT/bumpmap_tangents_mikktspace.json"
+
+echo "== renderer: torus 1024², 2 threads" >&2
+quiet; python3 "$work/llvmpipe_torus.py" --size 1024 --frames 100 --repeats 5 --threads 2 --variants 1pass,3pass > "$OUT/llvmpipe.log" 2>&1
+cp "$work/out/llvmpipe_results.json" "$OUT/llvmpipe.json"
+quiet; $B bench render --scene torus --size 1024 --technique kilgard --threads 2 --frames 30 --runs 5 --json > "$OUT/bumpmap_render_kilgard.json"
+quiet; $B bench render --scene torus --size 1024 --technique single-pass --threads 2 --frames 30 --runs 5 --json > "$OUT/bumpmap_render_single.json"
+
+python3 - "$OUT" <<'PY'
+import json, sys, pathlib
+out = pathlib.Path(sys.argv[1])
+j = lambda n: json.loads((out / n).read_text())
+np_, nm = j("numpy_normalmap.json"), j("bumpmap_normalmap.json")
+print(f"normal map 4096²: numpy {np_['s_median']*1e3:.0f} ms, bumpmap {nm['median_ms']:.1f} ms "
+      f"-> {np_['s_median']*1e3/nm['median_ms']:.1f}x; floor {nm['floor_median_ms']:.1f} ms -> {nm['ratio_to_floor']:.2f}x the floor")
+mk, ours, mikk = j("mikktspace.json"), j("bumpmap_tangents_ours.json"), j("bumpmap_tangents_mikktspace.json")
+c = mk.get("mikktspace_c", {}).get("s_median")
+if c:
+    print(f"tangents 1M tris: C MikkTSpace {c*1e3:.0f} ms; bumpmap ours {ours['median_ms']:.0f} ms -> {c*1e3/ours['median_ms']:.2f}x; "
+          f"bumpmap mikktspace {mikk['median_ms']:.0f} ms -> {c*1e3/mikk['median_ms']:.2f}x")
+lp = {r["variant"]: r for r in j("llvmpipe.json") if str(r["threads"]) == "2"}
+for name, peer in (("bumpmap_render_kilgard.json", "3pass"), ("bumpmap_render_single.json", "1pass")):
+    r = j(name)
+    print(f"render torus 1024² ({r['technique']} vs llvmpipe {peer}, 2 threads): {r['fps']:.1f} fps vs "
+          f"{lp[peer]['fps_median']:.1f} fps -> {r['fps']/lp[peer]['fps_median']:.2f}x")
+PY
