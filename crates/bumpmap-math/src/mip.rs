@@ -17,7 +17,9 @@ use rayon::prelude::*;
 
 use crate::encoding::Encoding;
 use crate::height::HeightField;
-use crate::normalmap::{NormalMapError, NormalMapOptions, NormalMapRgba8, RowEvaluator, RowScratch, output_size};
+use crate::normalmap::{
+    NormalMapError, NormalMapOptions, NormalMapRgba8, RowEvaluator, RowScratch, encode_unit, output_size,
+};
 
 /// What the RGB and A of levels below 0 hold.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default)]
@@ -292,30 +294,31 @@ impl MipChain {
         );
 
         // The small levels: reduce the deepest streamed level's sums, level by level.
-        let (mut sums, mut w, mut h) = (top, shape.w[deepest], shape.h[deepest]);
-        for (k, level) in bytes.iter_mut().enumerate().skip(deepest + 1) {
-            let (nw, nh) = (shape.w[k], shape.h[k]);
-            let mut next = vec![Vec3::ZERO; nw * nh];
-            for j in 0..nh {
-                for sy in footprint(j, h) {
-                    for i in 0..nw {
-                        for sx in footprint(i, w) {
-                            next[j * nw + i] += sums[sy * w + sx];
-                        }
-                    }
-                }
-                for i in 0..nw {
-                    level[j * nw + i] = encode_mean(next[j * nw + i], shape.inv_count(k, i, j), mode, options.encoding);
-                }
-            }
-            (sums, w, h) = (next, nw, nh);
-        }
+        reduce_levels(&shape, deepest, top, &mut bytes, mode, options.encoding);
         let levels = bytes
             .into_iter()
             .enumerate()
             .map(|(k, texels)| NormalMapRgba8 { width: shape.w[k], height: shape.h[k], texels })
             .collect();
         Ok(Self { levels, encoding: options.encoding })
+    }
+
+    /// A chain from level-0 unit normals given directly (an object-space normal map, say), with
+    /// the same averaging and encoding as [`MipChain::from_height`]. Panics if
+    /// `normals.len() != width·height` or a dimension is zero.
+    pub fn from_normals(width: usize, height: usize, normals: &[Vec3], encoding: Encoding, mode: MipMode) -> Self {
+        assert!(width > 0 && height > 0 && normals.len() == width * height, "{width}x{height} normals");
+        let shape = Shape::new(width, height);
+        let mut bytes: Vec<Vec<[u8; 4]>> =
+            (0..shape.levels()).map(|k| vec![[0u8; 4]; shape.w[k] * shape.h[k]]).collect();
+        bytes[0] = normals.iter().map(|&n| encode_unit(n, encoding)).collect();
+        reduce_levels(&shape, 0, normals.to_vec(), &mut bytes, mode, encoding);
+        let levels = bytes
+            .into_iter()
+            .enumerate()
+            .map(|(k, texels)| NormalMapRgba8 { width: shape.w[k], height: shape.h[k], texels })
+            .collect();
+        Self { levels, encoding }
     }
 
     /// Number of levels: `1 + floor(log2(max(w, h)))`.
@@ -325,6 +328,36 @@ impl MipChain {
 
     pub fn is_empty(&self) -> bool {
         self.levels.is_empty()
+    }
+}
+
+/// Fills `bytes[k]` for every level below `from`, reducing `sums` (level `from`'s sums of unit
+/// normals) one level at a time.
+fn reduce_levels(
+    shape: &Shape,
+    from: usize,
+    sums: Vec<Vec3>,
+    bytes: &mut [Vec<[u8; 4]>],
+    mode: MipMode,
+    enc: Encoding,
+) {
+    let (mut sums, mut w, mut h) = (sums, shape.w[from], shape.h[from]);
+    for (k, level) in bytes.iter_mut().enumerate().skip(from + 1) {
+        let (nw, nh) = (shape.w[k], shape.h[k]);
+        let mut next = vec![Vec3::ZERO; nw * nh];
+        for j in 0..nh {
+            for sy in footprint(j, h) {
+                for i in 0..nw {
+                    for sx in footprint(i, w) {
+                        next[j * nw + i] += sums[sy * w + sx];
+                    }
+                }
+            }
+            for i in 0..nw {
+                level[j * nw + i] = encode_mean(next[j * nw + i], shape.inv_count(k, i, j), mode, enc);
+            }
+        }
+        (sums, w, h) = (next, nw, nh);
     }
 }
 

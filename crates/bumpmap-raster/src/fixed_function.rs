@@ -37,43 +37,58 @@ pub struct FixedFunction {
     pub combiners: Combiners,
 }
 
-impl FragmentShader for FixedFunction {
-    type Scratch = Box<RegisterFile>;
+/// Per-thread working memory: the register file and the compacted output colours.
+pub struct Scratch {
+    regs: Box<RegisterFile>,
+    colors: Box<[Lanes; 4]>,
+}
 
-    fn scratch(&self) -> Box<RegisterFile> {
-        RegisterFile::new()
+impl FragmentShader for FixedFunction {
+    type Scratch = Scratch;
+
+    fn scratch(&self) -> Scratch {
+        Scratch { regs: RegisterFile::new(), colors: Box::new([[0.0; LANES]; 4]) }
     }
 
-    fn shade(&self, batch: &FragmentBatch, regs: &mut Box<RegisterFile>, out: &mut [Lanes; 4]) {
+    fn shade(&self, batch: &FragmentBatch, scratch: &mut Scratch, out: &mut [Lanes; 4]) {
         debug_assert!(self.units.len() <= 4);
-        let n = batch.lanes();
+        let Scratch { regs, colors } = scratch;
+        // λ needs the whole quad; everything after it runs on the live lanes only, packed.
+        let mut live = [0u8; LANES];
+        let mut n = 0;
+        for lane in 0..batch.lanes() {
+            if batch.live[lane] {
+                live[n] = lane as u8;
+                n += 1;
+            }
+        }
+        let live = &live[..n];
         for (i, unit) in self.units.iter().enumerate() {
             let reg = regs.reg_mut(Register::texture(i));
             match &unit.binding {
                 Binding::TwoD { texture, s, t } => {
                     let (sv, tv) = (&batch.varyings[*s], &batch.varyings[*t]);
-                    for q in 0..batch.quads {
-                        let l = 4 * q;
-                        let lambda = lambda_2d(texture, [sv[l], sv[l + 1], sv[l + 2]], [tv[l], tv[l + 1], tv[l + 2]]);
-                        for lane in l..l + 4 {
-                            let c = sample_2d(texture, &unit.sampler, sv[lane], tv[lane], lambda);
-                            for ch in 0..4 {
-                                reg[ch][lane] = c[ch];
-                            }
+                    let mut lambda = [0f32; LANES / 4];
+                    for (q, l) in lambda.iter_mut().enumerate().take(batch.quads) {
+                        let b = 4 * q;
+                        *l = lambda_2d(texture, [sv[b], sv[b + 1], sv[b + 2]], [tv[b], tv[b + 1], tv[b + 2]]);
+                    }
+                    for (j, &lane) in live.iter().enumerate() {
+                        let lane = lane as usize;
+                        let c = sample_2d(texture, &unit.sampler, sv[lane], tv[lane], lambda[lane / 4]);
+                        for ch in 0..4 {
+                            reg[ch][j] = c[ch];
                         }
                     }
                 }
                 Binding::Cube { texture, r } => {
-                    for lane in 0..n {
-                        let dir = Vec3::new(
-                            batch.varyings[*r][lane],
-                            batch.varyings[r + 1][lane],
-                            batch.varyings[r + 2][lane],
-                        );
+                    let (x, y, z) = (&batch.varyings[*r], &batch.varyings[r + 1], &batch.varyings[r + 2]);
+                    for (j, &lane) in live.iter().enumerate() {
+                        let lane = lane as usize;
                         // A normalization cube map has one level: λ does not matter.
-                        let c = sample_cube(texture, &unit.sampler, dir, 0.0);
+                        let c = sample_cube(texture, &unit.sampler, Vec3::new(x[lane], y[lane], z[lane]), 0.0);
                         for ch in 0..4 {
-                            reg[ch][lane] = c[ch];
+                            reg[ch][j] = c[ch];
                         }
                     }
                 }
@@ -87,6 +102,11 @@ impl FragmentShader for FixedFunction {
             regs.reg_mut(Register::SecondaryColor)[c][..n].fill(0.0);
         }
         self.combiners.load_constants(regs, n);
-        self.combiners.run(regs, n, out);
+        self.combiners.run(regs, n, colors);
+        for (j, &lane) in live.iter().enumerate() {
+            for c in 0..4 {
+                out[c][lane as usize] = colors[c][j];
+            }
+        }
     }
 }

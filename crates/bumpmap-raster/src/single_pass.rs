@@ -231,7 +231,7 @@ struct SinglePass<'a> {
 }
 
 impl SinglePass<'_> {
-    #[inline]
+    #[inline(always)]
     fn unit(&self, v: Vec3) -> Vec3 {
         match &self.cube {
             Some(cube) => sample_cube(cube, &Sampler::LINEAR_CLAMP, v, 0.0).truncate() * 2.0 - Vec3::ONE,
@@ -240,14 +240,19 @@ impl SinglePass<'_> {
     }
 }
 
-/// Samples a 2D texture at every lane of a batch, λ once per quad.
+/// Samples a 2D texture at every live lane of a batch, λ once per quad.
 fn sample_lanes(tex: &Texture2d, sampler: &Sampler, batch: &FragmentBatch, out: &mut [Vec4; LANES]) {
     let (s, t) = (&batch.varyings[var::S], &batch.varyings[var::T]);
     for q in 0..batch.quads {
         let l = 4 * q;
+        if !batch.live[l..l + 4].iter().any(|&x| x) {
+            continue;
+        }
         let lambda = lambda_2d(tex, [s[l], s[l + 1], s[l + 2]], [t[l], t[l + 1], t[l + 2]]);
         for lane in l..l + 4 {
-            out[lane] = sample_2d(tex, sampler, s[lane], t[lane], lambda);
+            if batch.live[lane] {
+                out[lane] = sample_2d(tex, sampler, s[lane], t[lane], lambda);
+            }
         }
     }
 }
