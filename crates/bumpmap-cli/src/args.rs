@@ -569,6 +569,17 @@ pub struct RenderArgs {
     /// Pattern projected by the spotlight: an image or a height-field preset (e.g. pinwheel)
     #[arg(long = "spot-pattern")]
     pub spot_pattern: Option<String>,
+    /// single-pass: light in tangent space, or in object space with an object-space normal map made for the surface (built-in surfaces only)
+    #[arg(long, value_enum, default_value = "tangent")]
+    pub space: SpaceArg,
+}
+
+#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum SpaceArg {
+    /// tangent-space normal map, L and H rotated into each vertex's frame
+    Tangent,
+    /// object-space normal map baked for the surface, L and H in object space (Peercy §2.1)
+    Object,
 }
 
 /// `C,L,Q`, `exp:D` or `exp2:D`.

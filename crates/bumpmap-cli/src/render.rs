@@ -143,6 +143,7 @@ pub fn build_scene(args: &RenderArgs) -> Result<Scene, CliError> {
         torus_radii: (major, minor),
         tessellation: args.tessellation,
         repeat: args.repeat.map(|(s, t)| Vec2::new(s, t)),
+        object_space: args.space == crate::args::SpaceArg::Object,
     };
     if params.eye.is_some() && params.eye == params.target {
         return Err(CliError::Render("--eye and --target must differ".into()));

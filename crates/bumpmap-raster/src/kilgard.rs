@@ -84,6 +84,11 @@ pub fn render(
     let combiners = |setup: CombinerSetup| Combiners::new(setup, options.precision);
     for object in &scene.objects {
         let m = &object.material;
+        if m.normal_space != crate::scene::NormalSpace::Tangent {
+            return Err(RasterError::Scene(
+                "the three-pass technique lights in tangent space (its self-shadowing reads L_z); use --technique single-pass for object space".into(),
+            ));
+        }
         let normal_unit = TextureUnit {
             binding: Binding::TwoD { texture: m.normal_map.clone(), s: var::S, t: var::T },
             sampler: options.sampler,

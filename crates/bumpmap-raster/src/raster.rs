@@ -16,7 +16,7 @@ use crate::combiners::{LANES, Lanes};
 use crate::framebuffer::{Blend, DepthFunc, Framebuffer, TILE, Tile};
 
 /// Varyings per vertex (texture coordinates, light and half-angle vectors, …).
-pub const MAX_VARYINGS: usize = 20;
+pub const MAX_VARYINGS: usize = 24;
 /// Quads per shading batch.
 pub const QUADS: usize = LANES / 4;
 

@@ -32,8 +32,11 @@ pub mod var {
     pub const SPOT: usize = 12;
     /// Projective coordinates (s, t, q) of the spotlight's pattern (3 slots).
     pub const PROJ: usize = 15;
+    /// The geometric normal in the lighting space (3 slots): (0, 0, 1) in tangent space, the
+    /// surface normal in object space.
+    pub const N: usize = 18;
     /// Slots in use.
-    pub const COUNT: usize = 18;
+    pub const COUNT: usize = 21;
 }
 
 /// A perspective camera (`gluLookAt` + `gluPerspective`).
@@ -136,12 +139,24 @@ impl Spot {
     }
 }
 
+/// The space a normal map's vectors live in (Peercy §2, Kilgard §5).
+#[derive(Clone, Copy, Debug, PartialEq, Default)]
+pub enum NormalSpace {
+    /// Tangent space: usable on any surface, lit with tangent-space L and H.
+    #[default]
+    Tangent,
+    /// Object space, made for one surface: lit with object-space L and H. The map covers the
+    /// surface once; it is addressed with the texture coordinates times `scale`.
+    Object { scale: glam::Vec2 },
+}
+
 /// Surface appearance: a normal map with its mip chain, an optional decal and the lighting
 /// coefficients of Kilgard Eq. 11 and 16.
 #[derive(Clone, Debug)]
 pub struct Material {
     /// RGB = range-compressed normal (unorm encoding), A = length of the filtered normal.
     pub normal_map: Arc<Texture2d>,
+    pub normal_space: NormalSpace,
     pub decal: Option<Arc<Texture2d>>,
     pub ambient: Vec3,
     pub diffuse: Vec3,
@@ -186,7 +201,13 @@ impl Scene {
                 let p = mesh.positions[i];
                 let n = mesh.normals[i];
                 let t = mesh.tangents[i];
-                let frame = TangentFrame { t: t.truncate(), b: t.w * n.cross(t.truncate()), n };
+                let (frame, geometric) = match object.material.normal_space {
+                    NormalSpace::Tangent => {
+                        (TangentFrame { t: t.truncate(), b: t.w * n.cross(t.truncate()), n }, Vec3::Z)
+                    }
+                    // Object space: no rotation; the surface normal is what self-shadowing tests.
+                    NormalSpace::Object { .. } => (TangentFrame { t: Vec3::X, b: Vec3::Y, n: Vec3::Z }, n),
+                };
                 let (l, h) = lighting.tangent_space(p, &frame);
                 let v = frame.tangent_from_object(lighting.to_eye(p)).normalize_or(Vec3::Z);
                 let mut varyings = [0.0; MAX_VARYINGS];
@@ -195,6 +216,7 @@ impl Scene {
                 varyings[var::L..var::L + 3].copy_from_slice(&l.to_array());
                 varyings[var::H..var::H + 3].copy_from_slice(&h.to_array());
                 varyings[var::V..var::V + 3].copy_from_slice(&v.to_array());
+                varyings[var::N..var::N + 3].copy_from_slice(&geometric.to_array());
                 varyings[var::LIGHT_DISTANCE] = match light.light {
                     Light::Positional(_) => (object.world_from_object.transform_vector3(lighting.to_light(p))).length(),
                     Light::Directional(_) => 0.0,

@@ -11,7 +11,7 @@ use bumpmap_math::surface::{BicubicPatch, Surface};
 use bumpmap_math::{HeightField, MipChain, MipMode, NormalMapOptions, bricks_decal};
 
 use crate::error::RasterError;
-use crate::scene::{Camera, Material, Scene, SceneLight, SceneObject, ViewerModel};
+use crate::scene::{Camera, Material, NormalSpace, Scene, SceneLight, SceneObject, ViewerModel};
 use crate::texture::Texture2d;
 
 /// Which geometry a scene shows.
@@ -63,6 +63,8 @@ pub struct SceneParams {
     pub torus_radii: (f32, f32),
     pub tessellation: Option<(usize, usize)>,
     pub repeat: Option<Vec2>,
+    /// Light in object space with an object-space normal map made for the surface.
+    pub object_space: bool,
 }
 
 impl Default for SceneParams {
@@ -85,6 +87,7 @@ impl Default for SceneParams {
             torus_radii: (2.0, 0.7),
             tessellation: None,
             repeat: None,
+            object_space: false,
         }
     }
 }
@@ -105,6 +108,33 @@ pub fn default_light(kind: &SceneKind) -> Light {
     }
 }
 
+/// An object-space normal map for `surface` (Peercy §2.1): the tangent-space map's level 0,
+/// repeated `repeat` times as the surface's texture is, with each normal rotated by the
+/// surface's frame at that point. One texel per texel of the repeated tangent-space map (at
+/// most 4096 along each side), with its own mip chain.
+pub fn object_space_normal_map(surface: &Surface, repeat: Vec2, tangent_map: &MipChain) -> MipChain {
+    use rayon::prelude::*;
+    let level = &tangent_map.levels[0];
+    let enc = tangent_map.encoding;
+    let w = ((level.width as f32 * repeat.x.abs()).round() as usize).clamp(1, 4096);
+    let h = ((level.height as f32 * repeat.y.abs()).round() as usize).clamp(1, 4096);
+    let normals: Vec<Vec3> = (0..w * h)
+        .into_par_iter()
+        .map(|i| {
+            let (u, v) = (((i % w) as f32 + 0.5) / w as f32, ((i / w) as f32 + 0.5) / h as f32);
+            let (s, t) = (repeat.x * u, repeat.y * v);
+            let x = ((s - s.floor()) * level.width as f32) as usize % level.width;
+            let y = ((t - t.floor()) * level.height as f32) as usize % level.height;
+            let (n, _) = level.decode(x, y, enc);
+            let (tt, b, nn) = surface.eval(u, v).frame();
+            let w_sign = if repeat.x * repeat.y >= 0.0 { 1.0 } else { -1.0 };
+            let tt = if repeat.x >= 0.0 { tt } else { -tt };
+            (tt * n.x + w_sign * b * n.y + nn * n.z).normalize_or(nn)
+        })
+        .collect();
+    MipChain::from_normals(w, h, &normals, enc, MipMode::LengthInAlpha)
+}
+
 /// Builds a scene. Fails only when the height field cannot become a normal map.
 pub fn build(kind: &SceneKind, params: &SceneParams) -> Result<Scene, RasterError> {
     let chain = MipChain::from_height(&params.height_field, &params.normal_map, MipMode::LengthInAlpha)
@@ -120,20 +150,30 @@ pub fn build(kind: &SceneKind, params: &SceneParams) -> Result<Scene, RasterErro
     };
     let material = Material {
         normal_map,
+        normal_space: NormalSpace::Tangent,
         decal,
         ambient: params.ambient,
         diffuse: params.diffuse,
         specular: params.specular,
         shininess: params.shininess,
     };
-    let object = |surface: Surface, tess: (usize, usize), repeat: Vec2, world_from_object: Mat4| SceneObject {
-        mesh: Arc::new(surface.tessellate(
-            params.tessellation.unwrap_or(tess).0,
-            params.tessellation.unwrap_or(tess).1,
-            params.repeat.unwrap_or(repeat),
-        )),
-        world_from_object,
-        material: material.clone(),
+    let object = |surface: Surface, tess: (usize, usize), repeat: Vec2, world_from_object: Mat4| {
+        let repeat = params.repeat.unwrap_or(repeat);
+        let mut material = material.clone();
+        if params.object_space {
+            let map = object_space_normal_map(&surface, repeat, &chain);
+            material.normal_map = Arc::new(Texture2d::from_mip_chain(&map));
+            material.normal_space = NormalSpace::Object { scale: Vec2::ONE / repeat };
+        }
+        SceneObject {
+            mesh: Arc::new(surface.tessellate(
+                params.tessellation.unwrap_or(tess).0,
+                params.tessellation.unwrap_or(tess).1,
+                repeat,
+            )),
+            world_from_object,
+            material,
+        }
     };
     let (objects, eye, target, up) = match kind {
         SceneKind::Torus => {
@@ -167,6 +207,11 @@ pub fn build(kind: &SceneKind, params: &SceneParams) -> Result<Scene, RasterErro
         SceneKind::Sphere => {
             let sphere = object(Surface::Sphere { radius: 1.5 }, (64, 32), Vec2::new(4.0, 2.0), Mat4::IDENTITY);
             (vec![sphere], Vec3::new(0.0, -5.0, 1.5), Vec3::ZERO, Vec3::Z)
+        }
+        SceneKind::Mesh(_) if params.object_space => {
+            return Err(RasterError::Scene(
+                "object-space normal maps are made for the built-in surfaces, not for meshes".into(),
+            ));
         }
         SceneKind::Mesh(mesh) => {
             let (lo, hi) = mesh.positions.iter().fold((Vec3::MAX, Vec3::MIN), |(lo, hi), &p| (lo.min(p), hi.max(p)));

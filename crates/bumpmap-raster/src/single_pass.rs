@@ -20,7 +20,7 @@ use crate::combiners::{LANES, Lanes};
 use crate::error::RasterError;
 use crate::framebuffer::{Blend, DepthFunc, Framebuffer};
 use crate::raster::{DrawState, FragmentBatch, FragmentShader, draw};
-use crate::scene::{Attenuation, Scene, SceneLight, var};
+use crate::scene::{Attenuation, NormalSpace, Scene, SceneLight, var};
 use crate::texture::{Sampler, Texture2d, TextureCube, lambda_2d, sample_2d, sample_cube};
 
 /// How the interpolated L and H are renormalized per fragment.
@@ -193,6 +193,7 @@ pub fn render(scene: &Scene, options: &SinglePassOptions, fb: &mut Framebuffer) 
                 options,
                 cube: cube.clone(),
                 normal_map: m.normal_map.clone(),
+                normal_space: m.normal_space,
                 decal: m.decal.clone(),
                 ambient: if i == 0 { m.ambient } else { Vec3::ZERO },
                 diffuse: m.diffuse * light.color,
@@ -222,6 +223,7 @@ struct SinglePass<'a> {
     options: &'a SinglePassOptions,
     cube: Option<Arc<TextureCube>>,
     normal_map: Arc<Texture2d>,
+    normal_space: NormalSpace,
     decal: Option<Arc<Texture2d>>,
     ambient: Vec3,
     diffuse: Vec3,
@@ -240,18 +242,20 @@ impl SinglePass<'_> {
     }
 }
 
-/// Samples a 2D texture at every live lane of a batch, λ once per quad.
-fn sample_lanes(tex: &Texture2d, sampler: &Sampler, batch: &FragmentBatch, out: &mut [Vec4; LANES]) {
+/// Samples a 2D texture at every live lane of a batch at `scale ⊙ (s, t)`, λ once per quad.
+fn sample_lanes(tex: &Texture2d, sampler: &Sampler, batch: &FragmentBatch, scale: glam::Vec2, out: &mut [Vec4; LANES]) {
     let (s, t) = (&batch.varyings[var::S], &batch.varyings[var::T]);
+    let (ks, kt) = (scale.x, scale.y);
     for q in 0..batch.quads {
         let l = 4 * q;
         if !batch.live[l..l + 4].iter().any(|&x| x) {
             continue;
         }
-        let lambda = lambda_2d(tex, [s[l], s[l + 1], s[l + 2]], [t[l], t[l + 1], t[l + 2]]);
+        let lambda =
+            lambda_2d(tex, [ks * s[l], ks * s[l + 1], ks * s[l + 2]], [kt * t[l], kt * t[l + 1], kt * t[l + 2]]);
         for lane in l..l + 4 {
             if batch.live[lane] {
-                out[lane] = sample_2d(tex, sampler, s[lane], t[lane], lambda);
+                out[lane] = sample_2d(tex, sampler, ks * s[lane], kt * t[lane], lambda);
             }
         }
     }
@@ -267,15 +271,19 @@ impl FragmentShader for SinglePass<'_> {
     fn shade(&self, batch: &FragmentBatch, scratch: &mut Self::Scratch, out: &mut [Lanes; 4]) {
         let o = self.options;
         let [normals, decals, gloss] = &mut **scratch;
-        sample_lanes(&self.normal_map, &o.sampler, batch, normals);
+        let (scale, object_space) = match self.normal_space {
+            NormalSpace::Tangent => (glam::Vec2::ONE, false),
+            NormalSpace::Object { scale } => (scale, true),
+        };
+        sample_lanes(&self.normal_map, &o.sampler, batch, scale, normals);
         match &self.decal {
-            Some(d) => sample_lanes(d, &o.sampler, batch, decals),
+            Some(d) => sample_lanes(d, &o.sampler, batch, glam::Vec2::ONE, decals),
             None => decals[..batch.lanes()].fill(Vec4::ONE),
         }
         match &o.gloss {
             Gloss::None => gloss[..batch.lanes()].fill(Vec4::ONE),
             Gloss::DecalAlpha => (0..batch.lanes()).for_each(|i| gloss[i] = Vec4::splat(decals[i].w)),
-            Gloss::Map(g) => sample_lanes(g, &o.sampler, batch, gloss),
+            Gloss::Map(g) => sample_lanes(g, &o.sampler, batch, glam::Vec2::ONE, gloss),
         }
         let v3 = |slot: usize, lane: usize| {
             Vec3::new(batch.varyings[slot][lane], batch.varyings[slot + 1][lane], batch.varyings[slot + 2][lane])
@@ -296,17 +304,24 @@ impl FragmentShader for SinglePass<'_> {
                     self.unit((v3(var::L, lane).normalize_or(Vec3::Z) + v).normalize_or(Vec3::Z))
                 }
             };
+            // L·N and H·N with the unperturbed normal: L_z and H_z in tangent space.
+            let (l_n, h_n) = if object_space {
+                let ng = v3(var::N, lane).normalize_or(Vec3::Z);
+                (l.dot(ng), h.dot(ng))
+            } else {
+                (l.z, h.z)
+            };
             let s_self = match o.self_shadow {
-                SelfShadow::Ramp => (8.0 * l.z).clamp(0.0, 1.0),
-                SelfShadow::Step => (l.z > 0.0) as u8 as f32,
+                SelfShadow::Ramp => (8.0 * l_n).clamp(0.0, 1.0),
+                SelfShadow::Step => (l_n > 0.0) as u8 as f32,
                 SelfShadow::Off => 1.0,
             };
             // Dot products of the (not exactly unit) expanded vectors clamp to [−1, 1] as the
             // combiners' outputs do, so a quantized normal cannot brighten past the paper's.
             let n_dot_l = l.dot(n).clamp(-1.0, 1.0);
             let spec_gate = match o.specular_shadow {
-                SpecularShadow::Kilgard => s_self * (h.z >= 0.0) as u8 as f32,
-                SpecularShadow::CgTutorial => (n_dot_l > 0.0 && l.z > 0.0) as u8 as f32,
+                SpecularShadow::Kilgard => s_self * (h_n >= 0.0) as u8 as f32,
+                SpecularShadow::CgTutorial => (n_dot_l > 0.0 && l_n > 0.0) as u8 as f32,
                 SpecularShadow::Off => 1.0,
             };
             let mut light = self.light.attenuation.factor(batch.varyings[var::LIGHT_DISTANCE][lane]);

@@ -120,6 +120,111 @@ fn fixed9_combiners_stay_within_a_few_steps_of_float() {
     assert!(max <= 24, "max {max}");
 }
 
+fn render_scene(kind: SceneKind, params: SceneParams, options: SinglePassOptions, size: usize) -> Vec<[u8; 4]> {
+    let scene = scenes::build(&kind, &params).unwrap();
+    let mut fb = Framebuffer::new(size, size).unwrap();
+    single_pass::render(&scene, &options, &mut fb).unwrap();
+    fb.to_rgba8()
+}
+
+#[test]
+fn object_space_lighting_matches_tangent_space_on_the_torus() {
+    // The same normals, expressed in object space through the torus's frames: only the object
+    // map's resampling (nearest texels of level 0, new mips) differs.
+    let tangent = render_scene(SceneKind::Torus, SceneParams::default(), SinglePassOptions::default(), 160);
+    let object = render_scene(
+        SceneKind::Torus,
+        SceneParams { object_space: true, ..Default::default() },
+        SinglePassOptions::default(),
+        160,
+    );
+    let d = rgb_diffs(&tangent, &object);
+    let mean = d.iter().map(|&x| x as f64).sum::<f64>() / d.len() as f64;
+    println!("object vs tangent space: mean {mean:.3}/255");
+    assert!(mean < 3.0, "mean difference {mean}/255");
+}
+
+#[test]
+fn attenuation_darkens_with_distance() {
+    use bumpmap_math::lighting::Light;
+    use bumpmap_raster::scene::{Attenuation, SceneLight};
+    let light = |attenuation| SceneLight {
+        attenuation,
+        ..SceneLight::white(Light::Positional(glam::Vec3::new(0.0, 0.6, 1.5)))
+    };
+    let params = |attenuation| SceneParams {
+        lights: vec![light(attenuation)],
+        eye: Some(glam::Vec3::new(0.0, 3.0, 6.0)),
+        ..Default::default()
+    };
+    let plain = render_scene(SceneKind::Floor, params(Attenuation::None), SinglePassOptions::default(), 96);
+    let faded = render_scene(
+        SceneKind::Floor,
+        params(Attenuation::Polynomial { constant: 0.2, linear: 0.0, quadratic: 0.5 }),
+        SinglePassOptions::default(),
+        96,
+    );
+    let brightness = |img: &[[u8; 4]], rows: std::ops::Range<usize>| {
+        let px: Vec<u32> = rows.flat_map(|y| (20..76).map(move |x| y * 96 + x)).map(|i| img[i][0] as u32).collect();
+        px.iter().sum::<u32>() as f64 / px.len() as f64
+    };
+    // Near rows (bottom of the image, under the light) against far rows (the floor's far edge).
+    let (near, far) = (brightness(&faded, 60..70), brightness(&faded, 32..38));
+    let (near0, far0) = (brightness(&plain, 60..70), brightness(&plain, 32..38));
+    assert!(near > 0.0 && far0 > 0.0, "both images are lit");
+    assert!(far / far0 < near / near0, "farther from the light dims more: {far}/{far0} vs {near}/{near0}");
+}
+
+#[test]
+fn golden_single_pass_features() {
+    use bumpmap_math::lighting::Light;
+    use bumpmap_raster::scene::{SceneLight, Spot};
+    use bumpmap_raster::single_pass::Gloss;
+    use std::sync::Arc;
+    let coloured = |p: glam::Vec3, c: glam::Vec3| SceneLight { color: c, ..SceneLight::white(Light::Positional(p)) };
+    let two = SceneParams {
+        lights: vec![
+            coloured(glam::Vec3::new(4.0, -3.0, 3.0), glam::Vec3::new(1.0, 0.35, 0.2)),
+            coloured(glam::Vec3::new(-4.0, -3.0, 3.0), glam::Vec3::new(0.2, 0.45, 1.0)),
+        ],
+        ..Default::default()
+    };
+    check_golden(
+        "single_pass_two_lights_64",
+        64,
+        &render_scene(SceneKind::Torus, two, SinglePassOptions::default(), 64),
+    );
+    let pattern = bumpmap_math::HeightPreset::Pinwheel.render(64, 64).to_u8();
+    let pattern =
+        bumpmap_raster::texture::Texture2d::from_rgba8(64, 64, pattern.iter().map(|&v| [v, v, v, 255]).collect());
+    let spot =
+        Spot { direction: glam::Vec3::NEG_Z, cutoff_degrees: 30.0, exponent: 2.0, pattern: Some(Arc::new(pattern)) };
+    let spot = SceneParams {
+        lights: vec![SceneLight {
+            spot: Some(spot),
+            ..SceneLight::white(Light::Positional(glam::Vec3::new(0.0, 0.0, 4.0)))
+        }],
+        default_decal: false,
+        specular: glam::Vec3::splat(0.3),
+        ..Default::default()
+    };
+    check_golden(
+        "single_pass_spotlight_64",
+        64,
+        &render_scene(SceneKind::Wall, spot, SinglePassOptions::default(), 64),
+    );
+    let gloss: Vec<[u8; 4]> =
+        bumpmap_math::height::bricks_gloss(256, 256).into_iter().map(|v| [v, v, v, 255]).collect();
+    let gloss =
+        Gloss::Map(Arc::new(bumpmap_raster::texture::Texture2d::from_rgba8(256, 256, gloss).with_box_mipmaps()));
+    let options = SinglePassOptions { gloss, ..Default::default() };
+    check_golden(
+        "single_pass_gloss_64",
+        64,
+        &render_scene(SceneKind::Torus, SceneParams { shininess: 40.0, ..Default::default() }, options, 64),
+    );
+}
+
 #[test]
 fn golden_kilgard_torus() {
     check_golden("kilgard_torus_96", 96, &render_kilgard(96));
