@@ -251,15 +251,24 @@ fn ours(mesh: &Mesh, options: &TangentOptions) -> (Mesh, TangentReport) {
     (out, report)
 }
 
-/// The mesh as MikkTSpace's callbacks see it, collecting one tangent per corner.
+/// The faces of a mesh (all, or a subset in their original order) as MikkTSpace's callbacks
+/// see them, collecting one tangent per corner.
 struct MikkGeometry<'a> {
     mesh: &'a Mesh,
+    faces: &'a [u32],
     corner_tangents: Vec<Vec4>,
+}
+
+impl MikkGeometry<'_> {
+    #[inline]
+    fn vertex(&self, face: usize, vert: usize) -> usize {
+        self.mesh.indices[self.faces[face] as usize][vert] as usize
+    }
 }
 
 impl bevy_mikktspace::Geometry for MikkGeometry<'_> {
     fn num_faces(&self) -> usize {
-        self.mesh.indices.len()
+        self.faces.len()
     }
 
     fn num_vertices_of_face(&self, _face: usize) -> usize {
@@ -267,15 +276,15 @@ impl bevy_mikktspace::Geometry for MikkGeometry<'_> {
     }
 
     fn position(&self, face: usize, vert: usize) -> [f32; 3] {
-        self.mesh.positions[self.mesh.indices[face][vert] as usize].to_array()
+        self.mesh.positions[self.vertex(face, vert)].to_array()
     }
 
     fn normal(&self, face: usize, vert: usize) -> [f32; 3] {
-        self.mesh.normals[self.mesh.indices[face][vert] as usize].to_array()
+        self.mesh.normals[self.vertex(face, vert)].to_array()
     }
 
     fn tex_coord(&self, face: usize, vert: usize) -> [f32; 2] {
-        self.mesh.texcoords[self.mesh.indices[face][vert] as usize].to_array()
+        self.mesh.texcoords[self.vertex(face, vert)].to_array()
     }
 
     fn set_tangent(&mut self, tangent_space: Option<bevy_mikktspace::TangentSpace>, face: usize, vert: usize) {
@@ -286,11 +295,108 @@ impl bevy_mikktspace::Geometry for MikkGeometry<'_> {
     }
 }
 
-/// MikkTSpace's tangent for every corner (face-major), as the reference C code produces them.
-pub fn mikktspace_corner_tangents(mesh: &Mesh) -> Result<Vec<Vec4>, MeshError> {
-    let mut geometry = MikkGeometry { mesh, corner_tangents: vec![Vec4::ZERO; 3 * mesh.indices.len()] };
+fn run_mikktspace(mesh: &Mesh, faces: &[u32]) -> Result<Vec<Vec4>, MeshError> {
+    let mut geometry = MikkGeometry { mesh, faces, corner_tangents: vec![Vec4::ZERO; 3 * faces.len()] };
     bevy_mikktspace::generate_tangents(&mut geometry).map_err(|e| MeshError::MikkTSpace(e.to_string()))?;
     Ok(geometry.corner_tangents)
+}
+
+/// Rings of neighbouring faces each piece carries beyond its own.
+const HALO_RINGS: usize = 3;
+
+/// Meshes smaller than this run MikkTSpace in one piece.
+const MIKK_PARALLEL_FACES: usize = 100_000;
+
+/// MikkTSpace's tangent for every corner (face-major), as the reference C code produces them.
+///
+/// Large meshes run in parallel pieces: each piece is a run of faces plus the faces within a few
+/// rings of it (vertices compared by value, as MikkTSpace welds them). A corner's tangent depends
+/// on the faces around its vertex, met in the same order (and, for degenerate faces, on a
+/// neighbour's), so each piece's own corners come out as from the whole mesh: bit for bit on
+/// every test mesh, degenerate ones included.
+pub fn mikktspace_corner_tangents(mesh: &Mesh) -> Result<Vec<Vec4>, MeshError> {
+    let pieces = if mesh.indices.len() >= MIKK_PARALLEL_FACES { 2 * rayon::current_num_threads() } else { 1 };
+    mikktspace_in_pieces(mesh, pieces)
+}
+
+/// [`mikktspace_corner_tangents`] with an explicit number of pieces (1 = the whole mesh).
+pub fn mikktspace_in_pieces(mesh: &Mesh, pieces: usize) -> Result<Vec<Vec4>, MeshError> {
+    let nf = mesh.indices.len();
+    let all: Vec<u32> = (0..nf as u32).collect();
+    if pieces <= 1 || nf < 2 * pieces {
+        return run_mikktspace(mesh, &all);
+    }
+    // Canonical vertex ids: equal position, normal and texture coordinate are one vertex.
+    let mut canonical = vec![0u32; mesh.vertex_count()];
+    let mut seen: std::collections::HashMap<[u32; 8], u32> =
+        std::collections::HashMap::with_capacity(mesh.vertex_count());
+    for (v, c) in canonical.iter_mut().enumerate() {
+        let (p, n, t) = (mesh.positions[v], mesh.normals[v], mesh.texcoords[v]);
+        let key = [p.x, p.y, p.z, n.x, n.y, n.z, t.x, t.y].map(f32::to_bits);
+        let next = seen.len() as u32;
+        *c = *seen.entry(key).or_insert(next);
+    }
+    // Canonical vertex → faces (compressed rows, faces in order).
+    let nc = seen.len();
+    let mut start = vec![0u32; nc + 1];
+    for t in &mesh.indices {
+        for &v in t {
+            start[canonical[v as usize] as usize + 1] += 1;
+        }
+    }
+    for i in 0..nc {
+        start[i + 1] += start[i];
+    }
+    let mut fill = start.clone();
+    let mut faces_of = vec![0u32; 3 * nf];
+    for (f, t) in mesh.indices.iter().enumerate() {
+        for &v in t {
+            let c = canonical[v as usize] as usize;
+            faces_of[fill[c] as usize] = f as u32;
+            fill[c] += 1;
+        }
+    }
+    let results: Vec<Result<(std::ops::Range<usize>, Vec<u32>, Vec<Vec4>), MeshError>> = (0..pieces)
+        .into_par_iter()
+        .map(|k| {
+            let own = k * nf / pieces..(k + 1) * nf / pieces;
+            // Rings of faces around the piece's vertices, then around theirs: one ring decides
+            // a corner; the others cover degenerate faces that borrow a tangent from a
+            // neighbour (one ring was not enough on `obliterated.obj`; two were; three for margin).
+            let mut taken = vec![false; nf];
+            taken[own.clone()].fill(true);
+            let mut frontier: Vec<u32> = own.clone().map(|f| f as u32).collect();
+            for _ in 0..HALO_RINGS {
+                let mut next = Vec::new();
+                for &f in &frontier {
+                    for &v in &mesh.indices[f as usize] {
+                        let c = canonical[v as usize] as usize;
+                        for &g in &faces_of[start[c] as usize..start[c + 1] as usize] {
+                            if !taken[g as usize] {
+                                taken[g as usize] = true;
+                                next.push(g);
+                            }
+                        }
+                    }
+                }
+                frontier = next;
+            }
+            // In the original order, which MikkTSpace's sums follow.
+            let faces: Vec<u32> = (0..nf as u32).filter(|&f| taken[f as usize]).collect();
+            let tangents = run_mikktspace(mesh, &faces)?;
+            Ok((own, faces, tangents))
+        })
+        .collect();
+    let mut out = vec![Vec4::ZERO; 3 * nf];
+    for r in results {
+        let (own, faces, tangents) = r?;
+        for (i, &f) in faces.iter().enumerate() {
+            if own.contains(&(f as usize)) {
+                out[3 * f as usize..3 * f as usize + 3].copy_from_slice(&tangents[3 * i..3 * i + 3]);
+            }
+        }
+    }
+    Ok(out)
 }
 
 fn mikktspace(mesh: &Mesh) -> Result<(Mesh, TangentReport), MeshError> {
