@@ -356,7 +356,9 @@ pub fn mikktspace_in_pieces(mesh: &Mesh, pieces: usize) -> Result<Vec<Vec4>, Mes
             fill[c] += 1;
         }
     }
-    let results: Vec<Result<(std::ops::Range<usize>, Vec<u32>, Vec<Vec4>), MeshError>> = (0..pieces)
+    /// A piece's own faces, the faces it ran (own and halo, in order) and their corner tangents.
+    type Piece = (std::ops::Range<usize>, Vec<u32>, Vec<Vec4>);
+    let results: Vec<Result<Piece, MeshError>> = (0..pieces)
         .into_par_iter()
         .map(|k| {
             let own = k * nf / pieces..(k + 1) * nf / pieces;
