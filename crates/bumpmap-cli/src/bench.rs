@@ -213,7 +213,8 @@ fn read_once_write_once(bytes: &[u8], size: usize) -> Vec<Vec<[u8; 4]>> {
     let mut n = size;
     let mut stride = 1;
     loop {
-        let mut level = vec![[0u8; 4]; n * n];
+        // The same allocation as the real work's, so the floor pays the same page costs.
+        let mut level = bumpmap_math::buffer::zeroed_rgba8(n * n);
         level.par_chunks_mut(n).enumerate().for_each(|(y, row)| {
             let src = &bytes[y * stride * size..];
             for (x, t) in row.iter_mut().enumerate() {

@@ -270,7 +270,7 @@ impl MipChain {
         let shape = Shape::new(w0, h0);
         let deepest = STREAMED_LEVELS.min(shape.levels() - 1);
         let mut bytes: Vec<Vec<[u8; 4]>> =
-            (0..shape.levels()).map(|k| vec![[0u8; 4]; shape.w[k] * shape.h[k]]).collect();
+            (0..shape.levels()).map(|k| crate::buffer::zeroed_rgba8(shape.w[k] * shape.h[k])).collect();
         let streamer =
             Streamer { eval: RowEvaluator::new(field, *options)?, shape: &shape, mode, enc: options.encoding };
 
@@ -310,7 +310,7 @@ impl MipChain {
         assert!(width > 0 && height > 0 && normals.len() == width * height, "{width}x{height} normals");
         let shape = Shape::new(width, height);
         let mut bytes: Vec<Vec<[u8; 4]>> =
-            (0..shape.levels()).map(|k| vec![[0u8; 4]; shape.w[k] * shape.h[k]]).collect();
+            (0..shape.levels()).map(|k| crate::buffer::zeroed_rgba8(shape.w[k] * shape.h[k])).collect();
         bytes[0] = normals.iter().map(|&n| encode_unit(n, encoding)).collect();
         reduce_levels(&shape, 0, normals.to_vec(), &mut bytes, mode, encoding);
         let levels = bytes

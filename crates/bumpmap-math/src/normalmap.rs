@@ -273,7 +273,7 @@ pub fn normal_map_level0(field: &HeightField, options: &NormalMapOptions) -> Res
     use rayon::prelude::*;
     let (w, h) = output_size(field.width(), field.height(), options)?;
     let eval = RowEvaluator::new(field, *options)?;
-    let mut texels = vec![[0u8; 4]; w * h];
+    let mut texels = crate::buffer::zeroed_rgba8(w * h);
     texels.par_chunks_mut(w).enumerate().for_each_init(RowScratch::default, |scratch, (y, row)| {
         eval.process_row(y, scratch, row);
     });
