@@ -315,7 +315,11 @@ const MIKK_PARALLEL_FACES: usize = 100_000;
 /// neighbour's), so each piece's own corners come out as from the whole mesh: bit for bit on
 /// every test mesh, degenerate ones included.
 pub fn mikktspace_corner_tangents(mesh: &Mesh) -> Result<Vec<Vec4>, MeshError> {
-    let pieces = if mesh.indices.len() >= MIKK_PARALLEL_FACES { 2 * rayon::current_num_threads() } else { 1 };
+    let pieces = if mesh.indices.len() >= MIKK_PARALLEL_FACES {
+        (mesh.indices.len() / 50_000).max(2 * rayon::current_num_threads())
+    } else {
+        1
+    };
     mikktspace_in_pieces(mesh, pieces)
 }
 

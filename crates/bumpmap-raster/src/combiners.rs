@@ -186,6 +186,17 @@ pub struct Portion {
 }
 
 impl Portion {
+    /// All four variables 0 and all three outputs discarded: a portion that does nothing.
+    pub const fn discarded(usage: ComponentUsage) -> Self {
+        Portion {
+            a: Input::zero(usage),
+            b: Input::zero(usage),
+            c: Input::zero(usage),
+            d: Input::zero(usage),
+            outputs: Outputs::DISCARD,
+        }
+    }
+
     /// The spec's initial state: A = PRIMARY_COLOR, B = ZERO inverted (1), C = D = 0, sum → SPARE0.
     pub const fn initial(usage: ComponentUsage) -> Self {
         Portion {

@@ -12,23 +12,8 @@ use crate::combiners::{
 
 /// Pass 1, the decal: `rgb = texture0.rgb`, `alpha = texture0.alpha` (what `GL_REPLACE` gives).
 pub fn decal() -> CombinerSetup {
-    let pass_through = Portion {
-        a: Input::zero(Rgb),
-        b: Input::zero(Rgb),
-        c: Input::zero(Rgb),
-        d: Input::zero(Rgb),
-        outputs: Outputs::DISCARD,
-    };
-    let stage = GeneralStage {
-        rgb: pass_through,
-        alpha: Portion {
-            a: Input::zero(Alpha),
-            b: Input::zero(Alpha),
-            c: Input::zero(Alpha),
-            d: Input::zero(Alpha),
-            outputs: Outputs::DISCARD,
-        },
-    };
+    let pass_through = Portion::discarded(Rgb);
+    let stage = GeneralStage { rgb: pass_through, alpha: Portion::discarded(Alpha) };
     let final_combiner = FinalCombiner {
         a: FinalInput::ZERO,
         b: FinalInput::ZERO,
@@ -75,13 +60,7 @@ pub fn ambient_and_diffuse(ambient: Vec4, diffuse: Vec4) -> CombinerSetup {
             d: Input::zero(Rgb),
             outputs: Outputs { ab: Some(Spare0), ..Outputs::DISCARD },
         },
-        alpha: Portion {
-            a: Input::zero(Alpha),
-            b: Input::zero(Alpha),
-            c: Input::zero(Alpha),
-            d: Input::zero(Alpha),
-            outputs: Outputs::DISCARD,
-        },
+        alpha: Portion::discarded(Alpha),
     };
     // rgb = A·EF + D = s_self·k_diffuse·max(0, L·N')·|N'| + I_ambient; alpha = G = s_self.
     let final_combiner = FinalCombiner {
@@ -138,13 +117,7 @@ pub fn specular() -> CombinerSetup {
             d: Input::new(Spare0, SignedIdentity, Rgb),
             outputs: Outputs { sum: Some(Spare0), mux_sum: true, ..Outputs::DISCARD },
         },
-        alpha: Portion {
-            a: Input::zero(Alpha),
-            b: Input::zero(Alpha),
-            c: Input::zero(Alpha),
-            d: Input::zero(Alpha),
-            outputs: Outputs::DISCARD,
-        },
+        alpha: Portion::discarded(Alpha),
     };
     // rgb = A·B = (E·F)·(E·F) = (H·N')^8; alpha = 0.
     let final_combiner = FinalCombiner {

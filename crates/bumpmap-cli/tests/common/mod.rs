@@ -64,3 +64,16 @@ pub fn png_header_only(w: u32, h: u32) -> Vec<u8> {
     chunk(b"IEND", &[]);
     out
 }
+
+/// Runs `bumpmap ARGS…` expecting exit status 1, a message that names `input` and contains
+/// `expect`, no panic, and no file added to or removed from `dir`.
+pub fn fails_cleanly(dir: &Path, args: &[&str], input: &Path, expect: &str) {
+    let before = listing(dir);
+    let o = bumpmap(args);
+    let err = stderr(&o);
+    assert_eq!(o.status.code(), Some(1), "{args:?}: {err}");
+    assert!(err.contains(&input.display().to_string()), "message must name the file: {err}");
+    assert!(err.contains(expect), "message must say '{expect}': {err}");
+    assert!(!err.contains("panicked"), "{err}");
+    assert_eq!(listing(dir), before, "no partial or stray output");
+}
