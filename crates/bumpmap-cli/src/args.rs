@@ -472,8 +472,10 @@ pub struct RenderArgs {
     /// Square image size (pixels)
     #[arg(long, default_value_t = 512, conflicts_with_all = ["width", "height"])]
     pub size: usize,
+    /// Image width in pixels (with --height, instead of --size)
     #[arg(long, requires = "height")]
     pub width: Option<usize>,
+    /// Image height in pixels (with --width)
     #[arg(long, requires = "width")]
     pub height: Option<usize>,
     /// Eye position (default: the scene's)

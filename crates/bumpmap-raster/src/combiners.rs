@@ -522,8 +522,14 @@ impl Combiners {
         let RegisterFile { regs, tmp } = file;
         for stage in &self.setup.stages {
             // Both portions read this stage's inputs; their writes form the next stage's set.
-            eval_portion(regs, &stage.rgb, true, n, fixed, &mut tmp.vars, &mut tmp.rgb);
-            eval_portion(regs, &stage.alpha, false, n, fixed, &mut tmp.vars, &mut tmp.alpha);
+            // A portion that discards all three outputs changes nothing and is skipped.
+            let writes = |p: &Portion| p.outputs.ab.is_some() || p.outputs.cd.is_some() || p.outputs.sum.is_some();
+            if writes(&stage.rgb) {
+                eval_portion(regs, &stage.rgb, true, n, fixed, &mut tmp.vars, &mut tmp.rgb);
+            }
+            if writes(&stage.alpha) {
+                eval_portion(regs, &stage.alpha, false, n, fixed, &mut tmp.vars, &mut tmp.alpha);
+            }
             for (values, portion, channels) in [(&tmp.rgb, &stage.rgb, 0..3), (&tmp.alpha, &stage.alpha, 3..4)] {
                 let o = &portion.outputs;
                 for (dst, v) in [(o.ab, &values[0]), (o.cd, &values[1]), (o.sum, &values[2])] {

@@ -202,7 +202,27 @@ impl Level {
 
     #[inline(always)]
     fn value(&self, x: usize, y: usize) -> Vec4 {
-        self.values[y * self.width + x]
+        self.value_at(y * self.width + x)
+    }
+
+    /// Texel `i` as floats in [0, 1]. With SSE4.1 (any x86-64-v2 or later build) straight from
+    /// the bytes, which keeps the working set 4× smaller than the float copy.
+    #[inline(always)]
+    fn value_at(&self, i: usize) -> Vec4 {
+        #[cfg(all(target_arch = "x86_64", target_feature = "sse4.1"))]
+        {
+            use std::arch::x86_64::*;
+            let word = u32::from_le_bytes(self.texels[i]);
+            // SAFETY: SSE4.1 is enabled at compile time (the cfg above).
+            unsafe {
+                let v = _mm_cvtepi32_ps(_mm_cvtepu8_epi32(_mm_cvtsi32_si128(word as i32)));
+                Vec4::from(_mm_mul_ps(v, _mm_set1_ps(1.0 / 255.0)))
+            }
+        }
+        #[cfg(not(all(target_arch = "x86_64", target_feature = "sse4.1")))]
+        {
+            self.values[i]
+        }
     }
 
     #[inline(always)]
@@ -215,9 +235,10 @@ impl Level {
         let (i0, i1, a) = linear_indices(s, self.width, sampler.wrap_s);
         let (j0, j1, b) = linear_indices(t, self.height, sampler.wrap_t);
         let (r0, r1) = (j0 * self.width, j1 * self.width);
-        let v = &self.values;
-        let top = v[r0 + i0] + (v[r0 + i1] - v[r0 + i0]) * a;
-        let bottom = v[r1 + i0] + (v[r1 + i1] - v[r1 + i0]) * a;
+        let (t00, t10) = (self.value_at(r0 + i0), self.value_at(r0 + i1));
+        let (t01, t11) = (self.value_at(r1 + i0), self.value_at(r1 + i1));
+        let top = t00 + (t10 - t00) * a;
+        let bottom = t01 + (t11 - t01) * a;
         top + (bottom - top) * b
     }
 
