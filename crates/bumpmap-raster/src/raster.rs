@@ -339,33 +339,35 @@ fn raster_triangle<S: FragmentShader>(
             }
             let q = task.batch.quads;
             let batch = &mut task.batch;
+            // Barycentrics of the quad's four pixels as lanes of one vector each.
+            let lanes = |i: usize| {
+                Vec4::new(edges[0][i] as f32, edges[1][i] as f32, edges[2][i] as f32, edges[3][i] as f32) * s.inv_area
+            };
+            let (b0, b1, b2) = (lanes(0), lanes(1), lanes(2));
+            let z = b0 * s.z[0] + b1 * s.z[1] + b2 * s.z[2];
+            batch.depth[4 * q..4 * q + 4].copy_from_slice(&z.to_array());
             let mut any = false;
-            let mut bary = [[0f32; 3]; 4];
             for k in 0..4 {
-                let b = edges[k].map(|e| e as f32 * s.inv_area);
-                bary[k] = b;
-                let lane = 4 * q + k;
-                let z = b[0] * s.z[0] + b[1] * s.z[1] + b[2] * s.z[2];
-                batch.depth[lane] = z;
                 let live = covered[k] && {
                     let idx = (ly + (k >> 1)) * tile.width + lx + (k & 1);
-                    state.depth_func.passes(z, tile.depth[idx])
+                    state.depth_func.passes(z[k], tile.depth[idx])
                 };
-                batch.live[lane] = live;
+                batch.live[4 * q + k] = live;
                 any |= live;
             }
             if !any {
                 continue;
             }
-            // Perspective-correct varyings for all four lanes (helpers too, for derivatives).
-            for (k, b) in bary.iter().enumerate() {
-                let lane = 4 * q + k;
-                let wc = 1.0 / (b[0] * s.inv_w[0] + b[1] * s.inv_w[1] + b[2] * s.inv_w[2]);
-                let w = [b[0] * wc, b[1] * wc, b[2] * wc];
-                for (j, var) in batch.varyings.iter_mut().enumerate().take(state.varyings) {
-                    var[lane] = w[0] * s.var_w[0][j] + w[1] * s.var_w[1][j] + w[2] * s.var_w[2][j];
-                }
-                if batch.live[lane] {
+            // Perspective-correct varyings for all four lanes at once (helpers too, for
+            // derivatives): v = Σ bᵢ·(v/w)ᵢ / Σ bᵢ·(1/w)ᵢ.
+            let wc = Vec4::ONE / (b0 * s.inv_w[0] + b1 * s.inv_w[1] + b2 * s.inv_w[2]);
+            let (w0, w1, w2) = (b0 * wc, b1 * wc, b2 * wc);
+            for (j, var) in batch.varyings.iter_mut().enumerate().take(state.varyings) {
+                let v = w0 * s.var_w[0][j] + w1 * s.var_w[1][j] + w2 * s.var_w[2][j];
+                var[4 * q..4 * q + 4].copy_from_slice(&v.to_array());
+            }
+            for k in 0..4 {
+                if batch.live[4 * q + k] {
                     task.pending[ly + (k >> 1)] |= 1 << (lx + (k & 1));
                 }
             }
