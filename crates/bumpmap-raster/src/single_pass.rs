@@ -285,6 +285,7 @@ impl FragmentShader for SinglePass<'_> {
             Gloss::DecalAlpha => (0..batch.lanes()).for_each(|i| gloss[i] = Vec4::splat(decals[i].w)),
             Gloss::Map(g) => sample_lanes(g, &o.sampler, batch, glam::Vec2::ONE, gloss),
         }
+        let whole_shininess = self.shininess == self.shininess.trunc() && self.shininess <= 64.0;
         let v3 = |slot: usize, lane: usize| {
             Vec3::new(batch.varyings[slot][lane], batch.varyings[slot + 1][lane], batch.varyings[slot + 2][lane])
         };
@@ -340,8 +341,11 @@ impl FragmentShader for SinglePass<'_> {
             }
             // Eq. 11 with the filtered (shortened) normal, Eq. 16 with the renormalized one.
             let diffuse = (self.ambient + self.diffuse * (light * s_self * n_dot_l.max(0.0) * len)).min(Vec3::ONE);
-            let specular =
-                self.specular * (light * spec_gate * gloss[lane].x * h.dot(n).clamp(0.0, 1.0).powf(self.shininess));
+            let h_dot_n = h.dot(n).clamp(0.0, 1.0);
+            // Whole exponents (the paper's 8 among them) by repeated multiplication.
+            let power =
+                if whole_shininess { h_dot_n.powi(self.shininess as i32) } else { h_dot_n.powf(self.shininess) };
+            let specular = self.specular * (light * spec_gate * gloss[lane].x * power);
             let d = decals[lane];
             let c = Vec3::new(d.x, d.y, d.z) * diffuse + specular;
             out[0][lane] = c.x;
