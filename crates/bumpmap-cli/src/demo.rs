@@ -84,6 +84,11 @@ const RENDERS: &[(&str, &str, &[&str])] = &[
         ],
     ),
     (
+        "single_pass_object_space.png",
+        "Object-space lighting with an object-space normal map baked for the torus (Peercy §2.1)",
+        &["--technique", "single-pass", "--space", "object"],
+    ),
+    (
         "patch_pinwheel.png",
         "Peercy Figure 4's stretched bicubic patch with the pinwheel height field",
         &["--scene", "patch", "--height-field", "pinwheel"],
