@@ -97,6 +97,15 @@ impl Framebuffer {
     }
 }
 
+/// Rounds a blended value to a framebuffer byte, clamping to [0, 1] first (NaN becomes 0).
+#[inline(always)]
+pub(crate) fn to_byte(v: f32) -> u8 {
+    #[allow(clippy::manual_clamp)] // NaN must become 0, which max/min do and clamp does not
+    let v = v.max(0.0).min(1.0) * 255.0 + 0.5;
+    // SAFETY: v is finite and in [0.5, 255.5].
+    unsafe { v.to_int_unchecked::<i32>() as u8 }
+}
+
 /// `glDepthFunc` values used by the techniques.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum DepthFunc {
@@ -176,7 +185,7 @@ impl Blend {
         for c in 0..4 {
             if mask[c] {
                 let v = src[c] * self.factor(self.src, src, dst, c) + dst[c] * self.factor(self.dst, src, dst, c);
-                out[c] = (v.clamp(0.0, 1.0) * 255.0 + 0.5) as u8;
+                out[c] = to_byte(v);
             }
         }
         out

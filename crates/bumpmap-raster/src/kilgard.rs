@@ -119,11 +119,7 @@ pub fn render(
                     on_pass(PASS_NAMES[0], fb);
                 }
                 // Pass 2: ambient + diffuse, s_self to alpha.
-                let diffuse = if options.self_shadow {
-                    setups::ambient_and_diffuse(ambient, kd)
-                } else {
-                    setups::ambient_and_diffuse_unshadowed(ambient, kd)
-                };
+                let diffuse = diffuse_setup(options.self_shadow, ambient, kd);
                 let state = if decal_unit.is_some() { DrawState { blend: Blend::MODULATE, ..equal } } else { opaque };
                 let shader = FixedFunction {
                     units: vec![normal_unit.clone(), cube_unit(var::L)],
@@ -144,11 +140,7 @@ pub fn render(
                 draw_object(fb, &vertices, object, &DrawState { blend, ..equal }, &shader);
                 // Pass b: this light's s_self into alpha only.
                 if has_specular {
-                    let diffuse = if options.self_shadow {
-                        setups::ambient_and_diffuse(ambient, kd)
-                    } else {
-                        setups::ambient_and_diffuse_unshadowed(ambient, kd)
-                    };
+                    let diffuse = diffuse_setup(options.self_shadow, ambient, kd);
                     let shader = FixedFunction {
                         units: vec![normal_unit.clone(), cube_unit(var::L)],
                         combiners: combiners(diffuse)?,
@@ -181,14 +173,19 @@ fn draw_object(
     draw(fb, vertices, &object.mesh.indices, state, shader);
 }
 
+/// Appendix G, with or without Eq. 12's self-shadowing term (Figure 14).
+fn diffuse_setup(self_shadow: bool, ambient: Vec4, diffuse: Vec4) -> CombinerSetup {
+    if self_shadow {
+        setups::ambient_and_diffuse(ambient, diffuse)
+    } else {
+        setups::ambient_and_diffuse_unshadowed(ambient, diffuse)
+    }
+}
+
 /// Appendix G's first stage, then `spare0 = max(0, L·N')·|N'|`, and in the final combiner
 /// `s_self · spare0 · decal` (texture 2) with alpha 0.
 fn decal_times_diffuse(self_shadow: bool, has_decal: bool) -> CombinerSetup {
-    let mut setup = if self_shadow {
-        setups::ambient_and_diffuse(Vec4::ZERO, Vec4::ONE)
-    } else {
-        setups::ambient_and_diffuse_unshadowed(Vec4::ZERO, Vec4::ONE)
-    };
+    let mut setup = diffuse_setup(self_shadow, Vec4::ZERO, Vec4::ONE);
     let f = &mut setup.final_combiner;
     f.a = FinalInput::reg(Spare0, Alpha);
     f.b = FinalInput::E_TIMES_F;

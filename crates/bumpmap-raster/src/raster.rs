@@ -13,7 +13,7 @@ use glam::Vec4;
 use rayon::prelude::*;
 
 use crate::combiners::{LANES, Lanes};
-use crate::framebuffer::{Blend, DepthFunc, Framebuffer, TILE, Tile};
+use crate::framebuffer::{Blend, DepthFunc, Framebuffer, TILE, Tile, to_byte};
 
 /// Varyings per vertex (texture coordinates, light and half-angle vectors, …).
 pub const MAX_VARYINGS: usize = 24;
@@ -414,15 +414,6 @@ impl Map2 for [f32; 4] {
     fn map2(self, other: Self, f: impl Fn(f32, f32) -> f32) -> Self {
         [f(self[0], other[0]), f(self[1], other[1]), f(self[2], other[2]), f(self[3], other[3])]
     }
-}
-
-/// Rounds a value in any range to a framebuffer byte (clamped to [0, 1] first).
-#[inline(always)]
-fn to_byte(v: f32) -> u8 {
-    #[allow(clippy::manual_clamp)] // NaN must become 0, which max/min do and clamp does not
-    let v = v.max(0.0).min(1.0) * 255.0 + 0.5;
-    // SAFETY: v is finite and in [0.5, 255.5].
-    unsafe { v.to_int_unchecked::<i32>() as u8 }
 }
 
 /// Writes every live lane: depth if enabled, colour = `f(src clamped to [0,1], dst)` rounded.

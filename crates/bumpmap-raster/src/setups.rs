@@ -27,6 +27,18 @@ pub fn decal() -> CombinerSetup {
     CombinerSetup { stages: vec![stage], final_combiner, constant0: Vec4::ZERO, constant1: Vec4::ZERO }
 }
 
+/// The RGB portion both appendices open with: `spare0rgb = expand(texture0) · expand(texture1)`,
+/// the normal map's N' dotted with the cube map's normalized L (Appendix G) or H (Appendix H).
+fn normal_dot_cube() -> Portion {
+    Portion {
+        a: Input::new(Texture0, ExpandNormal, Rgb),
+        b: Input::new(Texture1, ExpandNormal, Rgb),
+        c: Input::zero(Rgb),
+        d: Input::zero(Rgb),
+        outputs: Outputs { ab: Some(Spare0), ab_dot: true, ..Outputs::DISCARD },
+    }
+}
+
 /// Kilgard Appendix G (§5.4): ambient + diffuse with the self-shadowing term, Eq. 11 and 12.
 /// Texture 0 is the normal map, texture 1 the normalization cube map indexed by L.
 ///
@@ -35,13 +47,7 @@ pub fn decal() -> CombinerSetup {
 pub fn ambient_and_diffuse(ambient: Vec4, diffuse: Vec4) -> CombinerSetup {
     let stage0 = GeneralStage {
         // Argb = expand(texture0rgb) = N'; Brgb = expand(texture1rgb) = L; spare0rgb = A·B.
-        rgb: Portion {
-            a: Input::new(Texture0, ExpandNormal, Rgb),
-            b: Input::new(Texture1, ExpandNormal, Rgb),
-            c: Input::zero(Rgb),
-            d: Input::zero(Rgb),
-            outputs: Outputs { ab: Some(Spare0), ab_dot: true, ..Outputs::DISCARD },
-        },
+        rgb: normal_dot_cube(),
         // Aa = 1, Ba = expand(texture1b) = Lz, Ca = 1, Da = Lz; spare0a = 4·(Lz + Lz) = 8·Lz.
         alpha: Portion {
             a: Input::new(Zero, UnsignedInvert, Alpha),
@@ -92,13 +98,7 @@ pub fn ambient_and_diffuse_unshadowed(ambient: Vec4, diffuse: Vec4) -> CombinerS
 pub fn specular() -> CombinerSetup {
     let stage0 = GeneralStage {
         // spare0rgb = expand(texture0rgb) · expand(texture1rgb) = N'·H.
-        rgb: Portion {
-            a: Input::new(Texture0, ExpandNormal, Rgb),
-            b: Input::new(Texture1, ExpandNormal, Rgb),
-            c: Input::zero(Rgb),
-            d: Input::zero(Rgb),
-            outputs: Outputs { ab: Some(Spare0), ab_dot: true, ..Outputs::DISCARD },
-        },
+        rgb: normal_dot_cube(),
         // spare0a = texture1b · 1 = unexpanded Hz (≥ ½ exactly when Hz ≥ 0).
         alpha: Portion {
             a: Input::new(Texture1, UnsignedIdentity, Blue),
