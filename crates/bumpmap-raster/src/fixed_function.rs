@@ -8,11 +8,9 @@
 
 use std::sync::Arc;
 
-use glam::Vec3;
-
 use crate::combiners::{Combiners, LANES, Lanes, Register, RegisterFile};
 use crate::raster::{FragmentBatch, FragmentShader};
-use crate::texture::{Sampler, Texture2d, TextureCube, lambda_2d, sample_2d, sample_cube};
+use crate::texture::{Sampler, Texture2d, TextureCube, lambda_2d, sample_2d_lanes, sample_cube_lanes};
 
 /// What a texture unit has bound.
 #[derive(Clone, Debug)]
@@ -37,34 +35,43 @@ pub struct FixedFunction {
     pub combiners: Combiners,
 }
 
-/// Per-thread working memory: the register file and the compacted output colours.
+/// Per-thread working memory: the register file, the compacted output colours and texture
+/// coordinates.
 pub struct Scratch {
     regs: Box<RegisterFile>,
     colors: Box<[Lanes; 4]>,
+    coords: Box<[Lanes; 3]>,
+}
+
+/// `dst[j] = src[lanes[j]]`: a batch's live lanes, packed.
+#[inline(always)]
+fn compact(src: &Lanes, lanes: &[u8], dst: &mut Lanes) {
+    for (d, &lane) in dst.iter_mut().zip(lanes) {
+        *d = src[lane as usize];
+    }
 }
 
 impl FragmentShader for FixedFunction {
     type Scratch = Scratch;
 
     fn scratch(&self) -> Scratch {
-        Scratch { regs: RegisterFile::new(), colors: Box::new([[0.0; LANES]; 4]) }
+        Scratch { regs: RegisterFile::new(), colors: Box::new([[0.0; LANES]; 4]), coords: Box::new([[0.0; LANES]; 3]) }
     }
 
     fn shade(&self, batch: &FragmentBatch, scratch: &mut Scratch, out: &mut [Lanes; 4]) {
         debug_assert!(self.units.len() <= 4);
-        let Scratch { regs, colors } = scratch;
+        let Scratch { regs, colors, coords } = scratch;
         // λ needs the whole quad; everything after it runs on the live lanes only, packed.
         let mut live = [0u8; LANES];
         let mut n = 0;
         for lane in 0..batch.lanes() {
-            if batch.live[lane] {
-                live[n] = lane as u8;
-                n += 1;
-            }
+            live[n] = lane as u8;
+            n += batch.live[lane] as usize;
         }
         let live = &live[..n];
         for (i, unit) in self.units.iter().enumerate() {
             let reg = regs.reg_mut(Register::texture(i));
+            let [c0, c1, c2] = &mut **coords;
             match &unit.binding {
                 Binding::TwoD { texture, s, t } => {
                     let (sv, tv) = (&batch.varyings[*s], &batch.varyings[*t]);
@@ -73,24 +80,19 @@ impl FragmentShader for FixedFunction {
                         let b = 4 * q;
                         *l = lambda_2d(texture, [sv[b], sv[b + 1], sv[b + 2]], [tv[b], tv[b + 1], tv[b + 2]]);
                     }
-                    for (j, &lane) in live.iter().enumerate() {
-                        let lane = lane as usize;
-                        let c = sample_2d(texture, &unit.sampler, sv[lane], tv[lane], lambda[lane / 4]);
-                        for ch in 0..4 {
-                            reg[ch][j] = c[ch];
-                        }
+                    compact(sv, live, c0);
+                    compact(tv, live, c1);
+                    for (d, &lane) in c2.iter_mut().zip(live) {
+                        *d = lambda[lane as usize / 4];
                     }
+                    sample_2d_lanes(texture, &unit.sampler, c0, c1, c2, n, reg);
                 }
                 Binding::Cube { texture, r } => {
-                    let (x, y, z) = (&batch.varyings[*r], &batch.varyings[r + 1], &batch.varyings[r + 2]);
-                    for (j, &lane) in live.iter().enumerate() {
-                        let lane = lane as usize;
-                        // A normalization cube map has one level: λ does not matter.
-                        let c = sample_cube(texture, &unit.sampler, Vec3::new(x[lane], y[lane], z[lane]), 0.0);
-                        for ch in 0..4 {
-                            reg[ch][j] = c[ch];
-                        }
-                    }
+                    compact(&batch.varyings[*r], live, c0);
+                    compact(&batch.varyings[r + 1], live, c1);
+                    compact(&batch.varyings[r + 2], live, c2);
+                    // A normalization cube map has one level: λ does not matter.
+                    sample_cube_lanes(texture, &unit.sampler, [c0, c1, c2], n, reg);
                 }
             }
         }

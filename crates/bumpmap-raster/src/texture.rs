@@ -10,6 +10,9 @@ use glam::{Vec3, Vec4};
 
 use bumpmap_math::{CubeFace, MipChain, NormalizationCubeMap};
 
+mod lanes;
+pub use lanes::{sample_2d_lanes, sample_cube_lanes};
+
 /// One mip level: `width`×`height` RGBA8 texels, row 0 = t = 0.
 ///
 /// Beside the bytes the level keeps each texel as four floats (`b/255`, exactly the values the
@@ -294,19 +297,34 @@ pub fn lambda_2d(tex: &Texture2d, s: [f32; 3], t: [f32; 3]) -> f32 {
 /// A cube map: six square faces in GL order, each a 2D texture.
 #[derive(Clone, Debug, PartialEq)]
 pub struct TextureCube {
-    pub faces: [Texture2d; 6],
+    faces: [Texture2d; 6],
+    /// Level 0 of the six faces back to back, when they are square, of one size and have one
+    /// level: the layout the batch sampler gathers from.
+    packed: Option<Vec<[u8; 4]>>,
 }
 
 impl TextureCube {
+    /// A cube map from its faces in GL order (+X, −X, +Y, −Y, +Z, −Z).
+    pub fn new(faces: [Texture2d; 6]) -> Self {
+        let n = faces[0].width();
+        let uniform = faces.iter().all(|f| f.levels.len() == 1 && f.width() == n && f.height() == n);
+        let packed = uniform.then(|| faces.iter().flat_map(|f| f.levels[0].texels().iter().copied()).collect());
+        Self { faces, packed }
+    }
+
+    /// The faces in GL order.
+    pub fn faces(&self) -> &[Texture2d; 6] {
+        &self.faces
+    }
+
     /// The normalization cube map as a texture (A = 255: an RGB texture).
     pub fn from_normalization(map: &NormalizationCubeMap) -> Self {
         let n = map.size;
-        Self {
-            faces: map
-                .faces
+        Self::new(
+            map.faces
                 .clone()
                 .map(|f| Texture2d::from_rgba8(n, n, f.into_iter().map(|[r, g, b]| [r, g, b, 255]).collect())),
-        }
+        )
     }
 }
 
