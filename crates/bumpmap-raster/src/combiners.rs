@@ -516,8 +516,11 @@ impl Combiners {
     /// Evaluates lanes `0..n`: the general stages in order, then the final combiner, writing
     /// RGBA into `out`. The caller has loaded the texture registers, PRIMARY and SECONDARY,
     /// SPARE0's alpha (texture 0's alpha) and the constants ([`Combiners::load_constants`]).
+    /// Lanes from `n` up to the next multiple of eight are evaluated too, on whatever the
+    /// registers hold there, so that every loop runs over whole vectors.
     pub fn run(&self, file: &mut RegisterFile, n: usize, out: &mut [Lanes; 4]) {
         debug_assert!(n <= LANES);
+        let n = n.next_multiple_of(8);
         let fixed = self.precision == Precision::Fixed9;
         let RegisterFile { regs, tmp } = file;
         for stage in &self.setup.stages {
@@ -542,6 +545,13 @@ impl Combiners {
             }
         }
         self.final_combiner(regs, &mut tmp.fin, n, out);
+    }
+
+    /// Whether a general stage writes register `r` (then the caller must reload it per batch).
+    pub fn writes(&self, r: Register) -> bool {
+        self.setup.stages.iter().flat_map(|s| [&s.rgb.outputs, &s.alpha.outputs]).any(|o| {
+            [o.ab, o.cd, o.sum].contains(&Some(r))
+        })
     }
 
     fn final_combiner(
@@ -680,28 +690,41 @@ fn eval_portion(
         }
     };
     let [ab, cd, sum] = out;
-    product(&vars[0], &vars[1], o.ab_dot, ab);
-    product(&vars[2], &vars[3], o.cd_dot, cd);
-    let spare0_alpha = &regs[Register::Spare0 as usize][3];
-    for &c in channels {
-        if o.mux_sum {
-            // Spec (Aug 2000 sense): spare0 alpha < ½ selects AB, otherwise CD.
-            for i in 0..n {
-                sum[c][i] = if spare0_alpha[i] < 0.5 { ab[c][i] } else { cd[c][i] };
-            }
-        } else {
-            for i in 0..n {
-                sum[c][i] = ab[c][i] + cd[c][i];
+    // AB and CD are needed when kept or when the sum (or mux) is.
+    let need_sum = o.sum.is_some();
+    if o.ab.is_some() || need_sum {
+        product(&vars[0], &vars[1], o.ab_dot, ab);
+    }
+    if o.cd.is_some() || need_sum {
+        product(&vars[2], &vars[3], o.cd_dot, cd);
+    }
+    if need_sum {
+        let spare0_alpha = &regs[Register::Spare0 as usize][3];
+        for &c in channels {
+            if o.mux_sum {
+                // Spec (Aug 2000 sense): spare0 alpha < ½ selects AB, otherwise CD.
+                for i in 0..n {
+                    sum[c][i] = if spare0_alpha[i] < 0.5 { ab[c][i] } else { cd[c][i] };
+                }
+            } else {
+                for i in 0..n {
+                    sum[c][i] = ab[c][i] + cd[c][i];
+                }
             }
         }
     }
-    // Bias before scale, then clamp to [−1, 1].
+    // Bias before scale, then clamp to [−1, 1]; only for the outputs that are kept.
     let (bias, scale) = (if o.bias == Bias::MinusOneHalf { -0.5 } else { 0.0 }, o.scale.factor());
-    for v in [ab, cd, sum] {
+    for (v, kept) in [(ab, o.ab), (cd, o.cd), (sum, o.sum)] {
+        if kept.is_none() {
+            continue;
+        }
         for &c in channels {
-            for x in v[c][..n].iter_mut() {
-                let y = ((*x + bias) * scale).clamp(-1.0, 1.0);
-                *x = if fixed { quantize(y) } else { y };
+            let v = &mut v[c][..n];
+            if fixed {
+                v.iter_mut().for_each(|x| *x = quantize(((*x + bias) * scale).clamp(-1.0, 1.0)));
+            } else {
+                v.iter_mut().for_each(|x| *x = ((*x + bias) * scale).clamp(-1.0, 1.0));
             }
         }
     }

@@ -43,6 +43,14 @@ pub struct Scratch {
     coords: Box<[Lanes; 3]>,
 }
 
+/// PRIMARY_COLOR white and SECONDARY_COLOR black in lanes `0..n`.
+fn load_colors(regs: &mut RegisterFile, n: usize) {
+    for c in 0..4 {
+        regs.reg_mut(Register::PrimaryColor)[c][..n].fill(1.0);
+        regs.reg_mut(Register::SecondaryColor)[c][..n].fill(0.0);
+    }
+}
+
 /// `dst[j] = src[lanes[j]]`: a batch's live lanes, packed.
 #[inline(always)]
 fn compact(src: &Lanes, lanes: &[u8], dst: &mut Lanes) {
@@ -55,7 +63,11 @@ impl FragmentShader for FixedFunction {
     type Scratch = Scratch;
 
     fn scratch(&self) -> Scratch {
-        Scratch { regs: RegisterFile::new(), colors: Box::new([[0.0; LANES]; 4]), coords: Box::new([[0.0; LANES]; 3]) }
+        // Registers the combiners only read are loaded once here, for every lane.
+        let mut regs = RegisterFile::new();
+        self.combiners.load_constants(&mut regs, LANES);
+        load_colors(&mut regs, LANES);
+        Scratch { regs, colors: Box::new([[0.0; LANES]; 4]), coords: Box::new([[0.0; LANES]; 3]) }
     }
 
     fn shade(&self, batch: &FragmentBatch, scratch: &mut Scratch, out: &mut [Lanes; 4]) {
@@ -96,14 +108,16 @@ impl FragmentShader for FixedFunction {
                 }
             }
         }
-        let tex0_alpha: Lanes =
-            if self.units.is_empty() { [0.0; LANES] } else { regs.regs[Register::Texture0 as usize][3] };
-        regs.reg_mut(Register::Spare0)[3][..n].copy_from_slice(&tex0_alpha[..n]);
-        for c in 0..4 {
-            regs.reg_mut(Register::PrimaryColor)[c][..n].fill(1.0);
-            regs.reg_mut(Register::SecondaryColor)[c][..n].fill(0.0);
+        let n8 = n.next_multiple_of(8);
+        let (below, textures) = regs.regs.split_at_mut(Register::Texture0 as usize);
+        let spare0_alpha = &mut below[Register::Spare0 as usize][3][..n8];
+        match self.units.is_empty() {
+            true => spare0_alpha.fill(0.0),
+            false => spare0_alpha.copy_from_slice(&textures[0][3][..n8]),
         }
-        self.combiners.load_constants(regs, n);
+        if self.combiners.writes(Register::PrimaryColor) || self.combiners.writes(Register::SecondaryColor) {
+            load_colors(regs, n8);
+        }
         self.combiners.run(regs, n, colors);
         for (j, &lane) in live.iter().enumerate() {
             for c in 0..4 {
