@@ -51,11 +51,30 @@ fn load_colors(regs: &mut RegisterFile, n: usize) {
     }
 }
 
-/// `dst[j] = src[lanes[j]]`: a batch's live lanes, packed.
-#[inline(always)]
-fn compact(src: &Lanes, lanes: &[u8], dst: &mut Lanes) {
-    for (d, &lane) in dst.iter_mut().zip(lanes) {
-        *d = src[lane as usize];
+/// Packs the coordinates of a 2D lookup for a batch's live `lanes`: `scale ⊙ (s, t)` from
+/// varyings `slots` into `out[0]`, `out[1]`, and λ (once per quad, GL 1.2 Eq. 3.14) into
+/// `out[2]`.
+pub(crate) fn pack_2d_coords(
+    tex: &Texture2d,
+    batch: &FragmentBatch,
+    slots: [usize; 2],
+    scale: [f32; 2],
+    lanes: &[u8],
+    out: &mut [Lanes; 3],
+) {
+    let (s, t) = (&batch.varyings[slots[0]], &batch.varyings[slots[1]]);
+    let [ks, kt] = scale;
+    let mut lambda = [0f32; LANES / 4];
+    for (q, l) in lambda.iter_mut().enumerate().take(batch.quads) {
+        let b = 4 * q;
+        *l = lambda_2d(tex, [ks * s[b], ks * s[b + 1], ks * s[b + 2]], [kt * t[b], kt * t[b + 1], kt * t[b + 2]]);
+    }
+    let [ps, pt, pl] = out;
+    for (j, &lane) in lanes.iter().enumerate() {
+        let lane = lane as usize;
+        ps[j] = ks * s[lane];
+        pt[j] = kt * t[lane];
+        pl[j] = lambda[lane / 4];
     }
 }
 
@@ -75,36 +94,23 @@ impl FragmentShader for FixedFunction {
         let Scratch { regs, colors, coords } = scratch;
         // λ needs the whole quad; everything after it runs on the live lanes only, packed.
         let mut live = [0u8; LANES];
-        let mut n = 0;
-        for lane in 0..batch.lanes() {
-            live[n] = lane as u8;
-            n += batch.live[lane] as usize;
-        }
+        let n = batch.live_lanes(&mut live);
         let live = &live[..n];
         for (i, unit) in self.units.iter().enumerate() {
             let reg = regs.reg_mut(Register::texture(i));
-            let [c0, c1, c2] = &mut **coords;
             match &unit.binding {
                 Binding::TwoD { texture, s, t } => {
-                    let (sv, tv) = (&batch.varyings[*s], &batch.varyings[*t]);
-                    let mut lambda = [0f32; LANES / 4];
-                    for (q, l) in lambda.iter_mut().enumerate().take(batch.quads) {
-                        let b = 4 * q;
-                        *l = lambda_2d(texture, [sv[b], sv[b + 1], sv[b + 2]], [tv[b], tv[b + 1], tv[b + 2]]);
-                    }
-                    compact(sv, live, c0);
-                    compact(tv, live, c1);
-                    for (d, &lane) in c2.iter_mut().zip(live) {
-                        *d = lambda[lane as usize / 4];
-                    }
-                    sample_2d_lanes(texture, &unit.sampler, c0, c1, c2, n, reg);
+                    pack_2d_coords(texture, batch, [*s, *t], [1.0, 1.0], live, coords);
+                    let [s, t, lambda] = &**coords;
+                    sample_2d_lanes(texture, &unit.sampler, s, t, lambda, n, reg);
                 }
                 Binding::Cube { texture, r } => {
-                    compact(&batch.varyings[*r], live, c0);
-                    compact(&batch.varyings[r + 1], live, c1);
-                    compact(&batch.varyings[r + 2], live, c2);
+                    for (k, c) in coords.iter_mut().enumerate() {
+                        batch.pack(r + k, live, c);
+                    }
                     // A normalization cube map has one level: λ does not matter.
-                    sample_cube_lanes(texture, &unit.sampler, [c0, c1, c2], n, reg);
+                    let [x, y, z] = &**coords;
+                    sample_cube_lanes(texture, &unit.sampler, [x, y, z], n, reg);
                 }
             }
         }

@@ -78,6 +78,25 @@ impl FragmentBatch {
     pub fn lanes(&self) -> usize {
         4 * self.quads
     }
+
+    /// Writes the indices of the live lanes, in order, to the front of `out`; returns how many.
+    pub fn live_lanes(&self, out: &mut [u8; LANES]) -> usize {
+        let mut n = 0;
+        for lane in 0..self.lanes() {
+            out[n] = lane as u8;
+            n += self.live[lane] as usize;
+        }
+        n
+    }
+
+    /// `dst[j] = varyings[slot][lanes[j]]`: one varying at the given lanes, packed.
+    #[inline]
+    pub fn pack(&self, slot: usize, lanes: &[u8], dst: &mut Lanes) {
+        let src = &self.varyings[slot];
+        for (d, &lane) in dst.iter_mut().zip(lanes) {
+            *d = src[lane as usize];
+        }
+    }
 }
 
 /// Computes fragment colours for a batch. Implemented by the techniques' pixel stages.

@@ -12,7 +12,7 @@
 
 use std::sync::Arc;
 
-use glam::{Vec3, Vec4};
+use glam::Vec3;
 
 use bumpmap_math::{Encoding, NormalizationCubeMap};
 
@@ -21,7 +21,8 @@ use crate::error::RasterError;
 use crate::framebuffer::{Blend, DepthFunc, Framebuffer};
 use crate::raster::{DrawState, FragmentBatch, FragmentShader, draw};
 use crate::scene::{Attenuation, NormalSpace, Scene, SceneLight, var};
-use crate::texture::{Sampler, Texture2d, TextureCube, lambda_2d, sample_2d, sample_cube};
+use crate::fixed_function::pack_2d_coords;
+use crate::texture::{Sampler, Texture2d, TextureCube, sample_2d, sample_2d_lanes, sample_cube_lanes};
 
 /// How the interpolated L and H are renormalized per fragment.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
@@ -201,21 +202,31 @@ pub fn render(scene: &Scene, options: &SinglePassOptions, fb: &mut Framebuffer) 
                 shininess: m.shininess,
                 light: light.clone(),
             };
+            let varyings = varyings_read(options, light, m.normal_space);
             let state = if i == 0 {
-                DrawState { varyings: var::COUNT, ..DrawState::OPAQUE }
+                DrawState { varyings, ..DrawState::OPAQUE }
             } else {
-                DrawState {
-                    depth_func: DepthFunc::Equal,
-                    depth_write: false,
-                    blend: Blend::ADD,
-                    varyings: var::COUNT,
-                    ..DrawState::OPAQUE
-                }
+                DrawState { depth_func: DepthFunc::Equal, depth_write: false, blend: Blend::ADD, varyings, ..DrawState::OPAQUE }
             };
             draw(fb, &vertices, &object.mesh.indices, &state, &shader);
         }
     }
     Ok(())
+}
+
+/// How many varyings (from slot 0) the fragment program reads: the rest are not interpolated.
+fn varyings_read(options: &SinglePassOptions, light: &SceneLight, space: NormalSpace) -> usize {
+    if matches!(space, NormalSpace::Object { .. }) {
+        var::N + 3
+    } else if light.spot.is_some() {
+        var::PROJ + 3
+    } else if light.attenuation != Attenuation::None {
+        var::LIGHT_DISTANCE + 1
+    } else if options.half_angle == HalfAngle::Fragment {
+        var::V + 3
+    } else {
+        var::H + 3
+    }
 }
 
 /// The per-light fragment program.
@@ -232,125 +243,272 @@ struct SinglePass<'a> {
     light: SceneLight,
 }
 
-impl SinglePass<'_> {
-    #[inline(always)]
-    fn unit(&self, v: Vec3) -> Vec3 {
-        match &self.cube {
-            Some(cube) => sample_cube(cube, &Sampler::LINEAR_CLAMP, v, 0.0).truncate() * 2.0 - Vec3::ONE,
-            None => v.normalize_or(Vec3::Z),
-        }
+/// Per-thread working memory: every per-fragment quantity as packed lanes (lane j is the j-th
+/// live fragment of the batch), so each step below is one loop over contiguous arrays.
+pub struct Scratch {
+    live: [u8; LANES],
+    /// s, t, λ of the lookup being made.
+    coords: [Lanes; 3],
+    /// The filtered normal map (RGB range-compressed, A = |N'|), the decal, the gloss texture.
+    normal: [Lanes; 4],
+    decal: [Lanes; 4],
+    gloss: [Lanes; 4],
+    /// L and H after per-fragment normalization, and a vector being packed or normalized.
+    l: [Lanes; 3],
+    h: [Lanes; 3],
+    v: [Lanes; 3],
+    /// A cube-map lookup's RGBA.
+    cube: [Lanes; 4],
+    /// L and H against the unperturbed normal (L_z and H_z in tangent space).
+    l_n: Lanes,
+    h_n: Lanes,
+    /// Attenuation × spotlight.
+    light: Lanes,
+}
+
+/// `v ← normalize(v)`, or +Z where v has no direction (glam's `normalize_or`), lanes `0..n`.
+fn normalize_lanes(v: &mut [Lanes; 3], n: usize) {
+    let [x, y, z] = v;
+    for j in 0..n {
+        let rcp = 1.0 / (x[j] * x[j] + y[j] * y[j] + z[j] * z[j]).sqrt();
+        let ok = rcp.is_finite() && rcp > 0.0;
+        x[j] = if ok { x[j] * rcp } else { 0.0 };
+        y[j] = if ok { y[j] * rcp } else { 0.0 };
+        z[j] = if ok { z[j] * rcp } else { 1.0 };
     }
 }
 
-/// Samples a 2D texture at every live lane of a batch at `scale ⊙ (s, t)`, λ once per quad.
-fn sample_lanes(tex: &Texture2d, sampler: &Sampler, batch: &FragmentBatch, scale: glam::Vec2, out: &mut [Vec4; LANES]) {
-    let (s, t) = (&batch.varyings[var::S], &batch.varyings[var::T]);
-    let (ks, kt) = (scale.x, scale.y);
-    for q in 0..batch.quads {
-        let l = 4 * q;
-        if !batch.live[l..l + 4].iter().any(|&x| x) {
-            continue;
-        }
-        let lambda =
-            lambda_2d(tex, [ks * s[l], ks * s[l + 1], ks * s[l + 2]], [kt * t[l], kt * t[l + 1], kt * t[l + 2]]);
-        for lane in l..l + 4 {
-            if batch.live[lane] {
-                out[lane] = sample_2d(tex, sampler, ks * s[lane], kt * t[lane], lambda);
+/// Dot products of two packed vectors, lanes `0..n`.
+fn dot_lanes(a: &[Lanes; 3], b: &[Lanes; 3], n: usize, out: &mut Lanes) {
+    for j in 0..n {
+        out[j] = a[0][j] * b[0][j] + a[1][j] * b[1][j] + a[2][j] * b[2][j];
+    }
+}
+
+impl SinglePass<'_> {
+    /// `out ← unit(v)`: per-fragment normalization by math or the cube map (expanded 2x − 1).
+    fn unit(&self, v: &mut [Lanes; 3], cube: &mut [Lanes; 4], n: usize, out: &mut [Lanes; 3]) {
+        match &self.cube {
+            Some(map) => {
+                sample_cube_lanes(map, &Sampler::LINEAR_CLAMP, [&v[0], &v[1], &v[2]], n, cube);
+                for c in 0..3 {
+                    for j in 0..n {
+                        out[c][j] = cube[c][j] * 2.0 - 1.0;
+                    }
+                }
+            }
+            None => {
+                normalize_lanes(v, n);
+                *out = *v;
             }
         }
     }
-}
 
-impl FragmentShader for SinglePass<'_> {
-    type Scratch = Box<[[Vec4; LANES]; 3]>;
-
-    fn scratch(&self) -> Self::Scratch {
-        Box::new([[Vec4::ZERO; LANES]; 3])
+    /// Samples a 2D texture at the live lanes at `scale ⊙ (s, t)`, λ once per quad.
+    fn sample(&self, tex: &Texture2d, batch: &FragmentBatch, scale: [f32; 2], sc: &mut Scratch, n: usize, which: Tex) {
+        let live = &sc.live[..n];
+        pack_2d_coords(tex, batch, [var::S, var::T], scale, live, &mut sc.coords);
+        let out = match which {
+            Tex::Normal => &mut sc.normal,
+            Tex::Decal => &mut sc.decal,
+            Tex::Gloss => &mut sc.gloss,
+        };
+        let [s, t, lambda] = &sc.coords;
+        sample_2d_lanes(tex, &self.options.sampler, s, t, lambda, n, out);
     }
 
-    fn shade(&self, batch: &FragmentBatch, scratch: &mut Self::Scratch, out: &mut [Lanes; 4]) {
-        let o = self.options;
-        let [normals, decals, gloss] = &mut **scratch;
-        let (scale, object_space) = match self.normal_space {
-            NormalSpace::Tangent => (glam::Vec2::ONE, false),
-            NormalSpace::Object { scale } => (scale, true),
-        };
-        sample_lanes(&self.normal_map, &o.sampler, batch, scale, normals);
-        match &self.decal {
-            Some(d) => sample_lanes(d, &o.sampler, batch, glam::Vec2::ONE, decals),
-            None => decals[..batch.lanes()].fill(Vec4::ONE),
+    /// Attenuation and the spotlight's cone and pattern, per live lane.
+    fn light_factor(&self, batch: &FragmentBatch, sc: &mut Scratch, n: usize) {
+        let live = &sc.live[..n];
+        match self.light.attenuation {
+            Attenuation::None => sc.light[..n].fill(1.0),
+            attenuation => {
+                batch.pack(var::LIGHT_DISTANCE, live, &mut sc.light);
+                sc.light[..n].iter_mut().for_each(|d| *d = attenuation.factor(*d));
+            }
         }
-        match &o.gloss {
-            Gloss::None => gloss[..batch.lanes()].fill(Vec4::ONE),
-            Gloss::DecalAlpha => (0..batch.lanes()).for_each(|i| gloss[i] = Vec4::splat(decals[i].w)),
-            Gloss::Map(g) => sample_lanes(g, &o.sampler, batch, glam::Vec2::ONE, gloss),
-        }
-        let whole_shininess = self.shininess == self.shininess.trunc() && self.shininess <= 64.0;
+        let Some(spot) = &self.light.spot else { return };
         let v3 = |slot: usize, lane: usize| {
             Vec3::new(batch.varyings[slot][lane], batch.varyings[slot + 1][lane], batch.varyings[slot + 2][lane])
         };
-        for lane in 0..batch.lanes() {
-            if !batch.live[lane] {
-                continue;
+        let cutoff = spot.cutoff_degrees.to_radians().cos();
+        for (j, &lane) in live.iter().enumerate() {
+            let lane = lane as usize;
+            let cos = -(v3(var::L, lane).normalize_or(Vec3::Z)).dot(v3(var::SPOT, lane).normalize_or(Vec3::Z));
+            let mut f = if cos >= cutoff { cos.max(0.0).powf(spot.exponent) } else { 0.0 };
+            if let Some(pattern) = &spot.pattern {
+                let p = v3(var::PROJ, lane);
+                f *= if p.z > 0.0 { sample_2d(pattern, &Sampler::LINEAR_CLAMP, p.x / p.z, p.y / p.z, 0.0).x } else { 0.0 };
             }
-            // Eq. 14–15: the filtered normal's direction (expanded as the combiners do) and length.
-            let t = normals[lane];
-            let n = Vec3::new(t.x, t.y, t.z) * 2.0 - Vec3::ONE;
-            let len = t.w;
-            let l = self.unit(v3(var::L, lane));
-            let h = match o.half_angle {
-                HalfAngle::Vertex => self.unit(v3(var::H, lane)),
-                HalfAngle::Fragment => {
-                    let v = v3(var::V, lane).normalize_or(Vec3::Z);
-                    self.unit((v3(var::L, lane).normalize_or(Vec3::Z) + v).normalize_or(Vec3::Z))
+            sc.light[j] *= f;
+        }
+    }
+}
+
+/// Which texture [`SinglePass::sample`] fills.
+#[derive(Clone, Copy)]
+enum Tex {
+    Normal,
+    Decal,
+    Gloss,
+}
+
+/// `x^k` for a whole k ≥ 0 by binary powering, lanes `0..n` (the order of compiler-rt's
+/// `__powisf2`, so the result is `powi`'s).
+fn powi_lanes(x: &mut Lanes, k: u32, n: usize) {
+    let mut base = *x;
+    let mut acc = [1.0f32; LANES];
+    let mut e = k;
+    loop {
+        if e & 1 == 1 {
+            for j in 0..n {
+                acc[j] *= base[j];
+            }
+        }
+        e >>= 1;
+        if e == 0 {
+            break;
+        }
+        for j in 0..n {
+            base[j] *= base[j];
+        }
+    }
+    x[..n].copy_from_slice(&acc[..n]);
+}
+
+impl FragmentShader for SinglePass<'_> {
+    type Scratch = Box<Scratch>;
+
+    fn scratch(&self) -> Self::Scratch {
+        let z = [0.0; LANES];
+        Box::new(Scratch {
+            live: [0; LANES],
+            coords: [z; 3],
+            normal: [z; 4],
+            decal: [z; 4],
+            gloss: [z; 4],
+            l: [z; 3],
+            h: [z; 3],
+            v: [z; 3],
+            cube: [z; 4],
+            l_n: z,
+            h_n: z,
+            light: z,
+        })
+    }
+
+    fn shade(&self, batch: &FragmentBatch, sc: &mut Self::Scratch, out: &mut [Lanes; 4]) {
+        let o = self.options;
+        let live_n = batch.live_lanes(&mut sc.live);
+        // Every loop runs over whole 8-lane vectors; the lanes past live_n are never written out.
+        let n = live_n.next_multiple_of(8);
+        let (scale, object_space) = match self.normal_space {
+            NormalSpace::Tangent => ([1.0, 1.0], false),
+            NormalSpace::Object { scale } => ([scale.x, scale.y], true),
+        };
+        self.sample(&self.normal_map, batch, scale, sc, live_n, Tex::Normal);
+        match &self.decal {
+            Some(d) => self.sample(d, batch, [1.0, 1.0], sc, live_n, Tex::Decal),
+            None => sc.decal.iter_mut().for_each(|c| c.fill(1.0)),
+        }
+        match &o.gloss {
+            Gloss::None => sc.gloss[0].fill(1.0),
+            Gloss::DecalAlpha => sc.gloss[0] = sc.decal[3],
+            Gloss::Map(g) => self.sample(g, batch, [1.0, 1.0], sc, live_n, Tex::Gloss),
+        }
+        let live = &sc.live[..live_n];
+        // L, and H per vertex or per fragment (Cg Tutorial §8.1.4).
+        for k in 0..3 {
+            batch.pack(var::L + k, live, &mut sc.v[k]);
+        }
+        let l_raw = sc.v;
+        self.unit(&mut sc.v, &mut sc.cube, n, &mut sc.l);
+        match o.half_angle {
+            HalfAngle::Vertex => {
+                for k in 0..3 {
+                    batch.pack(var::H + k, live, &mut sc.v[k]);
                 }
-            };
-            // L·N and H·N with the unperturbed normal: L_z and H_z in tangent space.
-            let (l_n, h_n) = if object_space {
-                let ng = v3(var::N, lane).normalize_or(Vec3::Z);
-                (l.dot(ng), h.dot(ng))
-            } else {
-                (l.z, h.z)
-            };
-            let s_self = match o.self_shadow {
-                SelfShadow::Ramp => (8.0 * l_n).clamp(0.0, 1.0),
-                SelfShadow::Step => (l_n > 0.0) as u8 as f32,
-                SelfShadow::Off => 1.0,
-            };
-            // Dot products of the (not exactly unit) expanded vectors clamp to [−1, 1] as the
-            // combiners' outputs do, so a quantized normal cannot brighten past the paper's.
-            let n_dot_l = l.dot(n).clamp(-1.0, 1.0);
-            let spec_gate = match o.specular_shadow {
-                SpecularShadow::Kilgard => s_self * (h_n >= 0.0) as u8 as f32,
-                SpecularShadow::CgTutorial => (n_dot_l > 0.0 && l_n > 0.0) as u8 as f32,
+            }
+            HalfAngle::Fragment => {
+                let mut l_hat = l_raw;
+                normalize_lanes(&mut l_hat, n);
+                for k in 0..3 {
+                    batch.pack(var::V + k, live, &mut sc.v[k]);
+                }
+                normalize_lanes(&mut sc.v, n);
+                for k in 0..3 {
+                    for j in 0..n {
+                        sc.v[k][j] += l_hat[k][j];
+                    }
+                }
+                normalize_lanes(&mut sc.v, n);
+            }
+        }
+        self.unit(&mut sc.v, &mut sc.cube, n, &mut sc.h);
+        // L·N and H·N with the unperturbed normal: L_z and H_z in tangent space.
+        if object_space {
+            for k in 0..3 {
+                batch.pack(var::N + k, live, &mut sc.v[k]);
+            }
+            normalize_lanes(&mut sc.v, n);
+            dot_lanes(&sc.l, &sc.v, n, &mut sc.l_n);
+            dot_lanes(&sc.h, &sc.v, n, &mut sc.h_n);
+        } else {
+            sc.l_n = sc.l[2];
+            sc.h_n = sc.h[2];
+        }
+        self.light_factor(batch, sc, live_n);
+        let Scratch { normal, decal, gloss, l, h, l_n, h_n, light, .. } = &mut **sc;
+        // Eq. 14–15: the filtered normal's direction (expanded as the combiners do) and length.
+        let mut nv = [[0.0f32; LANES]; 3];
+        for c in 0..3 {
+            for j in 0..n {
+                nv[c][j] = normal[c][j] * 2.0 - 1.0;
+            }
+        }
+        let mut s_self = [0.0f32; LANES];
+        match o.self_shadow {
+            SelfShadow::Ramp => (0..n).for_each(|j| s_self[j] = (8.0 * l_n[j]).clamp(0.0, 1.0)),
+            SelfShadow::Step => (0..n).for_each(|j| s_self[j] = (l_n[j] > 0.0) as u8 as f32),
+            SelfShadow::Off => s_self.fill(1.0),
+        }
+        // Dot products of the (not exactly unit) expanded vectors clamp to [−1, 1] as the
+        // combiners' outputs do, so a quantized normal cannot brighten past the paper's.
+        let (mut n_dot_l, mut h_dot_n) = ([0.0f32; LANES], [0.0f32; LANES]);
+        dot_lanes(l, &nv, n, &mut n_dot_l);
+        dot_lanes(h, &nv, n, &mut h_dot_n);
+        let mut gate = [0.0f32; LANES];
+        for j in 0..n {
+            n_dot_l[j] = n_dot_l[j].clamp(-1.0, 1.0);
+            h_dot_n[j] = h_dot_n[j].clamp(0.0, 1.0);
+            gate[j] = match o.specular_shadow {
+                SpecularShadow::Kilgard => s_self[j] * (h_n[j] >= 0.0) as u8 as f32,
+                SpecularShadow::CgTutorial => (n_dot_l[j] > 0.0 && l_n[j] > 0.0) as u8 as f32,
                 SpecularShadow::Off => 1.0,
             };
-            let mut light = self.light.attenuation.factor(batch.varyings[var::LIGHT_DISTANCE][lane]);
-            if let Some(spot) = &self.light.spot {
-                let cos = -(v3(var::L, lane).normalize_or(Vec3::Z)).dot(v3(var::SPOT, lane).normalize_or(Vec3::Z));
-                let cutoff = spot.cutoff_degrees.to_radians().cos();
-                light *= if cos >= cutoff { cos.max(0.0).powf(spot.exponent) } else { 0.0 };
-                if let Some(pattern) = &spot.pattern {
-                    let p = v3(var::PROJ, lane);
-                    light *= if p.z > 0.0 {
-                        sample_2d(pattern, &Sampler::LINEAR_CLAMP, p.x / p.z, p.y / p.z, 0.0).x
-                    } else {
-                        0.0
-                    };
-                }
+        }
+        // Whole exponents (the paper's 8 among them) by repeated multiplication.
+        if self.shininess == self.shininess.trunc() && self.shininess <= 64.0 {
+            powi_lanes(&mut h_dot_n, self.shininess as u32, n);
+        } else {
+            h_dot_n[..n].iter_mut().for_each(|x| *x = x.powf(self.shininess));
+        }
+        let power = h_dot_n;
+        // Eq. 11 with the filtered (shortened) normal, Eq. 16 with the renormalized one.
+        let (ka, kd, ks) = (self.ambient, self.diffuse, self.specular);
+        let mut rgb = [[0.0f32; LANES]; 3];
+        for c in 0..3 {
+            for j in 0..n {
+                let diffuse = (ka[c] + kd[c] * (light[j] * s_self[j] * n_dot_l[j].max(0.0) * normal[3][j])).min(1.0);
+                let specular = ks[c] * (light[j] * gate[j] * gloss[0][j] * power[j]);
+                rgb[c][j] = decal[c][j] * diffuse + specular;
             }
-            // Eq. 11 with the filtered (shortened) normal, Eq. 16 with the renormalized one.
-            let diffuse = (self.ambient + self.diffuse * (light * s_self * n_dot_l.max(0.0) * len)).min(Vec3::ONE);
-            let h_dot_n = h.dot(n).clamp(0.0, 1.0);
-            // Whole exponents (the paper's 8 among them) by repeated multiplication.
-            let power =
-                if whole_shininess { h_dot_n.powi(self.shininess as i32) } else { h_dot_n.powf(self.shininess) };
-            let specular = self.specular * (light * spec_gate * gloss[lane].x * power);
-            let d = decals[lane];
-            let c = Vec3::new(d.x, d.y, d.z) * diffuse + specular;
-            out[0][lane] = c.x;
-            out[1][lane] = c.y;
-            out[2][lane] = c.z;
+        }
+        for (j, &lane) in sc.live[..live_n].iter().enumerate() {
+            let lane = lane as usize;
+            for c in 0..3 {
+                out[c][lane] = rgb[c][j];
+            }
             out[3][lane] = 1.0;
         }
     }
