@@ -332,24 +332,34 @@ fn raster_triangle<S: FragmentShader>(
     // Edge steps per pixel in x and y, for edges (1→2), (2→0), (0→1).
     let step_x = [-(s.y[2] - s.y[1]) * one, -(s.y[0] - s.y[2]) * one, -(s.y[1] - s.y[0]) * one];
     let step_y = [(s.x[2] - s.x[1]) * one, (s.x[0] - s.x[2]) * one, (s.x[1] - s.x[0]) * one];
+    // Each edge at the quad's four pixels relative to its pixel (0, 0), and the same with the
+    // top-left bias folded in for the coverage test.
+    let off: [[i64; 4]; 3] = std::array::from_fn(|i| [0, step_x[i], step_y[i], step_x[i] + step_y[i]]);
+    let off_biased: [[i64; 4]; 3] = std::array::from_fn(|i| off[i].map(|o| o + s.bias[i]));
     let (tx1, ty1) = (tile.x0 + tile.width, tile.y0 + tile.height);
+    let fx0 = ((x0 as i64) << SUBPIXEL_BITS) + half;
+    let mut e_row = {
+        let fy = ((y0 as i64) << SUBPIXEL_BITS) + half;
+        [s.edge(1, 2, fx0, fy), s.edge(2, 0, fx0, fy), s.edge(0, 1, fx0, fy)]
+    };
     for qy in (y0..y1).step_by(2) {
-        let fy = ((qy as i64) << SUBPIXEL_BITS) + half;
+        // Pixels of the quad's second row fall outside the tile on its last odd row.
+        let rows_in = if qy + 1 < ty1 { 0b1111u32 } else { 0b0011 };
+        let mut e = e_row;
         for qx in (x0..x1).step_by(2) {
-            let fx = ((qx as i64) << SUBPIXEL_BITS) + half;
-            let e0 = [s.edge(1, 2, fx, fy), s.edge(2, 0, fx, fy), s.edge(0, 1, fx, fy)];
-            // Coverage of the quad's four pixels.
-            let mut edges = [[0i64; 3]; 4];
-            let mut covered = [false; 4];
+            // A pixel is covered when no edge function is negative: the sign bit of their OR.
+            let mut covered = 0u32;
             for k in 0..4 {
-                let (dx, dy) = ((k & 1) as i64, (k >> 1) as i64);
-                for i in 0..3 {
-                    edges[k][i] = e0[i] + dx * step_x[i] + dy * step_y[i];
-                }
-                let (px, py) = (qx + (k & 1), qy + (k >> 1));
-                covered[k] = px < tx1 && py < ty1 && (0..3).all(|i| edges[k][i] + s.bias[i] >= 0);
+                let any_negative = (e[0] + off_biased[0][k]) | (e[1] + off_biased[1][k]) | (e[2] + off_biased[2][k]);
+                covered |= ((any_negative >= 0) as u32) << k;
             }
-            if !covered.iter().any(|&c| c) {
+            let cols_in = if qx + 1 < tx1 { 0b1111u32 } else { 0b0101 };
+            covered &= rows_in & cols_in;
+            let e_quad = e;
+            for i in 0..3 {
+                e[i] += 2 * step_x[i];
+            }
+            if covered == 0 {
                 continue;
             }
             let (lx, ly) = (qx - tile.x0, qy - tile.y0);
@@ -360,22 +370,30 @@ fn raster_triangle<S: FragmentShader>(
             let batch = &mut task.batch;
             // Barycentrics of the quad's four pixels as lanes of one vector each.
             let lanes = |i: usize| {
-                Vec4::new(edges[0][i] as f32, edges[1][i] as f32, edges[2][i] as f32, edges[3][i] as f32) * s.inv_area
+                let v = off[i].map(|o| (e_quad[i] + o) as f32);
+                Vec4::from_array(v) * s.inv_area
             };
             let (b0, b1, b2) = (lanes(0), lanes(1), lanes(2));
             let z = b0 * s.z[0] + b1 * s.z[1] + b2 * s.z[2];
             batch.depth[4 * q..4 * q + 4].copy_from_slice(&z.to_array());
-            let mut any = false;
-            for k in 0..4 {
-                let live = covered[k] && {
-                    let idx = (ly + (k >> 1)) * tile.width + lx + (k & 1);
-                    state.depth_func.passes(z[k], tile.depth[idx])
-                };
-                batch.live[4 * q + k] = live;
-                any |= live;
-            }
-            if !any {
+            let idx = ly * tile.width + lx;
+            let stored = |k: usize| {
+                let (dx, dy) = (k & 1, k >> 1);
+                if covered & (1 << k) != 0 { tile.depth[idx + dy * tile.width + dx] } else { 0.0 }
+            };
+            let stored = Vec4::new(stored(0), stored(1), stored(2), stored(3));
+            let passes = match state.depth_func {
+                DepthFunc::Always => 0b1111,
+                DepthFunc::Less => z.cmplt(stored).bitmask(),
+                DepthFunc::LEqual => z.cmple(stored).bitmask(),
+                DepthFunc::Equal => z.cmpeq(stored).bitmask(),
+            };
+            let live = covered & passes;
+            if live == 0 {
                 continue;
+            }
+            for k in 0..4 {
+                batch.live[4 * q + k] = live & (1 << k) != 0;
             }
             // Perspective-correct varyings for all four lanes at once (helpers too, for
             // derivatives): v = Σ bᵢ·(v/w)ᵢ / Σ bᵢ·(1/w)ᵢ.
@@ -385,16 +403,18 @@ fn raster_triangle<S: FragmentShader>(
                 let v = w0 * s.var_w[0][j] + w1 * s.var_w[1][j] + w2 * s.var_w[2][j];
                 var[4 * q..4 * q + 4].copy_from_slice(&v.to_array());
             }
-            for k in 0..4 {
-                if batch.live[4 * q + k] {
-                    task.pending[ly + (k >> 1)] |= 1 << (lx + (k & 1));
-                }
+            task.pending[ly] |= ((live & 0b11) as u64) << lx;
+            if ly + 1 < TILE {
+                task.pending[ly + 1] |= ((live >> 2) as u64) << lx;
             }
             batch.origin[q] = (qx as u16, qy as u16);
             batch.quads += 1;
             if batch.quads == QUADS {
                 flush(tile, state, shader, task);
             }
+        }
+        for i in 0..3 {
+            e_row[i] += 2 * step_y[i];
         }
     }
 }
