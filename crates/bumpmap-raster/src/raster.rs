@@ -121,8 +121,18 @@ struct Setup {
     inv_area: f32,
     z: [f32; 3],
     inv_w: [f32; 3],
-    var_w: [[f32; MAX_VARYINGS]; 3],
+    /// Where this triangle's varyings start in its chunk's `var_w`.
+    var: usize,
     bbox: [usize; 4],
+}
+
+/// The triangles set up from one run of the index list, with their varyings divided by w:
+/// `var_w[s.var + j]` holds varying j at the three vertices. Only the varyings the draw reads
+/// are kept, so a frame's set-up data stays small.
+#[derive(Default)]
+struct SetupChunk {
+    setups: Vec<Setup>,
+    var_w: Vec<[f32; 3]>,
 }
 
 impl Setup {
@@ -143,31 +153,31 @@ pub fn draw<S: FragmentShader>(
     shader: &S,
 ) {
     let (w, h) = (fb.width, fb.height);
-    let setups: Vec<Setup> = triangles
+    let varyings = state.varyings.min(MAX_VARYINGS);
+    let chunks: Vec<SetupChunk> = triangles
         .par_chunks(512)
-        .map(|chunk| {
-            let mut out = Vec::with_capacity(chunk.len());
-            for tri in chunk {
+        .map(|tris| {
+            let mut out = SetupChunk::default();
+            for tri in tris {
                 let Some(v) = tri.iter().map(|&i| vertices.get(i as usize).copied()).collect::<Option<Vec<_>>>() else {
                     continue;
                 };
-                clip_and_setup([v[0], v[1], v[2]], w, h, state.cull_back, &mut out);
+                clip_and_setup([v[0], v[1], v[2]], w, h, state.cull_back, varyings, &mut out);
             }
             out
         })
-        .collect::<Vec<Vec<Setup>>>()
-        .into_iter()
-        .flatten()
         .collect();
 
     // Bin each triangle into the tiles its bounding box touches, keeping submission order.
     let tiles_x = fb.tiles_x;
-    let mut bins: Vec<Vec<u32>> = vec![Vec::new(); fb.tiles.len()];
-    for (i, s) in setups.iter().enumerate() {
-        let [x0, y0, x1, y1] = s.bbox;
-        for ty in y0 / TILE..y1.div_ceil(TILE) {
-            for tx in x0 / TILE..x1.div_ceil(TILE) {
-                bins[ty * tiles_x + tx].push(i as u32);
+    let mut bins: Vec<Vec<[u32; 2]>> = vec![Vec::new(); fb.tiles.len()];
+    for (c, chunk) in chunks.iter().enumerate() {
+        for (i, s) in chunk.setups.iter().enumerate() {
+            let [x0, y0, x1, y1] = s.bbox;
+            for ty in y0 / TILE..y1.div_ceil(TILE) {
+                for tx in x0 / TILE..x1.div_ceil(TILE) {
+                    bins[ty * tiles_x + tx].push([c as u32, i as u32]);
+                }
             }
         }
     }
@@ -179,8 +189,10 @@ pub fn draw<S: FragmentShader>(
             pending: [0; TILE],
         },
         |task, (tile, bin)| {
-            for &i in bin {
-                raster_triangle(&setups[i as usize], tile, state, shader, task);
+            for &[c, i] in bin {
+                let chunk = &chunks[c as usize];
+                let s = &chunk.setups[i as usize];
+                raster_triangle(s, &chunk.var_w[s.var..s.var + varyings], tile, state, shader, task);
             }
             flush(tile, state, shader, task);
         },
@@ -188,7 +200,7 @@ pub fn draw<S: FragmentShader>(
 }
 
 /// Clips against the near, far and guard-band planes, then sets up each resulting triangle.
-fn clip_and_setup(v: [Vertex; 3], w: usize, h: usize, cull_back: bool, out: &mut Vec<Setup>) {
+fn clip_and_setup(v: [Vertex; 3], w: usize, h: usize, cull_back: bool, varyings: usize, out: &mut SetupChunk) {
     if v.iter().any(|v| !v.clip.is_finite()) {
         return;
     }
@@ -203,7 +215,7 @@ fn clip_and_setup(v: [Vertex; 3], w: usize, h: usize, cull_back: bool, out: &mut
     ];
     let inside = |p: Vec4, plane: Vec4| plane.dot(p) - if plane == planes[6] { 1e-7 } else { 0.0 };
     if v.iter().all(|v| planes.iter().all(|&pl| inside(v.clip, pl) >= 0.0)) {
-        setup(&v, w, h, cull_back, out);
+        setup(&v, w, h, cull_back, varyings, out);
         return;
     }
     let mut poly: Vec<Vertex> = v.to_vec();
@@ -231,11 +243,11 @@ fn clip_and_setup(v: [Vertex; 3], w: usize, h: usize, cull_back: bool, out: &mut
         }
     }
     for i in 1..poly.len() - 1 {
-        setup(&[poly[0], poly[i], poly[i + 1]], w, h, cull_back, out);
+        setup(&[poly[0], poly[i], poly[i + 1]], w, h, cull_back, varyings, out);
     }
 }
 
-fn setup(v: &[Vertex; 3], w: usize, h: usize, cull_back: bool, out: &mut Vec<Setup>) {
+fn setup(v: &[Vertex; 3], w: usize, h: usize, cull_back: bool, varyings: usize, out: &mut SetupChunk) {
     let mut x = [0i64; 3];
     let mut y = [0i64; 3];
     let mut z = [0f32; 3];
@@ -262,11 +274,6 @@ fn setup(v: &[Vertex; 3], w: usize, h: usize, cull_back: bool, out: &mut Vec<Set
     let (x, y) = (pick(x), pick(y));
     let pickf = |a: [f32; 3]| order.map(|i| a[i]);
     let (z, inv_w) = (pickf(z), pickf(inv_w));
-    let var_w = order.map(|i| {
-        let mut a = v[i].varyings;
-        a.iter_mut().for_each(|t| *t *= inv_w_of(v, i));
-        a
-    });
     let area = area.abs();
     // Top-left rule: an edge (a → b) owns the pixels on it if it is a top edge (horizontal,
     // going right) or a left edge (going up in y-down coordinates).
@@ -285,7 +292,9 @@ fn setup(v: &[Vertex; 3], w: usize, h: usize, cull_back: bool, out: &mut Vec<Set
     if bbox[0] >= bbox[2] || bbox[1] >= bbox[3] {
         return;
     }
-    out.push(Setup { x, y, bias, inv_area: (1.0 / area as f64) as f32, z, inv_w, var_w, bbox });
+    let var = out.var_w.len();
+    out.var_w.extend((0..varyings).map(|j| order.map(|i| v[i].varyings[j] * inv_w_of(v, i))));
+    out.setups.push(Setup { x, y, bias, inv_area: (1.0 / area as f64) as f32, z, inv_w, var, bbox });
 }
 
 #[inline(always)]
@@ -318,6 +327,7 @@ impl<S> TileTask<S> {
 /// submission order).
 fn raster_triangle<S: FragmentShader>(
     s: &Setup,
+    var_w: &[[f32; 3]],
     tile: &mut Tile,
     state: &DrawState,
     shader: &S,
@@ -399,8 +409,8 @@ fn raster_triangle<S: FragmentShader>(
             // derivatives): v = Σ bᵢ·(v/w)ᵢ / Σ bᵢ·(1/w)ᵢ.
             let wc = Vec4::ONE / (b0 * s.inv_w[0] + b1 * s.inv_w[1] + b2 * s.inv_w[2]);
             let (w0, w1, w2) = (b0 * wc, b1 * wc, b2 * wc);
-            for (j, var) in batch.varyings.iter_mut().enumerate().take(state.varyings) {
-                let v = w0 * s.var_w[0][j] + w1 * s.var_w[1][j] + w2 * s.var_w[2][j];
+            for (var, vw) in batch.varyings.iter_mut().zip(var_w) {
+                let v = w0 * vw[0] + w1 * vw[1] + w2 * vw[2];
                 var[4 * q..4 * q + 4].copy_from_slice(&v.to_array());
             }
             task.pending[ly] |= ((live & 0b11) as u64) << lx;
