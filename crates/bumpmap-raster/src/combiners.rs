@@ -584,20 +584,37 @@ impl Combiners {
             }
         };
         let [a, b, cc, d, e, fv, ef] = fin;
-        fetch(&f.e, None, e);
-        fetch(&f.f, None, fv);
-        for c in 0..3 {
-            for i in 0..n {
-                ef[c][i] = e[c][i] * fv[c][i];
+        // E·F only when A–D read it; ZERO inputs are constants (0 or, inverted, 1).
+        let abcd = [&f.a, &f.b, &f.c, &f.d];
+        if abcd.iter().any(|i| i.source == FinalSource::ETimesF) {
+            fetch(&f.e, None, e);
+            fetch(&f.f, None, fv);
+            for c in 0..3 {
+                for i in 0..n {
+                    ef[c][i] = e[c][i] * fv[c][i];
+                }
             }
         }
-        fetch(&f.a, Some(ef), a);
-        fetch(&f.b, Some(ef), b);
-        fetch(&f.c, Some(ef), cc);
-        fetch(&f.d, Some(ef), d);
+        let constant = |i: &FinalInput| (i.source == FinalSource::Register(Register::Zero)).then(|| i.mapping.apply(0.0));
+        // With A = 0, B is not read; with A = 1, C is not.
+        let a_const = constant(&f.a);
+        let read = [true, a_const != Some(0.0), a_const != Some(1.0), true];
+        for ((input, dst), read) in abcd.into_iter().zip([&mut *a, &mut *b, &mut *cc, &mut *d]).zip(read) {
+            if !read {
+                continue;
+            }
+            match constant(input) {
+                Some(k) => dst.iter_mut().for_each(|ch| ch[..n].fill(k)),
+                None => fetch(input, Some(ef), dst),
+            }
+        }
+        // A·B + (1 − A)·C + D, with A = 0 or 1 folded (0·x and (1 − 1)·x vanish exactly).
         for c in 0..3 {
-            for i in 0..n {
-                out[c][i] = (a[c][i] * b[c][i] + (1.0 - a[c][i]) * cc[c][i] + d[c][i]).min(1.0);
+            let (a, b, cc, d) = (&a[c], &b[c], &cc[c], &d[c]);
+            match a_const {
+                Some(0.0) => (0..n).for_each(|i| out[c][i] = (cc[i] + d[i]).min(1.0)),
+                Some(1.0) => (0..n).for_each(|i| out[c][i] = (b[i] + d[i]).min(1.0)),
+                _ => (0..n).for_each(|i| out[c][i] = (a[i] * b[i] + (1.0 - a[i]) * cc[i] + d[i]).min(1.0)),
             }
         }
         // G reads alpha or blue; pseudo-registers are not allowed for G.
@@ -657,7 +674,14 @@ fn eval_portion(
     out: &mut [[Lanes; 4]; 3],
 ) {
     let channels: &[usize] = if rgb { &[0, 1, 2] } else { &[3] };
+    let o = &p.outputs;
+    // AB and CD are needed when kept or when the sum (or mux) is; so are their variables.
+    let need_sum = o.sum.is_some();
+    let need = [o.ab.is_some() || need_sum, o.cd.is_some() || need_sum];
     for (k, input) in [p.a, p.b, p.c, p.d].iter().enumerate() {
+        if !need[k / 2] {
+            continue;
+        }
         let reg = &regs[input.register as usize];
         for &c in channels {
             let src = match input.usage {
@@ -672,7 +696,6 @@ fn eval_portion(
             }
         }
     }
-    let o = &p.outputs;
     let product = |x: &[Lanes; 4], y: &[Lanes; 4], dot: bool, dst: &mut [Lanes; 4]| {
         if dot {
             for i in 0..n {
@@ -690,12 +713,10 @@ fn eval_portion(
         }
     };
     let [ab, cd, sum] = out;
-    // AB and CD are needed when kept or when the sum (or mux) is.
-    let need_sum = o.sum.is_some();
-    if o.ab.is_some() || need_sum {
+    if need[0] {
         product(&vars[0], &vars[1], o.ab_dot, ab);
     }
-    if o.cd.is_some() || need_sum {
+    if need[1] {
         product(&vars[2], &vars[3], o.cd_dot, cd);
     }
     if need_sum {
