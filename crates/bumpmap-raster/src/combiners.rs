@@ -527,17 +527,24 @@ impl Combiners {
             // Both portions read this stage's inputs; their writes form the next stage's set.
             // A portion that discards all three outputs changes nothing and is skipped.
             let writes = |p: &Portion| p.outputs.ab.is_some() || p.outputs.cd.is_some() || p.outputs.sum.is_some();
+            // The alpha portion runs last and can store straight into its registers; the RGB
+            // portion too, unless the alpha portion reads the blue of a register it writes.
+            let rgb_outputs = [stage.rgb.outputs.ab, stage.rgb.outputs.cd, stage.rgb.outputs.sum];
+            let alpha_reads_written_blue = [stage.alpha.a, stage.alpha.b, stage.alpha.c, stage.alpha.d]
+                .iter()
+                .any(|i| i.usage == ComponentUsage::Blue && rgb_outputs.contains(&Some(i.register)));
+            let rgb_direct = !(writes(&stage.alpha) && alpha_reads_written_blue);
             if writes(&stage.rgb) {
-                eval_portion(regs, &stage.rgb, true, n, fixed, &mut tmp.vars, &mut tmp.rgb);
+                eval_portion(regs, &stage.rgb, true, n, fixed, &mut tmp.vars, &mut tmp.rgb, rgb_direct);
             }
             if writes(&stage.alpha) {
-                eval_portion(regs, &stage.alpha, false, n, fixed, &mut tmp.vars, &mut tmp.alpha);
+                eval_portion(regs, &stage.alpha, false, n, fixed, &mut tmp.vars, &mut tmp.alpha, true);
             }
-            for (values, portion, channels) in [(&tmp.rgb, &stage.rgb, 0..3), (&tmp.alpha, &stage.alpha, 3..4)] {
-                let o = &portion.outputs;
-                for (dst, v) in [(o.ab, &values[0]), (o.cd, &values[1]), (o.sum, &values[2])] {
+            if !rgb_direct {
+                let o = &stage.rgb.outputs;
+                for (dst, v) in [(o.ab, &tmp.rgb[0]), (o.cd, &tmp.rgb[1]), (o.sum, &tmp.rgb[2])] {
                     if let Some(dst) = dst {
-                        for c in channels.clone() {
+                        for c in 0..3 {
                             regs[dst as usize][c][..n].copy_from_slice(&v[c][..n]);
                         }
                     }
@@ -665,13 +672,14 @@ fn map_lanes(mapping: InputMapping, v: &mut [f32]) {
 /// Evaluates one portion into `out`: its AB, CD and sum outputs (RGBA lanes; only RGB or only A
 /// meaningful), after bias, scale and clamp.
 fn eval_portion(
-    regs: &[[Lanes; 4]; REGISTERS],
+    regs: &mut [[Lanes; 4]; REGISTERS],
     p: &Portion,
     rgb: bool,
     n: usize,
     fixed: bool,
     vars: &mut [[Lanes; 4]; 4],
     out: &mut [[Lanes; 4]; 3],
+    direct: bool,
 ) {
     let channels: &[usize] = if rgb { &[0, 1, 2] } else { &[3] };
     let o = &p.outputs;
@@ -734,18 +742,22 @@ fn eval_portion(
             }
         }
     }
-    // Bias before scale, then clamp to [−1, 1]; only for the outputs that are kept.
+    // Bias before scale, then clamp to [−1, 1]; only for the outputs that are kept, into
+    // their registers (`direct`) or left in `out` for the caller to store.
     let (bias, scale) = (if o.bias == Bias::MinusOneHalf { -0.5 } else { 0.0 }, o.scale.factor());
+    let finish = |x: f32| {
+        let y = ((x + bias) * scale).clamp(-1.0, 1.0);
+        if fixed { quantize(y) } else { y }
+    };
     for (v, kept) in [(ab, o.ab), (cd, o.cd), (sum, o.sum)] {
-        if kept.is_none() {
-            continue;
-        }
+        let Some(r) = kept else { continue };
         for &c in channels {
-            let v = &mut v[c][..n];
-            if fixed {
-                v.iter_mut().for_each(|x| *x = quantize(((*x + bias) * scale).clamp(-1.0, 1.0)));
+            if direct {
+                for (d, &x) in regs[r as usize][c][..n].iter_mut().zip(&v[c][..n]) {
+                    *d = finish(x);
+                }
             } else {
-                v.iter_mut().for_each(|x| *x = ((*x + bias) * scale).clamp(-1.0, 1.0));
+                v[c][..n].iter_mut().for_each(|x| *x = finish(*x));
             }
         }
     }

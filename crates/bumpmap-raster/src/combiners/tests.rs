@@ -251,3 +251,24 @@ fn invalid_setups_are_the_specs_errors() {
     fc.final_combiner.a.usage = Blue;
     assert!(matches!(fc.validate(), Err(CombinerError::FinalUsage { var: 'A', .. })));
 }
+
+#[test]
+fn both_portions_read_the_stage_inputs_before_either_writes() {
+    // RGB writes SPARE0 = 1·(0.2, 0.4, 0.6); alpha reads SPARE0's blue, which must still be the
+    // value entering the stage (0.9), not the RGB portion's 0.6.
+    let mut stage = GeneralStage::default();
+    stage.rgb.a = Input::new(Register::ConstantColor0, InputMapping::UnsignedIdentity, Rgb);
+    stage.rgb.b = Input::one(Rgb);
+    stage.rgb.c = Input::zero(Rgb);
+    stage.rgb.d = Input::zero(Rgb);
+    stage.rgb.outputs = Outputs { ab: Some(Register::Spare0), ..Outputs::DISCARD };
+    stage.alpha.a = Input::new(Register::Spare0, InputMapping::UnsignedIdentity, Blue);
+    stage.alpha.b = Input::one(Alpha);
+    stage.alpha.c = Input::zero(Alpha);
+    stage.alpha.d = Input::zero(Alpha);
+    stage.alpha.outputs = Outputs { ab: Some(Register::Spare0), ..Outputs::DISCARD };
+    let mut setup = show_spare0(stage);
+    setup.constant0 = Vec4::new(0.2, 0.4, 0.6, 1.0);
+    let out = run1(setup, &[(Register::Spare0, Vec4::new(0.0, 0.0, 0.9, 0.3))], Precision::Float);
+    assert!((out - Vec4::new(0.2, 0.4, 0.6, 0.9)).abs().max_element() < 1e-6, "{out}");
+}
