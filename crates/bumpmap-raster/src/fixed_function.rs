@@ -35,6 +35,17 @@ pub struct FixedFunction {
     pub combiners: Combiners,
 }
 
+impl FixedFunction {
+    /// How many varyings (from slot 0) the texture units read: a draw need not interpolate more.
+    pub fn varyings_read(&self) -> usize {
+        let end = |u: &TextureUnit| match u.binding {
+            Binding::TwoD { s, t, .. } => s.max(t) + 1,
+            Binding::Cube { r, .. } => r + 3,
+        };
+        self.units.iter().map(end).max().unwrap_or(0)
+    }
+}
+
 /// Per-thread working memory: the register file, the compacted output colours and texture
 /// coordinates.
 pub struct Scratch {

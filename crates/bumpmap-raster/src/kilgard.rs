@@ -100,8 +100,8 @@ pub fn render(
             sampler: options.sampler,
         });
         let has_specular = m.specular.max_element() > 0.0;
-        // The three passes read texture coordinates, L and H: varyings 0..var::V.
-        let opaque = DrawState { varyings: var::V, ..DrawState::OPAQUE };
+        // Each draw interpolates only the varyings its texture units read (`draw_object`).
+        let opaque = DrawState::OPAQUE;
         let equal = DrawState { depth_func: DepthFunc::Equal, depth_write: false, ..opaque };
         for (i, light) in scene.lights.iter().enumerate() {
             let vertices = scene.vertices(object, light, aspect);
@@ -170,7 +170,8 @@ fn draw_object(
     state: &DrawState,
     shader: &FixedFunction,
 ) {
-    draw(fb, vertices, &object.mesh.indices, state, shader);
+    let state = DrawState { varyings: shader.varyings_read(), ..*state };
+    draw(fb, vertices, &object.mesh.indices, &state, shader);
 }
 
 /// Appendix G, with or without Eq. 12's self-shadowing term (Figure 14).
