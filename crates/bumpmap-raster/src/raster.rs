@@ -386,11 +386,11 @@ fn raster_triangle<S: FragmentShader>(
             let (b0, b1, b2) = (lanes(0), lanes(1), lanes(2));
             let z = b0 * s.z[0] + b1 * s.z[1] + b2 * s.z[2];
             batch.depth[4 * q..4 * q + 4].copy_from_slice(&z.to_array());
+            // The stored depths of the quad's pixels, read without branches: a pixel outside
+            // the tile (not covered) reads some in-range value that the mask then ignores.
             let idx = ly * tile.width + lx;
-            let stored = |k: usize| {
-                let (dx, dy) = (k & 1, k >> 1);
-                if covered & (1 << k) != 0 { tile.depth[idx + dy * tile.width + dx] } else { 0.0 }
-            };
+            let last = tile.depth.len() - 1;
+            let stored = |k: usize| tile.depth[(idx + (k >> 1) * tile.width + (k & 1)).min(last)];
             let stored = Vec4::new(stored(0), stored(1), stored(2), stored(3));
             let passes = match state.depth_func {
                 DepthFunc::Always => 0b1111,
