@@ -568,6 +568,9 @@ impl Combiners {
         n: usize,
         out: &mut [Lanes; 4],
     ) {
+        // n is a whole number of 8-lane vectors within the batch (`run`); saying so lets every
+        // loop below compile to full vectors without bounds checks.
+        let n = (n & !7).min(LANES);
         let f = &self.setup.final_combiner;
         let clamp_sum = f.color_sum_clamp;
         let fetch = |input: &FinalInput, ef: Option<&[Lanes; 3]>, dst: &mut [Lanes; 3]| {
@@ -681,6 +684,9 @@ fn eval_portion(
     out: &mut [[Lanes; 4]; 3],
     direct: bool,
 ) {
+    // n is a whole number of 8-lane vectors within the batch (`run`); saying so lets every
+    // loop below compile to full vectors without bounds checks.
+    let n = (n & !7).min(LANES);
     let channels: &[usize] = if rgb { &[0, 1, 2] } else { &[3] };
     let o = &p.outputs;
     // AB and CD are needed when kept or when the sum (or mux) is; so are their variables.
