@@ -304,10 +304,22 @@ impl SinglePass<'_> {
         }
     }
 
-    /// Samples a 2D texture at the live lanes at `scale ⊙ (s, t)`, λ once per quad.
-    fn sample(&self, tex: &Texture2d, batch: &FragmentBatch, scale: [f32; 2], sc: &mut Scratch, n: usize, which: Tex) {
-        let live = &sc.live[..n];
-        pack_2d_coords(tex, batch, [var::S, var::T], scale, live, &mut sc.coords);
+    /// Samples a 2D texture at the live lanes at `scale ⊙ (s, t)`, λ once per quad. With
+    /// `same_coords` the coordinates packed for the previous lookup are reused (same texture
+    /// size and scale: same s, t and λ).
+    fn sample(
+        &self,
+        tex: &Texture2d,
+        batch: &FragmentBatch,
+        scale: [f32; 2],
+        sc: &mut Scratch,
+        n: usize,
+        which: Tex,
+        same_coords: bool,
+    ) {
+        if !same_coords {
+            pack_2d_coords(tex, batch, [var::S, var::T], scale, &sc.live[..n], &mut sc.coords);
+        }
         let out = match which {
             Tex::Normal => &mut sc.normal,
             Tex::Decal => &mut sc.decal,
@@ -406,15 +418,20 @@ impl FragmentShader for SinglePass<'_> {
             NormalSpace::Tangent => ([1.0, 1.0], false),
             NormalSpace::Object { scale } => ([scale.x, scale.y], true),
         };
-        self.sample(&self.normal_map, batch, scale, sc, live_n, Tex::Normal);
+        let size = |t: &Texture2d| (t.width(), t.height());
+        self.sample(&self.normal_map, batch, scale, sc, live_n, Tex::Normal, false);
+        let mut last = (size(&self.normal_map), scale);
         match &self.decal {
-            Some(d) => self.sample(d, batch, [1.0, 1.0], sc, live_n, Tex::Decal),
+            Some(d) => {
+                self.sample(d, batch, [1.0, 1.0], sc, live_n, Tex::Decal, last == (size(d), [1.0, 1.0]));
+                last = (size(d), [1.0, 1.0]);
+            }
             None => sc.decal.iter_mut().for_each(|c| c.fill(1.0)),
         }
         match &o.gloss {
             Gloss::None => sc.gloss[0].fill(1.0),
             Gloss::DecalAlpha => sc.gloss[0] = sc.decal[3],
-            Gloss::Map(g) => self.sample(g, batch, [1.0, 1.0], sc, live_n, Tex::Gloss),
+            Gloss::Map(g) => self.sample(g, batch, [1.0, 1.0], sc, live_n, Tex::Gloss, last == (size(g), [1.0, 1.0])),
         }
         let live = &sc.live[..live_n];
         // L, and H per vertex or per fragment (Cg Tutorial §8.1.4).

@@ -15,8 +15,8 @@ pub use lanes::{sample_2d_lanes, sample_cube_lanes};
 
 /// One mip level: `width`×`height` RGBA8 texels, row 0 = t = 0.
 ///
-/// Beside the bytes the level keeps each texel as four floats (`b/255`, exactly the values the
-/// bytes stand for): a filter tap is then one 16-byte load instead of four conversions.
+/// Beside the bytes the level keeps each texel as four floats (0–255) for builds without
+/// SSE4.1, where converting on the fly is slow.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Level {
     pub width: usize,
@@ -193,7 +193,7 @@ impl Level {
         assert_eq!(texels.len(), width * height, "texel count of a {width}x{height} level");
         let values = texels
             .iter()
-            .map(|t| Vec4::new(t[0] as f32, t[1] as f32, t[2] as f32, t[3] as f32) * (1.0 / 255.0))
+            .map(|t| Vec4::new(t[0] as f32, t[1] as f32, t[2] as f32, t[3] as f32))
             .collect();
         Self { width, height, texels, values }
     }
@@ -208,19 +208,22 @@ impl Level {
         self.value_at(y * self.width + x)
     }
 
-    /// Texel `i` as floats in [0, 1]. With SSE4.1 (any x86-64-v2 or later build) straight from
-    /// the bytes, which keeps the working set 4× smaller than the float copy.
+    /// Texel `i` as floats in [0, 1].
     #[inline(always)]
     fn value_at(&self, i: usize) -> Vec4 {
+        self.bytes_at(i) * (1.0 / 255.0)
+    }
+
+    /// Texel `i` as floats in [0, 255]. With SSE4.1 (any x86-64-v2 or later build) straight from
+    /// the bytes, which keeps the working set 4× smaller than the float copy.
+    #[inline(always)]
+    fn bytes_at(&self, i: usize) -> Vec4 {
         #[cfg(all(target_arch = "x86_64", target_feature = "sse4.1"))]
         {
             use std::arch::x86_64::*;
             let word = u32::from_le_bytes(self.texels[i]);
             // SAFETY: SSE4.1 is enabled at compile time (the cfg above).
-            unsafe {
-                let v = _mm_cvtepi32_ps(_mm_cvtepu8_epi32(_mm_cvtsi32_si128(word as i32)));
-                Vec4::from(_mm_mul_ps(v, _mm_set1_ps(1.0 / 255.0)))
-            }
+            unsafe { Vec4::from(_mm_cvtepi32_ps(_mm_cvtepu8_epi32(_mm_cvtsi32_si128(word as i32)))) }
         }
         #[cfg(not(all(target_arch = "x86_64", target_feature = "sse4.1")))]
         {
@@ -238,11 +241,12 @@ impl Level {
         let (i0, i1, a) = linear_indices(s, self.width, sampler.wrap_s);
         let (j0, j1, b) = linear_indices(t, self.height, sampler.wrap_t);
         let (r0, r1) = (j0 * self.width, j1 * self.width);
-        let (t00, t10) = (self.value_at(r0 + i0), self.value_at(r0 + i1));
-        let (t01, t11) = (self.value_at(r1 + i0), self.value_at(r1 + i1));
+        // Filtered in byte units and scaled to [0, 1] once.
+        let (t00, t10) = (self.bytes_at(r0 + i0), self.bytes_at(r0 + i1));
+        let (t01, t11) = (self.bytes_at(r1 + i0), self.bytes_at(r1 + i1));
         let top = t00 + (t10 - t00) * a;
         let bottom = t01 + (t11 - t01) * a;
-        top + (bottom - top) * b
+        (top + (bottom - top) * b) * (1.0 / 255.0)
     }
 
     #[inline(always)]

@@ -124,12 +124,11 @@ mod avx2 {
         }
     }
 
-    /// The four channels of eight texels, as floats in [0, 1].
+    /// The four channels of eight texels, as floats in [0, 255].
     #[inline(always)]
     unsafe fn unpack(words: __m256i) -> [__m256; 4] {
         let mask = _mm256_set1_epi32(0xff);
-        let k = _mm256_set1_ps(1.0 / 255.0);
-        let ch = |v: __m256i| _mm256_mul_ps(_mm256_cvtepi32_ps(_mm256_and_si256(v, mask)), k);
+        let ch = |v: __m256i| _mm256_cvtepi32_ps(_mm256_and_si256(v, mask));
         [ch(words), ch(_mm256_srli_epi32(words, 8)), ch(_mm256_srli_epi32(words, 16)), ch(_mm256_srli_epi32(words, 24))]
     }
 
@@ -157,11 +156,13 @@ mod avx2 {
         let r1 = _mm256_add_epi32(base, _mm256_mullo_epi32(j1, w));
         let tap = |row: __m256i, col: __m256i| unpack(_mm256_i32gather_epi32::<4>(words, _mm256_add_epi32(row, col)));
         let (t00, t10, t01, t11) = (tap(r0, i0), tap(r0, i1), tap(r1, i0), tap(r1, i1));
+        // Filtered in byte units and scaled to [0, 1] once, as `Level::linear` does.
+        let k = _mm256_set1_ps(1.0 / 255.0);
         let mut out = [_mm256_setzero_ps(); 4];
         for c in 0..4 {
             let top = lerp(t00[c], t10[c], a);
             let bottom = lerp(t01[c], t11[c], a);
-            out[c] = lerp(top, bottom, b);
+            out[c] = _mm256_mul_ps(lerp(top, bottom, b), k);
         }
         out
     }
