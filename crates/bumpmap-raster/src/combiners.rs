@@ -12,7 +12,7 @@
 use glam::Vec4;
 
 /// Fragments evaluated together.
-pub const LANES: usize = 64;
+pub const LANES: usize = 128;
 /// One value per lane.
 pub type Lanes = [f32; LANES];
 
