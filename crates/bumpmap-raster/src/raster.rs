@@ -321,6 +321,24 @@ impl<S> TileTask<S> {
     }
 }
 
+/// Asks for the cache lines of `buffer` (one value per tile pixel) under the pixel rectangle
+/// [x0, x1) × [y0, y1) ahead of the depth tests and blending: shading evicts the tile from L1, and
+/// the loads would otherwise wait one by one.
+#[inline(always)]
+fn prefetch_rows<T>(buffer: &[T], tile: &Tile, x0: usize, x1: usize, y0: usize, y1: usize) {
+    #[cfg(target_arch = "x86_64")]
+    for y in y0..y1 {
+        let row = (y - tile.y0) * tile.width;
+        for x in [x0, x1 - 1] {
+            // SAFETY: prefetching has no architectural effect; the pointer stays inside `buffer`.
+            unsafe {
+                use std::arch::x86_64::{_MM_HINT_T0, _mm_prefetch};
+                _mm_prefetch::<_MM_HINT_T0>(buffer.as_ptr().add(row + x - tile.x0).cast());
+            }
+        }
+    }
+}
+
 /// Rasterizes one triangle into a tile's batch. Quads from consecutive triangles share a batch;
 /// it is shaded when full, at the end of the tile, or before a quad that touches a pixel whose
 /// fragment is still waiting (so depth tests and blending see earlier triangles' results in
@@ -337,6 +355,11 @@ fn raster_triangle<S: FragmentShader>(
     let y0 = s.bbox[1].max(tile.y0) & !1;
     let x1 = s.bbox[2].min(tile.x0 + tile.width);
     let y1 = s.bbox[3].min(tile.y0 + tile.height);
+    if x0 >= x1 || y0 >= y1 {
+        return;
+    }
+    prefetch_rows(&tile.depth, tile, x0, x1, y0, y1);
+    prefetch_rows(&tile.color, tile, x0, x1, y0, y1);
     let half = 1i64 << (SUBPIXEL_BITS - 1);
     let one = 1i64 << SUBPIXEL_BITS;
     // Edge steps per pixel in x and y, for edges (1→2), (2→0), (0→1).
