@@ -339,6 +339,26 @@ fn prefetch_rows<T>(buffer: &[T], tile: &Tile, x0: usize, x1: usize, y0: usize, 
     }
 }
 
+/// For each edge, the quad's pixels (bits 0–3) where its function `e + off` is negative.
+#[inline(always)]
+fn negative_pixels(e: [i64; 3], off: &[[i64; 4]; 3]) -> [u32; 3] {
+    #[cfg(all(target_arch = "x86_64", target_feature = "avx2"))]
+    {
+        use std::arch::x86_64::*;
+        // SAFETY: AVX2 is enabled at compile time (the cfg); the loads read [i64; 4] arrays.
+        unsafe {
+            std::array::from_fn(|i| {
+                let v = _mm256_add_epi64(_mm256_set1_epi64x(e[i]), _mm256_loadu_si256(off[i].as_ptr().cast()));
+                _mm256_movemask_pd(_mm256_castsi256_pd(v)) as u32
+            })
+        }
+    }
+    #[cfg(not(all(target_arch = "x86_64", target_feature = "avx2")))]
+    {
+        std::array::from_fn(|i| (0..4).fold(0, |m, k| m | (((e[i] + off[i][k]) < 0) as u32) << k))
+    }
+}
+
 /// Rasterizes one triangle into a tile's batch. Quads from consecutive triangles share a batch;
 /// it is shaded when full, at the end of the tile, or before a quad that touches a pixel whose
 /// fragment is still waiting (so depth tests and blending see earlier triangles' results in
@@ -380,19 +400,20 @@ fn raster_triangle<S: FragmentShader>(
         let rows_in = if qy + 1 < ty1 { 0b1111u32 } else { 0b0011 };
         let mut e = e_row;
         for qx in (x0..x1).step_by(2) {
-            // A pixel is covered when no edge function is negative: the sign bit of their OR.
-            let mut covered = 0u32;
-            for k in 0..4 {
-                let any_negative = (e[0] + off_biased[0][k]) | (e[1] + off_biased[1][k]) | (e[2] + off_biased[2][k]);
-                covered |= ((any_negative >= 0) as u32) << k;
-            }
+            // A pixel is covered when no edge function is negative there.
+            let negative = negative_pixels(e, &off_biased);
             let cols_in = if qx + 1 < tx1 { 0b1111u32 } else { 0b0101 };
-            covered &= rows_in & cols_in;
+            let covered = !(negative[0] | negative[1] | negative[2]) & rows_in & cols_in;
             let e_quad = e;
             for i in 0..3 {
                 e[i] += 2 * step_x[i];
             }
             if covered == 0 {
+                // Past the triangle: an edge that does not grow to the right is negative at all
+                // four pixels, so it is at every quad further along the row.
+                if (0..3).any(|i| step_x[i] <= 0 && negative[i] == 0b1111) {
+                    break;
+                }
                 continue;
             }
             let (lx, ly) = (qx - tile.x0, qy - tile.y0);
