@@ -46,11 +46,9 @@ impl FixedFunction {
     }
 }
 
-/// Per-thread working memory: the register file, the compacted output colours and texture
-/// coordinates.
+/// Per-thread working memory: the register file and packed texture coordinates.
 pub struct Scratch {
     regs: Box<RegisterFile>,
-    colors: Box<[Lanes; 4]>,
     coords: Box<[Lanes; 3]>,
 }
 
@@ -62,30 +60,27 @@ fn load_colors(regs: &mut RegisterFile, n: usize) {
     }
 }
 
-/// Packs the coordinates of a 2D lookup for a batch's live `lanes`: `scale ⊙ (s, t)` from
+/// Packs the coordinates of a 2D lookup for a batch's live lanes: `scale ⊙ (s, t)` from
 /// varyings `slots` into `out[0]`, `out[1]`, and λ (once per quad, GL 1.2 Eq. 3.14) into
 /// `out[2]`.
-pub(crate) fn pack_2d_coords(
-    tex: &Texture2d,
-    batch: &FragmentBatch,
-    slots: [usize; 2],
-    scale: [f32; 2],
-    lanes: &[u8],
-    out: &mut [Lanes; 3],
-) {
+pub(crate) fn pack_2d_coords(tex: &Texture2d, batch: &FragmentBatch, slots: [usize; 2], scale: [f32; 2], out: &mut [Lanes; 3]) {
     let (s, t) = (&batch.varyings[slots[0]], &batch.varyings[slots[1]]);
     let [ks, kt] = scale;
-    let mut lambda = [0f32; LANES / 4];
-    for (q, l) in lambda.iter_mut().enumerate().take(batch.quads) {
-        let b = 4 * q;
-        *l = lambda_2d(tex, [ks * s[b], ks * s[b + 1], ks * s[b + 2]], [kt * t[b], kt * t[b + 1], kt * t[b + 2]]);
-    }
     let [ps, pt, pl] = out;
-    for (j, &lane) in lanes.iter().enumerate() {
-        let lane = lane as usize;
-        ps[j] = ks * s[lane];
-        pt[j] = kt * t[lane];
-        pl[j] = lambda[lane / 4];
+    // λ of each quad, repeated over its four lanes, then packed like a varying.
+    let mut lambda = [0f32; LANES];
+    for q in 0..batch.quads {
+        let b = 4 * q;
+        let l = lambda_2d(tex, [ks * s[b], ks * s[b + 1], ks * s[b + 2]], [kt * t[b], kt * t[b + 1], kt * t[b + 2]]);
+        lambda[b..b + 4].fill(l);
+    }
+    batch.pack_lanes(&lambda, pl);
+    batch.pack(slots[0], ps);
+    batch.pack(slots[1], pt);
+    let n = batch.live().len().next_multiple_of(8).min(LANES);
+    for j in 0..n {
+        ps[j] *= ks;
+        pt[j] *= kt;
     }
 }
 
@@ -97,27 +92,25 @@ impl FragmentShader for FixedFunction {
         let mut regs = RegisterFile::new();
         self.combiners.load_constants(&mut regs, LANES);
         load_colors(&mut regs, LANES);
-        Scratch { regs, colors: Box::new([[0.0; LANES]; 4]), coords: Box::new([[0.0; LANES]; 3]) }
+        Scratch { regs, coords: Box::new([[0.0; LANES]; 3]) }
     }
 
     fn shade(&self, batch: &FragmentBatch, scratch: &mut Scratch, out: &mut [Lanes; 4]) {
         debug_assert!(self.units.len() <= 4);
-        let Scratch { regs, colors, coords } = scratch;
+        let Scratch { regs, coords } = scratch;
         // λ needs the whole quad; everything after it runs on the live lanes only, packed.
-        let mut live = [0u8; LANES];
-        let n = batch.live_lanes(&mut live);
-        let live = &live[..n];
+        let n = batch.live().len();
         for (i, unit) in self.units.iter().enumerate() {
             let reg = regs.reg_mut(Register::texture(i));
             match &unit.binding {
                 Binding::TwoD { texture, s, t } => {
-                    pack_2d_coords(texture, batch, [*s, *t], [1.0, 1.0], live, coords);
+                    pack_2d_coords(texture, batch, [*s, *t], [1.0, 1.0], coords);
                     let [s, t, lambda] = &**coords;
                     sample_2d_lanes(texture, &unit.sampler, s, t, lambda, n, reg);
                 }
                 Binding::Cube { texture, r } => {
                     for (k, c) in coords.iter_mut().enumerate() {
-                        batch.pack(r + k, live, c);
+                        batch.pack(r + k, c);
                     }
                     // A normalization cube map has one level: λ does not matter.
                     let [x, y, z] = &**coords;
@@ -135,11 +128,6 @@ impl FragmentShader for FixedFunction {
         if self.combiners.writes(Register::PrimaryColor) || self.combiners.writes(Register::SecondaryColor) {
             load_colors(regs, n8);
         }
-        self.combiners.run(regs, n, colors);
-        for (j, &lane) in live.iter().enumerate() {
-            for c in 0..4 {
-                out[c][lane as usize] = colors[c][j];
-            }
-        }
+        self.combiners.run(regs, n, out);
     }
 }

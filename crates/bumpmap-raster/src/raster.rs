@@ -53,47 +53,104 @@ impl DrawState {
 }
 
 /// Fragments of up to [`QUADS`] 2×2 quads in structure-of-arrays lanes: lane `4q + k` is pixel
-/// k of quad q, k = 0 (x, y), 1 (x+1, y), 2 (x, y+1), 3 (x+1, y+1).
+/// k of quad q, k = 0 (x, y), 1 (x+1, y), 2 (x, y+1), 3 (x+1, y+1). Helper lanes (outside the
+/// triangle) carry varyings for derivatives; the shader computes colours for the live lanes
+/// only, listed in [`FragmentBatch::live`].
 pub struct FragmentBatch {
     pub quads: usize,
     pub varyings: [Lanes; MAX_VARYINGS],
-    /// Covered by the triangle, inside the frame, and passing the depth test.
-    pub live: [bool; LANES],
     pub depth: Lanes,
+    /// Which pixels of each quad are covered by the triangle, inside the frame, and pass the
+    /// depth test (bits 0–3 = k).
+    quad_live: [u8; QUADS],
+    /// The live lanes in order, then slack so that 8 indices can always be read at once.
+    live: [u8; LANES + 8],
+    live_count: usize,
     origin: [(u16, u16); QUADS],
 }
+
+/// For each 4-bit live mask, the pixels it holds in order (unused entries 0) and their count.
+const MASK_LANES: [([u8; 4], usize); 16] = {
+    let mut table = [([0u8; 4], 0usize); 16];
+    let mut m = 0;
+    while m < 16 {
+        let mut n = 0;
+        let mut k = 0;
+        while k < 4 {
+            if m & (1 << k) != 0 {
+                table[m].0[n] = k as u8;
+                n += 1;
+            }
+            k += 1;
+        }
+        table[m].1 = n;
+        m += 1;
+    }
+    table
+};
 
 impl FragmentBatch {
     fn new() -> Box<Self> {
         Box::new(Self {
             quads: 0,
             varyings: [[0.0; LANES]; MAX_VARYINGS],
-            live: [false; LANES],
             depth: [0.0; LANES],
+            quad_live: [0; QUADS],
+            live: [0; LANES + 8],
+            live_count: 0,
             origin: [(0, 0); QUADS],
         })
     }
 
-    /// Number of lanes in use (`4 · quads`).
+    /// Number of lanes in use (`4 · quads`), helpers included.
     pub fn lanes(&self) -> usize {
         4 * self.quads
     }
 
-    /// Writes the indices of the live lanes, in order, to the front of `out`; returns how many.
-    pub fn live_lanes(&self, out: &mut [u8; LANES]) -> usize {
-        let mut n = 0;
-        for lane in 0..self.lanes() {
-            out[n] = lane as u8;
-            n += self.live[lane] as usize;
-        }
-        n
+    /// The live lanes, in order: fragment j of the batch is lane `live()[j]`.
+    pub fn live(&self) -> &[u8] {
+        &self.live[..self.live_count]
     }
 
-    /// `dst[j] = varyings[slot][lanes[j]]`: one varying at the given lanes, packed.
+    /// Lists the live lanes from the quads' masks (before shading).
+    fn list_live(&mut self) {
+        let mut n = 0;
+        for q in 0..self.quads {
+            let (pixels, count) = MASK_LANES[self.quad_live[q] as usize];
+            let base = 4 * q as u8;
+            // Four bytes written, `count` kept: the slack after LANES absorbs the rest.
+            self.live[n..n + 4].copy_from_slice(&pixels.map(|k| base + k));
+            n += count;
+        }
+        self.live_count = n;
+    }
+
+    /// `dst[j] = varyings[slot][live()[j]]`: one varying at the live lanes, packed. Entries
+    /// from `live().len()` up to the next multiple of eight may be overwritten.
     #[inline]
-    pub fn pack(&self, slot: usize, lanes: &[u8], dst: &mut Lanes) {
-        let src = &self.varyings[slot];
-        for (d, &lane) in dst.iter_mut().zip(lanes) {
+    pub fn pack(&self, slot: usize, dst: &mut Lanes) {
+        self.pack_lanes(&self.varyings[slot], dst);
+    }
+
+    /// `dst[j] = src[live()[j]]` for any per-lane values, as [`FragmentBatch::pack`].
+    #[inline]
+    pub fn pack_lanes(&self, src: &Lanes, dst: &mut Lanes) {
+        #[cfg(all(target_arch = "x86_64", target_feature = "avx2"))]
+        {
+            use std::arch::x86_64::*;
+            for j in (0..self.live_count).step_by(8) {
+                // SAFETY: AVX2 is enabled at compile time (the cfg); `live` has 8 readable
+                // bytes from j (its slack), every entry is a lane index < LANES, and j + 8 ≤
+                // LANES because LANES is a multiple of 8.
+                unsafe {
+                    let idx = _mm256_cvtepu8_epi32(_mm_loadl_epi64(self.live.as_ptr().add(j).cast()));
+                    let v = _mm256_i32gather_ps::<4>(src.as_ptr(), idx);
+                    _mm256_storeu_ps(dst.as_mut_ptr().add(j), v);
+                }
+            }
+        }
+        #[cfg(not(all(target_arch = "x86_64", target_feature = "avx2")))]
+        for (d, &lane) in dst.iter_mut().zip(self.live()) {
             *d = src[lane as usize];
         }
     }
@@ -104,7 +161,7 @@ pub trait FragmentShader: Sync {
     /// Per-thread working memory (register files, temporaries), made once per tile task.
     type Scratch: Send;
     fn scratch(&self) -> Self::Scratch;
-    /// Writes RGBA for lanes `0..batch.lanes()` into `out`; dead lanes may hold anything.
+    /// Writes the RGBA of live fragment j (lane `batch.live()[j]`) into `out[..][j]`.
     fn shade(&self, batch: &FragmentBatch, scratch: &mut Self::Scratch, out: &mut [Lanes; 4]);
 }
 
@@ -446,9 +503,7 @@ fn raster_triangle<S: FragmentShader>(
             if live == 0 {
                 continue;
             }
-            for k in 0..4 {
-                batch.live[4 * q + k] = live & (1 << k) != 0;
-            }
+            batch.quad_live[q] = live as u8;
             // Perspective-correct varyings for all four lanes at once (helpers too, for
             // derivatives): v = Σ bᵢ·(v/w)ᵢ / Σ bᵢ·(1/w)ᵢ.
             let wc = Vec4::ONE / (b0 * s.inv_w[0] + b1 * s.inv_w[1] + b2 * s.inv_w[2]);
@@ -479,6 +534,7 @@ fn flush<S: FragmentShader>(tile: &mut Tile, state: &DrawState, shader: &S, task
     if batch.quads == 0 {
         return;
     }
+    batch.list_live();
     shader.shade(batch, scratch, colors);
     // The blend equation is chosen once per batch; the common ones get their own loop.
     use crate::framebuffer::BlendFactor as F;
@@ -533,21 +589,17 @@ fn write_lanes_bytes(
     colors: &[Lanes; 4],
     f: impl Fn([f32; 4], [u8; 4]) -> [u8; 4],
 ) {
-    for q in 0..batch.quads {
-        let (qx, qy) = batch.origin[q];
-        for k in 0..4 {
-            let lane = 4 * q + k;
-            if !batch.live[lane] {
-                continue;
-            }
-            let (px, py) = (qx as usize + (k & 1), qy as usize + (k >> 1));
-            let idx = (py - tile.y0) * tile.width + (px - tile.x0);
-            if state.depth_write {
-                tile.depth[idx] = batch.depth[lane];
-            }
-            let src = [colors[0][lane], colors[1][lane], colors[2][lane], colors[3][lane]];
-            tile.color[idx] = f(src, tile.color[idx]);
+    for (j, &lane) in batch.live().iter().enumerate() {
+        let lane = lane as usize;
+        let (qx, qy) = batch.origin[lane / 4];
+        let k = lane % 4;
+        let (px, py) = (qx as usize + (k & 1), qy as usize + (k >> 1));
+        let idx = (py - tile.y0) * tile.width + (px - tile.x0);
+        if state.depth_write {
+            tile.depth[idx] = batch.depth[lane];
         }
+        let src = [colors[0][j], colors[1][j], colors[2][j], colors[3][j]];
+        tile.color[idx] = f(src, tile.color[idx]);
     }
 }
 

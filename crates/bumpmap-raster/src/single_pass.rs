@@ -246,7 +246,6 @@ struct SinglePass<'a> {
 /// Per-thread working memory: every per-fragment quantity as packed lanes (lane j is the j-th
 /// live fragment of the batch), so each step below is one loop over contiguous arrays.
 pub struct Scratch {
-    live: [u8; LANES],
     /// s, t, λ of the lookup being made.
     coords: [Lanes; 3],
     /// The filtered normal map (RGB range-compressed, A = |N'|), the decal, the gloss texture.
@@ -318,7 +317,7 @@ impl SinglePass<'_> {
         same_coords: bool,
     ) {
         if !same_coords {
-            pack_2d_coords(tex, batch, [var::S, var::T], scale, &sc.live[..n], &mut sc.coords);
+            pack_2d_coords(tex, batch, [var::S, var::T], scale, &mut sc.coords);
         }
         let out = match which {
             Tex::Normal => &mut sc.normal,
@@ -331,11 +330,11 @@ impl SinglePass<'_> {
 
     /// Attenuation and the spotlight's cone and pattern, per live lane.
     fn light_factor(&self, batch: &FragmentBatch, sc: &mut Scratch, n: usize) {
-        let live = &sc.live[..n];
+        let live = batch.live();
         match self.light.attenuation {
             Attenuation::None => sc.light[..n].fill(1.0),
             attenuation => {
-                batch.pack(var::LIGHT_DISTANCE, live, &mut sc.light);
+                batch.pack(var::LIGHT_DISTANCE, &mut sc.light);
                 sc.light[..n].iter_mut().for_each(|d| *d = attenuation.factor(*d));
             }
         }
@@ -394,7 +393,6 @@ impl FragmentShader for SinglePass<'_> {
     fn scratch(&self) -> Self::Scratch {
         let z = [0.0; LANES];
         Box::new(Scratch {
-            live: [0; LANES],
             coords: [z; 3],
             normal: [z; 4],
             decal: [z; 4],
@@ -411,7 +409,7 @@ impl FragmentShader for SinglePass<'_> {
 
     fn shade(&self, batch: &FragmentBatch, sc: &mut Self::Scratch, out: &mut [Lanes; 4]) {
         let o = self.options;
-        let live_n = batch.live_lanes(&mut sc.live);
+        let live_n = batch.live().len();
         // Every loop runs over whole 8-lane vectors; the lanes past live_n are never written out.
         let n = live_n.next_multiple_of(8);
         let (scale, object_space) = match self.normal_space {
@@ -433,24 +431,23 @@ impl FragmentShader for SinglePass<'_> {
             Gloss::DecalAlpha => sc.gloss[0] = sc.decal[3],
             Gloss::Map(g) => self.sample(g, batch, [1.0, 1.0], sc, live_n, Tex::Gloss, last == (size(g), [1.0, 1.0])),
         }
-        let live = &sc.live[..live_n];
         // L, and H per vertex or per fragment (Cg Tutorial §8.1.4).
         for k in 0..3 {
-            batch.pack(var::L + k, live, &mut sc.v[k]);
+            batch.pack(var::L + k, &mut sc.v[k]);
         }
         let l_raw = sc.v;
         self.unit(&mut sc.v, &mut sc.cube, n, &mut sc.l);
         match o.half_angle {
             HalfAngle::Vertex => {
                 for k in 0..3 {
-                    batch.pack(var::H + k, live, &mut sc.v[k]);
+                    batch.pack(var::H + k, &mut sc.v[k]);
                 }
             }
             HalfAngle::Fragment => {
                 let mut l_hat = l_raw;
                 normalize_lanes(&mut l_hat, n);
                 for k in 0..3 {
-                    batch.pack(var::V + k, live, &mut sc.v[k]);
+                    batch.pack(var::V + k, &mut sc.v[k]);
                 }
                 normalize_lanes(&mut sc.v, n);
                 for k in 0..3 {
@@ -465,7 +462,7 @@ impl FragmentShader for SinglePass<'_> {
         // L·N and H·N with the unperturbed normal: L_z and H_z in tangent space.
         if object_space {
             for k in 0..3 {
-                batch.pack(var::N + k, live, &mut sc.v[k]);
+                batch.pack(var::N + k, &mut sc.v[k]);
             }
             normalize_lanes(&mut sc.v, n);
             dot_lanes(&sc.l, &sc.v, n, &mut sc.l_n);
@@ -521,12 +518,9 @@ impl FragmentShader for SinglePass<'_> {
                 rgb[c][j] = decal[c][j] * diffuse + specular;
             }
         }
-        for (j, &lane) in sc.live[..live_n].iter().enumerate() {
-            let lane = lane as usize;
-            for c in 0..3 {
-                out[c][lane] = rgb[c][j];
-            }
-            out[3][lane] = 1.0;
+        for c in 0..3 {
+            out[c][..n].copy_from_slice(&rgb[c][..n]);
         }
+        out[3][..n].fill(1.0);
     }
 }

@@ -11,11 +11,11 @@ impl FragmentShader for Show {
     type Scratch = ();
     fn scratch(&self) {}
     fn shade(&self, batch: &FragmentBatch, _: &mut (), out: &mut [Lanes; 4]) {
-        for lane in 0..batch.lanes() {
-            out[0][lane] = batch.varyings[0][lane];
-            out[1][lane] = self.0;
-            out[2][lane] = self.0;
-            out[3][lane] = 1.0;
+        for (j, &lane) in batch.live().iter().enumerate() {
+            out[0][j] = batch.varyings[0][lane as usize];
+            out[1][j] = self.0;
+            out[2][j] = self.0;
+            out[3][j] = 1.0;
         }
     }
 }
