@@ -452,11 +452,24 @@ fn raster_triangle<S: FragmentShader>(
         let fy = ((y0 as i64) << SUBPIXEL_BITS) + half;
         [s.edge(1, 2, fx0, fy), s.edge(2, 0, fx0, fy), s.edge(0, 1, fx0, fy)]
     };
+    // The largest value of each edge function over a quad's pixels, relative to pixel 0.
+    let max_off: [i64; 3] = std::array::from_fn(|i| *off_biased[i].iter().max().expect("four pixels"));
     for qy in (y0..y1).step_by(2) {
         // Pixels of the quad's second row fall outside the tile on its last odd row.
         let rows_in = if qy + 1 < ty1 { 0b1111u32 } else { 0b0011 };
-        let mut e = e_row;
-        for qx in (x0..x1).step_by(2) {
+        // Quads left of the triangle are skipped: an edge that grows to the right and is
+        // negative at every pixel needs at least ⌈−v / 2·step⌉ quads to turn. The quotient is
+        // taken in f64 and floored, which never exceeds that (|v| < 2⁵³).
+        let mut skip = 0i64;
+        for i in 0..3 {
+            let v = e_row[i] + max_off[i];
+            if step_x[i] > 0 && v < 0 {
+                skip = skip.max(((-v) as f64 / (2 * step_x[i]) as f64).floor() as i64);
+            }
+        }
+        let mut e: [i64; 3] = std::array::from_fn(|i| e_row[i] + 2 * step_x[i] * skip);
+        let start = x0.saturating_add(2 * skip.min((x1 - x0) as i64) as usize);
+        for qx in (start..x1).step_by(2) {
             // A pixel is covered when no edge function is negative there.
             let negative = negative_pixels(e, &off_biased);
             let cols_in = if qx + 1 < tx1 { 0b1111u32 } else { 0b0101 };
