@@ -252,10 +252,11 @@ pub struct Scratch {
     normal: [Lanes; 4],
     decal: [Lanes; 4],
     gloss: [Lanes; 4],
-    /// L and H after per-fragment normalization, and a vector being packed or normalized.
+    /// L and H after per-fragment normalization, and vectors being packed or normalized.
     l: [Lanes; 3],
     h: [Lanes; 3],
     v: [Lanes; 3],
+    w: [Lanes; 3],
     /// A cube-map lookup's RGBA.
     cube: [Lanes; 4],
     /// L and H against the unperturbed normal (L_z and H_z in tangent space).
@@ -263,17 +264,28 @@ pub struct Scratch {
     h_n: Lanes,
     /// Attenuation × spotlight.
     light: Lanes,
+    /// Eq. 12's s_self, N'·L, H·N' (then its power), the specular gate, and a power's partial
+    /// product.
+    s_self: Lanes,
+    n_dot_l: Lanes,
+    h_dot_n: Lanes,
+    gate: Lanes,
+    acc: Lanes,
 }
 
-/// `v ← normalize(v)`, or +Z where v has no direction (glam's `normalize_or`), lanes `0..n`.
+/// `normalize(v)`, or +Z where v has no direction (glam's `normalize_or`).
+#[inline(always)]
+fn normalize_or_z(x: f32, y: f32, z: f32) -> [f32; 3] {
+    let rcp = 1.0 / (x * x + y * y + z * z).sqrt();
+    let ok = rcp.is_finite() && rcp > 0.0;
+    [if ok { x * rcp } else { 0.0 }, if ok { y * rcp } else { 0.0 }, if ok { z * rcp } else { 1.0 }]
+}
+
+/// `v ← normalize_or_z(v)`, lanes `0..n`.
 fn normalize_lanes(v: &mut [Lanes; 3], n: usize) {
     let [x, y, z] = v;
     for j in 0..n {
-        let rcp = 1.0 / (x[j] * x[j] + y[j] * y[j] + z[j] * z[j]).sqrt();
-        let ok = rcp.is_finite() && rcp > 0.0;
-        x[j] = if ok { x[j] * rcp } else { 0.0 };
-        y[j] = if ok { y[j] * rcp } else { 0.0 };
-        z[j] = if ok { z[j] * rcp } else { 1.0 };
+        [x[j], y[j], z[j]] = normalize_or_z(x[j], y[j], z[j]);
     }
 }
 
@@ -286,7 +298,7 @@ fn dot_lanes(a: &[Lanes; 3], b: &[Lanes; 3], n: usize, out: &mut Lanes) {
 
 impl SinglePass<'_> {
     /// `out ← unit(v)`: per-fragment normalization by math or the cube map (expanded 2x − 1).
-    fn unit(&self, v: &mut [Lanes; 3], cube: &mut [Lanes; 4], n: usize, out: &mut [Lanes; 3]) {
+    fn unit(&self, v: &[Lanes; 3], cube: &mut [Lanes; 4], n: usize, out: &mut [Lanes; 3]) {
         match &self.cube {
             Some(map) => {
                 sample_cube_lanes(map, &Sampler::LINEAR_CLAMP, [&v[0], &v[1], &v[2]], n, cube);
@@ -297,8 +309,10 @@ impl SinglePass<'_> {
                 }
             }
             None => {
-                normalize_lanes(v, n);
-                *out = *v;
+                let [x, y, z] = out;
+                for j in 0..n {
+                    [x[j], y[j], z[j]] = normalize_or_z(v[0][j], v[1][j], v[2][j]);
+                }
             }
         }
     }
@@ -364,16 +378,15 @@ enum Tex {
     Gloss,
 }
 
-/// `x^k` for a whole k ≥ 0 by binary powering, lanes `0..n` (the order of compiler-rt's
-/// `__powisf2`, so the result is `powi`'s).
-fn powi_lanes(x: &mut Lanes, k: u32, n: usize) {
-    let mut base = *x;
-    let mut acc = [1.0f32; LANES];
+/// `acc ← x^k` for a whole k ≥ 0 by binary powering, lanes `0..n` (the order of compiler-rt's
+/// `__powisf2`, so the result is `powi`'s); `x` is used up.
+fn powi_lanes(x: &mut Lanes, k: u32, n: usize, acc: &mut Lanes) {
+    acc[..n].fill(1.0);
     let mut e = k;
     loop {
         if e & 1 == 1 {
             for j in 0..n {
-                acc[j] *= base[j];
+                acc[j] *= x[j];
             }
         }
         e >>= 1;
@@ -381,10 +394,9 @@ fn powi_lanes(x: &mut Lanes, k: u32, n: usize) {
             break;
         }
         for j in 0..n {
-            base[j] *= base[j];
+            x[j] *= x[j];
         }
     }
-    x[..n].copy_from_slice(&acc[..n]);
 }
 
 impl FragmentShader for SinglePass<'_> {
@@ -400,10 +412,16 @@ impl FragmentShader for SinglePass<'_> {
             l: [z; 3],
             h: [z; 3],
             v: [z; 3],
+            w: [z; 3],
             cube: [z; 4],
             l_n: z,
             h_n: z,
             light: z,
+            s_self: z,
+            n_dot_l: z,
+            h_dot_n: z,
+            gate: z,
+            acc: z,
         })
     }
 
@@ -435,8 +453,7 @@ impl FragmentShader for SinglePass<'_> {
         for k in 0..3 {
             batch.pack(var::L + k, &mut sc.v[k]);
         }
-        let l_raw = sc.v;
-        self.unit(&mut sc.v, &mut sc.cube, n, &mut sc.l);
+        self.unit(&sc.v, &mut sc.cube, n, &mut sc.l);
         match o.half_angle {
             HalfAngle::Vertex => {
                 for k in 0..3 {
@@ -444,21 +461,21 @@ impl FragmentShader for SinglePass<'_> {
                 }
             }
             HalfAngle::Fragment => {
-                let mut l_hat = l_raw;
-                normalize_lanes(&mut l_hat, n);
-                for k in 0..3 {
-                    batch.pack(var::V + k, &mut sc.v[k]);
-                }
+                // v = normalize(normalize(L) + normalize(V)); v still holds L.
                 normalize_lanes(&mut sc.v, n);
                 for k in 0..3 {
+                    batch.pack(var::V + k, &mut sc.w[k]);
+                }
+                normalize_lanes(&mut sc.w, n);
+                for k in 0..3 {
                     for j in 0..n {
-                        sc.v[k][j] += l_hat[k][j];
+                        sc.v[k][j] += sc.w[k][j];
                     }
                 }
                 normalize_lanes(&mut sc.v, n);
             }
         }
-        self.unit(&mut sc.v, &mut sc.cube, n, &mut sc.h);
+        self.unit(&sc.v, &mut sc.cube, n, &mut sc.h);
         // L·N and H·N with the unperturbed normal: L_z and H_z in tangent space.
         if object_space {
             for k in 0..3 {
@@ -467,59 +484,46 @@ impl FragmentShader for SinglePass<'_> {
             normalize_lanes(&mut sc.v, n);
             dot_lanes(&sc.l, &sc.v, n, &mut sc.l_n);
             dot_lanes(&sc.h, &sc.v, n, &mut sc.h_n);
-        } else {
-            sc.l_n = sc.l[2];
-            sc.h_n = sc.h[2];
         }
         self.light_factor(batch, sc, live_n);
-        let Scratch { normal, decal, gloss, l, h, l_n, h_n, light, .. } = &mut **sc;
-        // Eq. 14–15: the filtered normal's direction (expanded as the combiners do) and length.
-        let mut nv = [[0.0f32; LANES]; 3];
-        for c in 0..3 {
-            for j in 0..n {
-                nv[c][j] = normal[c][j] * 2.0 - 1.0;
-            }
-        }
-        let mut s_self = [0.0f32; LANES];
+        let Scratch { normal, decal, gloss, l, h, l_n, h_n, light, s_self, n_dot_l, h_dot_n, gate, acc, .. } = &mut **sc;
+        let (l_n, h_n) = if object_space { (&*l_n, &*h_n) } else { (&l[2], &h[2]) };
         match o.self_shadow {
             SelfShadow::Ramp => (0..n).for_each(|j| s_self[j] = (8.0 * l_n[j]).clamp(0.0, 1.0)),
             SelfShadow::Step => (0..n).for_each(|j| s_self[j] = (l_n[j] > 0.0) as u8 as f32),
             SelfShadow::Off => s_self.fill(1.0),
         }
-        // Dot products of the (not exactly unit) expanded vectors clamp to [−1, 1] as the
+        // Eq. 14–15: the filtered normal's direction, expanded as the combiners do. Dot
+        // products of the (not exactly unit) expanded vectors clamp to [−1, 1] as the
         // combiners' outputs do, so a quantized normal cannot brighten past the paper's.
-        let (mut n_dot_l, mut h_dot_n) = ([0.0f32; LANES], [0.0f32; LANES]);
-        dot_lanes(l, &nv, n, &mut n_dot_l);
-        dot_lanes(h, &nv, n, &mut h_dot_n);
-        let mut gate = [0.0f32; LANES];
         for j in 0..n {
-            n_dot_l[j] = n_dot_l[j].clamp(-1.0, 1.0);
-            h_dot_n[j] = h_dot_n[j].clamp(0.0, 1.0);
-            gate[j] = match o.specular_shadow {
-                SpecularShadow::Kilgard => s_self[j] * (h_n[j] >= 0.0) as u8 as f32,
-                SpecularShadow::CgTutorial => (n_dot_l[j] > 0.0 && l_n[j] > 0.0) as u8 as f32,
-                SpecularShadow::Off => 1.0,
-            };
+            let nv = [normal[0][j] * 2.0 - 1.0, normal[1][j] * 2.0 - 1.0, normal[2][j] * 2.0 - 1.0];
+            n_dot_l[j] = (l[0][j] * nv[0] + l[1][j] * nv[1] + l[2][j] * nv[2]).clamp(-1.0, 1.0);
+            h_dot_n[j] = (h[0][j] * nv[0] + h[1][j] * nv[1] + h[2][j] * nv[2]).clamp(0.0, 1.0);
+        }
+        match o.specular_shadow {
+            SpecularShadow::Kilgard => (0..n).for_each(|j| gate[j] = s_self[j] * (h_n[j] >= 0.0) as u8 as f32),
+            SpecularShadow::CgTutorial => {
+                (0..n).for_each(|j| gate[j] = (n_dot_l[j] > 0.0 && l_n[j] > 0.0) as u8 as f32)
+            }
+            SpecularShadow::Off => gate.fill(1.0),
         }
         // Whole exponents (the paper's 8 among them) by repeated multiplication.
-        if self.shininess == self.shininess.trunc() && self.shininess <= 64.0 {
-            powi_lanes(&mut h_dot_n, self.shininess as u32, n);
+        let power: &Lanes = if self.shininess == self.shininess.trunc() && self.shininess <= 64.0 {
+            powi_lanes(h_dot_n, self.shininess as u32, n, acc);
+            acc
         } else {
             h_dot_n[..n].iter_mut().for_each(|x| *x = x.powf(self.shininess));
-        }
-        let power = h_dot_n;
+            h_dot_n
+        };
         // Eq. 11 with the filtered (shortened) normal, Eq. 16 with the renormalized one.
         let (ka, kd, ks) = (self.ambient, self.diffuse, self.specular);
-        let mut rgb = [[0.0f32; LANES]; 3];
         for c in 0..3 {
             for j in 0..n {
                 let diffuse = (ka[c] + kd[c] * (light[j] * s_self[j] * n_dot_l[j].max(0.0) * normal[3][j])).min(1.0);
                 let specular = ks[c] * (light[j] * gate[j] * gloss[0][j] * power[j]);
-                rgb[c][j] = decal[c][j] * diffuse + specular;
+                out[c][j] = decal[c][j] * diffuse + specular;
             }
-        }
-        for c in 0..3 {
-            out[c][..n].copy_from_slice(&rgb[c][..n]);
         }
         out[3][..n].fill(1.0);
     }
