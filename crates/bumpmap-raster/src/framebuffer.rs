@@ -60,10 +60,11 @@ impl Framebuffer {
 
     /// `glClear` of colour and depth.
     pub fn clear(&mut self, color: [u8; 4], depth: f32) {
-        for t in &mut self.tiles {
+        use rayon::prelude::*;
+        self.tiles.par_iter_mut().for_each(|t| {
             t.color.fill(color);
             t.depth.fill(depth);
-        }
+        });
     }
 
     /// The colour buffer as row-major RGBA8, row 0 at the top.
