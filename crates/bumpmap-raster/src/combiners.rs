@@ -579,18 +579,18 @@ impl Combiners {
                 match input.source {
                     FinalSource::Register(r) => {
                         let ch = if input.usage == ComponentUsage::Rgb { c } else { 3 };
-                        d.copy_from_slice(&regs[r as usize][ch][..n]);
+                        map_into(input.mapping, &regs[r as usize][ch][..n], d);
                     }
-                    FinalSource::ETimesF => d.copy_from_slice(&ef.expect("E·F computed first")[c][..n]),
+                    FinalSource::ETimesF => map_into(input.mapping, &ef.expect("E·F computed first")[c][..n], d),
                     FinalSource::Spare0PlusSecondary => {
                         let (s, t) = (&regs[Register::Spare0 as usize][c], &regs[Register::SecondaryColor as usize][c]);
                         for i in 0..n {
                             let v = s[i].max(0.0) + t[i].max(0.0);
                             d[i] = if clamp_sum { v.min(1.0) } else { v };
                         }
+                        map_lanes(input.mapping, d);
                     }
                 }
-                map_lanes(input.mapping, d);
             }
         };
         let [a, b, cc, d, e, fv, ef] = fin;
