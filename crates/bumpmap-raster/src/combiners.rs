@@ -69,7 +69,40 @@ pub enum InputMapping {
     SignedNegate,
 }
 
+/// An input mapping written as `k·min(max(e, lo), hi) + b`: every row of the spec's table has
+/// this form, so one branch-free expression evaluates any of them with the same result as
+/// [`InputMapping::apply`].
+#[derive(Clone, Copy, Debug)]
+struct Affine {
+    k: f32,
+    b: f32,
+    lo: f32,
+    hi: f32,
+}
+
+impl Affine {
+    #[inline(always)]
+    fn apply(self, e: f32) -> f32 {
+        self.k * e.max(self.lo).min(self.hi) + self.b
+    }
+}
+
 impl InputMapping {
+    fn affine(self) -> Affine {
+        let (inf, ninf) = (f32::INFINITY, f32::NEG_INFINITY);
+        let (k, b, lo, hi) = match self {
+            InputMapping::UnsignedIdentity => (1.0, 0.0, 0.0, inf),
+            InputMapping::UnsignedInvert => (-1.0, 1.0, 0.0, 1.0),
+            InputMapping::ExpandNormal => (2.0, -1.0, 0.0, inf),
+            InputMapping::ExpandNegate => (-2.0, 1.0, 0.0, inf),
+            InputMapping::HalfBiasNormal => (1.0, -0.5, 0.0, inf),
+            InputMapping::HalfBiasNegate => (-1.0, 0.5, 0.0, inf),
+            InputMapping::SignedIdentity => (1.0, 0.0, ninf, inf),
+            InputMapping::SignedNegate => (-1.0, 0.0, ninf, inf),
+        };
+        Affine { k, b, lo, hi }
+    }
+
     #[inline(always)]
     pub fn apply(self, e: f32) -> f32 {
         match self {
@@ -445,8 +478,6 @@ pub struct RegisterFile {
 }
 
 struct Temporaries {
-    /// Mapped variables A–D of one portion.
-    vars: [[Lanes; 4]; 4],
     /// AB, CD and sum outputs of the RGB and the alpha portion.
     rgb: [[Lanes; 4]; 3],
     alpha: [[Lanes; 4]; 3],
@@ -459,7 +490,6 @@ impl RegisterFile {
         Box::new(Self {
             regs: [[[0.0; LANES]; 4]; REGISTERS],
             tmp: Temporaries {
-                vars: [[[0.0; LANES]; 4]; 4],
                 rgb: [[[0.0; LANES]; 4]; 3],
                 alpha: [[[0.0; LANES]; 4]; 3],
                 fin: [[[0.0; LANES]; 3]; 7],
@@ -535,10 +565,10 @@ impl Combiners {
                 .any(|i| i.usage == ComponentUsage::Blue && rgb_outputs.contains(&Some(i.register)));
             let rgb_direct = !(writes(&stage.alpha) && alpha_reads_written_blue);
             if writes(&stage.rgb) {
-                eval_portion(regs, &stage.rgb, true, n, fixed, &mut tmp.vars, &mut tmp.rgb, rgb_direct);
+                eval_portion(regs, &stage.rgb, true, n, fixed, &mut tmp.rgb, rgb_direct);
             }
             if writes(&stage.alpha) {
-                eval_portion(regs, &stage.alpha, false, n, fixed, &mut tmp.vars, &mut tmp.alpha, true);
+                eval_portion(regs, &stage.alpha, false, n, fixed, &mut tmp.alpha, true);
             }
             if !rgb_direct {
                 let o = &stage.rgb.outputs;
@@ -680,7 +710,6 @@ fn eval_portion(
     rgb: bool,
     n: usize,
     fixed: bool,
-    vars: &mut [[Lanes; 4]; 4],
     out: &mut [[Lanes; 4]; 3],
     direct: bool,
 ) {
@@ -689,49 +718,68 @@ fn eval_portion(
     let n = (n & !7).min(LANES);
     let channels: &[usize] = if rgb { &[0, 1, 2] } else { &[3] };
     let o = &p.outputs;
-    // AB and CD are needed when kept or when the sum (or mux) is; so are their variables.
+    // AB and CD are needed when kept or when the sum (or mux) is.
     let need_sum = o.sum.is_some();
     let need = [o.ab.is_some() || need_sum, o.cd.is_some() || need_sum];
-    for (k, input) in [p.a, p.b, p.c, p.d].iter().enumerate() {
-        if !need[k / 2] {
-            continue;
-        }
-        let reg = &regs[input.register as usize];
-        for &c in channels {
-            let src = match input.usage {
-                ComponentUsage::Rgb => c,
-                ComponentUsage::Alpha => 3,
-                ComponentUsage::Blue => 2,
-            };
-            let v = &mut vars[k][c][..n];
-            map_into(input.mapping, &reg[src][..n], v);
-            if fixed {
-                v.iter_mut().for_each(|x| *x = quantize(*x));
-            }
-        }
-    }
-    let product = |x: &[Lanes; 4], y: &[Lanes; 4], dot: bool, dst: &mut [Lanes; 4]| {
+    // A variable's values for channel c: its register's c, alpha or blue.
+    let source = |input: &Input, c: usize| -> &Lanes {
+        let ch = match input.usage {
+            ComponentUsage::Rgb => c,
+            ComponentUsage::Alpha => 3,
+            ComponentUsage::Blue => 2,
+        };
+        &regs[input.register as usize][ch]
+    };
+    // Each product maps its two variables on the fly (and quantizes them in fixed9); `var`
+    // is chosen once so that the lane loops are branch-free.
+    fn product(
+        x: [&Lanes; 3],
+        y: [&Lanes; 3],
+        (mx, my): (Affine, Affine),
+        dot: bool,
+        channels: &[usize],
+        n: usize,
+        var: impl Fn(Affine, f32) -> f32 + Copy,
+        dst: &mut [Lanes; 4],
+    ) {
+        let n = (n & !7).min(LANES);
         if dot {
             for i in 0..n {
-                let d = x[0][i] * y[0][i] + x[1][i] * y[1][i] + x[2][i] * y[2][i];
+                let d = var(mx, x[0][i]) * var(my, y[0][i])
+                    + var(mx, x[1][i]) * var(my, y[1][i])
+                    + var(mx, x[2][i]) * var(my, y[2][i]);
                 dst[0][i] = d;
                 dst[1][i] = d;
                 dst[2][i] = d;
             }
         } else {
             for &c in channels {
+                let (xs, ys) = (x[c.min(2)], y[c.min(2)]);
                 for i in 0..n {
-                    dst[c][i] = x[c][i] * y[c][i];
+                    dst[c][i] = var(mx, xs[i]) * var(my, ys[i]);
                 }
             }
+        }
+    }
+    let product_of = |x: &Input, y: &Input, dot: bool, dst: &mut [Lanes; 4]| {
+        // Sources per channel; the alpha portion's one channel travels in slot 2.
+        let sources = |v: &Input| -> [&Lanes; 3] {
+            if rgb { [source(v, 0), source(v, 1), source(v, 2)] } else { [source(v, 3); 3] }
+        };
+        let maps = (x.mapping.affine(), y.mapping.affine());
+        let (xs, ys) = (sources(x), sources(y));
+        if fixed {
+            product(xs, ys, maps, dot, channels, n, |m, e| quantize(m.apply(e)), dst);
+        } else {
+            product(xs, ys, maps, dot, channels, n, |m, e| m.apply(e), dst);
         }
     };
     let [ab, cd, sum] = out;
     if need[0] {
-        product(&vars[0], &vars[1], o.ab_dot, ab);
+        product_of(&p.a, &p.b, o.ab_dot, ab);
     }
     if need[1] {
-        product(&vars[2], &vars[3], o.cd_dot, cd);
+        product_of(&p.c, &p.d, o.cd_dot, cd);
     }
     if need_sum {
         let spare0_alpha = &regs[Register::Spare0 as usize][3];

@@ -272,3 +272,25 @@ fn both_portions_read_the_stage_inputs_before_either_writes() {
     let out = run1(setup, &[(Register::Spare0, Vec4::new(0.0, 0.0, 0.9, 0.3))], Precision::Float);
     assert!((out - Vec4::new(0.2, 0.4, 0.6, 0.9)).abs().max_element() < 1e-6, "{out}");
 }
+
+#[test]
+fn affine_form_of_each_mapping_equals_the_table() {
+    use InputMapping::*;
+    let all = [
+        UnsignedIdentity,
+        UnsignedInvert,
+        ExpandNormal,
+        ExpandNegate,
+        HalfBiasNormal,
+        HalfBiasNegate,
+        SignedIdentity,
+        SignedNegate,
+    ];
+    for m in all {
+        for i in -300..=300 {
+            let e = i as f32 / 97.0;
+            // Same operations on the same values: equal exactly (±0 compare equal).
+            assert_eq!(m.affine().apply(e), m.apply(e), "{m:?}({e})");
+        }
+    }
+}
