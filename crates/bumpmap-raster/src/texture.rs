@@ -187,6 +187,13 @@ fn linear_indices(s: f32, n: usize, wrap: WrapMode) -> (usize, usize, f32) {
     }
 }
 
+/// The weights of texels (i0, j0), (i1, j0), (i0, j1), (i1, j1) for fractions α, β.
+#[inline(always)]
+fn bilinear_weights(a: f32, b: f32) -> [f32; 4] {
+    let (ca, cb) = (1.0 - a, 1.0 - b);
+    [ca * cb, a * cb, ca * b, a * b]
+}
+
 impl Level {
     /// A level from its texels. Panics if the count is not `width·height`.
     pub fn new(width: usize, height: usize, texels: Vec<[u8; 4]>) -> Self {
@@ -241,12 +248,15 @@ impl Level {
         let (i0, i1, a) = linear_indices(s, self.width, sampler.wrap_s);
         let (j0, j1, b) = linear_indices(t, self.height, sampler.wrap_t);
         let (r0, r1) = (j0 * self.width, j1 * self.width);
-        // Filtered in byte units and scaled to [0, 1] once.
-        let (t00, t10) = (self.bytes_at(r0 + i0), self.bytes_at(r0 + i1));
-        let (t01, t11) = (self.bytes_at(r1 + i0), self.bytes_at(r1 + i1));
-        let top = t00 + (t10 - t00) * a;
-        let bottom = t01 + (t11 - t01) * a;
-        (top + (bottom - top) * b) * (1.0 / 255.0)
+        // GL 1.2 Eq. 3.18's weighted sum of the four texels, accumulated with fused
+        // multiply-adds in byte units and scaled to [0, 1] once (the batch sampler does the
+        // same operations in the same order).
+        let w = bilinear_weights(a, b);
+        let v = self.bytes_at(r0 + i0) * w[0];
+        let v = self.bytes_at(r0 + i1).mul_add(Vec4::splat(w[1]), v);
+        let v = self.bytes_at(r1 + i0).mul_add(Vec4::splat(w[2]), v);
+        let v = self.bytes_at(r1 + i1).mul_add(Vec4::splat(w[3]), v);
+        v * (1.0 / 255.0)
     }
 
     #[inline(always)]

@@ -27,10 +27,10 @@ pub fn sample_2d_lanes(
     out: &mut [Lanes; 4],
 ) {
     debug_assert!(n <= LANES);
-    // SAFETY: AVX2 is enabled at compile time (the cfg).
-    #[cfg(all(target_arch = "x86_64", target_feature = "avx2"))]
+    // SAFETY: AVX2 and FMA are enabled at compile time (the cfg).
+    #[cfg(all(target_arch = "x86_64", target_feature = "avx2", target_feature = "fma"))]
     let first_scalar = unsafe { avx2::sample_2d(tex, sampler, s, t, lambda, n, out) };
-    #[cfg(not(all(target_arch = "x86_64", target_feature = "avx2")))]
+    #[cfg(not(all(target_arch = "x86_64", target_feature = "avx2", target_feature = "fma")))]
     let first_scalar = 0;
     for lane in first_scalar..n {
         let c = sample_2d(tex, sampler, s[lane], t[lane], lambda[lane]);
@@ -51,10 +51,10 @@ pub fn sample_cube_lanes(
     out: &mut [Lanes; 4],
 ) {
     debug_assert!(n <= LANES);
-    // SAFETY: AVX2 is enabled at compile time (the cfg).
-    #[cfg(all(target_arch = "x86_64", target_feature = "avx2"))]
+    // SAFETY: AVX2 and FMA are enabled at compile time (the cfg).
+    #[cfg(all(target_arch = "x86_64", target_feature = "avx2", target_feature = "fma"))]
     let first_scalar = unsafe { avx2::sample_cube(tex, sampler, dir, n, out) };
-    #[cfg(not(all(target_arch = "x86_64", target_feature = "avx2")))]
+    #[cfg(not(all(target_arch = "x86_64", target_feature = "avx2", target_feature = "fma")))]
     let first_scalar = 0;
     let [x, y, z] = dir;
     for lane in first_scalar..n {
@@ -83,7 +83,7 @@ impl Level {
     }
 }
 
-#[cfg(all(target_arch = "x86_64", target_feature = "avx2"))]
+#[cfg(all(target_arch = "x86_64", target_feature = "avx2", target_feature = "fma"))]
 mod avx2 {
     // Every function here runs only in AVX2 builds; the unsafe operations are the intrinsics,
     // the loads and stores within `Lanes`, and gathers whose indices are clamped in range.
@@ -124,17 +124,19 @@ mod avx2 {
         }
     }
 
-    /// The four channels of eight texels, as floats in [0, 255].
+    /// The four channels of eight texels, as floats in [0, 255]: one byte shuffle per channel
+    /// moves byte c of each texel to the bottom of its 32-bit lane.
     #[inline(always)]
     unsafe fn unpack(words: __m256i) -> [__m256; 4] {
-        let mask = _mm256_set1_epi32(0xff);
-        let ch = |v: __m256i| _mm256_cvtepi32_ps(_mm256_and_si256(v, mask));
-        [ch(words), ch(_mm256_srli_epi32(words, 8)), ch(_mm256_srli_epi32(words, 16)), ch(_mm256_srli_epi32(words, 24))]
-    }
-
-    #[inline(always)]
-    unsafe fn lerp(p: __m256, q: __m256, w: __m256) -> __m256 {
-        _mm256_add_ps(p, _mm256_mul_ps(_mm256_sub_ps(q, p), w))
+        let z = -1i8; // a shuffle index with the top bit set writes 0
+        let pick = |c: i8| {
+            _mm256_setr_epi8(
+                c, z, z, z, c + 4, z, z, z, c + 8, z, z, z, c + 12, z, z, z, //
+                c, z, z, z, c + 4, z, z, z, c + 8, z, z, z, c + 12, z, z, z,
+            )
+        };
+        let ch = |c: i8| _mm256_cvtepi32_ps(_mm256_shuffle_epi8(words, pick(c)));
+        [ch(0), ch(1), ch(2), _mm256_cvtepi32_ps(_mm256_srli_epi32(words, 24))]
     }
 
     /// Bilinear filtering of eight lanes on one `size_s`×`size_t` image whose texel (0, 0) is
@@ -155,14 +157,19 @@ mod avx2 {
         let r0 = _mm256_add_epi32(base, _mm256_mullo_epi32(j0, w));
         let r1 = _mm256_add_epi32(base, _mm256_mullo_epi32(j1, w));
         let tap = |row: __m256i, col: __m256i| unpack(_mm256_i32gather_epi32::<4>(words, _mm256_add_epi32(row, col)));
+        // `Level::linear`: the weighted sum by fused multiply-adds in byte units, then 1/255.
+        let one = _mm256_set1_ps(1.0);
+        let (ca, cb) = (_mm256_sub_ps(one, a), _mm256_sub_ps(one, b));
+        let w = [_mm256_mul_ps(ca, cb), _mm256_mul_ps(a, cb), _mm256_mul_ps(ca, b), _mm256_mul_ps(a, b)];
         let (t00, t10, t01, t11) = (tap(r0, i0), tap(r0, i1), tap(r1, i0), tap(r1, i1));
-        // Filtered in byte units and scaled to [0, 1] once, as `Level::linear` does.
         let k = _mm256_set1_ps(1.0 / 255.0);
         let mut out = [_mm256_setzero_ps(); 4];
         for c in 0..4 {
-            let top = lerp(t00[c], t10[c], a);
-            let bottom = lerp(t01[c], t11[c], a);
-            out[c] = _mm256_mul_ps(lerp(top, bottom, b), k);
+            let v = _mm256_mul_ps(t00[c], w[0]);
+            let v = _mm256_fmadd_ps(t10[c], w[1], v);
+            let v = _mm256_fmadd_ps(t01[c], w[2], v);
+            let v = _mm256_fmadd_ps(t11[c], w[3], v);
+            out[c] = _mm256_mul_ps(v, k);
         }
         out
     }
