@@ -446,6 +446,7 @@ fn raster_triangle<S: FragmentShader>(
     // top-left bias folded in for the coverage test.
     let off: [[i64; 4]; 3] = std::array::from_fn(|i| [0, step_x[i], step_y[i], step_x[i] + step_y[i]]);
     let off_biased: [[i64; 4]; 3] = std::array::from_fn(|i| off[i].map(|o| o + s.bias[i]));
+    let off_f: [Vec4; 3] = std::array::from_fn(|i| Vec4::from_array(off[i].map(|o| o as f32)));
     let (tx1, ty1) = (tile.x0 + tile.width, tile.y0 + tile.height);
     let fx0 = ((x0 as i64) << SUBPIXEL_BITS) + half;
     let mut e_row = {
@@ -492,11 +493,10 @@ fn raster_triangle<S: FragmentShader>(
             }
             let q = task.batch.quads;
             let batch = &mut task.batch;
-            // Barycentrics of the quad's four pixels as lanes of one vector each.
-            let lanes = |i: usize| {
-                let v = off[i].map(|o| (e_quad[i] + o) as f32);
-                Vec4::from_array(v) * s.inv_area
-            };
+            // Barycentrics of the quad's four pixels as lanes of one vector each: the edge
+            // function at pixel 0 plus the per-pixel steps, in float. Every pass computes them
+            // the same way, so depth EQUAL still holds across passes.
+            let lanes = |i: usize| (Vec4::splat(e_quad[i] as f32) + off_f[i]) * s.inv_area;
             let (b0, b1, b2) = (lanes(0), lanes(1), lanes(2));
             let z = b0 * s.z[0] + b1 * s.z[1] + b2 * s.z[2];
             batch.depth[4 * q..4 * q + 4].copy_from_slice(&z.to_array());
