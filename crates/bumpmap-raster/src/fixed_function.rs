@@ -10,7 +10,7 @@ use std::sync::Arc;
 
 use crate::combiners::{Combiners, LANES, Lanes, Register, RegisterFile};
 use crate::raster::{FragmentBatch, FragmentShader};
-use crate::texture::{Sampler, Texture2d, TextureCube, lambda_2d, sample_2d_lanes, sample_cube_lanes};
+use crate::texture::{Sampler, Texture2d, TextureCube, lambda_from_rho2, rho2_2d, sample_2d_lanes, sample_cube_lanes};
 
 /// What a texture unit has bound.
 #[derive(Clone, Debug)]
@@ -68,11 +68,14 @@ pub(crate) fn pack_2d_coords(tex: &Texture2d, batch: &FragmentBatch, slots: [usi
     let [ks, kt] = scale;
     let [ps, pt, pl] = out;
     // λ of each quad, repeated over its four lanes, then packed like a varying.
-    let mut lambda = [0f32; LANES];
-    for q in 0..batch.quads {
+    let mut rho2 = [0f32; LANES / 4];
+    for (q, r) in rho2.iter_mut().enumerate().take(batch.quads) {
         let b = 4 * q;
-        let l = lambda_2d(tex, [ks * s[b], ks * s[b + 1], ks * s[b + 2]], [kt * t[b], kt * t[b + 1], kt * t[b + 2]]);
-        lambda[b..b + 4].fill(l);
+        *r = rho2_2d(tex, [ks * s[b], ks * s[b + 1], ks * s[b + 2]], [kt * t[b], kt * t[b + 1], kt * t[b + 2]]);
+    }
+    let mut lambda = [0f32; LANES];
+    for q in 0..LANES / 4 {
+        lambda[4 * q..4 * q + 4].fill(lambda_from_rho2(rho2[q]));
     }
     batch.pack_lanes(&lambda, pl);
     batch.pack(slots[0], ps);

@@ -301,11 +301,34 @@ pub fn sample_2d(tex: &Texture2d, sampler: &Sampler, s: f32, t: f32, lambda: f32
 /// Eq. 3.14), from the texture coordinates of the quad's pixels (0,0), (1,0) and (0,1).
 #[inline]
 pub fn lambda_2d(tex: &Texture2d, s: [f32; 3], t: [f32; 3]) -> f32 {
+    lambda_from_rho2(rho2_2d(tex, s, t))
+}
+
+/// ρ² of [`lambda_2d`].
+#[inline(always)]
+pub(crate) fn rho2_2d(tex: &Texture2d, s: [f32; 3], t: [f32; 3]) -> f32 {
     let (w, h) = (tex.width() as f32, tex.height() as f32);
     let (dudx, dvdx) = ((s[1] - s[0]) * w, (t[1] - t[0]) * h);
     let (dudy, dvdy) = ((s[2] - s[0]) * w, (t[2] - t[0]) * h);
-    let rho2 = (dudx * dudx + dvdx * dvdx).max(dudy * dudy + dvdy * dvdy);
-    0.5 * rho2.log2()
+    (dudx * dudx + dvdx * dvdx).max(dudy * dudy + dvdy * dvdy)
+}
+
+/// λ = ½·log2 ρ². The logarithm is a short series (GL lets λ be approximated) that agrees with
+/// `f32::log2` to about 1e-7 and, unlike a libm call, vectorizes over a batch's quads. ρ² = 0
+/// gives −∞ (magnification); ∞ and NaN pass through.
+#[inline(always)]
+pub(crate) fn lambda_from_rho2(rho2: f32) -> f32 {
+    // rho2 = m·2^e with m in [√½, √2); ln m = 2·atanh(u), u = (m − 1)/(m + 1), |u| < 0.172.
+    let bits = rho2.to_bits();
+    let high = (bits & 0x007f_ffff) > 0x0035_04f3; // mantissa above √2: use m/2, e + 1
+    let e = ((bits >> 23) & 0xff) as i32 - 127 + high as i32;
+    let m = f32::from_bits((bits & 0x007f_ffff) | if high { 0x3f00_0000 } else { 0x3f80_0000 });
+    let u = (m - 1.0) / (m + 1.0);
+    let u2 = u * u;
+    let atanh = u * (1.0 + u2 * (1.0 / 3.0 + u2 * (1.0 / 5.0 + u2 * (1.0 / 7.0 + u2 * (1.0 / 9.0)))));
+    let log2 = e as f32 + atanh * (2.0 * std::f32::consts::LOG2_E);
+    let log2 = if rho2 == 0.0 { f32::NEG_INFINITY } else if rho2.is_finite() { log2 } else { rho2 };
+    0.5 * log2
 }
 
 /// A cube map: six square faces in GL order, each a 2D texture.
@@ -384,6 +407,23 @@ mod tests {
         assert_eq!((sample_2d(&tex, &s, 0.26, 0.5, 0.0).x * 255.0).round(), 10.0);
         assert_eq!((sample_2d(&tex, &s, 0.99, 0.5, 0.0).x * 255.0).round(), 30.0);
         assert_eq!((sample_2d(&tex, &s, 1.01, 0.5, 0.0).x * 255.0).round(), 0.0, "REPEAT uses frac(s)");
+    }
+
+    #[test]
+    fn lambda_series_matches_log2() {
+        let mut x = 1e-30f32;
+        while x < 1e30 {
+            let (fast, exact) = (lambda_from_rho2(x), 0.5 * x.log2());
+            // A five-term atanh series (truncation < 1e-9) and a few roundings in f32.
+            assert!((fast - exact).abs() < 1e-6, "ρ² = {x}: {fast} vs {exact}");
+            x *= 1.37;
+        }
+        for x in [1.0f32, 2.0, 4.0, 0.25, std::f32::consts::SQRT_2] {
+            assert!((lambda_from_rho2(x) - 0.5 * x.log2()).abs() < 1e-7, "{x}");
+        }
+        assert_eq!(lambda_from_rho2(0.0), f32::NEG_INFINITY);
+        assert_eq!(lambda_from_rho2(f32::INFINITY), f32::INFINITY);
+        assert!(lambda_from_rho2(f32::NAN).is_nan());
     }
 
     #[test]
