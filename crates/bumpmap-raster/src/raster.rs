@@ -215,11 +215,10 @@ pub fn draw<S: FragmentShader>(
         .par_chunks(512)
         .map(|tris| {
             let mut out = SetupChunk::default();
-            for tri in tris {
-                let Some(v) = tri.iter().map(|&i| vertices.get(i as usize).copied()).collect::<Option<Vec<_>>>() else {
-                    continue;
-                };
-                clip_and_setup([v[0], v[1], v[2]], w, h, state.cull_back, varyings, &mut out);
+            for &[a, b, c] in tris {
+                let vertex = |i: u32| vertices.get(i as usize).copied();
+                let (Some(a), Some(b), Some(c)) = (vertex(a), vertex(b), vertex(c)) else { continue };
+                clip_and_setup([a, b, c], w, h, state.cull_back, varyings, &mut out);
             }
             out
         })
