@@ -586,9 +586,11 @@ impl Combiners {
 
     /// Whether a general stage writes register `r` (then the caller must reload it per batch).
     pub fn writes(&self, r: Register) -> bool {
-        self.setup.stages.iter().flat_map(|s| [&s.rgb.outputs, &s.alpha.outputs]).any(|o| {
-            [o.ab, o.cd, o.sum].contains(&Some(r))
-        })
+        self.setup
+            .stages
+            .iter()
+            .flat_map(|s| [&s.rgb.outputs, &s.alpha.outputs])
+            .any(|o| [o.ab, o.cd, o.sum].contains(&Some(r)))
     }
 
     fn final_combiner(
@@ -635,7 +637,8 @@ impl Combiners {
                 }
             }
         }
-        let constant = |i: &FinalInput| (i.source == FinalSource::Register(Register::Zero)).then(|| i.mapping.apply(0.0));
+        let constant =
+            |i: &FinalInput| (i.source == FinalSource::Register(Register::Zero)).then(|| i.mapping.apply(0.0));
         // With A = 0, B is not read; with A = 1, C is not.
         let a_const = constant(&f.a);
         let read = [true, a_const != Some(0.0), a_const != Some(1.0), true];

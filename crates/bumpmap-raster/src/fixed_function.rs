@@ -63,7 +63,13 @@ fn load_colors(regs: &mut RegisterFile, n: usize) {
 /// Packs the coordinates of a 2D lookup for a batch's live lanes: `scale ⊙ (s, t)` from
 /// varyings `slots` into `out[0]`, `out[1]`, and λ (once per quad, GL 1.2 Eq. 3.14) into
 /// `out[2]`.
-pub(crate) fn pack_2d_coords(tex: &Texture2d, batch: &FragmentBatch, slots: [usize; 2], scale: [f32; 2], out: &mut [Lanes; 3]) {
+pub(crate) fn pack_2d_coords(
+    tex: &Texture2d,
+    batch: &FragmentBatch,
+    slots: [usize; 2],
+    scale: [f32; 2],
+    out: &mut [Lanes; 3],
+) {
     let (s, t) = (&batch.varyings[slots[0]], &batch.varyings[slots[1]]);
     let [ks, kt] = scale;
     let [ps, pt, pl] = out;

@@ -18,10 +18,10 @@ use bumpmap_math::{Encoding, NormalizationCubeMap};
 
 use crate::combiners::{LANES, Lanes};
 use crate::error::RasterError;
+use crate::fixed_function::pack_2d_coords;
 use crate::framebuffer::{Blend, DepthFunc, Framebuffer};
 use crate::raster::{DrawState, FragmentBatch, FragmentShader, draw};
 use crate::scene::{Attenuation, NormalSpace, Scene, SceneLight, var};
-use crate::fixed_function::pack_2d_coords;
 use crate::texture::{Sampler, Texture2d, TextureCube, sample_2d, sample_2d_lanes, sample_cube_lanes};
 
 /// How the interpolated L and H are renormalized per fragment.
@@ -206,7 +206,13 @@ pub fn render(scene: &Scene, options: &SinglePassOptions, fb: &mut Framebuffer) 
             let state = if i == 0 {
                 DrawState { varyings, ..DrawState::OPAQUE }
             } else {
-                DrawState { depth_func: DepthFunc::Equal, depth_write: false, blend: Blend::ADD, varyings, ..DrawState::OPAQUE }
+                DrawState {
+                    depth_func: DepthFunc::Equal,
+                    depth_write: false,
+                    blend: Blend::ADD,
+                    varyings,
+                    ..DrawState::OPAQUE
+                }
             };
             draw(fb, &vertices, &object.mesh.indices, &state, &shader);
         }
@@ -363,7 +369,11 @@ impl SinglePass<'_> {
             let mut f = if cos >= cutoff { cos.max(0.0).powf(spot.exponent) } else { 0.0 };
             if let Some(pattern) = &spot.pattern {
                 let p = v3(var::PROJ, lane);
-                f *= if p.z > 0.0 { sample_2d(pattern, &Sampler::LINEAR_CLAMP, p.x / p.z, p.y / p.z, 0.0).x } else { 0.0 };
+                f *= if p.z > 0.0 {
+                    sample_2d(pattern, &Sampler::LINEAR_CLAMP, p.x / p.z, p.y / p.z, 0.0).x
+                } else {
+                    0.0
+                };
             }
             sc.light[j] *= f;
         }
@@ -486,7 +496,8 @@ impl FragmentShader for SinglePass<'_> {
             dot_lanes(&sc.h, &sc.v, n, &mut sc.h_n);
         }
         self.light_factor(batch, sc, live_n);
-        let Scratch { normal, decal, gloss, l, h, l_n, h_n, light, s_self, n_dot_l, h_dot_n, gate, acc, .. } = &mut **sc;
+        let Scratch { normal, decal, gloss, l, h, l_n, h_n, light, s_self, n_dot_l, h_dot_n, gate, acc, .. } =
+            &mut **sc;
         let (l_n, h_n) = if object_space { (&*l_n, &*h_n) } else { (&l[2], &h[2]) };
         match o.self_shadow {
             SelfShadow::Ramp => (0..n).for_each(|j| s_self[j] = (8.0 * l_n[j]).clamp(0.0, 1.0)),

@@ -198,10 +198,7 @@ impl Level {
     /// A level from its texels. Panics if the count is not `width·height`.
     pub fn new(width: usize, height: usize, texels: Vec<[u8; 4]>) -> Self {
         assert_eq!(texels.len(), width * height, "texel count of a {width}x{height} level");
-        let values = texels
-            .iter()
-            .map(|t| Vec4::new(t[0] as f32, t[1] as f32, t[2] as f32, t[3] as f32))
-            .collect();
+        let values = texels.iter().map(|t| Vec4::new(t[0] as f32, t[1] as f32, t[2] as f32, t[3] as f32)).collect();
         Self { width, height, texels, values }
     }
 
@@ -327,7 +324,13 @@ pub(crate) fn lambda_from_rho2(rho2: f32) -> f32 {
     let u2 = u * u;
     let atanh = u * (1.0 + u2 * (1.0 / 3.0 + u2 * (1.0 / 5.0 + u2 * (1.0 / 7.0 + u2 * (1.0 / 9.0)))));
     let log2 = e as f32 + atanh * (2.0 * std::f32::consts::LOG2_E);
-    let log2 = if rho2 == 0.0 { f32::NEG_INFINITY } else if rho2.is_finite() { log2 } else { rho2 };
+    let log2 = if rho2 == 0.0 {
+        f32::NEG_INFINITY
+    } else if rho2.is_finite() {
+        log2
+    } else {
+        rho2
+    };
     0.5 * log2
 }
 

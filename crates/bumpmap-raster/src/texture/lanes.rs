@@ -43,13 +43,7 @@ pub fn sample_2d_lanes(
 /// Samples the cube map `tex` (level of detail 0) in the directions (x, y, z) of lanes `0..n`,
 /// writing R, G, B, A into `out[0..4][0..n]`. Lanes from `n` up to the next multiple of eight
 /// may be overwritten with anything.
-pub fn sample_cube_lanes(
-    tex: &TextureCube,
-    sampler: &Sampler,
-    dir: [&Lanes; 3],
-    n: usize,
-    out: &mut [Lanes; 4],
-) {
+pub fn sample_cube_lanes(tex: &TextureCube, sampler: &Sampler, dir: [&Lanes; 3], n: usize, out: &mut [Lanes; 4]) {
     debug_assert!(n <= LANES);
     // SAFETY: AVX2 and FMA are enabled at compile time (the cfg).
     #[cfg(all(target_arch = "x86_64", target_feature = "avx2", target_feature = "fma"))]
@@ -113,7 +107,8 @@ mod avx2 {
         match wrap {
             WrapMode::Repeat => {
                 // i < 0 (or a NaN's 0x80000000) wraps to the last texel; the next one wraps to 0.
-                let i0 = _mm256_blendv_epi8(_mm256_min_epi32(i, last), last, _mm256_cmpgt_epi32(_mm256_setzero_si256(), i));
+                let i0 =
+                    _mm256_blendv_epi8(_mm256_min_epi32(i, last), last, _mm256_cmpgt_epi32(_mm256_setzero_si256(), i));
                 let i1 = _mm256_andnot_si256(_mm256_cmpeq_epi32(i0, last), _mm256_add_epi32(i0, one));
                 (i0, i1, a)
             }
@@ -131,8 +126,38 @@ mod avx2 {
         let z = -1i8; // a shuffle index with the top bit set writes 0
         let pick = |c: i8| {
             _mm256_setr_epi8(
-                c, z, z, z, c + 4, z, z, z, c + 8, z, z, z, c + 12, z, z, z, //
-                c, z, z, z, c + 4, z, z, z, c + 8, z, z, z, c + 12, z, z, z,
+                c,
+                z,
+                z,
+                z,
+                c + 4,
+                z,
+                z,
+                z,
+                c + 8,
+                z,
+                z,
+                z,
+                c + 12,
+                z,
+                z,
+                z, //
+                c,
+                z,
+                z,
+                z,
+                c + 4,
+                z,
+                z,
+                z,
+                c + 8,
+                z,
+                z,
+                z,
+                c + 12,
+                z,
+                z,
+                z,
             )
         };
         let ch = |c: i8| _mm256_cvtepi32_ps(_mm256_shuffle_epi8(words, pick(c)));
