@@ -33,10 +33,15 @@ pub fn sample_2d_lanes(
     #[cfg(not(all(target_arch = "x86_64", target_feature = "avx2", target_feature = "fma")))]
     let first_scalar = 0;
     for lane in first_scalar..n {
-        let c = sample_2d(tex, sampler, s[lane], t[lane], lambda[lane]);
-        for ch in 0..4 {
-            out[ch][lane] = c[ch];
-        }
+        put(out, lane, sample_2d(tex, sampler, s[lane], t[lane], lambda[lane]));
+    }
+}
+
+/// Stores one RGBA sample at `lane`.
+#[inline(always)]
+fn put(out: &mut [Lanes; 4], lane: usize, c: glam::Vec4) {
+    for ch in 0..4 {
+        out[ch][lane] = c[ch];
     }
 }
 
@@ -52,10 +57,7 @@ pub fn sample_cube_lanes(tex: &TextureCube, sampler: &Sampler, dir: [&Lanes; 3],
     let first_scalar = 0;
     let [x, y, z] = dir;
     for lane in first_scalar..n {
-        let c = sample_cube(tex, sampler, Vec3::new(x[lane], y[lane], z[lane]), 0.0);
-        for ch in 0..4 {
-            out[ch][lane] = c[ch];
-        }
+        put(out, lane, sample_cube(tex, sampler, Vec3::new(x[lane], y[lane], z[lane]), 0.0));
     }
 }
 
@@ -251,10 +253,7 @@ mod avx2 {
             if same & live != live {
                 // Levels differ (or λ is NaN): lane by lane.
                 for k in lane..(lane + 8).min(n) {
-                    let c = super::sample_2d(tex, sampler, s[k], t[k], lambda[k]);
-                    for ch in 0..4 {
-                        out[ch][k] = c[ch];
-                    }
+                    put(out, k, super::sample_2d(tex, sampler, s[k], t[k], lambda[k]));
                 }
                 continue;
             }
