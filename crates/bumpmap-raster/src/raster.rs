@@ -216,7 +216,7 @@ pub fn draw<S: FragmentShader>(
         .map(|tris| {
             let mut out = SetupChunk::default();
             for &[a, b, c] in tris {
-                let vertex = |i: u32| vertices.get(i as usize).copied();
+                let vertex = |i: u32| vertices.get(i as usize);
                 let (Some(a), Some(b), Some(c)) = (vertex(a), vertex(b), vertex(c)) else { continue };
                 clip_and_setup([a, b, c], w, h, state.cull_back, varyings, &mut out);
             }
@@ -256,25 +256,26 @@ pub fn draw<S: FragmentShader>(
 }
 
 /// Clips against the near, far and guard-band planes, then sets up each resulting triangle.
-fn clip_and_setup(v: [Vertex; 3], w: usize, h: usize, cull_back: bool, varyings: usize, out: &mut SetupChunk) {
+fn clip_and_setup(v: [&Vertex; 3], w: usize, h: usize, cull_back: bool, varyings: usize, out: &mut SetupChunk) {
     if v.iter().any(|v| !v.clip.is_finite()) {
         return;
     }
+    // Each plane as (p, d): a vertex is inside when p·clip − d ≥ 0.
     let planes = [
-        Vec4::new(0.0, 0.0, 1.0, 1.0),    // near: z + w ≥ 0
-        Vec4::new(0.0, 0.0, -1.0, 1.0),   // far: w − z ≥ 0
-        Vec4::new(1.0, 0.0, 0.0, GUARD),  // left guard band
-        Vec4::new(-1.0, 0.0, 0.0, GUARD), // right
-        Vec4::new(0.0, 1.0, 0.0, GUARD),  // bottom
-        Vec4::new(0.0, -1.0, 0.0, GUARD), // top
-        Vec4::new(0.0, 0.0, 0.0, 1.0),    // w > 0 (kept slightly positive below)
+        (Vec4::new(0.0, 0.0, 1.0, 1.0), 0.0),    // near: z + w ≥ 0
+        (Vec4::new(0.0, 0.0, -1.0, 1.0), 0.0),   // far: w − z ≥ 0
+        (Vec4::new(1.0, 0.0, 0.0, GUARD), 0.0),  // left guard band
+        (Vec4::new(-1.0, 0.0, 0.0, GUARD), 0.0), // right
+        (Vec4::new(0.0, 1.0, 0.0, GUARD), 0.0),  // bottom
+        (Vec4::new(0.0, -1.0, 0.0, GUARD), 0.0), // top
+        (Vec4::new(0.0, 0.0, 0.0, 1.0), 1e-7),   // w > 0, kept slightly positive
     ];
-    let inside = |p: Vec4, plane: Vec4| plane.dot(p) - if plane == planes[6] { 1e-7 } else { 0.0 };
+    let inside = |p: Vec4, (plane, d): (Vec4, f32)| plane.dot(p) - d;
     if v.iter().all(|v| planes.iter().all(|&pl| inside(v.clip, pl) >= 0.0)) {
-        setup(&v, w, h, cull_back, varyings, out);
+        setup(v, w, h, cull_back, varyings, out);
         return;
     }
-    let mut poly: Vec<Vertex> = v.to_vec();
+    let mut poly: Vec<Vertex> = v.iter().map(|&&v| v).collect();
     for &plane in &planes {
         let mut next = Vec::with_capacity(poly.len() + 1);
         for i in 0..poly.len() {
@@ -299,11 +300,11 @@ fn clip_and_setup(v: [Vertex; 3], w: usize, h: usize, cull_back: bool, varyings:
         }
     }
     for i in 1..poly.len() - 1 {
-        setup(&[poly[0], poly[i], poly[i + 1]], w, h, cull_back, varyings, out);
+        setup([&poly[0], &poly[i], &poly[i + 1]], w, h, cull_back, varyings, out);
     }
 }
 
-fn setup(v: &[Vertex; 3], w: usize, h: usize, cull_back: bool, varyings: usize, out: &mut SetupChunk) {
+fn setup(v: [&Vertex; 3], w: usize, h: usize, cull_back: bool, varyings: usize, out: &mut SetupChunk) {
     let mut x = [0i64; 3];
     let mut y = [0i64; 3];
     let mut z = [0f32; 3];
@@ -349,13 +350,9 @@ fn setup(v: &[Vertex; 3], w: usize, h: usize, cull_back: bool, varyings: usize, 
         return;
     }
     let var = out.var_w.len();
-    out.var_w.extend((0..varyings).map(|j| order.map(|i| v[i].varyings[j] * inv_w_of(v, i))));
+    let ordered = order.map(|i| &v[i].varyings);
+    out.var_w.extend((0..varyings).map(|j| [0, 1, 2].map(|k| ordered[k][j] * inv_w[k])));
     out.setups.push(Setup { x, y, bias, inv_area: (1.0 / area as f64) as f32, z, inv_w, var, bbox });
-}
-
-#[inline(always)]
-fn inv_w_of(v: &[Vertex; 3], i: usize) -> f32 {
-    1.0 / v[i].clip.w
 }
 
 /// Per-thread state of a tile task: the batch being filled, the shader's scratch, the output
