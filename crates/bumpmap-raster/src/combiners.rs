@@ -639,9 +639,11 @@ impl Combiners {
         }
         let constant =
             |i: &FinalInput| (i.source == FinalSource::Register(Register::Zero)).then(|| i.mapping.apply(0.0));
-        // With A = 0, B is not read; with A = 1, C is not.
+        // With A = 0, B is not read; with A = 1, C is not; a C or D that is the constant 0
+        // drops out of the sum (its term is +0 exactly, as 1 − A ≥ 0).
         let a_const = constant(&f.a);
-        let read = [true, a_const != Some(0.0), a_const != Some(1.0), true];
+        let (c_zero, d_zero) = (constant(&f.c) == Some(0.0), constant(&f.d) == Some(0.0));
+        let read = [true, a_const != Some(0.0), a_const != Some(1.0) && !c_zero, !d_zero];
         for ((input, dst), read) in abcd.into_iter().zip([&mut *a, &mut *b, &mut *cc, &mut *d]).zip(read) {
             if !read {
                 continue;
@@ -651,13 +653,28 @@ impl Combiners {
                 None => fetch(input, Some(ef), dst),
             }
         }
-        // A·B + (1 − A)·C + D, with A = 0 or 1 folded (0·x and (1 − 1)·x vanish exactly).
+        // A·B + (1 − A)·C + D, clamped to 1: one branch-free loop per case.
         for c in 0..3 {
-            let (a, b, cc, d) = (&a[c], &b[c], &cc[c], &d[c]);
-            match a_const {
-                Some(0.0) => (0..n).for_each(|i| out[c][i] = (cc[i] + d[i]).min(1.0)),
-                Some(1.0) => (0..n).for_each(|i| out[c][i] = (b[i] + d[i]).min(1.0)),
-                _ => (0..n).for_each(|i| out[c][i] = (a[i] * b[i] + (1.0 - a[i]) * cc[i] + d[i]).min(1.0)),
+            let (a, b, cc, d, out) = (&a[c], &b[c], &cc[c], &d[c], &mut out[c][..n]);
+            macro_rules! each {
+                (|$i:ident| $lerp:expr) => {
+                    if d_zero {
+                        for $i in 0..n {
+                            out[$i] = ($lerp).min(1.0);
+                        }
+                    } else {
+                        for $i in 0..n {
+                            out[$i] = ($lerp + d[$i]).min(1.0);
+                        }
+                    }
+                };
+            }
+            match (a_const, c_zero) {
+                (Some(0.0), true) => each!(|i| 0.0f32),
+                (Some(0.0), false) => each!(|i| cc[i]),
+                (Some(1.0), _) => each!(|i| b[i]),
+                (_, true) => each!(|i| a[i] * b[i]),
+                _ => each!(|i| a[i] * b[i] + (1.0 - a[i]) * cc[i]),
             }
         }
         // G reads alpha or blue; pseudo-registers are not allowed for G.

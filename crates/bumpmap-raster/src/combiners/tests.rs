@@ -294,3 +294,33 @@ fn affine_form_of_each_mapping_equals_the_table() {
         }
     }
 }
+
+#[test]
+fn final_combiner_with_constant_inputs_equals_the_full_sum() {
+    // A ∈ {ZERO, ZERO inverted, a register}, C and D ∈ {ZERO, a register}: every folded case
+    // against A·B + (1 − A)·C + D with the values written out.
+    let (a_val, b_val, c_val, d_val) = (0.3, 0.7, 0.4, 0.2);
+    let regs = [
+        (Register::Texture0, Vec4::splat(a_val)),
+        (Register::Texture1, Vec4::splat(b_val)),
+        (Register::Texture2, Vec4::splat(c_val)),
+        (Register::Texture3, Vec4::splat(d_val)),
+    ];
+    let one = FinalInput { mapping: InputMapping::UnsignedInvert, ..FinalInput::ZERO };
+    for (a, av) in [(FinalInput::ZERO, 0.0), (one, 1.0), (FinalInput::reg(Register::Texture0, Rgb), a_val)] {
+        for (c, cv) in [(FinalInput::ZERO, 0.0), (FinalInput::reg(Register::Texture2, Rgb), c_val)] {
+            for (d, dv) in [(FinalInput::ZERO, 0.0), (FinalInput::reg(Register::Texture3, Rgb), d_val)] {
+                let mut setup = CombinerSetup::default();
+                setup.stages[0].rgb.outputs = Outputs::DISCARD;
+                setup.final_combiner.a = a;
+                setup.final_combiner.b = FinalInput::reg(Register::Texture1, Rgb);
+                setup.final_combiner.c = c;
+                setup.final_combiner.d = d;
+                let got = run1(setup, &regs, Precision::Float).x;
+                let want = av * b_val + (1.0 - av) * cv + dv;
+                // Float products of values in [0, 1]: a few ulp.
+                assert!((got - want).abs() < 1e-6, "A {av}, C {cv}, D {dv}: {got} vs {want}");
+            }
+        }
+    }
+}
