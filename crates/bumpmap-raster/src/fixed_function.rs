@@ -80,7 +80,7 @@ pub(crate) fn pack_2d_coords(
         *r = rho2_2d(tex, [ks * s[b], ks * s[b + 1], ks * s[b + 2]], [kt * t[b], kt * t[b + 1], kt * t[b + 2]]);
     }
     let mut lambda = [0f32; LANES];
-    for q in 0..LANES / 4 {
+    for q in 0..batch.quads {
         lambda[4 * q..4 * q + 4].fill(lambda_from_rho2(rho2[q]));
     }
     batch.pack_lanes(&lambda, pl);

@@ -15,13 +15,14 @@ pub use lanes::{sample_2d_lanes, sample_cube_lanes};
 
 /// One mip level: `width`×`height` RGBA8 texels, row 0 = t = 0.
 ///
-/// Beside the bytes the level keeps each texel as four floats (0–255) for builds without
-/// SSE4.1, where converting on the fly is slow.
+/// Builds without SSE4.1, where converting bytes on the fly is slow, also keep each texel as
+/// four floats (0–255); SSE4.1 builds keep only the bytes.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Level {
     pub width: usize,
     pub height: usize,
     texels: Vec<[u8; 4]>,
+    #[cfg(not(all(target_arch = "x86_64", target_feature = "sse4.1")))]
     values: Vec<Vec4>,
 }
 
@@ -198,8 +199,13 @@ impl Level {
     /// A level from its texels. Panics if the count is not `width·height`.
     pub fn new(width: usize, height: usize, texels: Vec<[u8; 4]>) -> Self {
         assert_eq!(texels.len(), width * height, "texel count of a {width}x{height} level");
-        let values = texels.iter().map(|t| Vec4::new(t[0] as f32, t[1] as f32, t[2] as f32, t[3] as f32)).collect();
-        Self { width, height, texels, values }
+        Self {
+            width,
+            height,
+            #[cfg(not(all(target_arch = "x86_64", target_feature = "sse4.1")))]
+            values: texels.iter().map(|t| Vec4::new(t[0] as f32, t[1] as f32, t[2] as f32, t[3] as f32)).collect(),
+            texels,
+        }
     }
 
     /// The RGBA8 texels, row-major.
@@ -339,17 +345,25 @@ pub(crate) fn lambda_from_rho2(rho2: f32) -> f32 {
 pub struct TextureCube {
     faces: [Texture2d; 6],
     /// Level 0 of the six faces back to back, when they are square, of one size and have one
-    /// level: the layout the batch sampler gathers from.
+    /// level: the layout the batch sampler gathers from (AVX2 builds).
+    #[cfg(all(target_arch = "x86_64", target_feature = "avx2", target_feature = "fma"))]
     packed: Option<Vec<[u8; 4]>>,
 }
 
 impl TextureCube {
     /// A cube map from its faces in GL order (+X, −X, +Y, −Y, +Z, −Z).
     pub fn new(faces: [Texture2d; 6]) -> Self {
-        let n = faces[0].width();
-        let uniform = faces.iter().all(|f| f.levels.len() == 1 && f.width() == n && f.height() == n);
-        let packed = uniform.then(|| faces.iter().flat_map(|f| f.levels[0].texels().iter().copied()).collect());
-        Self { faces, packed }
+        #[cfg(all(target_arch = "x86_64", target_feature = "avx2", target_feature = "fma"))]
+        let packed = {
+            let n = faces[0].width();
+            let uniform = faces.iter().all(|f| f.levels.len() == 1 && f.width() == n && f.height() == n);
+            uniform.then(|| faces.iter().flat_map(|f| f.levels[0].texels().iter().copied()).collect())
+        };
+        Self {
+            faces,
+            #[cfg(all(target_arch = "x86_64", target_feature = "avx2", target_feature = "fma"))]
+            packed,
+        }
     }
 
     /// The faces in GL order.

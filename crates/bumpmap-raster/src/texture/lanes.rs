@@ -11,7 +11,7 @@
 
 use glam::Vec3;
 
-use super::{Level, MagFilter, MinFilter, Sampler, Texture2d, TextureCube, WrapMode, sample_2d, sample_cube};
+use super::{Sampler, Texture2d, TextureCube, sample_2d, sample_cube};
 use crate::combiners::{LANES, Lanes};
 
 /// Samples `tex` at lanes `0..n` of (s, t) with the per-lane level of detail `lambda`, writing
@@ -61,24 +61,6 @@ pub fn sample_cube_lanes(tex: &TextureCube, sampler: &Sampler, dir: [&Lanes; 3],
     }
 }
 
-/// Whether the 8-wide path reproduces `sampler` on a 2D texture.
-fn fast_2d(sampler: &Sampler) -> bool {
-    sampler.mag == MagFilter::Linear && matches!(sampler.min, MinFilter::Linear | MinFilter::LinearMipmapLinear)
-}
-
-/// Whether the 8-wide path reproduces `sampler` on a cube map: its faces are sampled at λ = 0,
-/// which is magnification, so only the magnification filter matters.
-fn fast_cube(tex: &TextureCube, sampler: &Sampler) -> bool {
-    sampler.mag == MagFilter::Linear && tex.packed.is_some()
-}
-
-/// The levels `Level` needs to expose to the 8-wide path.
-impl Level {
-    fn texel_words(&self) -> *const i32 {
-        self.texels.as_ptr().cast()
-    }
-}
-
 #[cfg(all(target_arch = "x86_64", target_feature = "avx2", target_feature = "fma"))]
 mod avx2 {
     // Every function here runs only in AVX2 builds; the unsafe operations are the intrinsics,
@@ -86,7 +68,26 @@ mod avx2 {
     #![allow(unsafe_op_in_unsafe_fn)]
     use std::arch::x86_64::*;
 
+    use super::super::{Level, MagFilter, MinFilter, WrapMode};
     use super::*;
+
+    /// Whether the 8-wide path reproduces `sampler` on a 2D texture.
+    fn fast_2d(sampler: &Sampler) -> bool {
+        sampler.mag == MagFilter::Linear && matches!(sampler.min, MinFilter::Linear | MinFilter::LinearMipmapLinear)
+    }
+
+    /// Whether the 8-wide path reproduces `sampler` on a cube map: its faces are sampled at λ = 0,
+    /// which is magnification, so only the magnification filter matters.
+    fn fast_cube(tex: &TextureCube, sampler: &Sampler) -> bool {
+        sampler.mag == MagFilter::Linear && tex.packed.is_some()
+    }
+
+    /// The levels `Level` needs to expose to the 8-wide path.
+    impl Level {
+        fn texel_words(&self) -> *const i32 {
+            self.texels.as_ptr().cast()
+        }
+    }
 
     /// One axis of a LINEAR lookup for eight lanes: the two texel indices and the weight of the
     /// second, exactly as `linear_indices` computes them.
@@ -346,6 +347,7 @@ mod tests {
     use bumpmap_math::{Encoding, NormalizationCubeMap};
     use proptest::prelude::*;
 
+    use super::super::{MagFilter, MinFilter, WrapMode};
     use super::*;
 
     /// A texture with a full box-filtered mip chain whose texels differ in every channel.
