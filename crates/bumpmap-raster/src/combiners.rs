@@ -9,6 +9,7 @@
 //! signed NV10 datapath. Not emulated: NV_register_combiners2's per-stage constants, and the
 //! GeForce 256's wrong results above 2 with the colour-sum clamp off.
 
+use crate::lane_math::{clamp_lo, max_lo, min_hi};
 use glam::Vec4;
 
 /// Fragments evaluated together.
@@ -83,7 +84,7 @@ struct Affine {
 impl Affine {
     #[inline(always)]
     fn apply(self, e: f32) -> f32 {
-        self.k * e.max(self.lo).min(self.hi) + self.b
+        self.k * clamp_lo(e, self.lo, self.hi) + self.b
     }
 }
 
@@ -106,12 +107,12 @@ impl InputMapping {
     #[inline(always)]
     pub fn apply(self, e: f32) -> f32 {
         match self {
-            InputMapping::UnsignedIdentity => e.max(0.0),
-            InputMapping::UnsignedInvert => 1.0 - e.clamp(0.0, 1.0),
-            InputMapping::ExpandNormal => 2.0 * e.max(0.0) - 1.0,
-            InputMapping::ExpandNegate => -2.0 * e.max(0.0) + 1.0,
-            InputMapping::HalfBiasNormal => e.max(0.0) - 0.5,
-            InputMapping::HalfBiasNegate => -e.max(0.0) + 0.5,
+            InputMapping::UnsignedIdentity => max_lo(e, 0.0),
+            InputMapping::UnsignedInvert => 1.0 - clamp_lo(e, 0.0, 1.0),
+            InputMapping::ExpandNormal => 2.0 * max_lo(e, 0.0) - 1.0,
+            InputMapping::ExpandNegate => -2.0 * max_lo(e, 0.0) + 1.0,
+            InputMapping::HalfBiasNormal => max_lo(e, 0.0) - 0.5,
+            InputMapping::HalfBiasNegate => -max_lo(e, 0.0) + 0.5,
             InputMapping::SignedIdentity => e,
             InputMapping::SignedNegate => -e,
         }
@@ -617,8 +618,8 @@ impl Combiners {
                     FinalSource::Spare0PlusSecondary => {
                         let (s, t) = (&regs[Register::Spare0 as usize][c], &regs[Register::SecondaryColor as usize][c]);
                         for i in 0..n {
-                            let v = s[i].max(0.0) + t[i].max(0.0);
-                            d[i] = if clamp_sum { v.min(1.0) } else { v };
+                            let v = max_lo(s[i], 0.0) + max_lo(t[i], 0.0);
+                            d[i] = if clamp_sum { min_hi(v, 1.0) } else { v };
                         }
                         map_lanes(input.mapping, d);
                     }
@@ -660,11 +661,11 @@ impl Combiners {
                 (|$i:ident| $lerp:expr) => {
                     if d_zero {
                         for $i in 0..n {
-                            out[$i] = ($lerp).min(1.0);
+                            out[$i] = min_hi($lerp, 1.0);
                         }
                     } else {
                         for $i in 0..n {
-                            out[$i] = ($lerp + d[$i]).min(1.0);
+                            out[$i] = min_hi($lerp + d[$i], 1.0);
                         }
                     }
                 };
@@ -820,7 +821,7 @@ fn eval_portion(
     // their registers (`direct`) or left in `out` for the caller to store.
     let (bias, scale) = (if o.bias == Bias::MinusOneHalf { -0.5 } else { 0.0 }, o.scale.factor());
     let finish = |x: f32| {
-        let y = ((x + bias) * scale).clamp(-1.0, 1.0);
+        let y = clamp_lo((x + bias) * scale, -1.0, 1.0);
         if fixed { quantize(y) } else { y }
     };
     for (v, kept) in [(ab, o.ab), (cd, o.cd), (sum, o.sum)] {

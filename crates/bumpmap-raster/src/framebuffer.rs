@@ -101,8 +101,7 @@ impl Framebuffer {
 /// Rounds a blended value to a framebuffer byte, clamping to [0, 1] first (NaN becomes 0).
 #[inline(always)]
 pub(crate) fn to_byte(v: f32) -> u8 {
-    #[allow(clippy::manual_clamp)] // NaN must become 0, which max/min do and clamp does not
-    let v = v.max(0.0).min(1.0) * 255.0 + 0.5;
+    let v = crate::lane_math::clamp_lo(v, 0.0, 1.0) * 255.0 + 0.5;
     // SAFETY: v is finite and in [0.5, 255.5].
     unsafe { v.to_int_unchecked::<i32>() as u8 }
 }
@@ -180,7 +179,7 @@ impl Blend {
     /// and rounds the result to 8 bits; channels not in `mask` keep the stored value.
     #[inline(always)]
     pub fn apply(&self, src: [f32; 4], stored: [u8; 4], mask: [bool; 4]) -> [u8; 4] {
-        let src = src.map(|v| v.clamp(0.0, 1.0));
+        let src = src.map(|v| crate::lane_math::clamp_lo(v, 0.0, 1.0));
         let dst = stored.map(|b| b as f32 * (1.0 / 255.0));
         let mut out = stored;
         for c in 0..4 {

@@ -6,7 +6,8 @@
 //! - [`combiners`]: NV_register_combiners, validated and evaluated over fragment batches;
 //! - [`raster`]: clipping, setup, tiled rasterization of 2×2 quads, depth test, blending
 //!   ([`framebuffer`]);
-//! - [`fixed_function`]: texture units + combiners as a fragment shader.
+//! - [`fixed_function`]: texture units + combiners as a fragment shader;
+//! - [`lane_math`]: max, min and clamp that compile to one vector instruction.
 //!
 //! What is drawn and how:
 //! - [`scene`], [`scenes`]: scene descriptions and the built-in scenes;
@@ -19,6 +20,7 @@ pub mod error;
 pub mod fixed_function;
 pub mod framebuffer;
 pub mod kilgard;
+pub mod lane_math;
 pub mod raster;
 pub mod scene;
 pub mod scenes;

@@ -366,11 +366,13 @@ struct TileTask<S> {
 }
 
 impl<S> TileTask<S> {
-    /// Whether any of a quad's pixels (tile-local) has a fragment waiting.
+    /// Whether any of the pixels `mask` picks from the quad at (lx, ly) (tile-local; bits 0–3 as
+    /// in [`FragmentBatch`]) has a fragment waiting.
     #[inline(always)]
-    fn overlaps(&self, lx: usize, ly: usize) -> bool {
-        let bits = 0b11u64 << lx;
-        (self.pending[ly] | self.pending[(ly + 1).min(TILE - 1)]) & bits != 0
+    fn overlaps(&self, lx: usize, ly: usize, mask: u32) -> bool {
+        let top = ((mask & 0b11) as u64) << lx;
+        let bottom = ((mask >> 2) as u64) << lx;
+        (self.pending[ly] & top) | (self.pending[(ly + 1).min(TILE - 1)] & bottom) != 0
     }
 }
 
@@ -484,7 +486,7 @@ fn raster_triangle<S: FragmentShader>(
                 continue;
             }
             let (lx, ly) = (qx - tile.x0, qy - tile.y0);
-            if task.overlaps(lx, ly) {
+            if task.overlaps(lx, ly, covered) {
                 flush(tile, state, shader, task);
             }
             let q = task.batch.quads;
@@ -584,7 +586,7 @@ fn write_lanes(
     f: impl Fn([f32; 4], [f32; 4]) -> [f32; 4],
 ) {
     write_lanes_bytes(tile, state, batch, colors, |src, stored| {
-        let src = src.map(|v| v.clamp(0.0, 1.0));
+        let src = src.map(|v| crate::lane_math::clamp_lo(v, 0.0, 1.0));
         let dst = stored.map(|b| b as f32 * (1.0 / 255.0));
         f(src, dst).map(to_byte)
     })

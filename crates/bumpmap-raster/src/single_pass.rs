@@ -20,6 +20,7 @@ use crate::combiners::{LANES, Lanes};
 use crate::error::RasterError;
 use crate::fixed_function::pack_2d_coords;
 use crate::framebuffer::{Blend, DepthFunc, Framebuffer};
+use crate::lane_math::{clamp_lo, max_lo, min_hi};
 use crate::raster::{DrawState, FragmentBatch, FragmentShader, draw};
 use crate::scene::{Attenuation, NormalSpace, Scene, SceneLight, var};
 use crate::texture::{Sampler, Texture2d, TextureCube, sample_2d, sample_2d_lanes, sample_cube_lanes};
@@ -500,7 +501,7 @@ impl FragmentShader for SinglePass<'_> {
             &mut **sc;
         let (l_n, h_n) = if object_space { (&*l_n, &*h_n) } else { (&l[2], &h[2]) };
         match o.self_shadow {
-            SelfShadow::Ramp => (0..n).for_each(|j| s_self[j] = (8.0 * l_n[j]).clamp(0.0, 1.0)),
+            SelfShadow::Ramp => (0..n).for_each(|j| s_self[j] = clamp_lo(8.0 * l_n[j], 0.0, 1.0)),
             SelfShadow::Step => (0..n).for_each(|j| s_self[j] = (l_n[j] > 0.0) as u8 as f32),
             SelfShadow::Off => s_self.fill(1.0),
         }
@@ -509,8 +510,8 @@ impl FragmentShader for SinglePass<'_> {
         // combiners' outputs do, so a quantized normal cannot brighten past the paper's.
         for j in 0..n {
             let nv = [normal[0][j] * 2.0 - 1.0, normal[1][j] * 2.0 - 1.0, normal[2][j] * 2.0 - 1.0];
-            n_dot_l[j] = (l[0][j] * nv[0] + l[1][j] * nv[1] + l[2][j] * nv[2]).clamp(-1.0, 1.0);
-            h_dot_n[j] = (h[0][j] * nv[0] + h[1][j] * nv[1] + h[2][j] * nv[2]).clamp(0.0, 1.0);
+            n_dot_l[j] = clamp_lo(l[0][j] * nv[0] + l[1][j] * nv[1] + l[2][j] * nv[2], -1.0, 1.0);
+            h_dot_n[j] = clamp_lo(h[0][j] * nv[0] + h[1][j] * nv[1] + h[2][j] * nv[2], 0.0, 1.0);
         }
         match o.specular_shadow {
             SpecularShadow::Kilgard => (0..n).for_each(|j| gate[j] = s_self[j] * (h_n[j] >= 0.0) as u8 as f32),
@@ -531,7 +532,8 @@ impl FragmentShader for SinglePass<'_> {
         let (ka, kd, ks) = (self.ambient, self.diffuse, self.specular);
         for c in 0..3 {
             for j in 0..n {
-                let diffuse = (ka[c] + kd[c] * (light[j] * s_self[j] * n_dot_l[j].max(0.0) * normal[3][j])).min(1.0);
+                let diffuse =
+                    min_hi(ka[c] + kd[c] * (light[j] * s_self[j] * max_lo(n_dot_l[j], 0.0) * normal[3][j]), 1.0);
                 let specular = ks[c] * (light[j] * gate[j] * gloss[0][j] * power[j]);
                 out[c][j] = decal[c][j] * diffuse + specular;
             }
