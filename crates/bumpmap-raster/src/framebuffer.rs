@@ -5,6 +5,8 @@
 //! Row 0 is the top of the image. The blend arithmetic is float; its result is rounded to 8
 //! bits when written, so every pass sees the framebuffer's quantization as the hardware did.
 
+use glam::Vec4;
+
 use crate::error::RasterError;
 
 /// Tile edge length in pixels.
@@ -104,6 +106,39 @@ pub(crate) fn to_byte(v: f32) -> u8 {
     let v = crate::lane_math::clamp_lo(v, 0.0, 1.0) * 255.0 + 0.5;
     // SAFETY: v is finite and in [0.5, 255.5].
     unsafe { v.to_int_unchecked::<i32>() as u8 }
+}
+
+/// A stored pixel as four floats in [0, 1] (`byte / 255`, as the blend reads it).
+#[inline(always)]
+pub(crate) fn rgba8_to_vec4(p: [u8; 4]) -> Vec4 {
+    #[cfg(all(target_arch = "x86_64", target_feature = "sse4.1"))]
+    // SAFETY: SSE4.1 is enabled at compile time (the cfg); the intrinsics only move registers.
+    let v = unsafe {
+        use std::arch::x86_64::*;
+        Vec4::from(_mm_cvtepi32_ps(_mm_cvtepu8_epi32(_mm_cvtsi32_si128(i32::from_ne_bytes(p)))))
+    };
+    #[cfg(not(all(target_arch = "x86_64", target_feature = "sse4.1")))]
+    let v = Vec4::from_array(p.map(|b| b as f32));
+    v * (1.0 / 255.0)
+}
+
+/// [`to_byte`] of each channel, the four at once.
+#[inline(always)]
+pub(crate) fn vec4_to_rgba8(v: Vec4) -> [u8; 4] {
+    // `Vec4::clamp` is max then min, so NaN becomes 0 as in `to_byte`.
+    let v = v.clamp(Vec4::ZERO, Vec4::ONE) * 255.0 + 0.5;
+    #[cfg(all(target_arch = "x86_64", target_feature = "sse4.1"))]
+    // SAFETY: SSE4.1 is enabled at compile time (the cfg); v is in [0.5, 255.5], so truncation
+    // and the saturating packs keep every value.
+    unsafe {
+        use std::arch::x86_64::*;
+        let i = _mm_cvttps_epi32(v.into());
+        let w = _mm_packus_epi32(i, i);
+        (_mm_cvtsi128_si32(_mm_packus_epi16(w, w))).to_ne_bytes()
+    }
+    #[cfg(not(all(target_arch = "x86_64", target_feature = "sse4.1")))]
+    // SAFETY: v is finite and in [0.5, 255.5].
+    v.to_array().map(|c| unsafe { c.to_int_unchecked::<i32>() as u8 })
 }
 
 /// `glDepthFunc` values used by the techniques.
@@ -209,6 +244,19 @@ mod tests {
         assert_eq!(Blend::REPLACE.apply([0.0; 4], dst, [false, false, false, true]), [200, 100, 50, 0]);
         assert!(Framebuffer::new(0, 10).is_err());
         assert!(Framebuffer::new(100_000, 100_000).is_err());
+    }
+
+    #[test]
+    fn pixel_conversions_match_the_scalar_rounding() {
+        for b in 0..=255u8 {
+            let p = [b, 255 - b, b / 2, 7];
+            assert_eq!(rgba8_to_vec4(p).to_array(), p.map(|b| b as f32 * (1.0 / 255.0)));
+        }
+        for i in -300..=1300 {
+            let v = i as f32 / 1000.0;
+            let w = Vec4::new(v, 1.0 - v, v * 0.5, f32::NAN);
+            assert_eq!(vec4_to_rgba8(w), w.to_array().map(to_byte), "{w}");
+        }
     }
 
     #[test]

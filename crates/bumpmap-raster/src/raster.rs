@@ -13,7 +13,7 @@ use glam::Vec4;
 use rayon::prelude::*;
 
 use crate::combiners::{LANES, Lanes};
-use crate::framebuffer::{Blend, DepthFunc, Framebuffer, TILE, Tile, to_byte};
+use crate::framebuffer::{Blend, DepthFunc, Framebuffer, TILE, Tile, rgba8_to_vec4, vec4_to_rgba8};
 
 /// Varyings per vertex (texture coordinates, light and half-angle vectors, …).
 pub const MAX_VARYINGS: usize = 24;
@@ -66,8 +66,14 @@ pub struct FragmentBatch {
     /// The live lanes in order, then slack so that 8 indices can always be read at once.
     live: [u8; LANES + 8],
     live_count: usize,
-    origin: [(u16, u16); QUADS],
+    /// Tile-local index (`y · width + x`) of each quad's pixel 0.
+    corner: [u16; QUADS],
+    /// Tile-local index of each live fragment's pixel, in the order of `live` (with its slack).
+    pixel: [u16; LANES + 8],
 }
+
+// Tile-local pixel indices fit the batch's u16 fields.
+const _: () = assert!(TILE * TILE <= 1 << 16);
 
 /// For each 4-bit live mask, the pixels it holds in order (unused entries 0) and their count.
 const MASK_LANES: [([u8; 4], usize); 16] = {
@@ -98,7 +104,8 @@ impl FragmentBatch {
             quad_live: [0; QUADS],
             live: [0; LANES + 8],
             live_count: 0,
-            origin: [(0, 0); QUADS],
+            corner: [0; QUADS],
+            pixel: [0; LANES + 8],
         })
     }
 
@@ -112,14 +119,19 @@ impl FragmentBatch {
         &self.live[..self.live_count]
     }
 
-    /// Lists the live lanes from the quads' masks (before shading).
-    fn list_live(&mut self) {
+    /// Lists the live lanes and their pixels from the quads' masks (before shading); `width`
+    /// is the tile's.
+    fn list_live(&mut self, width: usize) {
         let mut n = 0;
+        // Where pixel k of a quad lies relative to its pixel 0.
+        let step = [0, 1, width as u16, width as u16 + 1];
         for q in 0..self.quads {
             let (pixels, count) = MASK_LANES[self.quad_live[q] as usize];
             let base = 4 * q as u8;
-            // Four bytes written, `count` kept: the slack after LANES absorbs the rest.
+            // Four entries written, `count` kept: the slack after LANES absorbs the rest.
             self.live[n..n + 4].copy_from_slice(&pixels.map(|k| base + k));
+            let corner = self.corner[q];
+            self.pixel[n..n + 4].copy_from_slice(&pixels.map(|k| corner + step[k as usize]));
             n += count;
         }
         self.live_count = n;
@@ -170,26 +182,84 @@ const SUBPIXEL: f32 = (1 << SUBPIXEL_BITS) as f32;
 /// Guard band: x and y are clipped at ±GUARD·w, keeping fixed-point products within i64.
 const GUARD: f32 = 8.0;
 
+/// The clip volume as planes (p, d): a position is inside plane i when p·clip − d ≥ 0.
+const CLIP_PLANES: [(Vec4, f32); 7] = [
+    (Vec4::new(0.0, 0.0, 1.0, 1.0), 0.0),    // near: z + w ≥ 0
+    (Vec4::new(0.0, 0.0, -1.0, 1.0), 0.0),   // far: w − z ≥ 0
+    (Vec4::new(1.0, 0.0, 0.0, GUARD), 0.0),  // left guard band
+    (Vec4::new(-1.0, 0.0, 0.0, GUARD), 0.0), // right
+    (Vec4::new(0.0, 1.0, 0.0, GUARD), 0.0),  // bottom
+    (Vec4::new(0.0, -1.0, 0.0, GUARD), 0.0), // top
+    (Vec4::new(0.0, 0.0, 0.0, 1.0), 1e-7),   // w > 0, kept slightly positive
+];
+/// Outcode bit of a position that is not finite.
+const NOT_FINITE: u8 = 1 << 7;
+
+/// Which planes of [`CLIP_PLANES`] a clip-space position is outside of (bit i), or
+/// [`NOT_FINITE`].
+fn outcode(clip: Vec4) -> u8 {
+    if !clip.is_finite() {
+        return NOT_FINITE;
+    }
+    CLIP_PLANES.iter().enumerate().fold(0, |code, (i, &(p, d))| code | (((p.dot(clip) - d) < 0.0) as u8) << i)
+}
+
+/// A vertex in window coordinates. Computed by one function from the clip position alone, so
+/// that a vertex shared by triangles, or drawn again in a later pass, lands on the same
+/// fixed-point position with the same depth.
+#[derive(Clone, Copy, Debug)]
+struct WindowVertex {
+    /// x and y in 1/256 pixels, y down.
+    x: i64,
+    y: i64,
+    /// Window depth in [0, 1].
+    z: f32,
+    inv_w: f32,
+}
+
+impl WindowVertex {
+    /// Precondition: `clip` is inside the clip volume (its [`outcode`] is 0).
+    fn new(clip: Vec4, w: usize, h: usize) -> Self {
+        let iw = 1.0 / clip.w;
+        let (nx, ny, nz) = (clip.x * iw, clip.y * iw, clip.z * iw);
+        WindowVertex {
+            x: ((nx + 1.0) * 0.5 * w as f32 * SUBPIXEL).round() as i64,
+            y: ((1.0 - ny) * 0.5 * h as f32 * SUBPIXEL).round() as i64,
+            z: ((nz + 1.0) * 0.5).clamp(0.0, 1.0),
+            inv_w: iw,
+        }
+    }
+}
+
+/// A quantity that varies linearly in window space, as `a + gx·(X − X₀) + gy·(Y − Y₀)` at the
+/// pixel centre (X, Y), with (X₀, Y₀) the triangle's first vertex (in pixels).
+#[derive(Clone, Copy, Debug, Default)]
+struct Plane {
+    a: f32,
+    gx: f32,
+    gy: f32,
+}
+
 /// A triangle ready to rasterize.
 struct Setup {
     x: [i64; 3],
     y: [i64; 3],
     bias: [i64; 3],
-    inv_area: f32,
-    z: [f32; 3],
-    inv_w: [f32; 3],
-    /// Where this triangle's varyings start in its chunk's `var_w`.
+    /// Window depth and 1/w (for perspective correction) as planes.
+    z: Plane,
+    inv_w: Plane,
+    /// Where this triangle's varying planes start in its chunk's `var_w`.
     var: usize,
     bbox: [usize; 4],
 }
 
-/// The triangles set up from one run of the index list, with their varyings divided by w:
-/// `var_w[s.var + j]` holds varying j at the three vertices. Only the varyings the draw reads
-/// are kept, so a frame's set-up data stays small.
+/// The triangles set up from one run of the index list, with the planes of their varyings
+/// divided by w: `var_w[s.var + j]` is varying j's. Only the varyings the draw reads are kept,
+/// so a frame's set-up data stays small.
 #[derive(Default)]
 struct SetupChunk {
     setups: Vec<Setup>,
-    var_w: Vec<[f32; 3]>,
+    var_w: Vec<Plane>,
 }
 
 impl Setup {
@@ -211,14 +281,34 @@ pub fn draw<S: FragmentShader>(
 ) {
     let (w, h) = (fb.width, fb.height);
     let varyings = state.varyings.min(MAX_VARYINGS);
+    // Each vertex is transformed once, however many triangles share it.
+    let window: Vec<(u8, WindowVertex)> = vertices
+        .par_iter()
+        .with_min_len(1024)
+        .map(|v| {
+            let code = outcode(v.clip);
+            let at = if code == 0 {
+                WindowVertex::new(v.clip, w, h)
+            } else {
+                WindowVertex { x: 0, y: 0, z: 0.0, inv_w: 0.0 }
+            };
+            (code, at)
+        })
+        .collect();
     let chunks: Vec<SetupChunk> = triangles
         .par_chunks(512)
         .map(|tris| {
             let mut out = SetupChunk::default();
             for &[a, b, c] in tris {
-                let vertex = |i: u32| vertices.get(i as usize);
-                let (Some(a), Some(b), Some(c)) = (vertex(a), vertex(b), vertex(c)) else { continue };
-                clip_and_setup([a, b, c], w, h, state.cull_back, varyings, &mut out);
+                let get = |i: u32| Some((vertices.get(i as usize)?, window[i as usize]));
+                let (Some(a), Some(b), Some(c)) = (get(a), get(b), get(c)) else { continue };
+                let codes = [a.1.0, b.1.0, c.1.0];
+                if codes == [0; 3] {
+                    setup([a.0, b.0, c.0], [a.1.1, b.1.1, c.1.1], (w, h), state.cull_back, varyings, &mut out);
+                } else if codes.iter().all(|&c| c & NOT_FINITE == 0) && codes[0] & codes[1] & codes[2] == 0 {
+                    // Partly outside (not wholly outside one plane): clip.
+                    clip_and_setup([a.0, b.0, c.0], w, h, state.cull_back, varyings, &mut out);
+                }
             }
             out
         })
@@ -255,28 +345,12 @@ pub fn draw<S: FragmentShader>(
     );
 }
 
-/// Clips against the near, far and guard-band planes, then sets up each resulting triangle.
+/// Clips a triangle that is partly outside the near, far or guard-band planes, then sets up
+/// each triangle of the clipped polygon.
 fn clip_and_setup(v: [&Vertex; 3], w: usize, h: usize, cull_back: bool, varyings: usize, out: &mut SetupChunk) {
-    if v.iter().any(|v| !v.clip.is_finite()) {
-        return;
-    }
-    // Each plane as (p, d): a vertex is inside when p·clip − d ≥ 0.
-    let planes = [
-        (Vec4::new(0.0, 0.0, 1.0, 1.0), 0.0),    // near: z + w ≥ 0
-        (Vec4::new(0.0, 0.0, -1.0, 1.0), 0.0),   // far: w − z ≥ 0
-        (Vec4::new(1.0, 0.0, 0.0, GUARD), 0.0),  // left guard band
-        (Vec4::new(-1.0, 0.0, 0.0, GUARD), 0.0), // right
-        (Vec4::new(0.0, 1.0, 0.0, GUARD), 0.0),  // bottom
-        (Vec4::new(0.0, -1.0, 0.0, GUARD), 0.0), // top
-        (Vec4::new(0.0, 0.0, 0.0, 1.0), 1e-7),   // w > 0, kept slightly positive
-    ];
     let inside = |p: Vec4, (plane, d): (Vec4, f32)| plane.dot(p) - d;
-    if v.iter().all(|v| planes.iter().all(|&pl| inside(v.clip, pl) >= 0.0)) {
-        setup(v, w, h, cull_back, varyings, out);
-        return;
-    }
     let mut poly: Vec<Vertex> = v.iter().map(|&&v| v).collect();
-    for &plane in &planes {
+    for &plane in &CLIP_PLANES {
         let mut next = Vec::with_capacity(poly.len() + 1);
         for i in 0..poly.len() {
             let (a, b) = (poly[i], poly[(i + 1) % poly.len()]);
@@ -299,38 +373,35 @@ fn clip_and_setup(v: [&Vertex; 3], w: usize, h: usize, cull_back: bool, varyings
             return;
         }
     }
+    let window: Vec<WindowVertex> = poly.iter().map(|v| WindowVertex::new(v.clip, w, h)).collect();
     for i in 1..poly.len() - 1 {
-        setup([&poly[0], &poly[i], &poly[i + 1]], w, h, cull_back, varyings, out);
+        setup(
+            [&poly[0], &poly[i], &poly[i + 1]],
+            [window[0], window[i], window[i + 1]],
+            (w, h),
+            cull_back,
+            varyings,
+            out,
+        );
     }
 }
 
-fn setup(v: [&Vertex; 3], w: usize, h: usize, cull_back: bool, varyings: usize, out: &mut SetupChunk) {
-    let mut x = [0i64; 3];
-    let mut y = [0i64; 3];
-    let mut z = [0f32; 3];
-    let mut inv_w = [0f32; 3];
-    for i in 0..3 {
-        let c = v[i].clip;
-        let iw = 1.0 / c.w;
-        let (nx, ny, nz) = (c.x * iw, c.y * iw, c.z * iw);
-        x[i] = ((nx + 1.0) * 0.5 * w as f32 * SUBPIXEL).round() as i64;
-        y[i] = ((1.0 - ny) * 0.5 * h as f32 * SUBPIXEL).round() as i64;
-        z[i] = ((nz + 1.0) * 0.5).clamp(0.0, 1.0);
-        inv_w[i] = iw;
-    }
+fn setup(
+    v: [&Vertex; 3],
+    at: [WindowVertex; 3],
+    (w, h): (usize, usize),
+    cull_back: bool,
+    varyings: usize,
+    out: &mut SetupChunk,
+) {
+    let (x, y) = (at.map(|a| a.x), at.map(|a| a.y));
     // Signed area in y-down window coordinates: negative = counter-clockwise as seen = front.
     let area = (x[1] - x[0]) * (y[2] - y[0]) - (y[1] - y[0]) * (x[2] - x[0]);
     if area == 0 || (area > 0 && cull_back) {
         return;
     }
-    let mut order = [0usize, 1, 2];
-    if area < 0 {
-        order = [0, 2, 1];
-    }
-    let pick = |a: [i64; 3]| order.map(|i| a[i]);
-    let (x, y) = (pick(x), pick(y));
-    let pickf = |a: [f32; 3]| order.map(|i| a[i]);
-    let (z, inv_w) = (pickf(z), pickf(inv_w));
+    let order = if area < 0 { [0, 2, 1] } else { [0, 1, 2] };
+    let (x, y, at) = (order.map(|i| x[i]), order.map(|i| y[i]), order.map(|i| at[i]));
     let area = area.abs();
     // Top-left rule: an edge (a → b) owns the pixels on it if it is a top edge (horizontal,
     // going right) or a left edge (going up in y-down coordinates).
@@ -349,10 +420,26 @@ fn setup(v: [&Vertex; 3], w: usize, h: usize, cull_back: bool, varyings: usize, 
     if bbox[0] >= bbox[2] || bbox[1] >= bbox[3] {
         return;
     }
+    // A quantity's plane from its values at the three vertices: barycentric i is edge
+    // function i over the area, and edge i runs from vertex i+1 to vertex i+2, so its
+    // per-pixel gradient is (−Δy, Δx)·256 / area of that edge (in f64, then rounded once).
+    let scale = (1u64 << SUBPIXEL_BITS) as f64 / area as f64;
+    let (ex, ey): ([f64; 3], [f64; 3]) = (
+        std::array::from_fn(|i| -((y[(i + 2) % 3] - y[(i + 1) % 3]) as f64) * scale),
+        std::array::from_fn(|i| (x[(i + 2) % 3] - x[(i + 1) % 3]) as f64 * scale),
+    );
+    let plane = |q: [f32; 3]| {
+        let q = q.map(f64::from);
+        Plane {
+            a: q[0] as f32,
+            gx: (q[0] * ex[0] + q[1] * ex[1] + q[2] * ex[2]) as f32,
+            gy: (q[0] * ey[0] + q[1] * ey[1] + q[2] * ey[2]) as f32,
+        }
+    };
     let var = out.var_w.len();
-    let ordered = order.map(|i| &v[i].varyings);
-    out.var_w.extend((0..varyings).map(|j| [0, 1, 2].map(|k| ordered[k][j] * inv_w[k])));
-    out.setups.push(Setup { x, y, bias, inv_area: (1.0 / area as f64) as f32, z, inv_w, var, bbox });
+    let (ordered, inv_w) = (order.map(|i| &v[i].varyings), at.map(|a| a.inv_w));
+    out.var_w.extend((0..varyings).map(|j| plane([0, 1, 2].map(|k| ordered[k][j] * inv_w[k]))));
+    out.setups.push(Setup { x, y, bias, z: plane(at.map(|a| a.z)), inv_w: plane(inv_w), var, bbox });
 }
 
 /// Per-thread state of a tile task: the batch being filled, the shader's scratch, the output
@@ -415,12 +502,12 @@ fn negative_pixels(e: [i64; 3], off: &[[i64; 4]; 3]) -> [u32; 3] {
 }
 
 /// Rasterizes one triangle into a tile's batch. Quads from consecutive triangles share a batch;
-/// it is shaded when full, at the end of the tile, or before a quad that touches a pixel whose
+/// it is shaded when full, at the end of the tile, or before a quad that covers a pixel whose
 /// fragment is still waiting (so depth tests and blending see earlier triangles' results in
 /// submission order).
 fn raster_triangle<S: FragmentShader>(
     s: &Setup,
-    var_w: &[[f32; 3]],
+    var_w: &[Plane],
     tile: &mut Tile,
     state: &DrawState,
     shader: &S,
@@ -440,49 +527,67 @@ fn raster_triangle<S: FragmentShader>(
     // Edge steps per pixel in x and y, for edges (1→2), (2→0), (0→1).
     let step_x = [-(s.y[2] - s.y[1]) * one, -(s.y[0] - s.y[2]) * one, -(s.y[1] - s.y[0]) * one];
     let step_y = [(s.x[2] - s.x[1]) * one, (s.x[0] - s.x[2]) * one, (s.x[1] - s.x[0]) * one];
-    // Each edge at the quad's four pixels relative to its pixel (0, 0), and the same with the
-    // top-left bias folded in for the coverage test.
-    let off: [[i64; 4]; 3] = std::array::from_fn(|i| [0, step_x[i], step_y[i], step_x[i] + step_y[i]]);
-    let off_biased: [[i64; 4]; 3] = std::array::from_fn(|i| off[i].map(|o| o + s.bias[i]));
-    let off_f: [Vec4; 3] = std::array::from_fn(|i| Vec4::from_array(off[i].map(|o| o as f32)));
+    // Each edge at the quad's four pixels relative to its pixel (0, 0), with the top-left bias
+    // folded in for the coverage test, and the largest of the four.
+    let off: [[i64; 4]; 3] =
+        std::array::from_fn(|i| [0, step_x[i], step_y[i], step_x[i] + step_y[i]].map(|o| o + s.bias[i]));
+    let max_off: [i64; 3] = std::array::from_fn(|i| *off[i].iter().max().expect("four pixels"));
     let (tx1, ty1) = (tile.x0 + tile.width, tile.y0 + tile.height);
-    let fx0 = ((x0 as i64) << SUBPIXEL_BITS) + half;
-    let mut e_row = {
-        let fy = ((y0 as i64) << SUBPIXEL_BITS) + half;
-        [s.edge(1, 2, fx0, fy), s.edge(2, 0, fx0, fy), s.edge(0, 1, fx0, fy)]
-    };
-    // The largest value of each edge function over a quad's pixels, relative to pixel 0.
-    let max_off: [i64; 3] = std::array::from_fn(|i| *off_biased[i].iter().max().expect("four pixels"));
+    let (fx0, fy0) = (((x0 as i64) << SUBPIXEL_BITS) + half, ((y0 as i64) << SUBPIXEL_BITS) + half);
+    let mut e_row = [s.edge(1, 2, fx0, fy0), s.edge(2, 0, fx0, fy0), s.edge(0, 1, fx0, fy0)];
+    // The planes' offsets (X − X₀, Y − Y₀) at a quad's pixels. Steps of 2 keep them exact: they
+    // are multiples of 1/256 well within f32's 24 bits for any frame this rasterizer accepts.
+    let from_vertex = |fixed: i64, vertex: i64| (fixed - vertex) as f32 * (1.0 / SUBPIXEL);
+    let (dx0, mut dy) =
+        (from_vertex(fx0, s.x[0]), Vec4::splat(from_vertex(fy0, s.y[0])) + Vec4::new(0.0, 0.0, 1.0, 1.0));
+    let quads_in_row = (x1 - x0).div_ceil(2) as i64;
+    let mut var_row = [Vec4::ZERO; MAX_VARYINGS];
     for qy in (y0..y1).step_by(2) {
-        // Pixels of the quad's second row fall outside the tile on its last odd row.
-        let rows_in = if qy + 1 < ty1 { 0b1111u32 } else { 0b0011 };
-        // Quads left of the triangle are skipped: an edge that grows to the right and is
-        // negative at every pixel needs at least ⌈−v / 2·step⌉ quads to turn. The quotient is
-        // taken in f64 and floored, which never exceeds that (|v| < 2⁵³).
-        let mut skip = 0i64;
+        // The quads of the row that every edge allows: quad n has a pixel on the inner side of
+        // edge i when e_row + max_off + 2·step_x·n ≥ 0. The divisions are exact (integers).
+        let (mut first, mut end) = (0i64, quads_in_row);
         for i in 0..3 {
-            let v = e_row[i] + max_off[i];
-            if step_x[i] > 0 && v < 0 {
-                skip = skip.max(((-v) as f64 / (2 * step_x[i]) as f64).floor() as i64);
+            let (v, step) = (e_row[i] + max_off[i], 2 * step_x[i]);
+            if v < 0 {
+                if step > 0 {
+                    first = first.max((-v as u64).div_ceil(step as u64) as i64);
+                } else {
+                    end = 0;
+                }
+            } else if step < 0 {
+                end = end.min(v / -step + 1);
             }
         }
-        let mut e: [i64; 3] = std::array::from_fn(|i| e_row[i] + 2 * step_x[i] * skip);
-        let start = x0.saturating_add(2 * skip.min((x1 - x0) as i64) as usize);
-        for qx in (start..x1).step_by(2) {
+        let row_e = e_row;
+        for i in 0..3 {
+            e_row[i] += 2 * step_y[i];
+        }
+        let row_dy = dy;
+        dy += Vec4::splat(2.0);
+        if first >= end {
+            continue;
+        }
+        // Pixels of the quad's second row fall outside the tile on its last odd row.
+        let rows_in = if qy + 1 < ty1 { 0b1111u32 } else { 0b0011 };
+        // The planes along this row: a + gy·(Y − Y₀), and gx for the steps along x.
+        let row = |p: &Plane| Vec4::splat(p.gy).mul_add(row_dy, Vec4::splat(p.a));
+        let (z_row, inv_w_row) = (row(&s.z), row(&s.inv_w));
+        for (r, p) in var_row.iter_mut().zip(var_w) {
+            *r = row(p);
+        }
+        let mut e: [i64; 3] = std::array::from_fn(|i| row_e[i] + 2 * step_x[i] * first);
+        let mut dx = Vec4::splat(dx0 + 2.0 * first as f32) + Vec4::new(0.0, 1.0, 0.0, 1.0);
+        for qx in (x0 + 2 * first as usize..x0 + 2 * end as usize).step_by(2) {
             // A pixel is covered when no edge function is negative there.
-            let negative = negative_pixels(e, &off_biased);
+            let negative = negative_pixels(e, &off);
             let cols_in = if qx + 1 < tx1 { 0b1111u32 } else { 0b0101 };
             let covered = !(negative[0] | negative[1] | negative[2]) & rows_in & cols_in;
-            let e_quad = e;
+            let quad_dx = dx;
             for i in 0..3 {
                 e[i] += 2 * step_x[i];
             }
+            dx += Vec4::splat(2.0);
             if covered == 0 {
-                // Past the triangle: an edge that does not grow to the right is negative at all
-                // four pixels, so it is at every quad further along the row.
-                if (0..3).any(|i| step_x[i] <= 0 && negative[i] == 0b1111) {
-                    break;
-                }
                 continue;
             }
             let (lx, ly) = (qx - tile.x0, qy - tile.y0);
@@ -491,12 +596,9 @@ fn raster_triangle<S: FragmentShader>(
             }
             let q = task.batch.quads;
             let batch = &mut task.batch;
-            // Barycentrics of the quad's four pixels as lanes of one vector each: the edge
-            // function at pixel 0 plus the per-pixel steps, in float. Every pass computes them
-            // the same way, so depth EQUAL still holds across passes.
-            let lanes = |i: usize| (Vec4::splat(e_quad[i] as f32) + off_f[i]) * s.inv_area;
-            let (b0, b1, b2) = (lanes(0), lanes(1), lanes(2));
-            let z = b0 * s.z[0] + b1 * s.z[1] + b2 * s.z[2];
+            // Depth from its plane: every pass evaluates the same plane at the same pixels, so
+            // depth EQUAL holds across passes.
+            let z = Vec4::splat(s.z.gx).mul_add(quad_dx, z_row);
             batch.depth[4 * q..4 * q + 4].copy_from_slice(&z.to_array());
             // The stored depths of the quad's pixels, read without branches: a pixel outside
             // the tile (not covered) reads some in-range value that the mask then ignores.
@@ -516,25 +618,21 @@ fn raster_triangle<S: FragmentShader>(
             }
             batch.quad_live[q] = live as u8;
             // Perspective-correct varyings for all four lanes at once (helpers too, for
-            // derivatives): v = Σ bᵢ·(v/w)ᵢ / Σ bᵢ·(1/w)ᵢ.
-            let wc = Vec4::ONE / (b0 * s.inv_w[0] + b1 * s.inv_w[1] + b2 * s.inv_w[2]);
-            let (w0, w1, w2) = (b0 * wc, b1 * wc, b2 * wc);
-            for (var, vw) in batch.varyings.iter_mut().zip(var_w) {
-                let v = w0 * vw[0] + w1 * vw[1] + w2 * vw[2];
+            // derivatives): v = (v/w) / (1/w), both interpolated linearly in window space.
+            let w = Vec4::ONE / Vec4::splat(s.inv_w.gx).mul_add(quad_dx, inv_w_row);
+            for ((var, p), r) in batch.varyings.iter_mut().zip(var_w).zip(&var_row) {
+                let v = Vec4::splat(p.gx).mul_add(quad_dx, *r) * w;
                 var[4 * q..4 * q + 4].copy_from_slice(&v.to_array());
             }
             task.pending[ly] |= ((live & 0b11) as u64) << lx;
             if ly + 1 < TILE {
                 task.pending[ly + 1] |= ((live >> 2) as u64) << lx;
             }
-            batch.origin[q] = (qx as u16, qy as u16);
+            batch.corner[q] = idx as u16;
             batch.quads += 1;
             if batch.quads == QUADS {
                 flush(tile, state, shader, task);
             }
-        }
-        for i in 0..3 {
-            e_row[i] += 2 * step_y[i];
         }
     }
 }
@@ -545,16 +643,16 @@ fn flush<S: FragmentShader>(tile: &mut Tile, state: &DrawState, shader: &S, task
     if batch.quads == 0 {
         return;
     }
-    batch.list_live();
+    batch.list_live(tile.width);
     shader.shade(batch, scratch, colors);
     // The blend equation is chosen once per batch; the common ones get their own loop.
     use crate::framebuffer::BlendFactor as F;
     let all = state.color_mask == [true; 4];
     match (state.blend.src, state.blend.dst) {
         (F::One, F::Zero) if all => write_lanes(tile, state, batch, colors, |s, _| s),
-        (F::DstColor, F::Zero) if all => write_lanes(tile, state, batch, colors, |s, d| s.map2(d, |a, b| a * b)),
-        (F::DstAlpha, F::One) if all => write_lanes(tile, state, batch, colors, |s, d| s.map2(d, |a, b| a * d[3] + b)),
-        (F::One, F::One) if all => write_lanes(tile, state, batch, colors, |s, d| s.map2(d, |a, b| a + b)),
+        (F::DstColor, F::Zero) if all => write_lanes(tile, state, batch, colors, |s, d| s * d),
+        (F::DstAlpha, F::One) if all => write_lanes(tile, state, batch, colors, |s, d| s * d.w + d),
+        (F::One, F::One) if all => write_lanes(tile, state, batch, colors, |s, d| s + d),
         _ => {
             let (blend, mask) = (state.blend, state.color_mask);
             write_lanes_bytes(tile, state, batch, colors, |s, stored| blend.apply(s, stored, mask))
@@ -564,18 +662,6 @@ fn flush<S: FragmentShader>(tile: &mut Tile, state: &DrawState, shader: &S, task
     *pending = [0; TILE];
 }
 
-/// Pairs of RGBA values combined channel by channel.
-trait Map2 {
-    fn map2(self, other: Self, f: impl Fn(f32, f32) -> f32) -> Self;
-}
-
-impl Map2 for [f32; 4] {
-    #[inline(always)]
-    fn map2(self, other: Self, f: impl Fn(f32, f32) -> f32) -> Self {
-        [f(self[0], other[0]), f(self[1], other[1]), f(self[2], other[2]), f(self[3], other[3])]
-    }
-}
-
 /// Writes every live lane: depth if enabled, colour = `f(src clamped to [0,1], dst)` rounded.
 #[inline(always)]
 fn write_lanes(
@@ -583,12 +669,11 @@ fn write_lanes(
     state: &DrawState,
     batch: &FragmentBatch,
     colors: &[Lanes; 4],
-    f: impl Fn([f32; 4], [f32; 4]) -> [f32; 4],
+    f: impl Fn(Vec4, Vec4) -> Vec4,
 ) {
     write_lanes_bytes(tile, state, batch, colors, |src, stored| {
-        let src = src.map(|v| crate::lane_math::clamp_lo(v, 0.0, 1.0));
-        let dst = stored.map(|b| b as f32 * (1.0 / 255.0));
-        f(src, dst).map(to_byte)
+        let src = Vec4::from_array(src).clamp(Vec4::ZERO, Vec4::ONE);
+        vec4_to_rgba8(f(src, rgba8_to_vec4(stored)))
     })
 }
 
@@ -600,16 +685,15 @@ fn write_lanes_bytes(
     colors: &[Lanes; 4],
     f: impl Fn([f32; 4], [u8; 4]) -> [u8; 4],
 ) {
-    for (j, &lane) in batch.live().iter().enumerate() {
-        let lane = lane as usize;
-        let (qx, qy) = batch.origin[lane / 4];
-        let k = lane % 4;
-        let (px, py) = (qx as usize + (k & 1), qy as usize + (k >> 1));
-        let idx = (py - tile.y0) * tile.width + (px - tile.x0);
-        if state.depth_write {
-            tile.depth[idx] = batch.depth[lane];
+    let pixels = &batch.pixel[..batch.live_count];
+    if state.depth_write {
+        for (&lane, &idx) in batch.live().iter().zip(pixels) {
+            tile.depth[idx as usize] = batch.depth[lane as usize];
         }
+    }
+    for (j, &idx) in pixels.iter().enumerate() {
         let src = [colors[0][j], colors[1][j], colors[2][j], colors[3][j]];
+        let idx = idx as usize;
         tile.color[idx] = f(src, tile.color[idx]);
     }
 }
