@@ -72,6 +72,19 @@ pub struct FragmentBatch {
     pixel: [u16; LANES + 8],
 }
 
+/// Four u16 as one integer (memory order), so that adding `x · 0x0001_0001_0001_0001` adds x
+/// to each while no sum exceeds `u16::MAX`.
+fn pack_u16x4(v: [u16; 4]) -> u64 {
+    let b = v.map(u16::to_ne_bytes);
+    u64::from_ne_bytes([b[0][0], b[0][1], b[1][0], b[1][1], b[2][0], b[2][1], b[3][0], b[3][1]])
+}
+
+/// The inverse of [`pack_u16x4`].
+fn unpack_u16x4(v: u64) -> [u16; 4] {
+    let b = v.to_ne_bytes();
+    [[b[0], b[1]], [b[2], b[3]], [b[4], b[5]], [b[6], b[7]]].map(u16::from_ne_bytes)
+}
+
 // Tile-local pixel indices fit the batch's u16 fields.
 const _: () = assert!(TILE * TILE <= 1 << 16);
 
@@ -122,16 +135,20 @@ impl FragmentBatch {
     /// Lists the live lanes and their pixels from the quads' masks (before shading); `width`
     /// is the tile's.
     fn list_live(&mut self, width: usize) {
-        let mut n = 0;
-        // Where pixel k of a quad lies relative to its pixel 0.
+        // For each mask, where its pixels lie relative to the quad's pixel 0.
         let step = [0, 1, width as u16, width as u16 + 1];
+        let offsets: [u64; 16] = std::array::from_fn(|m| pack_u16x4(MASK_LANES[m].0.map(|k| step[k as usize])));
+        let mut n = 0;
         for q in 0..self.quads {
-            let (pixels, count) = MASK_LANES[self.quad_live[q] as usize];
-            let base = 4 * q as u8;
-            // Four entries written, `count` kept: the slack after LANES absorbs the rest.
-            self.live[n..n + 4].copy_from_slice(&pixels.map(|k| base + k));
-            let corner = self.corner[q];
-            self.pixel[n..n + 4].copy_from_slice(&pixels.map(|k| corner + step[k as usize]));
+            let mask = self.quad_live[q] as usize;
+            let (lanes, count) = MASK_LANES[mask];
+            // Four entries written, `count` kept: the slack after LANES absorbs the rest. The
+            // additions are lane by lane within one integer (no lane can carry: lane indices
+            // stay below 256, pixel indices below 2¹⁶).
+            let lanes = u32::from_ne_bytes(lanes) + (4 * q as u32) * 0x0101_0101;
+            self.live[n..n + 4].copy_from_slice(&lanes.to_ne_bytes());
+            let pixels = offsets[mask] + self.corner[q] as u64 * 0x0001_0001_0001_0001;
+            self.pixel[n..n + 4].copy_from_slice(&unpack_u16x4(pixels));
             n += count;
         }
         self.live_count = n;
