@@ -10,7 +10,7 @@ use std::sync::Arc;
 
 use crate::combiners::{Combiners, LANES, Lanes, Register, RegisterFile};
 use crate::raster::{FragmentBatch, FragmentShader};
-use crate::texture::{Sampler, Texture2d, TextureCube, lambda_from_rho2, rho2_2d, sample_2d_lanes, sample_cube_lanes};
+use crate::texture::{Sampler, Texture2d, TextureCube, lambda_from_rho2, sample_2d_lanes, sample_cube_lanes};
 
 /// What a texture unit has bound.
 #[derive(Clone, Debug)]
@@ -61,8 +61,8 @@ fn load_colors(regs: &mut RegisterFile, n: usize) {
 }
 
 /// Packs the coordinates of a 2D lookup for a batch's live lanes: `scale ⊙ (s, t)` from
-/// varyings `slots` into `out[0]`, `out[1]`, and λ (once per quad, GL 1.2 Eq. 3.14) into
-/// `out[2]`.
+/// varyings `slots` into `out[0]`, `out[1]`, and λ (from each quad's derivatives, GL 1.2
+/// Eq. 3.14) into `out[2]`.
 pub(crate) fn pack_2d_coords(
     tex: &Texture2d,
     batch: &FragmentBatch,
@@ -71,25 +71,59 @@ pub(crate) fn pack_2d_coords(
     out: &mut [Lanes; 3],
 ) {
     let (s, t) = (&batch.varyings[slots[0]], &batch.varyings[slots[1]]);
-    let [ks, kt] = scale;
     let [ps, pt, pl] = out;
-    // λ of each quad, repeated over its four lanes, then packed like a varying.
-    let mut rho2 = [0f32; LANES / 4];
-    for (q, r) in rho2.iter_mut().enumerate().take(batch.quads) {
-        let b = 4 * q;
-        *r = rho2_2d(tex, [ks * s[b], ks * s[b + 1], ks * s[b + 2]], [kt * t[b], kt * t[b + 1], kt * t[b + 2]]);
-    }
-    let mut lambda = [0f32; LANES];
-    for q in 0..batch.quads {
-        lambda[4 * q..4 * q + 4].fill(lambda_from_rho2(rho2[q]));
-    }
-    batch.pack_lanes(&lambda, pl);
+    // ρ² of each quad on its four lanes, packed like a varying; λ only for the live lanes.
+    let mut rho2 = [0f32; LANES];
+    quad_rho2(tex, s, t, scale, batch.lanes(), &mut rho2);
+    batch.pack_lanes(&rho2, pl);
     batch.pack(slots[0], ps);
     batch.pack(slots[1], pt);
     let n = batch.live().len().next_multiple_of(8).min(LANES);
+    let [ks, kt] = scale;
     for j in 0..n {
         ps[j] *= ks;
         pt[j] *= kt;
+        pl[j] = lambda_from_rho2(pl[j]);
+    }
+}
+
+/// [`rho2_2d`] of each quad of `scale ⊙ (s, t)` in lanes `0..lanes`, on all four of its lanes.
+/// The AVX2 path takes two quads per vector (one per 128-bit half, where in-lane shuffles pick
+/// the quad's pixels 0, 1 and 2) with the scalar function's operations in its order, so both
+/// give the same bits.
+fn quad_rho2(tex: &Texture2d, s: &Lanes, t: &Lanes, [ks, kt]: [f32; 2], lanes: usize, out: &mut Lanes) {
+    debug_assert!(lanes <= LANES && lanes % 4 == 0);
+    #[cfg(all(target_arch = "x86_64", target_feature = "avx2"))]
+    {
+        use std::arch::x86_64::*;
+        let (w, h) = (tex.width() as f32, tex.height() as f32);
+        for i in (0..lanes).step_by(8) {
+            // SAFETY: AVX2 is enabled at compile time (the cfg); i + 8 ≤ LANES because i < lanes ≤
+            // LANES and LANES is a multiple of 8, so the loads and the store stay in the arrays.
+            unsafe {
+                let sv = _mm256_mul_ps(_mm256_set1_ps(ks), _mm256_loadu_ps(s.as_ptr().add(i)));
+                let tv = _mm256_mul_ps(_mm256_set1_ps(kt), _mm256_loadu_ps(t.as_ptr().add(i)));
+                let (s0, s1, s2) =
+                    (_mm256_permute_ps::<0x00>(sv), _mm256_permute_ps::<0x55>(sv), _mm256_permute_ps::<0xaa>(sv));
+                let (t0, t1, t2) =
+                    (_mm256_permute_ps::<0x00>(tv), _mm256_permute_ps::<0x55>(tv), _mm256_permute_ps::<0xaa>(tv));
+                let (wv, hv) = (_mm256_set1_ps(w), _mm256_set1_ps(h));
+                let (dudx, dvdx) = (_mm256_mul_ps(_mm256_sub_ps(s1, s0), wv), _mm256_mul_ps(_mm256_sub_ps(t1, t0), hv));
+                let (dudy, dvdy) = (_mm256_mul_ps(_mm256_sub_ps(s2, s0), wv), _mm256_mul_ps(_mm256_sub_ps(t2, t0), hv));
+                let x = _mm256_add_ps(_mm256_mul_ps(dudx, dudx), _mm256_mul_ps(dvdx, dvdx));
+                let y = _mm256_add_ps(_mm256_mul_ps(dudy, dudy), _mm256_mul_ps(dvdy, dvdy));
+                _mm256_storeu_ps(out.as_mut_ptr().add(i), _mm256_max_ps(x, y));
+            }
+        }
+    }
+    #[cfg(not(all(target_arch = "x86_64", target_feature = "avx2")))]
+    for b in (0..lanes).step_by(4) {
+        let rho2 = crate::texture::rho2_2d(
+            tex,
+            [ks * s[b], ks * s[b + 1], ks * s[b + 2]],
+            [kt * t[b], kt * t[b + 1], kt * t[b + 2]],
+        );
+        out[b..b + 4].fill(rho2);
     }
 }
 

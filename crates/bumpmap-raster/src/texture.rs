@@ -313,7 +313,8 @@ pub(crate) fn rho2_2d(tex: &Texture2d, s: [f32; 3], t: [f32; 3]) -> f32 {
     let (w, h) = (tex.width() as f32, tex.height() as f32);
     let (dudx, dvdx) = ((s[1] - s[0]) * w, (t[1] - t[0]) * h);
     let (dudy, dvdy) = ((s[2] - s[0]) * w, (t[2] - t[0]) * h);
-    (dudx * dudx + dvdx * dvdx).max(dudy * dudy + dvdy * dvdy)
+    // `max_lo` rather than `f32::max`: the batch path's `maxps` treats NaN the same way.
+    crate::lane_math::max_lo(dudx * dudx + dvdx * dvdx, dudy * dudy + dvdy * dvdy)
 }
 
 /// λ = ½·log2 ρ². The logarithm is a short series (GL lets λ be approximated) that agrees with
