@@ -92,7 +92,7 @@ pub(crate) fn pack_2d_coords(
 /// the quad's pixels 0, 1 and 2) with the scalar function's operations in its order, so both
 /// give the same bits.
 fn quad_rho2(tex: &Texture2d, s: &Lanes, t: &Lanes, [ks, kt]: [f32; 2], lanes: usize, out: &mut Lanes) {
-    debug_assert!(lanes <= LANES && lanes % 4 == 0);
+    debug_assert!(lanes <= LANES && lanes.is_multiple_of(4));
     #[cfg(all(target_arch = "x86_64", target_feature = "avx2"))]
     {
         use std::arch::x86_64::*;
