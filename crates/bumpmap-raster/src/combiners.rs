@@ -508,6 +508,55 @@ impl RegisterFile {
 pub struct Combiners {
     setup: CombinerSetup,
     precision: Precision,
+    gray: GrayPlan,
+}
+
+/// Which RGB values are gray (R = G = B in every lane), found once per setup so that the
+/// evaluation computes them on one channel and copies it. A dot product is gray, and so is an
+/// alpha or blue read, ZERO, FOG and a constant with equal components; products, sums and the
+/// mux of gray values are gray. The results are the same bits as per-channel evaluation.
+#[derive(Clone, Debug, PartialEq, Default)]
+struct GrayPlan {
+    /// Per general stage: the RGB portion's AB, CD and sum.
+    stages: Vec<[bool; 3]>,
+    /// The final combiner's RGB (A·B + (1 − A)·C + D, from the inputs it reads).
+    final_rgb: bool,
+}
+
+impl GrayPlan {
+    fn new(setup: &CombinerSetup) -> Self {
+        let gray_constant = |c: Vec4| c.x == c.y && c.y == c.z;
+        let mut reg = [false; REGISTERS];
+        reg[Register::Zero as usize] = true;
+        reg[Register::Fog as usize] = true;
+        reg[Register::ConstantColor0 as usize] = gray_constant(setup.constant0);
+        reg[Register::ConstantColor1 as usize] = gray_constant(setup.constant1);
+        let input = |reg: &[bool; REGISTERS], i: &Input| i.usage != ComponentUsage::Rgb || reg[i.register as usize];
+        let mut stages = Vec::with_capacity(setup.stages.len());
+        for stage in &setup.stages {
+            let (p, o) = (&stage.rgb, &stage.rgb.outputs);
+            let ab = o.ab_dot || (input(&reg, &p.a) && input(&reg, &p.b));
+            let cd = o.cd_dot || (input(&reg, &p.c) && input(&reg, &p.d));
+            let gray = [ab, cd, ab && cd];
+            for (dst, g) in [o.ab, o.cd, o.sum].into_iter().zip(gray) {
+                if let Some(r) = dst {
+                    reg[r as usize] = g;
+                }
+            }
+            stages.push(gray);
+        }
+        let f = &setup.final_combiner;
+        let fin = |i: &FinalInput| match i.source {
+            FinalSource::Register(r) => i.usage != ComponentUsage::Rgb || reg[r as usize],
+            FinalSource::ETimesF => false,
+            FinalSource::Spare0PlusSecondary => {
+                reg[Register::Spare0 as usize] && reg[Register::SecondaryColor as usize]
+            }
+        };
+        let ef = fin(&f.e) && fin(&f.f);
+        let abcd = [&f.a, &f.b, &f.c, &f.d].map(|i| if i.source == FinalSource::ETimesF { ef } else { fin(i) });
+        GrayPlan { stages, final_rgb: abcd.iter().all(|&g| g) }
+    }
 }
 
 #[inline(always)]
@@ -521,7 +570,8 @@ impl Combiners {
         setup.validate()?;
         setup.constant0 = setup.constant0.clamp(Vec4::ZERO, Vec4::ONE);
         setup.constant1 = setup.constant1.clamp(Vec4::ZERO, Vec4::ONE);
-        Ok(Self { setup, precision })
+        let gray = GrayPlan::new(&setup);
+        Ok(Self { setup, precision, gray })
     }
 
     pub fn setup(&self) -> &CombinerSetup {
@@ -554,7 +604,7 @@ impl Combiners {
         let n = n.next_multiple_of(8);
         let fixed = self.precision == Precision::Fixed9;
         let RegisterFile { regs, tmp } = file;
-        for stage in &self.setup.stages {
+        for (stage, &gray) in self.setup.stages.iter().zip(&self.gray.stages) {
             // Both portions read this stage's inputs; their writes form the next stage's set.
             // A portion that discards all three outputs changes nothing and is skipped.
             let writes = |p: &Portion| p.outputs.ab.is_some() || p.outputs.cd.is_some() || p.outputs.sum.is_some();
@@ -566,10 +616,10 @@ impl Combiners {
                 .any(|i| i.usage == ComponentUsage::Blue && rgb_outputs.contains(&Some(i.register)));
             let rgb_direct = !(writes(&stage.alpha) && alpha_reads_written_blue);
             if writes(&stage.rgb) {
-                eval_portion(regs, &stage.rgb, true, n, fixed, &mut tmp.rgb, rgb_direct);
+                eval_portion(regs, &stage.rgb, Some(gray), n, fixed, &mut tmp.rgb, rgb_direct);
             }
             if writes(&stage.alpha) {
-                eval_portion(regs, &stage.alpha, false, n, fixed, &mut tmp.alpha, true);
+                eval_portion(regs, &stage.alpha, None, n, fixed, &mut tmp.alpha, true);
             }
             if !rgb_direct {
                 let o = &stage.rgb.outputs;
@@ -606,8 +656,10 @@ impl Combiners {
         let n = (n & !7).min(LANES);
         let f = &self.setup.final_combiner;
         let clamp_sum = f.color_sum_clamp;
+        // A gray result is computed on channel 0 and copied ([`GrayPlan`]).
+        let channels = if self.gray.final_rgb { 1 } else { 3 };
         let fetch = |input: &FinalInput, ef: Option<&[Lanes; 3]>, dst: &mut [Lanes; 3]| {
-            for c in 0..3 {
+            for c in 0..channels {
                 let d = &mut dst[c][..n];
                 match input.source {
                     FinalSource::Register(r) => {
@@ -632,7 +684,7 @@ impl Combiners {
         if abcd.iter().any(|i| i.source == FinalSource::ETimesF) {
             fetch(&f.e, None, e);
             fetch(&f.f, None, fv);
-            for c in 0..3 {
+            for c in 0..channels {
                 for i in 0..n {
                     ef[c][i] = e[c][i] * fv[c][i];
                 }
@@ -650,12 +702,12 @@ impl Combiners {
                 continue;
             }
             match constant(input) {
-                Some(k) => dst.iter_mut().for_each(|ch| ch[..n].fill(k)),
+                Some(k) => dst[..channels].iter_mut().for_each(|ch| ch[..n].fill(k)),
                 None => fetch(input, Some(ef), dst),
             }
         }
         // A·B + (1 − A)·C + D, clamped to 1: one branch-free loop per case.
-        for c in 0..3 {
+        for c in 0..channels {
             let (a, b, cc, d, out) = (&a[c], &b[c], &cc[c], &d[c], &mut out[c][..n]);
             macro_rules! each {
                 (|$i:ident| $lerp:expr) => {
@@ -677,6 +729,11 @@ impl Combiners {
                 (_, true) => each!(|i| a[i] * b[i]),
                 _ => each!(|i| a[i] * b[i] + (1.0 - a[i]) * cc[i]),
             }
+        }
+        if channels == 1 {
+            let (red, rest) = out.split_at_mut(1);
+            rest[0][..n].copy_from_slice(&red[0][..n]);
+            rest[1][..n].copy_from_slice(&red[0][..n]);
         }
         // G reads alpha or blue; pseudo-registers are not allowed for G.
         let FinalSource::Register(r) = f.g.source else { unreachable!("validated") };
@@ -724,11 +781,12 @@ fn map_lanes(mapping: InputMapping, v: &mut [f32]) {
 }
 
 /// Evaluates one portion into `out`: its AB, CD and sum outputs (RGBA lanes; only RGB or only A
-/// meaningful), after bias, scale and clamp.
+/// meaningful), after bias, scale and clamp. `gray` is `Some` for the RGB portion, saying which
+/// of AB, CD and sum are gray ([`GrayPlan`]): those are computed on channel 0 and copied.
 fn eval_portion(
     regs: &mut [[Lanes; 4]; REGISTERS],
     p: &Portion,
-    rgb: bool,
+    gray: Option<[bool; 3]>,
     n: usize,
     fixed: bool,
     out: &mut [[Lanes; 4]; 3],
@@ -737,7 +795,14 @@ fn eval_portion(
     // n is a whole number of 8-lane vectors within the batch (`run`); saying so lets every
     // loop below compile to full vectors without bounds checks.
     let n = (n & !7).min(LANES);
-    let channels: &[usize] = if rgb { &[0, 1, 2] } else { &[3] };
+    let rgb = gray.is_some();
+    // The channels each output is computed on.
+    let channels: [&[usize]; 3] = match gray {
+        Some(gray) => gray.map(|g| -> &[usize] {
+            if g { &[0] } else { &[0, 1, 2] }
+        }),
+        None => [&[3]; 3],
+    };
     let o = &p.outputs;
     // AB and CD are needed when kept or when the sum (or mux) is.
     let need_sum = o.sum.is_some();
@@ -765,13 +830,15 @@ fn eval_portion(
     ) {
         let n = (n & !7).min(LANES);
         if dot {
+            // Into channel 0, then copied to the other channels asked for (none when gray).
             for i in 0..n {
-                let d = var(mx, x[0][i]) * var(my, y[0][i])
+                dst[0][i] = var(mx, x[0][i]) * var(my, y[0][i])
                     + var(mx, x[1][i]) * var(my, y[1][i])
                     + var(mx, x[2][i]) * var(my, y[2][i]);
-                dst[0][i] = d;
-                dst[1][i] = d;
-                dst[2][i] = d;
+            }
+            let (first, rest) = dst.split_at_mut(1);
+            for &c in &channels[1..] {
+                rest[c - 1][..n].copy_from_slice(&first[0][..n]);
             }
         } else {
             for &c in channels {
@@ -782,7 +849,7 @@ fn eval_portion(
             }
         }
     }
-    let product_of = |x: &Input, y: &Input, dot: bool, dst: &mut [Lanes; 4]| {
+    let product_of = |x: &Input, y: &Input, dot: bool, channels: &[usize], dst: &mut [Lanes; 4]| {
         // Sources per channel; the alpha portion's one channel travels in slot 2.
         let sources = |v: &Input| -> [&Lanes; 3] {
             if rgb { [source(v, 0), source(v, 1), source(v, 2)] } else { [source(v, 3); 3] }
@@ -795,16 +862,30 @@ fn eval_portion(
             product(xs, ys, maps, dot, channels, n, |m, e| m.apply(e), dst);
         }
     };
+    // Channel 0 of a gray value copied to channels 1 and 2.
+    let spread = |v: &mut [Lanes; 4]| {
+        let (first, rest) = v.split_at_mut(1);
+        rest[0][..n].copy_from_slice(&first[0][..n]);
+        rest[1][..n].copy_from_slice(&first[0][..n]);
+    };
     let [ab, cd, sum] = out;
     if need[0] {
-        product_of(&p.a, &p.b, o.ab_dot, ab);
+        product_of(&p.a, &p.b, o.ab_dot, channels[0], ab);
     }
     if need[1] {
-        product_of(&p.c, &p.d, o.cd_dot, cd);
+        product_of(&p.c, &p.d, o.cd_dot, channels[1], cd);
     }
     if need_sum {
+        // A sum that is not gray reads all three channels of AB and CD.
+        if channels[2].len() == 3 {
+            for (v, ch) in [(&mut *ab, channels[0]), (&mut *cd, channels[1])] {
+                if ch.len() == 1 && rgb {
+                    spread(v);
+                }
+            }
+        }
         let spare0_alpha = &regs[Register::Spare0 as usize][3];
-        for &c in channels {
+        for &c in channels[2] {
             if o.mux_sum {
                 // Spec (Aug 2000 sense): spare0 alpha < ½ selects AB, otherwise CD.
                 for i in 0..n {
@@ -824,9 +905,9 @@ fn eval_portion(
         let y = clamp_lo((x + bias) * scale, -1.0, 1.0);
         if fixed { quantize(y) } else { y }
     };
-    for (v, kept) in [(ab, o.ab), (cd, o.cd), (sum, o.sum)] {
+    for ((v, kept), ch) in [(ab, o.ab), (cd, o.cd), (sum, o.sum)].into_iter().zip(channels) {
         let Some(r) = kept else { continue };
-        for &c in channels {
+        for &c in ch {
             if direct {
                 for (d, &x) in regs[r as usize][c][..n].iter_mut().zip(&v[c][..n]) {
                     *d = finish(x);
@@ -834,6 +915,9 @@ fn eval_portion(
             } else {
                 v[c][..n].iter_mut().for_each(|x| *x = finish(*x));
             }
+        }
+        if rgb && ch.len() == 1 {
+            spread(if direct { &mut regs[r as usize] } else { v });
         }
     }
 }

@@ -324,3 +324,56 @@ fn final_combiner_with_constant_inputs_equals_the_full_sum() {
         }
     }
 }
+
+#[test]
+fn gray_values_computed_once_equal_per_channel_evaluation() {
+    // Setups where the plan finds gray values (dot products, alpha reads, gray constants) and
+    // where it must not (coloured constants, a gray AB summed with a coloured CD, an alpha
+    // portion reading a blue the RGB portion writes), run on pseudo-random texture lanes with
+    // and without the plan: the same bits.
+    let (gray, colour) = (Vec4::splat(0.4), Vec4::new(0.9, 1.0, 0.8, 1.0));
+    let mut mixed = crate::setups::specular();
+    mixed.stages[0].rgb.c = Input::new(Register::Texture0, InputMapping::UnsignedIdentity, Rgb);
+    mixed.stages[0].rgb.d = Input::new(Register::Texture1, InputMapping::UnsignedIdentity, Rgb);
+    mixed.stages[0].rgb.outputs.sum = Some(Register::Spare1);
+    mixed.stages[0].alpha.a = Input::new(Register::Spare0, InputMapping::UnsignedIdentity, Blue);
+    mixed.final_combiner.d = FinalInput::reg(Register::Spare1, Rgb);
+    let setups = [
+        crate::setups::ambient_and_diffuse(gray, gray),
+        crate::setups::ambient_and_diffuse(gray, colour),
+        crate::setups::specular(),
+        crate::setups::specular_ramp(),
+        crate::setups::decal(),
+        mixed,
+    ];
+    let n = 24;
+    let mut seed = 12345u32;
+    let mut random = || {
+        seed = seed.wrapping_mul(1_664_525).wrapping_add(1_013_904_223);
+        (seed >> 8) as f32 / (1 << 24) as f32
+    };
+    for (k, setup) in setups.into_iter().enumerate() {
+        let planned = Combiners::new(setup, Precision::Float).unwrap();
+        let per_channel = Combiners {
+            gray: GrayPlan { stages: vec![[false; 3]; planned.setup.stages.len()], final_rgb: false },
+            ..planned.clone()
+        };
+        assert!(planned.gray.stages.iter().flatten().any(|&g| g), "setup {k}: nothing gray");
+        let mut regs = RegisterFile::new();
+        planned.load_constants(&mut regs, LANES);
+        for r in [Register::Texture0, Register::Texture1, Register::Texture2, Register::Spare0] {
+            for c in 0..4 {
+                regs.reg_mut(r)[c][..n].iter_mut().for_each(|v| *v = random());
+            }
+        }
+        let mut results = [[[0.0; LANES]; 4]; 2];
+        for (comb, out) in [&planned, &per_channel].into_iter().zip(&mut results) {
+            let mut file = RegisterFile::new();
+            file.regs = regs.regs;
+            comb.run(&mut file, n, out);
+        }
+        for c in 0..4 {
+            assert_eq!(results[0][c][..n], results[1][c][..n], "setup {k}, channel {c}");
+        }
+    }
+}
