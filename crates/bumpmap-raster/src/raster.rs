@@ -315,7 +315,10 @@ pub fn draw<S: FragmentShader>(
     let chunks: Vec<SetupChunk> = triangles
         .par_chunks(512)
         .map(|tris| {
-            let mut out = SetupChunk::default();
+            // Sized for every triangle of the chunk (clipping rarely adds any), so that the
+            // vectors do not grow while filling.
+            let mut out =
+                SetupChunk { setups: Vec::with_capacity(tris.len()), var_w: Vec::with_capacity(tris.len() * varyings) };
             for &[a, b, c] in tris {
                 let get = |i: u32| Some((vertices.get(i as usize)?, window[i as usize]));
                 let (Some(a), Some(b), Some(c)) = (get(a), get(b), get(c)) else { continue };
@@ -331,17 +334,22 @@ pub fn draw<S: FragmentShader>(
         })
         .collect();
 
-    // Bin each triangle into the tiles its bounding box touches, keeping submission order.
+    // Bin each triangle into the tiles its bounding box touches, keeping submission order: the
+    // bins' sizes are counted first so that each is allocated once.
     let tiles_x = fb.tiles_x;
-    let mut bins: Vec<Vec<[u32; 2]>> = vec![Vec::new(); fb.tiles.len()];
+    let tiles_of = |s: &Setup| {
+        let [x0, y0, x1, y1] = s.bbox;
+        (y0 / TILE..y1.div_ceil(TILE))
+            .flat_map(move |ty| (x0 / TILE..x1.div_ceil(TILE)).map(move |tx| ty * tiles_x + tx))
+    };
+    let mut sizes = vec![0usize; fb.tiles.len()];
+    for s in chunks.iter().flat_map(|chunk| &chunk.setups) {
+        tiles_of(s).for_each(|t| sizes[t] += 1);
+    }
+    let mut bins: Vec<Vec<[u32; 2]>> = sizes.iter().map(|&n| Vec::with_capacity(n)).collect();
     for (c, chunk) in chunks.iter().enumerate() {
         for (i, s) in chunk.setups.iter().enumerate() {
-            let [x0, y0, x1, y1] = s.bbox;
-            for ty in y0 / TILE..y1.div_ceil(TILE) {
-                for tx in x0 / TILE..x1.div_ceil(TILE) {
-                    bins[ty * tiles_x + tx].push([c as u32, i as u32]);
-                }
-            }
+            tiles_of(s).for_each(|t| bins[t].push([c as u32, i as u32]));
         }
     }
     fb.tiles.par_iter_mut().zip(bins.par_iter()).filter(|(_, bin)| !bin.is_empty()).for_each_init(
