@@ -16,7 +16,9 @@ pub use lanes::{sample_2d_lanes, sample_cube_lanes};
 /// One mip level: `width`×`height` RGBA8 texels, row 0 = t = 0.
 ///
 /// Builds without SSE4.1, where converting bytes on the fly is slow, also keep each texel as
-/// four floats (0–255); SSE4.1 builds keep only the bytes.
+/// four floats (0–255); SSE4.1 builds keep only the bytes. AVX2 builds add the rows padded for
+/// REPEAT ([`pad_rows`]), from which the batch sampler fetches both texels of a bilinear row
+/// with one 64-bit load.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Level {
     pub width: usize,
@@ -24,6 +26,26 @@ pub struct Level {
     texels: Vec<[u8; 4]>,
     #[cfg(not(all(target_arch = "x86_64", target_feature = "sse4.1")))]
     values: Vec<Vec4>,
+    #[cfg(all(target_arch = "x86_64", target_feature = "avx2", target_feature = "fma"))]
+    repeat_rows: Vec<[u8; 4]>,
+}
+
+/// `texels` (`width`×`height`, row-major) with one more column per row: the texel a LINEAR
+/// lookup under `wrap` pairs with the row's last one (column 0 for REPEAT, the last column again
+/// for CLAMP_TO_EDGE). Then the two texels of every bilinear row, (i, i + 1) after wrapping, are
+/// adjacent.
+#[cfg_attr(not(all(target_arch = "x86_64", target_feature = "avx2", target_feature = "fma")), allow(dead_code))]
+pub(crate) fn pad_rows(texels: &[[u8; 4]], width: usize, wrap: WrapMode) -> Vec<[u8; 4]> {
+    texels
+        .chunks_exact(width)
+        .flat_map(|row| {
+            let extra = match wrap {
+                WrapMode::Repeat => row[0],
+                WrapMode::ClampToEdge => row[width - 1],
+            };
+            row.iter().copied().chain(std::iter::once(extra))
+        })
+        .collect()
 }
 
 /// A 2D texture: level 0 and optionally every smaller level. RGB textures are stored with
@@ -204,6 +226,8 @@ impl Level {
             height,
             #[cfg(not(all(target_arch = "x86_64", target_feature = "sse4.1")))]
             values: texels.iter().map(|t| Vec4::new(t[0] as f32, t[1] as f32, t[2] as f32, t[3] as f32)).collect(),
+            #[cfg(all(target_arch = "x86_64", target_feature = "avx2", target_feature = "fma"))]
+            repeat_rows: pad_rows(&texels, width, WrapMode::Repeat),
             texels,
         }
     }
@@ -345,8 +369,9 @@ pub(crate) fn lambda_from_rho2(rho2: f32) -> f32 {
 #[derive(Clone, Debug, PartialEq)]
 pub struct TextureCube {
     faces: [Texture2d; 6],
-    /// Level 0 of the six faces back to back, when they are square, of one size and have one
-    /// level: the layout the batch sampler gathers from (AVX2 builds).
+    /// Level 0 of the six faces back to back with rows padded for CLAMP_TO_EDGE ([`pad_rows`]),
+    /// when they are square, of one size and have one level: the layout the batch sampler
+    /// fetches from (AVX2 builds).
     #[cfg(all(target_arch = "x86_64", target_feature = "avx2", target_feature = "fma"))]
     packed: Option<Vec<[u8; 4]>>,
 }
@@ -358,7 +383,8 @@ impl TextureCube {
         let packed = {
             let n = faces[0].width();
             let uniform = faces.iter().all(|f| f.levels.len() == 1 && f.width() == n && f.height() == n);
-            uniform.then(|| faces.iter().flat_map(|f| f.levels[0].texels().iter().copied()).collect())
+            uniform
+                .then(|| faces.iter().flat_map(|f| pad_rows(f.levels[0].texels(), n, WrapMode::ClampToEdge)).collect())
         };
         Self {
             faces,
