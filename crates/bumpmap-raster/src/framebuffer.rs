@@ -8,6 +8,7 @@
 use glam::Vec4;
 
 use crate::error::RasterError;
+use crate::raster::DrawBuffers;
 
 /// Tile edge length in pixels.
 pub const TILE: usize = 64;
@@ -33,6 +34,8 @@ pub struct Framebuffer {
     pub height: usize,
     pub tiles_x: usize,
     pub tiles: Vec<Tile>,
+    /// Reused by [`crate::raster::draw`].
+    pub(crate) draw_buffers: DrawBuffers,
 }
 
 impl Framebuffer {
@@ -57,7 +60,7 @@ impl Framebuffer {
                 });
             }
         }
-        Ok(Self { width, height, tiles_x, tiles })
+        Ok(Self { width, height, tiles_x, tiles, draw_buffers: DrawBuffers::default() })
     }
 
     /// `glClear` of colour and depth.

@@ -279,6 +279,29 @@ struct SetupChunk {
     var_w: Vec<Plane>,
 }
 
+/// The vectors a draw fills (window-space vertices, set-up chunks, tile bins), kept in the
+/// framebuffer between draws so that their memory is reused rather than allocated, faulted in
+/// and freed again on every draw.
+#[derive(Default)]
+pub(crate) struct DrawBuffers {
+    window: Vec<(u8, WindowVertex)>,
+    chunks: Vec<SetupChunk>,
+    bins: Vec<Vec<[u32; 2]>>,
+}
+
+impl Clone for DrawBuffers {
+    /// Empty: buffers hold nothing between draws worth copying.
+    fn clone(&self) -> Self {
+        Self::default()
+    }
+}
+
+impl std::fmt::Debug for DrawBuffers {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str("DrawBuffers")
+    }
+}
+
 impl Setup {
     /// Edge function of the edge from vertex a to vertex b at fixed-point (px, py).
     #[inline(always)]
@@ -298,8 +321,11 @@ pub fn draw<S: FragmentShader>(
 ) {
     let (w, h) = (fb.width, fb.height);
     let varyings = state.varyings.min(MAX_VARYINGS);
+    // The previous draw's vectors, refilled in place.
+    let mut buffers = std::mem::take(&mut fb.draw_buffers);
+    let DrawBuffers { window, chunks, bins } = &mut buffers;
     // Each vertex is transformed once, however many triangles share it.
-    let window: Vec<(u8, WindowVertex)> = vertices
+    vertices
         .par_iter()
         .with_min_len(1024)
         .map(|v| {
@@ -311,45 +337,37 @@ pub fn draw<S: FragmentShader>(
             };
             (code, at)
         })
-        .collect();
-    let chunks: Vec<SetupChunk> = triangles
-        .par_chunks(512)
-        .map(|tris| {
-            // Sized for every triangle of the chunk (clipping rarely adds any), so that the
-            // vectors do not grow while filling.
-            let mut out =
-                SetupChunk { setups: Vec::with_capacity(tris.len()), var_w: Vec::with_capacity(tris.len() * varyings) };
-            for &[a, b, c] in tris {
-                let get = |i: u32| Some((vertices.get(i as usize)?, window[i as usize]));
-                let (Some(a), Some(b), Some(c)) = (get(a), get(b), get(c)) else { continue };
-                let codes = [a.1.0, b.1.0, c.1.0];
-                if codes == [0; 3] {
-                    setup([a.0, b.0, c.0], [a.1.1, b.1.1, c.1.1], (w, h), state.cull_back, varyings, &mut out);
-                } else if codes.iter().all(|&c| c & NOT_FINITE == 0) && codes[0] & codes[1] & codes[2] == 0 {
-                    // Partly outside (not wholly outside one plane): clip.
-                    clip_and_setup([a.0, b.0, c.0], w, h, state.cull_back, varyings, &mut out);
-                }
+        .collect_into_vec(window);
+    const CHUNK: usize = 512;
+    chunks.resize_with(triangles.len().div_ceil(CHUNK), SetupChunk::default);
+    chunks.par_iter_mut().zip(triangles.par_chunks(CHUNK)).for_each(|(out, tris)| {
+        out.setups.clear();
+        out.var_w.clear();
+        for &[a, b, c] in tris {
+            let get = |i: u32| Some((vertices.get(i as usize)?, window[i as usize]));
+            let (Some(a), Some(b), Some(c)) = (get(a), get(b), get(c)) else { continue };
+            let codes = [a.1.0, b.1.0, c.1.0];
+            if codes == [0; 3] {
+                setup([a.0, b.0, c.0], [a.1.1, b.1.1, c.1.1], (w, h), state.cull_back, varyings, out);
+            } else if codes.iter().all(|&c| c & NOT_FINITE == 0) && codes[0] & codes[1] & codes[2] == 0 {
+                // Partly outside (not wholly outside one plane): clip.
+                clip_and_setup([a.0, b.0, c.0], w, h, state.cull_back, varyings, out);
             }
-            out
-        })
-        .collect();
+        }
+    });
 
-    // Bin each triangle into the tiles its bounding box touches, keeping submission order: the
-    // bins' sizes are counted first so that each is allocated once.
+    // Bin each triangle into the tiles its bounding box touches, keeping submission order.
     let tiles_x = fb.tiles_x;
-    let tiles_of = |s: &Setup| {
-        let [x0, y0, x1, y1] = s.bbox;
-        (y0 / TILE..y1.div_ceil(TILE))
-            .flat_map(move |ty| (x0 / TILE..x1.div_ceil(TILE)).map(move |tx| ty * tiles_x + tx))
-    };
-    let mut sizes = vec![0usize; fb.tiles.len()];
-    for s in chunks.iter().flat_map(|chunk| &chunk.setups) {
-        tiles_of(s).for_each(|t| sizes[t] += 1);
-    }
-    let mut bins: Vec<Vec<[u32; 2]>> = sizes.iter().map(|&n| Vec::with_capacity(n)).collect();
+    bins.resize_with(fb.tiles.len(), Vec::new);
+    bins.iter_mut().for_each(Vec::clear);
     for (c, chunk) in chunks.iter().enumerate() {
         for (i, s) in chunk.setups.iter().enumerate() {
-            tiles_of(s).for_each(|t| bins[t].push([c as u32, i as u32]));
+            let [x0, y0, x1, y1] = s.bbox;
+            for ty in y0 / TILE..y1.div_ceil(TILE) {
+                for tx in x0 / TILE..x1.div_ceil(TILE) {
+                    bins[ty * tiles_x + tx].push([c as u32, i as u32]);
+                }
+            }
         }
     }
     fb.tiles.par_iter_mut().zip(bins.par_iter()).filter(|(_, bin)| !bin.is_empty()).for_each_init(
@@ -368,6 +386,7 @@ pub fn draw<S: FragmentShader>(
             flush(tile, state, shader, task);
         },
     );
+    fb.draw_buffers = buffers;
 }
 
 /// Clips a triangle that is partly outside the near, far or guard-band planes, then sets up
