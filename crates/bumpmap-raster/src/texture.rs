@@ -17,7 +17,7 @@ pub use lanes::{sample_2d_lanes, sample_cube_lanes};
 ///
 /// Builds without SSE4.1, where converting bytes on the fly is slow, also keep each texel as
 /// four floats (0–255); SSE4.1 builds keep only the bytes. AVX2 builds add the rows padded for
-/// REPEAT ([`pad_rows`]), from which the batch sampler fetches both texels of a bilinear row
+/// REPEAT (`pad_rows`), from which the batch sampler fetches both texels of a bilinear row
 /// with one 64-bit load.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Level {
