@@ -89,6 +89,18 @@ impl Affine {
 }
 
 impl InputMapping {
+    /// Every mapping, in the spec table's order.
+    pub const ALL: [InputMapping; 8] = [
+        InputMapping::UnsignedIdentity,
+        InputMapping::UnsignedInvert,
+        InputMapping::ExpandNormal,
+        InputMapping::ExpandNegate,
+        InputMapping::HalfBiasNormal,
+        InputMapping::HalfBiasNegate,
+        InputMapping::SignedIdentity,
+        InputMapping::SignedNegate,
+    ];
+
     fn affine(self) -> Affine {
         let (inf, ninf) = (f32::INFINITY, f32::NEG_INFINITY);
         let (k, b, lo, hi) = match self {
@@ -731,9 +743,7 @@ impl Combiners {
             }
         }
         if channels == 1 {
-            let (red, rest) = out.split_at_mut(1);
-            rest[0][..n].copy_from_slice(&red[0][..n]);
-            rest[1][..n].copy_from_slice(&red[0][..n]);
+            copy_red_to_green_blue(out, n);
         }
         // G reads alpha or blue; pseudo-registers are not allowed for G.
         let FinalSource::Register(r) = f.g.source else { unreachable!("validated") };
@@ -741,6 +751,13 @@ impl Combiners {
         out[3][..n].copy_from_slice(&regs[r as usize][ch][..n]);
         map_lanes(f.g.mapping, &mut out[3][..n]);
     }
+}
+
+/// Lanes `0..n` of channel 0 (red) into channels 1 and 2: a gray value computed once.
+fn copy_red_to_green_blue(v: &mut [Lanes; 4], n: usize) {
+    let (red, rest) = v.split_at_mut(1);
+    rest[0][..n].copy_from_slice(&red[0][..n]);
+    rest[1][..n].copy_from_slice(&red[0][..n]);
 }
 
 /// `dst[i] = mapping(src[i])`, one loop per mapping.
@@ -836,9 +853,8 @@ fn eval_portion(
                     + var(mx, x[1][i]) * var(my, y[1][i])
                     + var(mx, x[2][i]) * var(my, y[2][i]);
             }
-            let (first, rest) = dst.split_at_mut(1);
-            for &c in &channels[1..] {
-                rest[c - 1][..n].copy_from_slice(&first[0][..n]);
+            if channels.len() == 3 {
+                copy_red_to_green_blue(dst, n);
             }
         } else {
             for &c in channels {
@@ -862,12 +878,6 @@ fn eval_portion(
             product(xs, ys, maps, dot, channels, n, |m, e| m.apply(e), dst);
         }
     };
-    // Channel 0 of a gray value copied to channels 1 and 2.
-    let spread = |v: &mut [Lanes; 4]| {
-        let (first, rest) = v.split_at_mut(1);
-        rest[0][..n].copy_from_slice(&first[0][..n]);
-        rest[1][..n].copy_from_slice(&first[0][..n]);
-    };
     let [ab, cd, sum] = out;
     if need[0] {
         product_of(&p.a, &p.b, o.ab_dot, channels[0], ab);
@@ -880,7 +890,7 @@ fn eval_portion(
         if channels[2].len() == 3 {
             for (v, ch) in [(&mut *ab, channels[0]), (&mut *cd, channels[1])] {
                 if ch.len() == 1 && rgb {
-                    spread(v);
+                    copy_red_to_green_blue(v, n);
                 }
             }
         }
@@ -917,7 +927,7 @@ fn eval_portion(
             }
         }
         if rgb && ch.len() == 1 {
-            spread(if direct { &mut regs[r as usize] } else { v });
+            copy_red_to_green_blue(if direct { &mut regs[r as usize] } else { v }, n);
         }
     }
 }

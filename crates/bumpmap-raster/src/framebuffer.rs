@@ -111,18 +111,24 @@ pub(crate) fn to_byte(v: f32) -> u8 {
     unsafe { v.to_int_unchecked::<i32>() as u8 }
 }
 
+/// An RGBA8 value as four floats in [0, 255]: one conversion with SSE4.1, which texture
+/// filtering shares.
+#[inline(always)]
+pub(crate) fn rgba8_bytes(p: [u8; 4]) -> Vec4 {
+    #[cfg(all(target_arch = "x86_64", target_feature = "sse4.1"))]
+    // SAFETY: SSE4.1 is enabled at compile time (the cfg); the intrinsics only move registers.
+    unsafe {
+        use std::arch::x86_64::*;
+        Vec4::from(_mm_cvtepi32_ps(_mm_cvtepu8_epi32(_mm_cvtsi32_si128(i32::from_ne_bytes(p)))))
+    }
+    #[cfg(not(all(target_arch = "x86_64", target_feature = "sse4.1")))]
+    Vec4::from_array(p.map(|b| b as f32))
+}
+
 /// A stored pixel as four floats in [0, 1] (`byte / 255`, as the blend reads it).
 #[inline(always)]
 pub(crate) fn rgba8_to_vec4(p: [u8; 4]) -> Vec4 {
-    #[cfg(all(target_arch = "x86_64", target_feature = "sse4.1"))]
-    // SAFETY: SSE4.1 is enabled at compile time (the cfg); the intrinsics only move registers.
-    let v = unsafe {
-        use std::arch::x86_64::*;
-        Vec4::from(_mm_cvtepi32_ps(_mm_cvtepu8_epi32(_mm_cvtsi32_si128(i32::from_ne_bytes(p)))))
-    };
-    #[cfg(not(all(target_arch = "x86_64", target_feature = "sse4.1")))]
-    let v = Vec4::from_array(p.map(|b| b as f32));
-    v * (1.0 / 255.0)
+    rgba8_bytes(p) * (1.0 / 255.0)
 }
 
 /// [`to_byte`] of each channel, the four at once.
@@ -218,7 +224,7 @@ impl Blend {
     #[inline(always)]
     pub fn apply(&self, src: [f32; 4], stored: [u8; 4], mask: [bool; 4]) -> [u8; 4] {
         let src = src.map(|v| crate::lane_math::clamp_lo(v, 0.0, 1.0));
-        let dst = stored.map(|b| b as f32 * (1.0 / 255.0));
+        let dst = rgba8_to_vec4(stored).to_array();
         let mut out = stored;
         for c in 0..4 {
             if mask[c] {

@@ -212,13 +212,19 @@ const CLIP_PLANES: [(Vec4, f32); 7] = [
 /// Outcode bit of a position that is not finite.
 const NOT_FINITE: u8 = 1 << 7;
 
+/// How far inside a plane of [`CLIP_PLANES`] a clip-space position is (negative: outside).
+#[inline(always)]
+fn inside((plane, d): (Vec4, f32), clip: Vec4) -> f32 {
+    plane.dot(clip) - d
+}
+
 /// Which planes of [`CLIP_PLANES`] a clip-space position is outside of (bit i), or
 /// [`NOT_FINITE`].
 fn outcode(clip: Vec4) -> u8 {
     if !clip.is_finite() {
         return NOT_FINITE;
     }
-    CLIP_PLANES.iter().enumerate().fold(0, |code, (i, &(p, d))| code | (((p.dot(clip) - d) < 0.0) as u8) << i)
+    CLIP_PLANES.iter().enumerate().fold(0, |code, (i, &plane)| code | ((inside(plane, clip) < 0.0) as u8) << i)
 }
 
 /// A vertex in window coordinates. Computed by one function from the clip position alone, so
@@ -250,7 +256,7 @@ impl WindowVertex {
 
 /// A quantity that varies linearly in window space, as `a + gx·(X − X₀) + gy·(Y − Y₀)` at the
 /// pixel centre (X, Y), with (X₀, Y₀) the triangle's first vertex (in pixels).
-#[derive(Clone, Copy, Debug, Default)]
+#[derive(Clone, Copy, Debug)]
 struct Plane {
     a: f32,
     gx: f32,
@@ -392,13 +398,12 @@ pub fn draw<S: FragmentShader>(
 /// Clips a triangle that is partly outside the near, far or guard-band planes, then sets up
 /// each triangle of the clipped polygon.
 fn clip_and_setup(v: [&Vertex; 3], w: usize, h: usize, cull_back: bool, varyings: usize, out: &mut SetupChunk) {
-    let inside = |p: Vec4, (plane, d): (Vec4, f32)| plane.dot(p) - d;
     let mut poly: Vec<Vertex> = v.iter().map(|&&v| v).collect();
     for &plane in &CLIP_PLANES {
         let mut next = Vec::with_capacity(poly.len() + 1);
         for i in 0..poly.len() {
             let (a, b) = (poly[i], poly[(i + 1) % poly.len()]);
-            let (da, db) = (inside(a.clip, plane), inside(b.clip, plane));
+            let (da, db) = (inside(plane, a.clip), inside(plane, b.clip));
             if da >= 0.0 {
                 next.push(a);
             }

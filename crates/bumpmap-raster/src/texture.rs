@@ -254,10 +254,7 @@ impl Level {
     fn bytes_at(&self, i: usize) -> Vec4 {
         #[cfg(all(target_arch = "x86_64", target_feature = "sse4.1"))]
         {
-            use std::arch::x86_64::*;
-            let word = u32::from_le_bytes(self.texels[i]);
-            // SAFETY: SSE4.1 is enabled at compile time (the cfg above).
-            unsafe { Vec4::from(_mm_cvtepi32_ps(_mm_cvtepu8_epi32(_mm_cvtsi32_si128(word as i32)))) }
+            crate::framebuffer::rgba8_bytes(self.texels[i])
         }
         #[cfg(not(all(target_arch = "x86_64", target_feature = "sse4.1")))]
         {

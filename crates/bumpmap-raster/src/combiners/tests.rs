@@ -275,18 +275,7 @@ fn both_portions_read_the_stage_inputs_before_either_writes() {
 
 #[test]
 fn affine_form_of_each_mapping_equals_the_table() {
-    use InputMapping::*;
-    let all = [
-        UnsignedIdentity,
-        UnsignedInvert,
-        ExpandNormal,
-        ExpandNegate,
-        HalfBiasNormal,
-        HalfBiasNegate,
-        SignedIdentity,
-        SignedNegate,
-    ];
-    for m in all {
+    for m in InputMapping::ALL {
         for i in -300..=300 {
             let e = i as f32 / 97.0;
             // Same operations on the same values: equal exactly (±0 compare equal).
