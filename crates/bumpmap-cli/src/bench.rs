@@ -8,8 +8,9 @@ use std::time::Instant;
 use bumpmap_math::{HeightField, HeightPreset, MipChain, MipMode, NormalMapOptions, mip::next_size};
 use rayon::prelude::*;
 
-use crate::args::{BenchArgs, BenchWhat, TechniqueArg};
+use crate::args::{BenchArgs, BenchWhat};
 use crate::error::CliError;
+use crate::render_args::BenchRenderArgs;
 
 /// Median, min and max of a set of durations in milliseconds.
 pub struct Stats {
@@ -40,9 +41,7 @@ pub fn run(args: &BenchArgs) -> Result<(), CliError> {
         BenchWhat::Tangents { triangles, mode, runs, threads, json } => {
             with_threads(threads, || bench_tangents(triangles as usize, mode, runs, json))
         }
-        BenchWhat::Render { ref scene, technique, size, threads, frames, runs, json } => {
-            with_threads(threads, || bench_render(scene, technique, size, frames, runs, json))
-        }
+        BenchWhat::Render(ref r) => with_threads(r.threads, || bench_render(r)),
     }
 }
 
@@ -141,40 +140,26 @@ fn bench_tangents(triangles: usize, mode: crate::args::TangentModeArg, runs: u32
 
 /// Renders `frames` frames per run with the light orbiting the torus axis as the llvmpipe peer
 /// does (`(4 cos a, 4 sin a, 3)`, a from −2.2 around the circle). Scene setup (normal map, decal,
-/// tessellation) is not timed; per frame: the vertex stage, clearing and every pass are.
-fn bench_render(
-    scene_name: &str,
-    technique: TechniqueArg,
-    size: usize,
-    frames: u32,
-    runs: u32,
-    json: bool,
-) -> Result<(), CliError> {
-    use clap::Parser;
-    let cli =
-        crate::args::Cli::try_parse_from(["bumpmap", "render", "--scene", scene_name, "--size", &size.to_string()])
-            .map_err(|e| CliError::Render(e.to_string()))?;
-    let crate::args::Command::Render(mut args) = cli.command else { unreachable!("parsed a render command") };
-    args.technique = technique;
-    let mut scene = crate::render::build_scene(&args)?;
-    let mut fb = bumpmap_raster::Framebuffer::new(size, size).map_err(|e| CliError::Render(e.to_string()))?;
-    let kilgard = crate::render::kilgard_options(&args)?;
-    let single = crate::render::single_pass_options(&args)?;
+/// tessellation, the GPU's device and pipelines) is not timed; per frame: the vertex stage,
+/// clearing, every pass and, on the GPU, reading the frame back are.
+fn bench_render(args: &BenchRenderArgs) -> Result<(), CliError> {
+    let (size, frames, runs) = (args.size, args.frames, args.runs);
+    crate::backend::check_size(size, size)?;
+    let mut scene = crate::render::build_scene(&args.setup)?;
+    let technique = crate::render::technique(&args.setup)?;
+    let mut backend = crate::backend::Backend::new(args.setup.backend.backend)?;
     let mut frame = |k: u32| -> Result<(), CliError> {
         let a = -2.2 + std::f32::consts::TAU * k as f32 / frames as f32;
-        scene.lights[0].light =
-            bumpmap_math::lighting::Light::Positional(glam::Vec3::new(4.0 * a.cos(), 4.0 * a.sin(), 3.0));
-        let r = match technique {
-            TechniqueArg::Kilgard => bumpmap_raster::kilgard::render(&scene, &kilgard, &mut fb, |_, _| {}),
-            TechniqueArg::SinglePass => bumpmap_raster::single_pass::render(&scene, &single, &mut fb),
-        };
-        r.map_err(|e| CliError::Render(e.to_string()))
+        if let Some(light) = scene.lights.first_mut() {
+            light.light = bumpmap_math::lighting::Light::Positional(glam::Vec3::new(4.0 * a.cos(), 4.0 * a.sin(), 3.0));
+        }
+        backend.render(&scene, &technique, size, size, false).map(|_| ())
     };
     let mut err = None;
     let stats = time_runs(runs, || {
         for k in 0..frames {
             if let Err(e) = frame(k) {
-                err = Some(e);
+                err.get_or_insert(e);
             }
         }
     });
@@ -183,19 +168,18 @@ fn bench_render(
     }
     let threads = rayon::current_num_threads();
     let fps = frames as f64 / (stats.median / 1e3);
-    let name = match technique {
-        TechniqueArg::Kilgard => "kilgard",
-        TechniqueArg::SinglePass => "single-pass",
-    };
-    if json {
+    let (scene_name, name) = (&args.setup.scene.scene, technique.name());
+    let (kind, device) = (backend.kind(), backend.name());
+    if args.json {
         println!(
-            "{{\"bench\":\"render\",\"scene\":\"{scene_name}\",\"technique\":\"{name}\",\"size\":{size},\"threads\":{threads},\"frames\":{frames},\"runs\":{runs},\"fps\":{fps:.2},\"ms_per_frame\":{:.3},\"fps_min\":{:.2},\"fps_max\":{:.2}}}",
+            "{{\"bench\":\"render\",\"scene\":\"{scene_name}\",\"technique\":\"{name}\",\"backend\":\"{kind}\",\"device\":\"{}\",\"size\":{size},\"threads\":{threads},\"frames\":{frames},\"runs\":{runs},\"fps\":{fps:.2},\"ms_per_frame\":{:.3},\"fps_min\":{:.2},\"fps_max\":{:.2}}}",
+            device.replace('"', "'"),
             stats.median / frames as f64,
             frames as f64 / (stats.max / 1e3),
             frames as f64 / (stats.min / 1e3)
         );
     } else {
-        println!("render {scene_name} with {name}, {size}x{size}, {threads} threads, {runs} runs of {frames} frames");
+        println!("render {scene_name} with {name} on {device}, {size}x{size}, {runs} runs of {frames} frames");
         println!(
             "  {fps:.1} frames/s ({:.2} ms/frame; slowest run {:.1} fps, fastest {:.1})",
             stats.median / frames as f64,

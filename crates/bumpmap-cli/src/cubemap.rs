@@ -1,7 +1,8 @@
 //! `bumpmap cubemap`: write a normalization cube map, or tabulate its accuracy.
 
 use bumpmap_io::image_file::{PngLayout, save_png};
-use bumpmap_io::texture_file::{Rgba8Image, TextureLayout, write_dds, write_ktx2};
+use bumpmap_io::texture_file::{TextureLayout, write_dds, write_ktx2};
+use bumpmap_math::Rgba8Image;
 use bumpmap_math::cubemap::worst_angular_error_degrees;
 use bumpmap_math::{CubeFace, Encoding, NormalizationCubeMap};
 
@@ -24,11 +25,12 @@ pub fn write(out: &std::path::Path, map: &NormalizationCubeMap) -> Result<(), Cl
     let n = map.size;
     match ext.as_deref() {
         Some("dds") | Some("ktx2") => {
-            let rgba: Vec<Vec<u8>> =
-                map.faces.iter().map(|f| f.iter().flat_map(|&[r, g, b]| [r, g, b, 255]).collect()).collect();
-            let layout = TextureLayout {
-                faces: rgba.iter().map(|b| vec![Rgba8Image { width: n, height: n, bytes: b }]).collect(),
-            };
+            let rgba: Vec<Rgba8Image> = map
+                .faces
+                .iter()
+                .map(|f| Rgba8Image::new(n, n, f.iter().map(|&[r, g, b]| [r, g, b, 255]).collect()))
+                .collect();
+            let layout = TextureLayout { faces: rgba.iter().map(|f| vec![f]).collect() };
             if ext.as_deref() == Some("dds") { write_dds(out, &layout)? } else { write_ktx2(out, &layout)? }
         }
         Some(_) if !out.is_dir() => {

@@ -2,103 +2,179 @@
 //! into one folder, with an index of what each file shows.
 
 use std::path::Path;
+use std::sync::Arc;
 
+use bumpmap_core::scene::{Attenuation, SceneLight, Spot};
+use bumpmap_core::scenes::{self, SceneKind, SceneParams};
+use bumpmap_core::technique::{Gloss, KilgardOptions, SinglePassOptions, Technique};
 use bumpmap_io::image_file::{PngLayout, save_png};
-use bumpmap_math::{Encoding, HeightPreset, MipMode, NormalMapOptions, NormalizationCubeMap};
+use bumpmap_math::lighting::Light;
+use bumpmap_math::{
+    Encoding, HeightField, HeightPreset, MipMode, NormalMapOptions, NormalizationCubeMap, Rgba8Image, Rgba8Mips,
+};
+use glam::Vec3;
 use indicatif::{ProgressBar, ProgressStyle};
 
-use crate::args::DemoArgs;
+use crate::args::{DemoArgs, DemoGpuArg};
+use crate::backend::Backend;
 use crate::error::CliError;
+use crate::render::{core_err, write_frame};
+use crate::render_args::BackendArg;
 
-/// Renders (name, description, `bumpmap render` arguments).
-const RENDERS: &[(&str, &str, &[&str])] = &[
-    (
-        "fig11_torus.png",
-        "Kilgard Figure 11: the bump-mapped brick torus, three passes on the emulated GeForce",
-        &["--passes"],
-    ),
-    (
-        "fig14_no_self_shadow.png",
-        "Kilgard Figure 14, left: light from the far right, no self-shadowing term",
-        &["--light", "6,0,0.5", "--no-self-shadow"],
-    ),
-    (
-        "fig14_self_shadow.png",
-        "Kilgard Figure 14, right: the same light with Eq. 12's self-shadowing",
-        &["--light", "6,0,0.5"],
-    ),
-    (
-        "fig8-4_wall_floor.png",
-        "Cg Tutorial Figure 8-4: wall and floor lit consistently by one light",
-        &["--scene", "wall-floor"],
-    ),
-    (
-        "single_pass_torus.png",
-        "The same torus in one float pass per light (Kilgard §6)",
-        &["--technique", "single-pass"],
-    ),
-    (
-        "single_pass_two_lights.png",
-        "Two coloured lights, single pass",
-        &["--technique", "single-pass", "--light", "4,-3,3@1,0.35,0.2", "--light", "-4,-3,3@0.2,0.45,1"],
-    ),
-    (
-        "single_pass_gloss.png",
-        "Gloss map: shiny bricks, dull mortar (Cg Tutorial §8.5.2)",
-        &["--technique", "single-pass", "--gloss", "bricks", "--shininess", "40"],
-    ),
-    (
-        "single_pass_spotlight.png",
-        "A spotlight projecting a pinwheel pattern on the wall (Kilgard §5.6)",
-        &[
-            "--technique",
-            "single-pass",
-            "--scene",
-            "wall",
-            "--light",
-            "0,0,4",
-            "--spot",
-            "0,0,-1",
-            "--spot-cutoff",
-            "30",
-            "--spot-pattern",
-            "pinwheel",
-            "--specular",
-            "0.3",
-        ],
-    ),
-    (
-        "single_pass_attenuation.png",
-        "Attenuation 1/(0.2 + 0.5·d²) from a light just above the floor",
-        &[
-            "--technique",
-            "single-pass",
-            "--scene",
-            "floor",
-            "--attenuation",
-            "0.2,0,0.5",
-            "--light",
-            "0,0.6,0",
-            "--eye",
-            "0,3,6",
-        ],
-    ),
-    (
-        "single_pass_object_space.png",
-        "Object-space lighting with an object-space normal map baked for the torus (Peercy §2.1)",
-        &["--technique", "single-pass", "--space", "object"],
-    ),
-    (
-        "patch_pinwheel.png",
-        "Peercy Figure 4's stretched bicubic patch with the pinwheel height field",
-        &["--scene", "patch", "--height-field", "pinwheel"],
-    ),
-    (
-        "sphere_dimples.png",
-        "A golf ball: dimples on a sphere",
-        &["--scene", "sphere", "--height-field", "dimples", "--bump-scale", "8"],
-    ),
+/// One image of the demo: its file, what it shows, and the scene and technique that make it.
+struct DemoRender {
+    file: &'static str,
+    what: &'static str,
+    /// Also write the framebuffer after each pass (Kilgard Figure 12).
+    passes: bool,
+    make: fn() -> (SceneKind, SceneParams, Technique),
+}
+
+fn kilgard() -> Technique {
+    Technique::Kilgard(KilgardOptions::default())
+}
+
+fn single(options: SinglePassOptions) -> Technique {
+    Technique::SinglePass(options)
+}
+
+fn at(x: f32, y: f32, z: f32) -> SceneLight {
+    SceneLight::white(Light::Positional(Vec3::new(x, y, z)))
+}
+
+fn coloured(light: SceneLight, r: f32, g: f32, b: f32) -> SceneLight {
+    SceneLight { color: Vec3::new(r, g, b), ..light }
+}
+
+fn preset(p: HeightPreset) -> HeightField {
+    p.render(256, 256)
+}
+
+const RENDERS: &[DemoRender] = &[
+    DemoRender {
+        file: "fig11_torus.png",
+        what: "Kilgard Figure 11: the bump-mapped brick torus, three passes on the emulated GeForce",
+        passes: true,
+        make: || (SceneKind::Torus, SceneParams::default(), kilgard()),
+    },
+    DemoRender {
+        file: "fig14_no_self_shadow.png",
+        what: "Kilgard Figure 14, left: light from the far right, no self-shadowing term",
+        passes: false,
+        make: || {
+            let params = SceneParams { lights: vec![at(6.0, 0.0, 0.5)], ..Default::default() };
+            (SceneKind::Torus, params, Technique::Kilgard(KilgardOptions { self_shadow: false, ..Default::default() }))
+        },
+    },
+    DemoRender {
+        file: "fig14_self_shadow.png",
+        what: "Kilgard Figure 14, right: the same light with Eq. 12's self-shadowing",
+        passes: false,
+        make: || (SceneKind::Torus, SceneParams { lights: vec![at(6.0, 0.0, 0.5)], ..Default::default() }, kilgard()),
+    },
+    DemoRender {
+        file: "fig8-4_wall_floor.png",
+        what: "Cg Tutorial Figure 8-4: wall and floor lit consistently by one light",
+        passes: false,
+        make: || (SceneKind::WallFloor, SceneParams::default(), kilgard()),
+    },
+    DemoRender {
+        file: "single_pass_torus.png",
+        what: "The same torus in one float pass per light (Kilgard §6)",
+        passes: false,
+        make: || (SceneKind::Torus, SceneParams::default(), single(SinglePassOptions::default())),
+    },
+    DemoRender {
+        file: "single_pass_two_lights.png",
+        what: "Two coloured lights, single pass",
+        passes: false,
+        make: || {
+            let lights =
+                vec![coloured(at(4.0, -3.0, 3.0), 1.0, 0.35, 0.2), coloured(at(-4.0, -3.0, 3.0), 0.2, 0.45, 1.0)];
+            (SceneKind::Torus, SceneParams { lights, ..Default::default() }, single(SinglePassOptions::default()))
+        },
+    },
+    DemoRender {
+        file: "single_pass_gloss.png",
+        what: "Gloss map: shiny bricks, dull mortar (Cg Tutorial §8.5.2)",
+        passes: false,
+        make: || {
+            let gloss = Rgba8Image::from_gray(256, 256, &bumpmap_math::height::bricks_gloss(256, 256));
+            let options = SinglePassOptions {
+                gloss: Gloss::Map(Arc::new(Rgba8Mips::with_box_mipmaps(gloss))),
+                ..Default::default()
+            };
+            (SceneKind::Torus, SceneParams { shininess: 40.0, ..Default::default() }, single(options))
+        },
+    },
+    DemoRender {
+        file: "single_pass_spotlight.png",
+        what: "A spotlight projecting a pinwheel pattern on the wall (Kilgard §5.6)",
+        passes: false,
+        make: || {
+            let field = preset(HeightPreset::Pinwheel);
+            let pattern = Rgba8Mips::single(Rgba8Image::from_gray(field.width(), field.height(), &field.to_u8()));
+            let spot =
+                Spot { direction: Vec3::NEG_Z, cutoff_degrees: 30.0, exponent: 2.0, pattern: Some(Arc::new(pattern)) };
+            let lights = vec![SceneLight { spot: Some(spot), ..at(0.0, 0.0, 4.0) }];
+            let params = SceneParams { lights, specular: Vec3::splat(0.3), ..Default::default() };
+            (SceneKind::Wall, params, single(SinglePassOptions::default()))
+        },
+    },
+    DemoRender {
+        file: "single_pass_attenuation.png",
+        what: "Attenuation 1/(0.2 + 0.5·d²) from a light just above the floor",
+        passes: false,
+        make: || {
+            let attenuation = Attenuation::Polynomial { constant: 0.2, linear: 0.0, quadratic: 0.5 };
+            let lights = vec![SceneLight { attenuation, ..at(0.0, 0.6, 0.0) }];
+            let params = SceneParams { lights, eye: Some(Vec3::new(0.0, 3.0, 6.0)), ..Default::default() };
+            (SceneKind::Floor, params, single(SinglePassOptions::default()))
+        },
+    },
+    DemoRender {
+        file: "single_pass_object_space.png",
+        what: "Object-space lighting with an object-space normal map baked for the torus (Peercy §2.1)",
+        passes: false,
+        make: || {
+            (
+                SceneKind::Torus,
+                SceneParams { object_space: true, ..Default::default() },
+                single(SinglePassOptions::default()),
+            )
+        },
+    },
+    DemoRender {
+        file: "patch_pinwheel.png",
+        what: "Peercy Figure 4's stretched bicubic patch with the pinwheel height field",
+        passes: false,
+        make: || {
+            let params = SceneParams {
+                height_field: preset(HeightPreset::Pinwheel),
+                default_decal: false,
+                ..Default::default()
+            };
+            (SceneKind::Patch, params, kilgard())
+        },
+    },
+    DemoRender {
+        file: "sphere_dimples.png",
+        what: "A golf ball: dimples on a sphere",
+        passes: false,
+        make: || {
+            let params = SceneParams {
+                height_field: preset(HeightPreset::Dimples),
+                normal_map: NormalMapOptions { scale: 8.0, ..Default::default() },
+                default_decal: false,
+                ..Default::default()
+            };
+            (SceneKind::Sphere, params, kilgard())
+        },
+    },
 ];
+
+/// The demo's image size.
+const SIZE: usize = 512;
 
 pub fn run(args: &DemoArgs) -> Result<(), CliError> {
     let out = &args.output;
@@ -127,30 +203,51 @@ pub fn run(args: &DemoArgs) -> Result<(), CliError> {
     crate::cubemap::write(&out.join("cubemap"), &NormalizationCubeMap::new(32, Encoding::Unorm))?;
     index += "- `cubemap/px.png` … `nz.png`: a 32² normalization cube map\n";
     bar.inc(1);
-    for (file, what, extra) in RENDERS {
-        bar.set_message(format!("render: {file}"));
-        render(&out.join(file), extra)?;
-        index += &format!("- `{file}`: {what}\n");
+    let mut cpu = Backend::new(BackendArg::Cpu)?;
+    for r in RENDERS {
+        bar.set_message(format!("render: {}", r.file));
+        let (kind, params, technique) = (r.make)();
+        let scene = scenes::build(&kind, &params).map_err(core_err)?;
+        let frame = cpu.render(&scene, &technique, SIZE, SIZE, r.passes)?;
+        write_frame(&frame, &out.join(r.file))?;
+        index += &format!("- `{}`: {}\n", r.file, r.what);
         bar.inc(1);
     }
     index += "- `fig11_torus.decal.png`, `.diffuse.png`, `.specular.png`: Kilgard Figure 12, the framebuffer after each pass\n";
-    crate::normalmap::write_text(&out.join("README.md"), &index)?;
     bar.finish_and_clear();
+    index += &gpu_renders(out, args.gpu)?;
+    crate::normalmap::write_text(&out.join("README.md"), &index)?;
     eprintln!("wrote the demo into {} (see its README.md)", out.display());
     Ok(())
 }
 
-/// Runs `bumpmap render ARGS -o path --size 512` in-process.
-fn render(path: &Path, extra: &[&str]) -> Result<(), CliError> {
-    use clap::Parser;
-    let mut argv = vec!["bumpmap", "render", "--size", "512", "-o"];
-    let p = path.to_string_lossy().into_owned();
-    argv.push(&p);
-    argv.extend_from_slice(extra);
-    let cli = crate::args::Cli::try_parse_from(argv).map_err(|e| CliError::Render(e.to_string()))?;
-    let crate::args::Command::Render(args) = cli.command else { unreachable!("parsed a render command") };
-    let scene = crate::render::build_scene(&args)?;
-    let mut fb = bumpmap_raster::Framebuffer::new(512, 512).map_err(|e| CliError::Render(e.to_string()))?;
-    crate::render::render_to(&scene, &args, &mut fb, path)?;
-    Ok(())
+/// The same figures on the GPU into `out/gpu/`, when an adapter exists (or `always`): returns
+/// the index's lines, which say which adapter drew them or why there are none.
+fn gpu_renders(out: &Path, mode: DemoGpuArg) -> Result<String, CliError> {
+    if mode == DemoGpuArg::Never {
+        return Ok(String::new());
+    }
+    let mut gpu = match Backend::new(BackendArg::Gpu) {
+        Ok(g) => g,
+        Err(e) if mode == DemoGpuArg::Auto => {
+            eprintln!("no GPU images: {e}");
+            return Ok(format!("\nNo GPU images: {e}\n"));
+        }
+        Err(e) => return Err(e),
+    };
+    let dir = out.join("gpu");
+    std::fs::create_dir_all(&dir).map_err(|e| CliError::Path { path: dir.clone(), reason: e.to_string() })?;
+    let bar = ProgressBar::new(RENDERS.len() as u64)
+        .with_style(ProgressStyle::with_template("{bar:40} {pos}/{len} {wide_msg}").expect("valid template"));
+    for r in RENDERS {
+        bar.set_message(format!("gpu: {}", r.file));
+        let (kind, params, technique) = (r.make)();
+        let scene = scenes::build(&kind, &params).map_err(core_err)?;
+        let frame = gpu.render(&scene, &technique, SIZE, SIZE, r.passes)?;
+        write_frame(&frame, &dir.join(r.file))?;
+        bar.inc(1);
+    }
+    bar.finish_and_clear();
+    eprintln!("GPU images drawn by {}", gpu.name());
+    Ok(format!("\n`gpu/`: the same renders by the wgpu backend on {}.\n", gpu.name()))
 }

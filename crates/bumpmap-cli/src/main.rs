@@ -7,6 +7,7 @@
 #![allow(rustdoc::broken_intra_doc_links)]
 
 mod args;
+mod backend;
 mod bench;
 mod cubemap;
 mod demo;
@@ -14,6 +15,7 @@ mod error;
 mod mesh;
 mod normalmap;
 mod render;
+mod render_args;
 
 use clap::Parser;
 

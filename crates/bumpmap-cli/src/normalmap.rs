@@ -4,7 +4,7 @@ use std::path::{Path, PathBuf};
 
 use bumpmap_io::atomic::ensure_not_input;
 use bumpmap_io::image_file::{PngLayout, save_png};
-use bumpmap_io::texture_file::{Rgba8Image, TextureLayout, write_dds, write_ktx2};
+use bumpmap_io::texture_file::{TextureLayout, write_dds, write_ktx2};
 use bumpmap_io::{Channel, HeightSource};
 use bumpmap_math::normalmap::normal_map_level0;
 use bumpmap_math::{HeightField, MipChain, MipMode, NormalMapOptions};
@@ -62,11 +62,7 @@ pub fn level_path(out: &Path, k: usize) -> PathBuf {
 /// Writes a chain by the output's extension: PNG files, or one DDS / KTX2 file.
 pub fn write(out: &Path, chain: &MipChain) -> Result<(), CliError> {
     let ext = out.extension().map(|e| e.to_string_lossy().to_ascii_lowercase()).unwrap_or_default();
-    let images = || TextureLayout {
-        faces: vec![
-            chain.levels.iter().map(|l| Rgba8Image { width: l.width, height: l.height, bytes: l.as_bytes() }).collect(),
-        ],
-    };
+    let images = || TextureLayout { faces: vec![chain.levels.iter().collect()] };
     match ext.as_str() {
         "png" => {
             for (k, level) in chain.levels.iter().enumerate() {

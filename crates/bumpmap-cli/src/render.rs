@@ -1,240 +1,282 @@
-//! `bumpmap render`: a scene, a technique, a PNG (and, with `--passes`, one per pass).
+//! `bumpmap render`: the option groups turned into a scene and a technique, drawn by a backend
+//! into a PNG (and, with `--passes`, one PNG per pass).
+//!
+//! The library refuses what a technique cannot do with typed errors; this module is where they
+//! get the names of the flags that caused them.
 
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
+use bumpmap_core::combiners::Precision;
+use bumpmap_core::scene::{Scene, SceneLight, Spot, ViewerModel};
+use bumpmap_core::scenes::{self, SceneKind, SceneParams};
+use bumpmap_core::state::Sampler;
+use bumpmap_core::technique::{
+    Gloss, HalfAngle, KilgardOptions, Normalize, SelfShadow, SinglePassOptions, SpecularMode, SpecularShadow,
+    Technique, single_pass,
+};
+use bumpmap_core::{CoreError, Feature};
 use bumpmap_io::atomic::ensure_not_input;
 use bumpmap_io::image_file::{PngLayout, save_png};
 use bumpmap_io::{Channel, HeightSource};
-use bumpmap_math::NormalMapOptions;
-use bumpmap_raster::combiners::Precision;
-use bumpmap_raster::kilgard::{self, KilgardOptions, SpecularMode};
-use bumpmap_raster::scene::{Scene, Spot, ViewerModel};
-use bumpmap_raster::scenes::{self, SceneKind, SceneParams};
-use bumpmap_raster::single_pass::{self, Gloss, HalfAngle, Normalize, SelfShadow, SinglePassOptions, SpecularShadow};
-use bumpmap_raster::texture::{Sampler, Texture2d};
-use bumpmap_raster::{Framebuffer, RasterError};
+use bumpmap_math::{NormalMapOptions, Rgba8Image, Rgba8Mips};
 use glam::{Vec2, Vec3};
 
-use crate::args::{
-    FilterArg, HalfAngleArg, NormalizeArg, PrecisionArg, RenderArgs, SelfShadowArg, SpecularArg, SpecularShadowArg,
-    TechniqueArg, ViewerArg,
-};
+use crate::backend::{Backend, Frame};
 use crate::error::CliError;
+use crate::render_args::{
+    FilterArg, HalfAngleArg, NormalizeArg, PrecisionArg, RenderArgs, SceneSetup, SelfShadowArg, SpaceArg, SpecularArg,
+    SpecularShadowArg, TechniqueArg, ViewerArg,
+};
 
 pub fn run(args: &RenderArgs) -> Result<(), CliError> {
     let (width, height) = match (args.width, args.height) {
         (Some(w), Some(h)) => (w, h),
         _ => (args.size, args.size),
     };
-    let inputs = input_files(args);
+    let inputs = input_files(&args.setup);
     let input_refs: Vec<&Path> = inputs.iter().map(PathBuf::as_path).collect();
     ensure_not_input(&args.output, &input_refs)?;
     // Refuse an impossible framebuffer before any work.
-    let mut fb = Framebuffer::new(width, height).map_err(raster_err)?;
-    let scene = build_scene(args)?;
-    let written = render_to(&scene, args, &mut fb, &args.output)?;
-    eprintln!("wrote {}", written.iter().map(|p| p.display().to_string()).collect::<Vec<_>>().join(", "));
+    crate::backend::check_size(width, height)?;
+    let scene = build_scene(&args.setup)?;
+    let technique = technique(&args.setup)?;
+    if args.passes && !matches!(technique, Technique::Kilgard(_)) {
+        return Err(CliError::Render(
+            "--passes shows the three passes of --technique kilgard; single-pass draws one pass per light".into(),
+        ));
+    }
+    let mut backend = Backend::new(args.setup.backend.backend)?;
+    let frame = backend.render(&scene, &technique, width, height, args.passes)?;
+    let written = write_frame(&frame, &args.output)?;
+    eprintln!(
+        "wrote {} ({})",
+        written.iter().map(|p| p.display().to_string()).collect::<Vec<_>>().join(", "),
+        backend.name()
+    );
     Ok(())
 }
 
-fn raster_err(e: RasterError) -> CliError {
-    CliError::Render(e.to_string())
+/// A library error in the words of the command line: what the user typed that caused it.
+pub fn core_err(e: CoreError) -> CliError {
+    let flag = |f: &Feature| {
+        match f {
+        Feature::Shininess(s) => format!("--shininess {s} (its combiners square three times: 8 only; --specular-mode ramp gives a tighter highlight)"),
+        Feature::Gloss => "--gloss".into(),
+        Feature::Attenuation => "--attenuation".into(),
+        Feature::Spotlight => "--spot".into(),
+        Feature::NormalizeByMath | Feature::FragmentHalfAngle | Feature::SelfShadowStep => {
+            "--normalize, --half-angle or --self-shadow (it always normalizes by the cube map, with per-vertex H, the ramp or --no-self-shadow)".into()
+        }
+        Feature::ObjectSpace => "--space object (its self-shadowing reads tangent-space L_z)".into(),
+        Feature::SpecularColor => "--specular other than 0 or 1 (its specular is white)".into(),
+    }
+    };
+    match e {
+        CoreError::Unsupported { technique, feature } => CliError::Render(format!(
+            "--technique {technique} cannot do {}: the paper's combiners have no room for it; use --technique single-pass",
+            flag(&feature)
+        )),
+        CoreError::GlossNeedsDecal => CliError::Render(
+            "--gloss decal-alpha needs a decal (--decal FILE, or the bricks height field's own)".into(),
+        ),
+        other => CliError::Render(other.to_string()),
+    }
 }
 
 /// Files the command reads, which an output must never replace.
-fn input_files(args: &RenderArgs) -> Vec<PathBuf> {
+fn input_files(setup: &SceneSetup) -> Vec<PathBuf> {
     let mut files = Vec::new();
-    if let Some(p) = args.scene.strip_prefix("mesh:") {
+    if let Some(p) = setup.scene.scene.strip_prefix("mesh:") {
         files.push(PathBuf::from(p));
     }
-    if let Some(p) = HeightSource::parse(&args.height_field).path() {
+    if let Some(p) = HeightSource::parse(&setup.scene.height_field).path() {
         files.push(p.to_path_buf());
     }
-    if let Some(d) = args.decal.as_deref().filter(|d| *d != "none") {
+    if let Some(d) = setup.scene.decal.as_deref().filter(|d| *d != "none") {
         files.push(PathBuf::from(d));
+    }
+    for spec in [&setup.lights.spot_pattern, &setup.material.gloss].into_iter().flatten() {
+        if let Some(p) =
+            HeightSource::parse(spec).path().filter(|_| !matches!(spec.as_str(), "bricks" | "decal-alpha" | "none"))
+        {
+            files.push(p.to_path_buf());
+        }
     }
     files
 }
 
-/// The scene the arguments describe.
-pub fn build_scene(args: &RenderArgs) -> Result<Scene, CliError> {
-    let kind = match args.scene.strip_prefix("mesh:") {
+/// The scene the options describe.
+pub fn build_scene(setup: &SceneSetup) -> Result<Scene, CliError> {
+    let (s, camera, l, m) = (&setup.scene, &setup.camera, &setup.lights, &setup.material);
+    let kind = match s.scene.strip_prefix("mesh:") {
         Some(path) => SceneKind::Mesh(Arc::new(crate::mesh::load_for_render(Path::new(path))?)),
-        None => SceneKind::parse(&args.scene).ok_or_else(|| {
+        None => SceneKind::parse(&s.scene).ok_or_else(|| {
             CliError::Render(format!(
                 "unknown scene '{}': use torus, wall, floor, wall-floor, patch, sphere or mesh:FILE",
-                args.scene
+                s.scene
             ))
         })?,
     };
-    let source = HeightSource::parse(&args.height_field);
+    let source = HeightSource::parse(&s.height_field);
     let height_field = source.load(Channel::Luminance)?;
     let is_bricks = matches!(source, HeightSource::Preset { preset: bumpmap_math::HeightPreset::Bricks, .. });
-    let decal = match args.decal.as_deref() {
+    let decal = match s.decal.as_deref() {
         None | Some("none") => None,
-        Some(path) => {
-            let (w, h, texels) = bumpmap_io::load_rgba8(Path::new(path))?;
-            Some(Texture2d::from_rgba8(w, h, texels))
-        }
+        Some(path) => Some(bumpmap_io::load_rgba8(Path::new(path))?),
     };
-    for (name, v) in [("--ambient", args.ambient), ("--diffuse", args.diffuse), ("--specular", args.specular)] {
+    for (name, v) in [("--ambient", m.ambient), ("--diffuse", m.diffuse), ("--specular", m.specular)] {
         if !(0.0..=1.0).contains(&v) {
             return Err(CliError::Render(format!("{name} must be in [0, 1], got {v}")));
         }
     }
-    if !(1.0..=170.0).contains(&args.fov) {
-        return Err(CliError::Render(format!("--fov must be in [1, 170] degrees, got {}", args.fov)));
+    if !(1.0..=170.0).contains(&camera.fov) {
+        return Err(CliError::Render(format!("--fov must be in [1, 170] degrees, got {}", camera.fov)));
     }
-    let (major, minor) = args.torus_radii;
+    let (major, minor) = s.torus_radii;
     if !(major > 0.0 && minor > 0.0) {
         return Err(CliError::Render(format!("--torus-radii must be positive, got {major},{minor}")));
     }
-    if !(args.shininess > 0.0 && args.shininess.is_finite()) {
-        return Err(CliError::Render(format!("--shininess must be a positive number, got {}", args.shininess)));
+    if !(m.shininess > 0.0 && m.shininess.is_finite()) {
+        return Err(CliError::Render(format!("--shininess must be a positive number, got {}", m.shininess)));
     }
-    let pattern = match args.spot_pattern.as_deref() {
+    let pattern = match l.spot_pattern.as_deref() {
         None => None,
         Some(spec) => {
             let field = HeightSource::parse(spec).load(Channel::Luminance)?;
-            let bytes = field.to_u8();
-            Some(Arc::new(Texture2d::from_rgba8(
-                field.width(),
-                field.height(),
-                bytes.iter().map(|&v| [v, v, v, 255]).collect(),
-            )))
+            let image = Rgba8Image::from_gray(field.width(), field.height(), &field.to_u8());
+            Some(Arc::new(Rgba8Mips::single(image)))
         }
     };
-    let mut lights = args.lights.clone();
-    if lights.is_empty() && (args.attenuation.is_some() || args.spot.is_some()) {
-        lights.push(bumpmap_raster::scene::SceneLight::white(bumpmap_raster::scenes::default_light(&kind)));
+    let mut lights = l.lights.clone();
+    if lights.is_empty() && (l.attenuation.is_some() || l.spot.is_some()) {
+        lights.push(SceneLight::white(scenes::default_light(&kind)));
     }
     for light in &mut lights {
-        if let Some(a) = args.attenuation {
+        if let Some(a) = l.attenuation {
             light.attenuation = a;
         }
-        if let Some(direction) = args.spot {
+        if let Some(direction) = l.spot {
             light.spot = Some(Spot {
                 direction,
-                cutoff_degrees: args.spot_cutoff,
-                exponent: args.spot_exponent,
+                cutoff_degrees: l.spot_cutoff,
+                exponent: l.spot_exponent,
                 pattern: pattern.clone(),
             });
         }
-        single_pass::validate_light(light).map_err(raster_err)?;
+        single_pass::validate_light(light).map_err(core_err)?;
     }
     let params = SceneParams {
-        eye: args.eye,
-        target: args.target,
-        fov_y_degrees: args.fov,
+        eye: camera.eye,
+        target: camera.target,
+        fov_y_degrees: camera.fov,
         lights,
-        viewer: match args.viewer {
+        viewer: match camera.viewer {
             ViewerArg::Local => ViewerModel::Local,
             ViewerArg::Infinite => ViewerModel::Infinite,
         },
         height_field,
-        normal_map: NormalMapOptions { scale: args.bump_scale, ..Default::default() },
+        normal_map: NormalMapOptions { scale: s.bump_scale, ..Default::default() },
         decal,
-        default_decal: args.decal.is_none() && is_bricks,
-        ambient: Vec3::splat(args.ambient),
-        diffuse: Vec3::splat(args.diffuse),
-        specular: Vec3::splat(args.specular),
-        shininess: args.shininess,
+        default_decal: s.decal.is_none() && is_bricks,
+        ambient: Vec3::splat(m.ambient),
+        diffuse: Vec3::splat(m.diffuse),
+        specular: Vec3::splat(m.specular),
+        shininess: m.shininess,
         torus_radii: (major, minor),
-        tessellation: args.tessellation,
-        repeat: args.repeat.map(|(s, t)| Vec2::new(s, t)),
-        object_space: args.space == crate::args::SpaceArg::Object,
+        tessellation: s.tessellation,
+        repeat: s.repeat.map(|(s, t)| Vec2::new(s, t)),
+        object_space: s.space == SpaceArg::Object,
     };
     if params.eye.is_some() && params.eye == params.target {
         return Err(CliError::Render("--eye and --target must differ".into()));
     }
-    scenes::build(&kind, &params).map_err(raster_err)
+    scenes::build(&kind, &params).map_err(core_err)
 }
 
-/// The three-pass technique's options; refuses what its combiners cannot do.
-pub fn kilgard_options(args: &RenderArgs) -> Result<KilgardOptions, CliError> {
-    let unsupported = |what: &str| {
-        Err(CliError::Render(format!(
-            "--technique kilgard cannot do {what}: the paper's combiners have no room for it; use --technique single-pass"
-        )))
-    };
-    if args.shininess != 8.0 {
-        return unsupported("--shininess other than 8 (use --specular-mode ramp for a tighter highlight)");
-    }
-    if args.gloss.is_some() {
-        return unsupported("--gloss");
-    }
-    if args.attenuation.is_some() || args.spot.is_some() {
-        return unsupported("attenuation or spotlights");
-    }
-    if args.normalize != NormalizeArg::Math
-        || args.half_angle != HalfAngleArg::Vertex
-        || args.self_shadow != SelfShadowArg::Ramp
-    {
-        return unsupported(
-            "--normalize, --half-angle or --self-shadow (it always normalizes by cube map, per vertex H, ramp or --no-self-shadow)",
-        );
-    }
-    Ok(KilgardOptions {
-        sampler: sampler(args.filter),
-        self_shadow: !args.no_self_shadow,
-        specular: match args.specular_mode {
-            SpecularArg::Power8 => SpecularMode::EighthPower,
-            SpecularArg::Ramp => SpecularMode::Ramp,
-        },
-        precision: match args.precision {
-            PrecisionArg::Float => Precision::Float,
-            PrecisionArg::Fixed9 => Precision::Fixed9,
-        },
-        cube_size: args.cube_size as usize,
-        ..Default::default()
-    })
-}
-
-/// The single-pass technique's options.
-pub fn single_pass_options(args: &RenderArgs) -> Result<SinglePassOptions, CliError> {
-    let gloss = match args.gloss.as_deref() {
-        None | Some("none") => Gloss::None,
-        Some("decal-alpha") => Gloss::DecalAlpha,
-        Some("bricks") => {
-            let (w, h) = (256, 256);
-            let g: Vec<[u8; 4]> =
-                bumpmap_math::height::bricks_gloss(w, h).into_iter().map(|v| [v, v, v, 255]).collect();
-            Gloss::Map(Arc::new(Texture2d::from_rgba8(w, h, g).with_box_mipmaps()))
+/// The technique the options name, with its options; refuses options that belong to the other
+/// technique.
+pub fn technique(setup: &SceneSetup) -> Result<Technique, CliError> {
+    let (t, m) = (&setup.technique, &setup.material);
+    let sampler = sampler(t.filter);
+    match t.technique {
+        TechniqueArg::Kilgard => {
+            let refuse = |feature| Err(core_err(CoreError::Unsupported { technique: "kilgard", feature }));
+            if m.gloss.is_some() {
+                return refuse(Feature::Gloss);
+            }
+            if t.normalize != NormalizeArg::Math {
+                return refuse(Feature::NormalizeByMath);
+            }
+            if t.half_angle != HalfAngleArg::Vertex {
+                return refuse(Feature::FragmentHalfAngle);
+            }
+            if t.self_shadow != SelfShadowArg::Ramp {
+                return refuse(Feature::SelfShadowStep);
+            }
+            Ok(Technique::Kilgard(KilgardOptions {
+                sampler,
+                self_shadow: !t.no_self_shadow,
+                specular: match t.specular_mode {
+                    SpecularArg::Power8 => SpecularMode::EighthPower,
+                    SpecularArg::Ramp => SpecularMode::Ramp,
+                },
+                precision: match t.precision {
+                    PrecisionArg::Float => Precision::Float,
+                    PrecisionArg::Fixed9 => Precision::Fixed9,
+                },
+                cube_size: t.cube_size as usize,
+                ..Default::default()
+            }))
         }
-        Some(path) => {
-            let (w, h, texels) = bumpmap_io::load_rgba8(Path::new(path))?;
-            Gloss::Map(Arc::new(Texture2d::from_rgba8(w, h, texels).with_box_mipmaps()))
+        TechniqueArg::SinglePass => {
+            if t.specular_mode != SpecularArg::Power8 {
+                return Err(CliError::Render(
+                    "--specular-mode ramp belongs to --technique kilgard; single-pass takes --shininess".into(),
+                ));
+            }
+            if t.precision != PrecisionArg::Float {
+                return Err(CliError::Render(
+                    "--precision belongs to --technique kilgard's register combiners; single-pass computes in float"
+                        .into(),
+                ));
+            }
+            let gloss = match m.gloss.as_deref() {
+                None | Some("none") => Gloss::None,
+                Some("decal-alpha") => Gloss::DecalAlpha,
+                Some("bricks") => {
+                    let g = Rgba8Image::from_gray(256, 256, &bumpmap_math::height::bricks_gloss(256, 256));
+                    Gloss::Map(Arc::new(Rgba8Mips::with_box_mipmaps(g)))
+                }
+                Some(path) => {
+                    Gloss::Map(Arc::new(Rgba8Mips::with_box_mipmaps(bumpmap_io::load_rgba8(Path::new(path))?)))
+                }
+            };
+            Ok(Technique::SinglePass(SinglePassOptions {
+                sampler,
+                normalize: match t.normalize {
+                    NormalizeArg::Math => Normalize::Math,
+                    NormalizeArg::Cube => Normalize::Cube,
+                },
+                self_shadow: match (t.no_self_shadow, t.self_shadow) {
+                    (true, _) | (_, SelfShadowArg::Off) => SelfShadow::Off,
+                    (_, SelfShadowArg::Ramp) => SelfShadow::Ramp,
+                    (_, SelfShadowArg::Step) => SelfShadow::Step,
+                },
+                half_angle: match t.half_angle {
+                    HalfAngleArg::Vertex => HalfAngle::Vertex,
+                    HalfAngleArg::Fragment => HalfAngle::Fragment,
+                },
+                specular_shadow: match t.specular_shadow {
+                    SpecularShadowArg::Kilgard => SpecularShadow::Kilgard,
+                    SpecularShadowArg::Cg => SpecularShadow::CgTutorial,
+                    SpecularShadowArg::Off => SpecularShadow::Off,
+                },
+                gloss,
+                cube_size: t.cube_size as usize,
+            }))
         }
-    };
-    if args.specular_mode != SpecularArg::Power8 {
-        return Err(CliError::Render(
-            "--specular-mode ramp belongs to --technique kilgard; single-pass takes --shininess".into(),
-        ));
     }
-    Ok(SinglePassOptions {
-        sampler: sampler(args.filter),
-        normalize: match args.normalize {
-            NormalizeArg::Math => Normalize::Math,
-            NormalizeArg::Cube => Normalize::Cube,
-        },
-        self_shadow: match (args.no_self_shadow, args.self_shadow) {
-            (true, _) | (_, SelfShadowArg::Off) => SelfShadow::Off,
-            (_, SelfShadowArg::Ramp) => SelfShadow::Ramp,
-            (_, SelfShadowArg::Step) => SelfShadow::Step,
-        },
-        half_angle: match args.half_angle {
-            HalfAngleArg::Vertex => HalfAngle::Vertex,
-            HalfAngleArg::Fragment => HalfAngle::Fragment,
-        },
-        specular_shadow: match args.specular_shadow {
-            SpecularShadowArg::Kilgard => SpecularShadow::Kilgard,
-            SpecularShadowArg::Cg => SpecularShadow::CgTutorial,
-            SpecularShadowArg::Off => SpecularShadow::Off,
-        },
-        gloss,
-        cube_size: args.cube_size as usize,
-    })
 }
 
 fn sampler(filter: FilterArg) -> Sampler {
@@ -245,34 +287,25 @@ fn sampler(filter: FilterArg) -> Sampler {
     }
 }
 
-/// Renders and writes `out` (and the pass images); returns the paths written.
-pub fn render_to(scene: &Scene, args: &RenderArgs, fb: &mut Framebuffer, out: &Path) -> Result<Vec<PathBuf>, CliError> {
-    let mut passes: Vec<(String, Vec<u8>)> = Vec::new();
-    match args.technique {
-        TechniqueArg::Kilgard => kilgard::render(scene, &kilgard_options(args)?, fb, |name, fb| {
-            if args.passes {
-                passes.push((name.to_string(), rgb(fb)));
-            }
-        })
-        .map_err(raster_err)?,
-        TechniqueArg::SinglePass => single_pass::render(scene, &single_pass_options(args)?, fb).map_err(raster_err)?,
-    }
+/// Writes `out` and, for each pass image of the frame, `OUT.NAME.png` beside it; returns the
+/// paths written. The colour buffer's alpha (s_self, not coverage) is left out.
+pub fn write_frame(frame: &Frame, out: &Path) -> Result<Vec<PathBuf>, CliError> {
     if let Some(dir) = out.parent().filter(|d| !d.as_os_str().is_empty()) {
         std::fs::create_dir_all(dir).map_err(|e| CliError::Path { path: dir.to_path_buf(), reason: e.to_string() })?;
     }
     let mut written = Vec::new();
-    for (name, bytes) in &passes {
+    for (name, image) in &frame.snapshots {
         let stem = out.file_stem().unwrap_or_default().to_string_lossy();
         let path = out.with_file_name(format!("{stem}.{name}.png"));
-        save_png(&path, fb.width, fb.height, PngLayout::Rgb8, bytes)?;
+        save_png(&path, image.width, image.height, PngLayout::Rgb8, &rgb(image))?;
         written.push(path);
     }
-    save_png(out, fb.width, fb.height, PngLayout::Rgb8, &rgb(fb))?;
+    save_png(out, frame.image.width, frame.image.height, PngLayout::Rgb8, &rgb(&frame.image))?;
     written.push(out.to_path_buf());
     Ok(written)
 }
 
-/// The colour buffer without its alpha (which holds s_self, not coverage).
-pub fn rgb(fb: &Framebuffer) -> Vec<u8> {
-    fb.to_rgba8().into_iter().flat_map(|[r, g, b, _]| [r, g, b]).collect()
+/// An image's RGB bytes without alpha.
+pub fn rgb(image: &Rgba8Image) -> Vec<u8> {
+    image.texels.iter().flat_map(|&[r, g, b, _]| [r, g, b]).collect()
 }

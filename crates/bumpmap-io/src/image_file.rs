@@ -6,7 +6,7 @@
 
 use std::path::{Path, PathBuf};
 
-use bumpmap_math::{HeightField, HeightPreset};
+use bumpmap_math::{HeightField, HeightPreset, Rgba8Image};
 use image::{DynamicImage, ImageReader, Limits};
 
 use crate::atomic::write_atomic;
@@ -146,10 +146,10 @@ pub fn load_height_field(path: &Path, channel: Channel) -> Result<HeightField, I
 }
 
 /// Loads any image as 8-bit RGBA (decals, gloss maps). Returns (width, height, texels).
-pub fn load_rgba8(path: &Path) -> Result<(usize, usize, Vec<[u8; 4]>), IoError> {
+pub fn load_rgba8(path: &Path) -> Result<Rgba8Image, IoError> {
     let img = decode(path)?.to_rgba8();
     let (w, h) = (img.width() as usize, img.height() as usize);
-    Ok((w, h, img.pixels().map(|p| p.0).collect()))
+    Ok(Rgba8Image::new(w, h, img.pixels().map(|p| p.0).collect()))
 }
 
 /// Pixel layouts [`save_png`] writes.

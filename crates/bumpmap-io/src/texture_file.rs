@@ -9,19 +9,12 @@ use std::path::Path;
 
 use crate::atomic::write_atomic;
 use crate::error::IoError;
-
-/// One image: width, height and RGBA8 texels row-major.
-#[derive(Clone, Copy, Debug)]
-pub struct Rgba8Image<'a> {
-    pub width: usize,
-    pub height: usize,
-    pub bytes: &'a [u8],
-}
+use bumpmap_math::Rgba8Image;
 
 /// What a texture file holds: `levels[face][level]`, one face for 2D, six (+X, −X, +Y, −Y, +Z,
 /// −Z) for a cube map. Every face has the same number of levels and sizes.
 pub struct TextureLayout<'a> {
-    pub faces: Vec<Vec<Rgba8Image<'a>>>,
+    pub faces: Vec<Vec<&'a Rgba8Image>>,
 }
 
 /// Writes a DDS file (legacy header, 32-bit RGBA masks, mipmap count, cube-map caps).
@@ -66,7 +59,7 @@ pub fn write_dds(path: &Path, tex: &TextureLayout) -> Result<(), IoError> {
         w.write_all(&header)?;
         for face in &tex.faces {
             for level in face {
-                w.write_all(level.bytes)?;
+                w.write_all(level.as_bytes())?;
             }
         }
         Ok(())
@@ -87,7 +80,7 @@ pub fn write_ktx2(path: &Path, tex: &TextureLayout) -> Result<(), IoError> {
     let mut index = vec![(0u64, 0u64); levels];
     for level in (0..levels).rev() {
         offset = offset.next_multiple_of(4);
-        let len: usize = tex.faces.iter().map(|f| f[level].bytes.len()).sum();
+        let len: usize = tex.faces.iter().map(|f| f[level].as_bytes().len()).sum();
         index[level] = (offset as u64, len as u64);
         offset += len;
     }
@@ -114,8 +107,8 @@ pub fn write_ktx2(path: &Path, tex: &TextureLayout) -> Result<(), IoError> {
             w.write_all(&[0u8; 4][..pad])?;
             written += pad;
             for face in &tex.faces {
-                w.write_all(face[level].bytes)?;
-                written += face[level].bytes.len();
+                w.write_all(face[level].as_bytes())?;
+                written += face[level].as_bytes().len();
             }
         }
         Ok(())
@@ -145,16 +138,17 @@ fn rgba8_linear_dfd() -> Vec<u8> {
 mod tests {
     use super::*;
 
-    fn chain() -> Vec<Vec<u8>> {
+    fn chain() -> Vec<Rgba8Image> {
         // 4×2 → 2×1 → 1×1 with distinct bytes per level.
-        vec![vec![10; 4 * 2 * 4], vec![20; 2 * 4], vec![30; 4]]
+        vec![
+            Rgba8Image::new(4, 2, vec![[10; 4]; 8]),
+            Rgba8Image::new(2, 1, vec![[20; 4]; 2]),
+            Rgba8Image::new(1, 1, vec![[30; 4]]),
+        ]
     }
 
-    fn layout(data: &[Vec<u8>], faces: usize) -> TextureLayout<'_> {
-        let sizes = [(4, 2), (2, 1), (1, 1)];
-        let face: Vec<_> =
-            data.iter().zip(sizes).map(|(b, (w, h))| Rgba8Image { width: w, height: h, bytes: b }).collect();
-        TextureLayout { faces: vec![face; faces] }
+    fn layout(data: &[Rgba8Image], faces: usize) -> TextureLayout<'_> {
+        TextureLayout { faces: vec![data.iter().collect(); faces] }
     }
 
     fn tmp(name: &str) -> std::path::PathBuf {
@@ -173,7 +167,7 @@ mod tests {
             assert_eq!((h.pixel_width, h.pixel_height, h.face_count, h.level_count), (4, 2, faces as u32, 3));
             assert_eq!(h.format, Some(ktx2::Format::R8G8B8A8_UNORM));
             for (k, level) in reader.levels().enumerate() {
-                assert_eq!(level.data, data[k].repeat(faces).as_slice(), "level {k}");
+                assert_eq!(level.data, data[k].as_bytes().repeat(faces).as_slice(), "level {k}");
             }
             std::fs::remove_file(path).unwrap();
         }
@@ -186,7 +180,7 @@ mod tests {
         write_dds(&path, &layout(&data, 1)).unwrap();
         let dds = ddsfile::Dds::read(&mut std::fs::File::open(&path).unwrap()).expect("valid DDS");
         assert_eq!((dds.get_width(), dds.get_height(), dds.get_num_mipmap_levels()), (4, 2, 3));
-        assert_eq!(dds.data, data.concat());
+        assert_eq!(dds.data, data.iter().flat_map(|l| l.as_bytes().to_vec()).collect::<Vec<u8>>());
         std::fs::remove_file(path).unwrap();
     }
 }

@@ -17,9 +17,8 @@ use rayon::prelude::*;
 
 use crate::encoding::Encoding;
 use crate::height::HeightField;
-use crate::normalmap::{
-    NormalMapError, NormalMapOptions, NormalMapRgba8, RowEvaluator, RowScratch, encode_unit, output_size,
-};
+use crate::image::{Rgba8Image, Rgba8Mips};
+use crate::normalmap::{NormalMapError, NormalMapOptions, RowEvaluator, RowScratch, encode_unit, output_size};
 
 /// What the RGB and A of levels below 0 hold.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default)]
@@ -34,7 +33,7 @@ pub enum MipMode {
 /// Level 0 and every smaller level down to 1×1.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct MipChain {
-    pub levels: Vec<NormalMapRgba8>,
+    pub levels: Vec<Rgba8Image>,
     pub encoding: Encoding,
 }
 
@@ -298,7 +297,7 @@ impl MipChain {
         let levels = bytes
             .into_iter()
             .enumerate()
-            .map(|(k, texels)| NormalMapRgba8 { width: shape.w[k], height: shape.h[k], texels })
+            .map(|(k, texels)| Rgba8Image { width: shape.w[k], height: shape.h[k], texels })
             .collect();
         Ok(Self { levels, encoding: options.encoding })
     }
@@ -316,7 +315,7 @@ impl MipChain {
         let levels = bytes
             .into_iter()
             .enumerate()
-            .map(|(k, texels)| NormalMapRgba8 { width: shape.w[k], height: shape.h[k], texels })
+            .map(|(k, texels)| Rgba8Image { width: shape.w[k], height: shape.h[k], texels })
             .collect();
         Self { levels, encoding }
     }
@@ -328,6 +327,11 @@ impl MipChain {
 
     pub fn is_empty(&self) -> bool {
         self.levels.is_empty()
+    }
+
+    /// The levels as a texture (a copy): what a scene's material holds.
+    pub fn to_mips(&self) -> Rgba8Mips {
+        Rgba8Mips::from_levels(self.levels.clone())
     }
 }
 

@@ -9,6 +9,7 @@ use glam::Vec3;
 
 use crate::encoding::Encoding;
 use crate::height::HeightField;
+use crate::image::Rgba8Image;
 use crate::kernel::{Kernel, Tap, Wrap};
 
 /// Which way the green channel points.
@@ -61,35 +62,6 @@ pub enum NormalMapError {
     BorderTooSmall(usize, usize),
     #[error("scale must be a number in [-1e6, 1e6], got {0}")]
     BadScale(f32),
-}
-
-/// One 8-bit RGBA level of a normal map: RGB the range-compressed direction, A its length.
-#[derive(Clone, Debug, PartialEq, Eq)]
-pub struct NormalMapRgba8 {
-    pub width: usize,
-    pub height: usize,
-    /// Row-major texels, row 0 (t = 0) first.
-    pub texels: Vec<[u8; 4]>,
-}
-
-impl NormalMapRgba8 {
-    /// The texel at (x, y). Panics when out of range.
-    #[inline]
-    pub fn texel(&self, x: usize, y: usize) -> [u8; 4] {
-        self.texels[y * self.width + x]
-    }
-
-    /// The texels as one flat byte slice (R, G, B, A, R, …).
-    pub fn as_bytes(&self) -> &[u8] {
-        self.texels.as_flattened()
-    }
-
-    /// Decodes a texel into its unit direction (`encoding`'s inverse) and the length in alpha.
-    pub fn decode(&self, x: usize, y: usize, encoding: Encoding) -> (Vec3, f32) {
-        let [r, g, b, a] = self.texel(x, y);
-        let d = Vec3::new(encoding.decode(r), encoding.decode(g), encoding.decode(b));
-        (d, a as f32 / 255.0)
-    }
 }
 
 /// The largest |scale| accepted: beyond it the squared slope could overflow single precision.
@@ -269,7 +241,7 @@ pub fn perturbed_normal(a: f32, b: f32, y_sign: f32) -> Vec3 {
 }
 
 /// Level 0 only: each texel's unit normal range-compressed in RGB, A = 255.
-pub fn normal_map_level0(field: &HeightField, options: &NormalMapOptions) -> Result<NormalMapRgba8, NormalMapError> {
+pub fn normal_map_level0(field: &HeightField, options: &NormalMapOptions) -> Result<Rgba8Image, NormalMapError> {
     use rayon::prelude::*;
     let (w, h) = output_size(field.width(), field.height(), options)?;
     let eval = RowEvaluator::new(field, *options)?;
@@ -277,7 +249,7 @@ pub fn normal_map_level0(field: &HeightField, options: &NormalMapOptions) -> Res
     texels.par_chunks_mut(w).enumerate().for_each_init(RowScratch::default, |scratch, (y, row)| {
         eval.process_row(y, scratch, row);
     });
-    Ok(NormalMapRgba8 { width: w, height: h, texels })
+    Ok(Rgba8Image { width: w, height: h, texels })
 }
 
 /// Range-compresses a unit normal with A = 255 (Kilgard Eq. 28; level 0's length is 1).

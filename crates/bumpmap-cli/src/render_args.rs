@@ -1,0 +1,361 @@
+//! The scene, camera, light, material, technique and backend options, in groups shared by
+//! `render` and `bench render` (and later `view` and `compare`). Each group's help heading is
+//! what `--help` shows; turning the groups into library values is `render.rs`'s.
+
+use std::path::PathBuf;
+
+use clap::{Args, ValueEnum};
+
+use crate::args::{parse_counts, parse_pair, parse_vec3};
+
+/// What is drawn: the geometry, the height field and decal, the texture layout.
+#[derive(Args, Debug, Clone)]
+#[command(next_help_heading = "Scene")]
+pub struct SceneGroup {
+    /// torus, wall, floor, wall-floor, patch, sphere, or mesh:FILE (.obj, .gltf, .glb)
+    #[arg(long, default_value = "torus")]
+    pub scene: String,
+    /// Height field: image file or preset (bricks, pinwheel, dimples, noise:SEED[@SIZE])
+    #[arg(long = "height-field", default_value = "bricks")]
+    pub height_field: String,
+    /// Bump height (the normal map's --scale)
+    #[arg(long = "bump-scale", default_value_t = 4.0, allow_negative_numbers = true)]
+    pub bump_scale: f32,
+    /// Decal image, or "none" (default: brick decal for the bricks preset, none otherwise)
+    #[arg(long)]
+    pub decal: Option<String>,
+    /// Torus radii R,r (hole centre to tube centre, tube)
+    #[arg(long = "torus-radii", value_parser = parse_pair, default_value = "2,0.7")]
+    pub torus_radii: (f32, f32),
+    /// Quads along u and v (default: the scene's; torus 128,64)
+    #[arg(long, value_parser = parse_counts)]
+    pub tessellation: Option<(usize, usize)>,
+    /// Texture repeats along s and t (default: the scene's; torus 6,2)
+    #[arg(long, value_parser = parse_pair)]
+    pub repeat: Option<(f32, f32)>,
+    /// single-pass: light in tangent space, or in object space with an object-space normal map made for the surface (built-in surfaces only)
+    #[arg(long, value_enum, default_value = "tangent")]
+    pub space: SpaceArg,
+}
+
+/// Where the scene is seen from.
+#[derive(Args, Debug, Clone)]
+#[command(next_help_heading = "Camera")]
+pub struct CameraGroup {
+    /// Eye position (default: the scene's)
+    #[arg(long, value_parser = parse_vec3, allow_hyphen_values = true)]
+    pub eye: Option<glam::Vec3>,
+    /// Point looked at (default: the scene's)
+    #[arg(long, value_parser = parse_vec3, allow_hyphen_values = true)]
+    pub target: Option<glam::Vec3>,
+    /// Vertical field of view in degrees
+    #[arg(long, default_value_t = 45.0)]
+    pub fov: f32,
+    /// Local or infinite viewer for the half-angle vector
+    #[arg(long, value_enum, default_value = "local")]
+    pub viewer: ViewerArg,
+}
+
+/// The lights.
+#[derive(Args, Debug, Clone)]
+#[command(next_help_heading = "Lights")]
+pub struct LightGroup {
+    /// A light, repeatable: [dir:]X,Y,Z[@R,G,B] (default: the scene's)
+    #[arg(long = "light", value_parser = parse_light, allow_hyphen_values = true)]
+    pub lights: Vec<bumpmap_core::scene::SceneLight>,
+    /// single-pass: attenuation with distance: C,L,Q (1/(C + L·d + Q·d²)), exp:D or exp2:D
+    #[arg(long, value_parser = parse_attenuation)]
+    pub attenuation: Option<bumpmap_core::scene::Attenuation>,
+    /// single-pass: make every positional light a spotlight aimed along DX,DY,DZ
+    #[arg(long, value_parser = parse_vec3, allow_hyphen_values = true)]
+    pub spot: Option<glam::Vec3>,
+    /// Spotlight cone half-angle in degrees, in (0, 90)
+    #[arg(long = "spot-cutoff", default_value_t = 25.0)]
+    pub spot_cutoff: f32,
+    /// Spotlight fall-off exponent (cos^E), ≥ 0
+    #[arg(long = "spot-exponent", default_value_t = 2.0)]
+    pub spot_exponent: f32,
+    /// Pattern projected by the spotlight: an image or a height-field preset (e.g. pinwheel)
+    #[arg(long = "spot-pattern")]
+    pub spot_pattern: Option<String>,
+}
+
+/// The surface's coefficients (Kilgard Eq. 11 and 16).
+#[derive(Args, Debug, Clone)]
+#[command(next_help_heading = "Material")]
+pub struct MaterialGroup {
+    /// Ambient intensity I_ambient
+    #[arg(long, default_value_t = 0.2)]
+    pub ambient: f32,
+    /// Diffuse coefficient k_diffuse
+    #[arg(long, default_value_t = 0.8)]
+    pub diffuse: f32,
+    /// Specular coefficient (0 drops the specular pass)
+    #[arg(long, default_value_t = 1.0)]
+    pub specular: f32,
+    /// Specular exponent (kilgard's combiners are fixed at 8)
+    #[arg(long, default_value_t = 8.0)]
+    pub shininess: f32,
+    /// single-pass: gloss map scaling the specular: decal-alpha, bricks (shiny bricks, dull mortar) or an image (red channel, same size as the decal)
+    #[arg(long)]
+    pub gloss: Option<String>,
+}
+
+/// How it is drawn.
+#[derive(Args, Debug, Clone)]
+#[command(next_help_heading = "Technique")]
+pub struct TechniqueGroup {
+    /// kilgard: the paper's three passes; single-pass: one float pass per light
+    #[arg(long, value_enum, default_value = "kilgard")]
+    pub technique: TechniqueArg,
+    /// Texture filtering of the normal map and decal
+    #[arg(long, value_enum, default_value = "trilinear")]
+    pub filter: FilterArg,
+    /// Leave out Eq. 12's self-shadowing term (Figure 14, left)
+    #[arg(long = "no-self-shadow")]
+    pub no_self_shadow: bool,
+    /// kilgard: register-combiner arithmetic
+    #[arg(long, value_enum, default_value = "float")]
+    pub precision: PrecisionArg,
+    /// kilgard: specular form of the third pass
+    #[arg(long = "specular-mode", value_enum, default_value = "power8")]
+    pub specular_mode: SpecularArg,
+    /// Face size of the normalization cube map
+    #[arg(long = "cube-size", default_value_t = 32, value_parser = clap::value_parser!(u32).range(1..=1024))]
+    pub cube_size: u32,
+    /// single-pass: how L and H are renormalized per fragment
+    #[arg(long, value_enum, default_value = "math")]
+    pub normalize: NormalizeArg,
+    /// single-pass: the self-shadowing factor (kilgard: see --no-self-shadow)
+    #[arg(long = "self-shadow", value_enum, default_value = "ramp")]
+    pub self_shadow: SelfShadowArg,
+    /// single-pass: per-vertex or per-fragment half-angle vector
+    #[arg(long = "half-angle", value_enum, default_value = "vertex")]
+    pub half_angle: HalfAngleArg,
+    /// single-pass: geometric self-shadowing of the specular term
+    #[arg(long = "specular-shadow", value_enum, default_value = "kilgard")]
+    pub specular_shadow: SpecularShadowArg,
+}
+
+/// What draws it.
+#[derive(Args, Debug, Clone)]
+#[command(next_help_heading = "Backend")]
+pub struct BackendGroup {
+    /// cpu: the emulated GeForce on all cores; gpu: wgpu (Vulkan, Metal, DX12 or GL; on a
+    /// machine without a GPU, Mesa's lavapipe: Debian's mesa-vulkan-drivers)
+    #[arg(long, value_enum, default_value = "cpu")]
+    pub backend: BackendArg,
+}
+
+/// Every option that says what is drawn and how: what `render`, `bench render` (and later
+/// `view` and `compare`) share.
+#[derive(Args, Debug, Clone)]
+pub struct SceneSetup {
+    #[command(flatten)]
+    pub scene: SceneGroup,
+    #[command(flatten)]
+    pub camera: CameraGroup,
+    #[command(flatten)]
+    pub lights: LightGroup,
+    #[command(flatten)]
+    pub material: MaterialGroup,
+    #[command(flatten)]
+    pub technique: TechniqueGroup,
+    #[command(flatten)]
+    pub backend: BackendGroup,
+}
+
+#[derive(Args, Debug, Clone)]
+#[command(after_help = "Examples:\n  \
+bumpmap render                                         # the paper's torus, out/render.png\n  \
+bumpmap render --passes -o torus.png                   # also torus.decal.png, .diffuse.png, .specular.png\n  \
+bumpmap render --scene wall-floor --light -1,2,3        # the Cg Tutorial's Figure 8-4\n  \
+bumpmap render --height-field dimples --bump-scale 8 --decal none\n  \
+bumpmap render --light 4,0,3@1,0.6,0.4 --light dir:-1,0,1@0.3,0.3,0.6\n  \
+bumpmap render --backend gpu --technique single-pass   # the same on the GPU (wgpu)\n\n\
+Lights are [dir:]X,Y,Z[@R,G,B] in world space: a point light's position, or with dir: the \
+direction toward a light at infinity.")]
+pub struct RenderArgs {
+    #[command(flatten)]
+    pub setup: SceneSetup,
+    /// Output PNG
+    #[arg(short, long, default_value = "out/render.png")]
+    pub output: PathBuf,
+    /// Square image size (pixels)
+    #[arg(long, default_value_t = 512, conflicts_with_all = ["width", "height"])]
+    pub size: usize,
+    /// Image width in pixels (with --height, instead of --size)
+    #[arg(long, requires = "height")]
+    pub width: Option<usize>,
+    /// Image height in pixels (with --width)
+    #[arg(long, requires = "width")]
+    pub height: Option<usize>,
+    /// Also write the framebuffer after each pass (Figure 12): OUT.decal.png, OUT.diffuse.png, …
+    #[arg(long)]
+    pub passes: bool,
+}
+
+#[derive(Args, Debug, Clone)]
+#[command(after_help = "Examples:\n  \
+bumpmap bench render --technique kilgard --threads 2 --json\n  \
+bumpmap bench render --technique single-pass --normalize cube\n  \
+bumpmap bench render --backend gpu --frames 100            # on the GPU (or lavapipe)\n\n\
+The light orbits the torus axis as in the llvmpipe peer; scene setup is not timed, every \
+frame's vertex stage, clear, passes and (GPU) read-back are.")]
+pub struct BenchRenderArgs {
+    #[command(flatten)]
+    pub setup: SceneSetup,
+    /// Square framebuffer size
+    #[arg(long, default_value_t = 1024)]
+    pub size: usize,
+    /// Worker threads (default: all cores)
+    #[arg(long)]
+    pub threads: Option<usize>,
+    /// Frames per timed run
+    #[arg(long, default_value_t = 30, value_parser = clap::value_parser!(u32).range(1..))]
+    pub frames: u32,
+    /// Timed runs (after one warm-up run)
+    #[arg(long, default_value_t = 5, value_parser = clap::value_parser!(u32).range(1..))]
+    pub runs: u32,
+    /// Print one JSON line instead of prose
+    #[arg(long)]
+    pub json: bool,
+}
+
+/// `[dir:]X,Y,Z[@R,G,B]`: a positional light (or a direction toward a directional one) and its
+/// colour.
+pub fn parse_light(s: &str) -> Result<bumpmap_core::scene::SceneLight, String> {
+    use bumpmap_math::lighting::Light;
+    let (pos, color) = match s.split_once('@') {
+        Some((p, c)) => (p, parse_vec3(c)?),
+        None => (s, glam::Vec3::ONE),
+    };
+    if color.min_element() < 0.0 {
+        return Err(format!("light colour must not be negative, got '{s}'"));
+    }
+    let light = match pos.strip_prefix("dir:") {
+        Some(d) => {
+            let d = parse_vec3(d)?;
+            if d.length() == 0.0 {
+                return Err("a directional light needs a non-zero direction".into());
+            }
+            Light::Directional(d.normalize())
+        }
+        None => Light::Positional(parse_vec3(pos)?),
+    };
+    Ok(bumpmap_core::scene::SceneLight { color, ..bumpmap_core::scene::SceneLight::white(light) })
+}
+
+#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum TechniqueArg {
+    /// The paper's three passes on the emulated GeForce 256 (register combiners, cube map)
+    Kilgard,
+    /// One float pass per light with the full lighting model (Kilgard §6, Cg Tutorial)
+    SinglePass,
+}
+
+#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum NormalizeArg {
+    /// normalize() in float
+    Math,
+    /// the normalization cube map, as the paper does
+    Cube,
+}
+
+#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum SelfShadowArg {
+    /// Eq. 12: clamp(8·L_z, 0, 1)
+    Ramp,
+    /// 1 where L_z > 0
+    Step,
+    /// none (Figure 14, left)
+    Off,
+}
+
+#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum HalfAngleArg {
+    /// per vertex, interpolated (Appendix C)
+    Vertex,
+    /// normalize(L̂ + V̂) per fragment (Cg Tutorial §8.1.4)
+    Fragment,
+}
+
+#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum SpecularShadowArg {
+    /// times s_self, zero where H_z < 0 (the paper's mux)
+    Kilgard,
+    /// zero unless N'·L > 0 and L_z > 0 (Cg Tutorial §8.5)
+    Cg,
+    /// none
+    Off,
+}
+
+#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum FilterArg {
+    /// GL_NEAREST: blocky, no mipmaps
+    Nearest,
+    /// GL_LINEAR: bilinear, no mipmaps (shimmers at a distance)
+    Linear,
+    /// GL_LINEAR_MIPMAP_LINEAR: the paper's choice
+    Trilinear,
+}
+
+#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum PrecisionArg {
+    /// Single-precision combiners
+    Float,
+    /// The GeForce 256's 9-bit signed fixed point
+    Fixed9,
+}
+
+#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum SpecularArg {
+    /// max(0, H·N')^8 by repeated squaring (Appendix H)
+    Power8,
+    /// max(0, 4·(H·N' − ¾))² (§5.5), a tighter highlight
+    Ramp,
+}
+
+#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ViewerArg {
+    /// the half-angle from each vertex toward the eye
+    Local,
+    /// one half-angle direction for the whole image (toward the eye from the target)
+    Infinite,
+}
+
+#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum BackendArg {
+    /// the emulated GeForce pipeline on the CPU (all cores)
+    Cpu,
+    /// wgpu on whatever adapter exists (Vulkan, Metal, DX12, GL; lavapipe without a GPU)
+    Gpu,
+}
+
+#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum SpaceArg {
+    /// tangent-space normal map, L and H rotated into each vertex's frame
+    Tangent,
+    /// object-space normal map baked for the surface, L and H in object space (Peercy §2.1)
+    Object,
+}
+
+/// `C,L,Q`, `exp:D` or `exp2:D`.
+pub fn parse_attenuation(s: &str) -> Result<bumpmap_core::scene::Attenuation, String> {
+    use bumpmap_core::scene::Attenuation;
+    let num = |x: &str| x.trim().parse::<f32>().map_err(|_| format!("'{x}' is not a number"));
+    if s == "none" {
+        return Ok(Attenuation::None);
+    }
+    if let Some(d) = s.strip_prefix("exp2:") {
+        return Ok(Attenuation::ExponentialSquared { density: num(d)? });
+    }
+    if let Some(d) = s.strip_prefix("exp:") {
+        return Ok(Attenuation::Exponential { density: num(d)? });
+    }
+    let v: Vec<f32> = s.split(',').map(num).collect::<Result<_, _>>()?;
+    match v.as_slice() {
+        [c, l, q] => Ok(Attenuation::Polynomial { constant: *c, linear: *l, quadratic: *q }),
+        _ => Err(format!("expected none, C,L,Q, exp:D or exp2:D, got '{s}'")),
+    }
+}

@@ -1,0 +1,95 @@
+//! Errors of the core: a scene that cannot be built, a technique asked for what it cannot do,
+//! a value out of its range. They name values, never command-line flags.
+
+use bumpmap_math::normalmap::NormalMapError;
+
+use crate::combiners::CombinerError;
+
+/// Something a technique cannot do, for [`CoreError::Unsupported`].
+#[derive(Clone, Debug, PartialEq)]
+pub enum Feature {
+    /// A specular exponent other than the combiners' fixed 8.
+    Shininess(f32),
+    /// A gloss map.
+    Gloss,
+    /// Attenuation with distance.
+    Attenuation,
+    /// A spotlight cone or pattern.
+    Spotlight,
+    /// Normalizing L and H by math rather than by the cube map.
+    NormalizeByMath,
+    /// A per-fragment half-angle vector.
+    FragmentHalfAngle,
+    /// A self-shadowing factor other than Eq. 12's ramp or none.
+    SelfShadowStep,
+    /// An object-space normal map.
+    ObjectSpace,
+    /// A specular colour other than white.
+    SpecularColor,
+}
+
+impl std::fmt::Display for Feature {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Feature::Shininess(s) => write!(f, "a shininess of {s} (its combiners square three times: 8 only)"),
+            Feature::Gloss => f.write_str("a gloss map"),
+            Feature::Attenuation => f.write_str("attenuation"),
+            Feature::Spotlight => f.write_str("spotlights"),
+            Feature::NormalizeByMath => f.write_str("normalization by math (it normalizes by the cube map)"),
+            Feature::FragmentHalfAngle => f.write_str("a per-fragment half-angle (H is per vertex)"),
+            Feature::SelfShadowStep => f.write_str("a step self-shadowing term (Eq. 12's ramp or none)"),
+            Feature::ObjectSpace => f.write_str("object-space lighting (its self-shadowing reads tangent-space L_z)"),
+            Feature::SpecularColor => f.write_str("a specular colour other than white or black"),
+        }
+    }
+}
+
+/// Why a scene or a technique's passes could not be made.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum CoreError {
+    /// The height field could not become a normal map.
+    #[error("height field: {0}")]
+    HeightField(#[from] NormalMapError),
+    /// Object-space maps are baked from an analytic surface.
+    #[error("object-space normal maps are made for the built-in surfaces, not for meshes")]
+    ObjectSpaceOnMesh,
+    /// A register-combiner setup broke a rule of the specification.
+    #[error("invalid register-combiner setup: {0}")]
+    Combiner(#[from] CombinerError),
+    /// The technique cannot render what the scene or the options ask for.
+    #[error("the {technique} technique cannot do {feature}")]
+    Unsupported {
+        /// The technique's name.
+        technique: &'static str,
+        /// What it cannot do.
+        feature: Feature,
+    },
+    /// A value outside its range.
+    #[error("{what} must be {expected}, got {value}")]
+    OutOfRange {
+        /// What the value is.
+        what: &'static str,
+        /// The value as given.
+        value: String,
+        /// The accepted range, in words.
+        expected: &'static str,
+    },
+    /// A gloss map and a decal share texture coordinates, so their sizes must agree.
+    #[error("the gloss map is {}x{} but the decal is {}x{}: they share texture coordinates and must be the same size", .gloss.0, .gloss.1, .decal.0, .decal.1)]
+    GlossSize {
+        /// The gloss map's size.
+        gloss: (usize, usize),
+        /// The decal's size.
+        decal: (usize, usize),
+    },
+    /// Gloss from the decal's alpha without a decal.
+    #[error("gloss from the decal's alpha needs a decal")]
+    GlossNeedsDecal,
+}
+
+impl CoreError {
+    /// An [`CoreError::OutOfRange`] for `value`.
+    pub fn out_of_range(what: &'static str, value: impl std::fmt::Display, expected: &'static str) -> Self {
+        CoreError::OutOfRange { what, value: value.to_string(), expected }
+    }
+}

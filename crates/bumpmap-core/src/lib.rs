@@ -1,0 +1,34 @@
+//! What is rendered and how, with no backend in it.
+//!
+//! A [`Scene`](scene::Scene) (camera, lights, objects with meshes and materials holding plain
+//! RGBA8 textures) and a [`Technique`](technique::Technique) make a list of
+//! [`Pass`](technique::Pass)es — GL state plus a program — that a backend draws: the CPU
+//! pipeline (`bumpmap-cpu`), wgpu (`bumpmap-gpu`), or, for ground truth, a reference renderer.
+//! No module here rasterizes, samples a texture or evaluates a combiner over pixels.
+//!
+//! - [`scene`], [`scenes`]: scene descriptions and the built-in scenes;
+//! - [`vertex`]: the vertex stage every technique shares (Kilgard §5.1, Appendix C);
+//! - [`state`]: depth, blend and sampler state as data;
+//! - [`combiners`]: NV_register_combiners setups and their validation; [`setups`]: the
+//!   paper's (Kilgard Appendices G and H);
+//! - [`shading`]: the lighting model (Kilgard Eq. 11, 12, 16), once;
+//! - [`technique`]: techniques as passes, with their capability checks;
+//! - [`lane_math`]: max, min and clamp where a NaN takes the bound;
+//! - [`error`]: what can go wrong, as values.
+
+#![warn(missing_docs)]
+
+pub mod combiners;
+pub mod error;
+pub mod lane_math;
+pub mod scene;
+pub mod scenes;
+pub mod setups;
+pub mod shading;
+pub mod state;
+pub mod technique;
+pub mod vertex;
+
+pub use error::{CoreError, Feature};
+pub use scene::Scene;
+pub use technique::{Pass, Program, Technique};

@@ -1,0 +1,193 @@
+//! What is rendered, independent of how: camera, lights, objects with their meshes and
+//! materials. Textures are plain RGBA8 data ([`Rgba8Mips`]); how they are sampled is the
+//! backend's business.
+//!
+//! A technique turns a `Scene` into passes (`technique`); the vertex stage (`vertex`) turns an
+//! object and a light into per-vertex inputs; a backend draws them.
+
+use std::sync::Arc;
+
+use glam::{Mat4, Vec3};
+
+use bumpmap_math::Rgba8Mips;
+use bumpmap_math::lighting::Light;
+use bumpmap_math::mesh::Mesh;
+
+/// A perspective camera (`gluLookAt` + `gluPerspective`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Camera {
+    /// The eye position in world space (`gluLookAt`'s eye).
+    pub eye: Vec3,
+    /// The point looked at, in world space.
+    pub target: Vec3,
+    /// The up direction in world space; must not be parallel to `target − eye`.
+    pub up: Vec3,
+    /// The vertical field of view in degrees (`gluPerspective`'s fovy).
+    pub fov_y_degrees: f32,
+    /// Distance to the near clipping plane, > 0.
+    pub near: f32,
+    /// Distance to the far clipping plane, > `near`.
+    pub far: f32,
+}
+
+impl Camera {
+    /// `clip_from_world` for an image of the given aspect ratio (width / height).
+    pub fn clip_from_world(&self, aspect: f32) -> Mat4 {
+        Mat4::perspective_rh_gl(self.fov_y_degrees.to_radians(), aspect, self.near, self.far)
+            * Mat4::look_at_rh(self.eye, self.target, self.up)
+    }
+}
+
+/// Local or infinite viewer for the half-angle vector (Kilgard §6).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum ViewerModel {
+    #[default]
+    /// H from the direction to the eye at each vertex (`GL_LIGHT_MODEL_LOCAL_VIEWER` true).
+    Local,
+    /// H from one view direction for the whole object, `eye − target`.
+    Infinite,
+}
+
+/// A light, its colour, its fall-off with distance and an optional spotlight cone.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SceneLight {
+    /// Where the light is: positional or directional, in world space.
+    pub light: Light,
+    /// Linear RGB colour; multiplies the material's diffuse and specular coefficients.
+    pub color: Vec3,
+    /// Fall-off with the distance to the light.
+    pub attenuation: Attenuation,
+    /// A spotlight cone (positional lights only), or `None`.
+    pub spot: Option<Spot>,
+}
+
+impl SceneLight {
+    /// A white light with no attenuation and no cone.
+    pub fn white(light: Light) -> Self {
+        Self { light, color: Vec3::ONE, attenuation: Attenuation::None, spot: None }
+    }
+}
+
+/// Fall-off with the distance d to a positional light (Kilgard §5.6).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Attenuation {
+    /// No fall-off: the factor is 1.
+    None,
+    /// OpenGL's `1 / (constant + linear·d + quadratic·d²)`.
+    Polynomial {
+        /// `GL_CONSTANT_ATTENUATION`.
+        constant: f32,
+        /// `GL_LINEAR_ATTENUATION`.
+        linear: f32,
+        /// `GL_QUADRATIC_ATTENUATION`.
+        quadratic: f32,
+    },
+    /// The fog-coordinate style `exp(−density·d)`.
+    Exponential {
+        /// The density per unit distance, ≥ 0.
+        density: f32,
+    },
+    /// `exp(−(density·d)²)`.
+    ExponentialSquared {
+        /// The density per unit distance, ≥ 0.
+        density: f32,
+    },
+}
+
+impl Attenuation {
+    /// The factor at distance `d`, in [0, 1] for valid parameters.
+    #[inline]
+    pub fn factor(&self, d: f32) -> f32 {
+        match *self {
+            Attenuation::None => 1.0,
+            Attenuation::Polynomial { constant, linear, quadratic } => {
+                (1.0 / (constant + linear * d + quadratic * d * d)).clamp(0.0, 1.0)
+            }
+            Attenuation::Exponential { density } => (-density * d).exp(),
+            Attenuation::ExponentialSquared { density } => (-(density * d).powi(2)).exp(),
+        }
+    }
+}
+
+/// A spotlight: a cone around `direction` (world space, pointing away from the light) with
+/// GL's `cos^exponent` fall-off, and optionally a pattern projected from the light (Segal et
+/// al., Kilgard §5.6) through a square frustum whose half-angle is the cutoff.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Spot {
+    /// The cone's axis (`GL_SPOT_DIRECTION`) in world space: finite and non-zero, not necessarily unit.
+    pub direction: Vec3,
+    /// Half-angle of the cone in degrees, in (0, 90).
+    pub cutoff_degrees: f32,
+    /// `GL_SPOT_EXPONENT`: the exponent of the cosine to the axis, ≥ 0.
+    pub exponent: f32,
+    /// A texture projected from the light that multiplies the cone factor, or `None`.
+    pub pattern: Option<Arc<Rgba8Mips>>,
+}
+
+impl Spot {
+    /// The light's `clip_from_world` for projecting the pattern from `position`.
+    pub fn clip_from_world(&self, position: Vec3) -> Mat4 {
+        let d = self.direction.normalize();
+        let up = if d.cross(Vec3::Z).length() > 1e-3 { Vec3::Z } else { Vec3::Y };
+        Mat4::perspective_rh_gl(2.0 * self.cutoff_degrees.to_radians(), 1.0, 0.05, 1000.0)
+            * Mat4::look_at_rh(position, position + d, up)
+    }
+}
+
+/// The space a normal map's vectors live in (Peercy §2, Kilgard §5).
+#[derive(Clone, Copy, Debug, PartialEq, Default)]
+pub enum NormalSpace {
+    /// Tangent space: usable on any surface, lit with tangent-space L and H.
+    #[default]
+    Tangent,
+    /// Object space, made for one surface: lit with object-space L and H. The map covers the
+    /// surface once; it is addressed with the texture coordinates times `scale`.
+    Object {
+        /// Multiplies the texture coordinates to address the map (1 / the texture's repeat).
+        scale: glam::Vec2,
+    },
+}
+
+/// Surface appearance: a normal map with its mip chain, an optional decal and the lighting
+/// coefficients of Kilgard Eq. 11 and 16.
+#[derive(Clone, Debug)]
+pub struct Material {
+    /// RGB = range-compressed normal (unorm encoding), A = length of the filtered normal.
+    pub normal_map: Arc<Rgba8Mips>,
+    /// The space the normal map's vectors are in.
+    pub normal_space: NormalSpace,
+    /// A decal whose RGB multiplies the diffuse term (white when `None`).
+    pub decal: Option<Arc<Rgba8Mips>>,
+    /// The ambient term of Eq. 11, added once rather than per light.
+    pub ambient: Vec3,
+    /// k_diffuse of Eq. 11, per RGB channel.
+    pub diffuse: Vec3,
+    /// k_specular of Eq. 16, per RGB channel.
+    pub specular: Vec3,
+    /// The specular exponent of Eq. 16, > 0.
+    pub shininess: f32,
+}
+
+/// A mesh placed in the world. The mesh must have normals, texture coordinates and tangents.
+#[derive(Clone, Debug)]
+pub struct SceneObject {
+    /// The geometry in object space, with normals, texture coordinates and tangents.
+    pub mesh: Arc<Mesh>,
+    /// The object's model transform.
+    pub world_from_object: Mat4,
+    /// The surface appearance.
+    pub material: Material,
+}
+
+/// Everything a technique renders.
+#[derive(Clone, Debug)]
+pub struct Scene {
+    /// The camera the image is seen from.
+    pub camera: Camera,
+    /// Local or infinite viewer for the half-angle vector H.
+    pub viewer: ViewerModel,
+    /// The lights, each adding its own diffuse and specular terms.
+    pub lights: Vec<SceneLight>,
+    /// The objects drawn.
+    pub objects: Vec<SceneObject>,
+}

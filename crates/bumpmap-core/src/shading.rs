@@ -1,0 +1,191 @@
+//! The lighting model, once: Kilgard Eq. 11 (diffuse with the self-shadowing term of Eq. 12
+//! and the mip chain's length factor, Eq. 14–15), Eq. 16 (specular with the paper's or the Cg
+//! Tutorial's gating), plus the single pass's extras (light colour, gloss, attenuation and
+//! spotlights, applied as one scalar factor).
+//!
+//! Every fast copy of this model — the CPU backend's lane loops, the GPU backend's WGSL — is
+//! tested against [`shade`]. What this module does not do: texture sampling, interpolation
+//! and per-fragment renormalization of L and H (the backends' work; their results are the
+//! [`Fragment`] fields), and the three-pass technique's 8-bit arithmetic (that is the register
+//! combiners' setup data, `setups`).
+
+use glam::{Vec3, Vec4};
+
+use crate::lane_math::{clamp_lo, max_lo, min_hi};
+use crate::scene::Spot;
+use crate::technique::{SelfShadow, SpecularShadow};
+
+/// The coefficients and switches of one lit pass: the material's, times the light's colour.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct LitTerms {
+    /// I_ambient (zero on every pass but the first light's).
+    pub ambient: Vec3,
+    /// k_diffuse · light colour.
+    pub diffuse: Vec3,
+    /// k_specular · light colour.
+    pub specular: Vec3,
+    /// The specular exponent, > 0.
+    pub shininess: f32,
+    /// The geometric self-shadowing factor.
+    pub self_shadow: SelfShadow,
+    /// How the specular term is gated.
+    pub specular_shadow: SpecularShadow,
+}
+
+/// What one fragment brings to the model.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Fragment {
+    /// The filtered normal-map texel in [0, 1]: RGB the range-compressed N', A = |N'|.
+    pub normal: Vec4,
+    /// The decal's RGB in [0, 1] (white without a decal).
+    pub decal: Vec3,
+    /// The gloss factor in [0, 1] (1 without gloss).
+    pub gloss: f32,
+    /// The unit light vector in the lighting space, renormalized per fragment.
+    pub l: Vec3,
+    /// The unit half-angle vector, likewise.
+    pub h: Vec3,
+    /// L·N with the unperturbed normal (L_z in tangent space).
+    pub l_n: f32,
+    /// H·N with the unperturbed normal (H_z in tangent space).
+    pub h_n: f32,
+    /// Attenuation × spotlight, in [0, 1].
+    pub light: f32,
+}
+
+/// The self-shadowing factor s_self of Eq. 11 for L·N = `l_n`.
+#[inline(always)]
+pub fn self_shadow(mode: SelfShadow, l_n: f32) -> f32 {
+    match mode {
+        // Eq. 12 (`bumpmap_math::lighting::s_self`, NaN taking 0 as the lane loops do).
+        SelfShadow::Ramp => clamp_lo(8.0 * l_n, 0.0, 1.0),
+        SelfShadow::Step => (l_n > 0.0) as u8 as f32,
+        SelfShadow::Off => 1.0,
+    }
+}
+
+/// The specular gate: which geometric self-shadowing the specular term gets, given s_self,
+/// N'·L and the unperturbed L·N and H·N.
+#[inline(always)]
+pub fn specular_gate(mode: SpecularShadow, s_self: f32, n_dot_l: f32, l_n: f32, h_n: f32) -> f32 {
+    match mode {
+        // Appendix H's mux: zero where H_z < 0, and times s_self (pass 3 reads it from alpha).
+        SpecularShadow::Kilgard => s_self * (h_n >= 0.0) as u8 as f32,
+        // Cg Tutorial §8.5: only where the bumped and the geometric normal face the light.
+        SpecularShadow::CgTutorial => (n_dot_l > 0.0 && l_n > 0.0) as u8 as f32,
+        SpecularShadow::Off => 1.0,
+    }
+}
+
+/// Whether `shininess` is raised by repeated multiplication (`powi`) rather than `powf`:
+/// whole exponents up to 64, the paper's 8 among them.
+#[inline(always)]
+pub fn shininess_is_whole(shininess: f32) -> bool {
+    shininess == shininess.trunc() && shininess <= 64.0
+}
+
+/// `x^shininess`, by [`f32::powi`] for whole exponents up to 64 and [`f32::powf`] otherwise.
+#[inline(always)]
+pub fn specular_power(x: f32, shininess: f32) -> f32 {
+    if shininess_is_whole(shininess) { x.powi(shininess as i32) } else { x.powf(shininess) }
+}
+
+/// The range-compressed vector `c` in [0, 1]³ expanded as `2c − 1` (EXPAND_NORMAL).
+#[inline(always)]
+pub fn expand(c: [f32; 3]) -> [f32; 3] {
+    c.map(|v| v * 2.0 - 1.0)
+}
+
+/// `a · b`, summed in the order x, y, z (the lane loops' order, so results are the same bits).
+#[inline(always)]
+pub fn dot3(a: [f32; 3], b: [f32; 3]) -> f32 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+/// The colour of one fragment (alpha is 1): `decal · min(ambient + diffuse · light · s_self ·
+/// max(0, N'·L) · |N'|, 1) + specular · light · gate · gloss · (H·N')^shininess`.
+///
+/// N'·L and H·N' use the expanded, not renormalized, normal-map vector and are clamped to
+/// [−1, 1] and [0, 1] as the combiners' outputs are, so a quantized normal cannot brighten past
+/// the three-pass technique's.
+pub fn shade(terms: &LitTerms, f: &Fragment) -> Vec3 {
+    let n = expand([f.normal.x, f.normal.y, f.normal.z]);
+    let n_dot_l = clamp_lo(dot3(f.l.to_array(), n), -1.0, 1.0);
+    let h_dot_n = clamp_lo(dot3(f.h.to_array(), n), 0.0, 1.0);
+    let s_self = self_shadow(terms.self_shadow, f.l_n);
+    let gate = specular_gate(terms.specular_shadow, s_self, n_dot_l, f.l_n, f.h_n);
+    let power = specular_power(h_dot_n, terms.shininess);
+    let (ka, kd, ks, decal) = (terms.ambient.to_array(), terms.diffuse.to_array(), terms.specular.to_array(), f.decal);
+    Vec3::from_array(std::array::from_fn(|c| {
+        let diffuse = min_hi(ka[c] + kd[c] * (f.light * s_self * max_lo(n_dot_l, 0.0) * f.normal.w), 1.0);
+        let specular = ks[c] * (f.light * gate * f.gloss * power);
+        decal[c] * diffuse + specular
+    }))
+}
+
+/// A spotlight's cone factor: GL's `max(0, cos)^exponent` inside the cutoff, 0 outside, where
+/// `to_light` is the (unnormalized) vector from the fragment to the light and `axis` the spot
+/// direction, both in the lighting space. The pattern, if any, multiplies this.
+pub fn spot_cone(spot: &Spot, to_light: Vec3, axis: Vec3) -> f32 {
+    let cos = -(to_light.normalize_or(Vec3::Z)).dot(axis.normalize_or(Vec3::Z));
+    if cos >= spot.cutoff_degrees.to_radians().cos() { cos.max(0.0).powf(spot.exponent) } else { 0.0 }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn terms() -> LitTerms {
+        LitTerms {
+            ambient: Vec3::splat(0.2),
+            diffuse: Vec3::splat(0.8),
+            specular: Vec3::ONE,
+            shininess: 8.0,
+            self_shadow: SelfShadow::Ramp,
+            specular_shadow: SpecularShadow::Kilgard,
+        }
+    }
+
+    fn flat(l: Vec3, h: Vec3) -> Fragment {
+        Fragment {
+            normal: Vec4::new(0.5, 0.5, 1.0, 1.0),
+            decal: Vec3::ONE,
+            gloss: 1.0,
+            l,
+            h,
+            l_n: l.z,
+            h_n: h.z,
+            light: 1.0,
+        }
+    }
+
+    #[test]
+    fn head_on_light_gives_ambient_plus_diffuse_plus_specular() {
+        let c = shade(&terms(), &flat(Vec3::Z, Vec3::Z));
+        // min(0.2 + 0.8, 1) + 1 · 1^8 = 2 (clamped later by the framebuffer).
+        assert_eq!(c, Vec3::splat(2.0));
+    }
+
+    #[test]
+    fn eq12_ramp_darkens_grazing_light() {
+        let l = Vec3::new(0.995, 0.0, 0.05).normalize();
+        let c = shade(&LitTerms { specular: Vec3::ZERO, ..terms() }, &flat(l, Vec3::Z));
+        let s = (8.0 * l.z).clamp(0.0, 1.0);
+        let expected = 0.2 + 0.8 * s * l.z;
+        assert!((c.x - expected).abs() < 1e-6, "{c} vs {expected}");
+        assert_eq!(self_shadow(SelfShadow::Ramp, l.z), bumpmap_math::lighting::s_self(l.z));
+    }
+
+    #[test]
+    fn light_below_the_surface_leaves_ambient_only() {
+        let c = shade(&terms(), &flat(-Vec3::Z, -Vec3::Z));
+        assert_eq!(c, Vec3::splat(0.2));
+    }
+
+    #[test]
+    fn powi_for_whole_exponents_powf_otherwise() {
+        assert_eq!(specular_power(0.5, 8.0), 0.5f32.powi(8));
+        assert_eq!(specular_power(0.5, 8.5), 0.5f32.powf(8.5));
+        assert_eq!(specular_power(0.5, 100.0), 0.5f32.powf(100.0));
+    }
+}

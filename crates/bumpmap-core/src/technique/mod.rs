@@ -1,0 +1,183 @@
+//! Techniques as lists of passes: each pass is GL state plus a program, drawn over one object
+//! for one light. A backend executes the list in order; it never decides what a technique is.
+//!
+//! - [`kilgard`]: the paper's three passes, register-combiner programs (Kilgard §5.4–5.6);
+//! - [`single_pass`]: the same lighting model in one float pass per light ([`crate::shading`]).
+//!
+//! Capability checks live here: [`Technique::passes`] refuses what a technique cannot do with
+//! a typed [`CoreError`], so every backend refuses the same things.
+
+pub mod kilgard;
+pub mod single_pass;
+
+use std::sync::Arc;
+
+use bumpmap_math::{Encoding, Rgba8Mips};
+
+use crate::combiners::{CombinerSetup, Precision};
+use crate::error::CoreError;
+use crate::scene::{NormalSpace, Scene, SceneLight};
+use crate::state::{PassState, Sampler};
+use crate::vertex::var;
+
+pub use kilgard::{KilgardOptions, SpecularMode};
+pub use single_pass::{Gloss, HalfAngle, Normalize, SelfShadow, SinglePassOptions, SpecularShadow};
+
+/// A technique with its options.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Technique {
+    /// Kilgard's three passes on a GeForce 256 (register combiners, 8-bit framebuffer).
+    Kilgard(KilgardOptions),
+    /// One float pass per light.
+    SinglePass(SinglePassOptions),
+}
+
+impl Technique {
+    /// The technique's name as the papers and the CLI spell it.
+    pub fn name(&self) -> &'static str {
+        match self {
+            Technique::Kilgard(_) => kilgard::NAME,
+            Technique::SinglePass(_) => single_pass::NAME,
+        }
+    }
+
+    /// The passes that render `scene`, in order; the first clears nothing (backends clear to
+    /// black, alpha 0, depth 1 before the first pass). Fails when the technique cannot render
+    /// the scene as asked.
+    pub fn passes(&self, scene: &Scene) -> Result<Vec<Pass>, CoreError> {
+        match self {
+            Technique::Kilgard(o) => kilgard::passes(scene, o),
+            Technique::SinglePass(o) => single_pass::passes(scene, o),
+        }
+    }
+}
+
+/// One draw of one object for one light.
+#[derive(Clone, Debug)]
+pub struct Pass {
+    /// Index into `Scene::objects`.
+    pub object: usize,
+    /// Index into `Scene::lights`: whose vertex stage (L, H, …) the pass reads.
+    pub light: usize,
+    /// A name for the framebuffer after this pass, where a figure shows it (Kilgard Figure 12).
+    pub snapshot: Option<&'static str>,
+    /// Depth, blend, colour mask, culling.
+    pub state: PassState,
+    /// What computes each fragment's colour.
+    pub program: Program,
+}
+
+/// A pass's fragment computation.
+#[derive(Clone, Debug)]
+pub enum Program {
+    /// Texture units feeding NV_register_combiners.
+    Combiners(CombinerProgram),
+    /// The float lighting model of [`crate::shading`].
+    Lit(Box<LitProgram>),
+}
+
+impl Program {
+    /// How many varyings (from slot 0) the program reads: a backend need not interpolate more.
+    pub fn varyings_read(&self) -> usize {
+        match self {
+            Program::Combiners(c) => c.units.iter().map(|u| u.binding.varyings_read()).max().unwrap_or(0),
+            Program::Lit(l) => l.varyings_read(),
+        }
+    }
+}
+
+/// Up to four texture units and the combiner setup they feed.
+#[derive(Clone, Debug, PartialEq)]
+pub struct CombinerProgram {
+    /// Unit i loads register TEXTURE<i>.
+    pub units: Vec<TextureUnit>,
+    /// A setup that [`CombinerSetup::validate`] accepts.
+    pub setup: CombinerSetup,
+    /// The datapath's precision.
+    pub precision: Precision,
+}
+
+/// What a texture unit has bound, and its sampler state.
+#[derive(Clone, Debug, PartialEq)]
+pub struct TextureUnit {
+    /// The texture and the varyings that address it.
+    pub binding: Binding,
+    /// Filter and wrap modes.
+    pub sampler: Sampler,
+}
+
+/// A texture and its coordinates.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Binding {
+    /// A 2D texture addressed by (s, t) = varyings `[s, t]`.
+    TwoD {
+        /// The texture.
+        texture: Arc<Rgba8Mips>,
+        /// Varying slot of s.
+        s: usize,
+        /// Varying slot of t.
+        t: usize,
+    },
+    /// The normalization cube map (Kilgard Appendix D) addressed by varyings `[r, r+1, r+2]`.
+    NormalizationCube {
+        /// Face size in texels.
+        size: usize,
+        /// How the unit vectors are stored.
+        encoding: Encoding,
+        /// First varying slot of the direction.
+        r: usize,
+    },
+}
+
+impl Binding {
+    /// One past the last varying slot this binding reads.
+    pub fn varyings_read(&self) -> usize {
+        match self {
+            Binding::TwoD { s, t, .. } => s.max(t) + 1,
+            Binding::NormalizationCube { r, .. } => r + 3,
+        }
+    }
+}
+
+/// The single pass's program for one object and one light: its material with the light's
+/// colour folded in, and the options that shape the model.
+#[derive(Clone, Debug, PartialEq)]
+pub struct LitProgram {
+    /// RGB range-compressed normal (unorm), A = |N'|.
+    pub normal_map: Arc<Rgba8Mips>,
+    /// Tangent or object space, and the object-space map's coordinate scale.
+    pub normal_space: NormalSpace,
+    /// The decal; white where `None`.
+    pub decal: Option<Arc<Rgba8Mips>>,
+    /// Where the gloss comes from.
+    pub gloss: Gloss,
+    /// The filtering of the normal map, decal and gloss map.
+    pub sampler: Sampler,
+    /// The lighting coefficients and switches, per pass.
+    pub terms: crate::shading::LitTerms,
+    /// How L and H are renormalized per fragment.
+    pub normalize: Normalize,
+    /// The cube map's face size for [`Normalize::Cube`].
+    pub cube_size: usize,
+    /// Per-vertex or per-fragment H.
+    pub half_angle: HalfAngle,
+    /// The light: attenuation, spotlight (its colour is already in `terms`).
+    pub light: SceneLight,
+}
+
+impl LitProgram {
+    /// How many varyings (from slot 0) the program reads.
+    pub fn varyings_read(&self) -> usize {
+        if matches!(self.normal_space, NormalSpace::Object { .. }) {
+            var::N + 3
+        } else if self.light.spot.is_some() {
+            var::PROJ + 3
+        } else if self.light.attenuation != crate::scene::Attenuation::None {
+            var::LIGHT_DISTANCE + 1
+        } else if self.half_angle == HalfAngle::Fragment {
+            var::V + 3
+        } else {
+            var::H + 3
+        }
+    }
+}

@@ -1,0 +1,216 @@
+//! The single pass (Kilgard §6's prediction; the Cg Tutorial's fragment programs): one float
+//! pass per light evaluating [`crate::shading`] per fragment.
+//!
+//! The first light's pass draws with depth LESS and adds the ambient term; each further light
+//! adds its own pass with `glBlendFunc(GL_ONE, GL_ONE)` and depth EQUAL, so the framebuffer is
+//! 8-bit between lights as on the hardware. Attenuation is the per-vertex distance
+//! interpolated, not the per-fragment distance.
+
+use std::sync::Arc;
+
+use glam::Vec3;
+
+use bumpmap_math::Rgba8Mips;
+
+use crate::error::CoreError;
+use crate::scene::{Attenuation, Scene, SceneLight};
+use crate::shading::LitTerms;
+use crate::state::{Blend, PassState, Sampler};
+use crate::technique::{LitProgram, Pass, Program};
+
+/// The technique's name.
+pub const NAME: &str = "single-pass";
+
+/// How the interpolated L and H are renormalized per fragment.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum Normalize {
+    /// `normalize()` in float.
+    #[default]
+    Math,
+    /// A lookup in the normalization cube map, expanded as `2x − 1` (the paper's way).
+    Cube,
+}
+
+/// The geometric self-shadowing factor of Eq. 11.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum SelfShadow {
+    /// Eq. 12: `clamp(8·L_z, 0, 1)`.
+    #[default]
+    Ramp,
+    /// 1 where `L_z > 0`, else 0.
+    Step,
+    /// Always 1 (Figure 14, left).
+    Off,
+}
+
+/// Where the half-angle vector comes from (Cg Tutorial §8.1.4).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum HalfAngle {
+    /// Computed per vertex (Appendix C) and interpolated.
+    #[default]
+    Vertex,
+    /// `normalize(L̂ + V̂)` from the interpolated L and V.
+    Fragment,
+}
+
+/// Which geometric self-shadowing the specular term gets.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum SpecularShadow {
+    /// The paper's: times s_self, and zero where `H_z < 0` (Appendix H's mux).
+    #[default]
+    Kilgard,
+    /// Cg Tutorial §8.5: zero unless `N'·L > 0` and `L_z > 0`.
+    CgTutorial,
+    /// None.
+    Off,
+}
+
+/// Where the gloss (specular scale) comes from (Cg Tutorial §8.5.2).
+#[derive(Clone, Debug, PartialEq, Default)]
+pub enum Gloss {
+    /// No gloss: the specular term at full strength.
+    #[default]
+    None,
+    /// The decal's alpha channel.
+    DecalAlpha,
+    /// The red channel of a gloss map with the decal's texture coordinates.
+    Map(Arc<Rgba8Mips>),
+}
+
+/// Options of the single-pass technique. The defaults are the paper's settings except for the
+/// math normalization.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SinglePassOptions {
+    /// The normal map's, decal's and gloss map's filtering.
+    pub sampler: Sampler,
+    /// Per-fragment renormalization of L and H.
+    pub normalize: Normalize,
+    /// The self-shadowing factor.
+    pub self_shadow: SelfShadow,
+    /// Per-vertex or per-fragment H.
+    pub half_angle: HalfAngle,
+    /// The specular term's gating.
+    pub specular_shadow: SpecularShadow,
+    /// The gloss source.
+    pub gloss: Gloss,
+    /// The cube map's face size for [`Normalize::Cube`].
+    pub cube_size: usize,
+}
+
+impl Default for SinglePassOptions {
+    fn default() -> Self {
+        Self {
+            sampler: Sampler::TRILINEAR_REPEAT,
+            normalize: Normalize::Math,
+            self_shadow: SelfShadow::Ramp,
+            half_angle: HalfAngle::Vertex,
+            specular_shadow: SpecularShadow::Kilgard,
+            gloss: Gloss::None,
+            cube_size: 32,
+        }
+    }
+}
+
+/// Checks what the options and the scene's lights and materials allow.
+pub fn validate(scene: &Scene, options: &SinglePassOptions) -> Result<(), CoreError> {
+    for object in &scene.objects {
+        let m = &object.material;
+        if !(m.shininess > 0.0 && m.shininess.is_finite()) {
+            return Err(CoreError::out_of_range("shininess", m.shininess, "a positive number"));
+        }
+        if let Gloss::Map(g) = &options.gloss {
+            match &m.decal {
+                Some(d) if (d.width(), d.height()) != (g.width(), g.height()) => {
+                    return Err(CoreError::GlossSize {
+                        gloss: (g.width(), g.height()),
+                        decal: (d.width(), d.height()),
+                    });
+                }
+                _ => {}
+            }
+        }
+        if options.gloss == Gloss::DecalAlpha && m.decal.is_none() {
+            return Err(CoreError::GlossNeedsDecal);
+        }
+    }
+    for light in &scene.lights {
+        validate_light(light)?;
+    }
+    Ok(())
+}
+
+/// Checks one light's parameters.
+pub fn validate_light(light: &SceneLight) -> Result<(), CoreError> {
+    let bad = |what, value: String, expected| Err(CoreError::OutOfRange { what, value, expected });
+    if !light.color.is_finite() || light.color.min_element() < 0.0 {
+        return bad("a light colour", light.color.to_string(), "finite and not negative");
+    }
+    match light.attenuation {
+        Attenuation::Polynomial { constant, linear, quadratic } => {
+            if [constant, linear, quadratic].iter().any(|c| !(c.is_finite() && *c >= 0.0))
+                || constant + linear + quadratic == 0.0
+            {
+                return bad(
+                    "attenuation coefficients",
+                    format!("{constant},{linear},{quadratic}"),
+                    "≥ 0 and not all zero",
+                );
+            }
+        }
+        Attenuation::Exponential { density } | Attenuation::ExponentialSquared { density } => {
+            if !(density.is_finite() && density >= 0.0) {
+                return bad("attenuation density", density.to_string(), "≥ 0");
+            }
+        }
+        Attenuation::None => {}
+    }
+    if let Some(spot) = &light.spot {
+        if !(spot.cutoff_degrees > 0.0 && spot.cutoff_degrees < 90.0) {
+            return bad("a spotlight cutoff", spot.cutoff_degrees.to_string(), "in (0, 90) degrees");
+        }
+        if !(spot.exponent.is_finite() && spot.exponent >= 0.0) {
+            return bad("a spotlight exponent", spot.exponent.to_string(), "≥ 0");
+        }
+        if !(spot.direction.length() > 0.0 && spot.direction.is_finite()) {
+            return bad("a spotlight direction", spot.direction.to_string(), "a finite non-zero vector");
+        }
+        if matches!(light.light, bumpmap_math::lighting::Light::Directional(_)) {
+            return bad("a spotlight's light", "directional".into(), "positional");
+        }
+    }
+    Ok(())
+}
+
+/// The passes of `scene`: per object, one per light.
+pub fn passes(scene: &Scene, options: &SinglePassOptions) -> Result<Vec<Pass>, CoreError> {
+    validate(scene, options)?;
+    let mut passes = Vec::new();
+    for (o, object) in scene.objects.iter().enumerate() {
+        let m = &object.material;
+        for (l, light) in scene.lights.iter().enumerate() {
+            let terms = LitTerms {
+                ambient: if l == 0 { m.ambient } else { Vec3::ZERO },
+                diffuse: m.diffuse * light.color,
+                specular: m.specular * light.color,
+                shininess: m.shininess,
+                self_shadow: options.self_shadow,
+                specular_shadow: options.specular_shadow,
+            };
+            let program = LitProgram {
+                normal_map: m.normal_map.clone(),
+                normal_space: m.normal_space,
+                decal: m.decal.clone(),
+                gloss: options.gloss.clone(),
+                sampler: options.sampler,
+                terms,
+                normalize: options.normalize,
+                cube_size: options.cube_size,
+                half_angle: options.half_angle,
+                light: light.clone(),
+            };
+            let state = if l == 0 { PassState::OPAQUE } else { PassState::equal(Blend::ADD) };
+            passes.push(Pass { object: o, light: l, snapshot: None, state, program: Program::Lit(Box::new(program)) });
+        }
+    }
+    Ok(passes)
+}

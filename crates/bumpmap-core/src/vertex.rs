@@ -1,0 +1,102 @@
+//! The vertex stage every technique shares: clip positions and the per-vertex tangent-space
+//! vectors (Kilgard §5.1, Appendix C), as a flat array of varyings per vertex.
+//!
+//! The slots are fixed ([`var`]) so a backend can interpolate only the prefix a pass reads.
+//! Clipping, the perspective divide and interpolation are the backends' work, not this
+//! module's.
+
+use glam::{Vec3, Vec4};
+
+use bumpmap_math::lighting::{Light, ObjectLighting, TangentFrame, Viewer};
+
+use crate::scene::{NormalSpace, Scene, SceneLight, SceneObject, ViewerModel};
+
+/// Varying slots the vertex stage fills.
+pub mod var {
+    /// Texture coordinate s.
+    pub const S: usize = 0;
+    /// Texture coordinate t.
+    pub const T: usize = 1;
+    /// Tangent-space unit light vector L (3 slots).
+    pub const L: usize = 2;
+    /// Tangent-space unit half-angle vector H (3 slots).
+    pub const H: usize = 5;
+    /// Tangent-space unit vector toward the eye V (3 slots).
+    pub const V: usize = 8;
+    /// Distance to a positional light (0 for a directional one).
+    pub const LIGHT_DISTANCE: usize = 11;
+    /// Tangent-space direction of a spotlight's axis (3 slots).
+    pub const SPOT: usize = 12;
+    /// Projective coordinates (s, t, q) of the spotlight's pattern (3 slots).
+    pub const PROJ: usize = 15;
+    /// The geometric normal in the lighting space (3 slots): (0, 0, 1) in tangent space, the
+    /// surface normal in object space.
+    pub const N: usize = 18;
+    /// Slots in use.
+    pub const COUNT: usize = 21;
+}
+
+/// Varyings per vertex (texture coordinates, light and half-angle vectors, …).
+pub const MAX_VARYINGS: usize = 24;
+
+/// A vertex after the vertex stage: clip-space position and its varyings.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Vertex {
+    /// `clip_from_object · position`.
+    pub clip: Vec4,
+    /// The slots of [`var`]; the rest are zero.
+    pub varyings: [f32; MAX_VARYINGS],
+}
+
+impl Scene {
+    /// The vertex stage for one object and one light: clip position, texture coordinates and
+    /// the tangent-space L, H and V of every vertex.
+    pub fn vertices(&self, object: &SceneObject, light: &SceneLight, aspect: f32) -> Vec<Vertex> {
+        use rayon::prelude::*;
+        let mesh = &object.mesh;
+        debug_assert_eq!(mesh.tangents.len(), mesh.positions.len(), "meshes carry tangents");
+        let clip_from_object = self.camera.clip_from_world(aspect) * object.world_from_object;
+        let viewer = match self.viewer {
+            ViewerModel::Local => Viewer::Local(self.camera.eye),
+            ViewerModel::Infinite => Viewer::Infinite((self.camera.eye - self.camera.target).normalize_or(Vec3::Z)),
+        };
+        let lighting = ObjectLighting::new(object.world_from_object, light.light, viewer);
+        let object_from_world = object.world_from_object.inverse();
+        (0..mesh.positions.len())
+            .into_par_iter()
+            .map(|i| {
+                let p = mesh.positions[i];
+                let n = mesh.normals[i];
+                let t = mesh.tangents[i];
+                let (frame, geometric) = match object.material.normal_space {
+                    NormalSpace::Tangent => {
+                        (TangentFrame { t: t.truncate(), b: t.w * n.cross(t.truncate()), n }, Vec3::Z)
+                    }
+                    // Object space: no rotation; the surface normal is what self-shadowing tests.
+                    NormalSpace::Object { .. } => (TangentFrame { t: Vec3::X, b: Vec3::Y, n: Vec3::Z }, n),
+                };
+                let (l, h) = lighting.tangent_space(p, &frame);
+                let v = frame.tangent_from_object(lighting.to_eye(p)).normalize_or(Vec3::Z);
+                let mut varyings = [0.0; MAX_VARYINGS];
+                varyings[var::S] = mesh.texcoords[i].x;
+                varyings[var::T] = mesh.texcoords[i].y;
+                varyings[var::L..var::L + 3].copy_from_slice(&l.to_array());
+                varyings[var::H..var::H + 3].copy_from_slice(&h.to_array());
+                varyings[var::V..var::V + 3].copy_from_slice(&v.to_array());
+                varyings[var::N..var::N + 3].copy_from_slice(&geometric.to_array());
+                varyings[var::LIGHT_DISTANCE] = match light.light {
+                    Light::Positional(_) => (object.world_from_object.transform_vector3(lighting.to_light(p))).length(),
+                    Light::Directional(_) => 0.0,
+                };
+                if let (Some(spot), Light::Positional(at)) = (&light.spot, light.light) {
+                    let axis = object_from_world.transform_vector3(spot.direction);
+                    let axis = frame.tangent_from_object(axis).normalize_or(Vec3::Z);
+                    varyings[var::SPOT..var::SPOT + 3].copy_from_slice(&axis.to_array());
+                    let c = spot.clip_from_world(at) * (object.world_from_object * p.extend(1.0));
+                    varyings[var::PROJ..var::PROJ + 3].copy_from_slice(&[0.5 * (c.x + c.w), 0.5 * (c.y + c.w), c.w]);
+                }
+                Vertex { clip: clip_from_object * p.extend(1.0), varyings }
+            })
+            .collect()
+    }
+}

@@ -1,0 +1,419 @@
+//! The single pass's fragment program on the CPU pipeline: [`bumpmap_core::shading`]'s model
+//! over a batch's live fragments in structure-of-arrays lanes.
+//!
+//! The texture lookups (normal map, decal, gloss, cube map, spotlight pattern) run through the
+//! batch sampler; the lighting arithmetic (`lighting_lanes`) is the lane copy of
+//! `bumpmap_core::shading::shade`, tested equal to it. What to draw and with which state is the
+//! core's (`bumpmap_core::technique::single_pass`).
+
+use std::sync::Arc;
+
+use glam::Vec3;
+
+use bumpmap_core::lane_math::{clamp_lo, max_lo, min_hi};
+use bumpmap_core::scene::{Attenuation, NormalSpace};
+use bumpmap_core::shading::{LitTerms, shininess_is_whole, spot_cone};
+use bumpmap_core::technique::{Gloss, HalfAngle, LitProgram, SelfShadow, SpecularShadow};
+use bumpmap_core::vertex::var;
+
+use crate::combiners::{LANES, Lanes};
+use crate::fixed_function::pack_2d_coords;
+use crate::raster::{FragmentBatch, FragmentShader};
+use crate::texture::{Sampler, Texture2d, TextureCube, sample_2d, sample_2d_lanes, sample_cube_lanes};
+
+/// The per-light fragment program.
+pub(crate) struct SinglePass<'a> {
+    /// What the core asked for.
+    pub program: &'a LitProgram,
+    /// The normalization cube map, for [`bumpmap_core::technique::Normalize::Cube`].
+    pub cube: Option<Arc<TextureCube>>,
+    /// The program's textures as texture units hold them.
+    pub normal_map: Arc<Texture2d>,
+    pub decal: Option<Arc<Texture2d>>,
+    pub gloss: Option<Arc<Texture2d>>,
+    pub pattern: Option<Arc<Texture2d>>,
+}
+
+/// Per-thread working memory: every per-fragment quantity as packed lanes (lane j is the j-th
+/// live fragment of the batch), so each step below is one loop over contiguous arrays.
+#[derive(Clone)]
+pub struct Scratch {
+    /// s, t, λ of the lookup being made.
+    coords: [Lanes; 3],
+    /// The filtered normal map (RGB range-compressed, A = |N'|), the decal, the gloss texture.
+    normal: [Lanes; 4],
+    decal: [Lanes; 4],
+    gloss: [Lanes; 4],
+    /// L and H after per-fragment normalization, and vectors being packed or normalized.
+    l: [Lanes; 3],
+    h: [Lanes; 3],
+    v: [Lanes; 3],
+    w: [Lanes; 3],
+    /// A cube-map lookup's RGBA.
+    cube: [Lanes; 4],
+    /// L and H against the unperturbed normal (L_z and H_z in tangent space).
+    l_n: Lanes,
+    h_n: Lanes,
+    /// Attenuation × spotlight.
+    light: Lanes,
+    /// Eq. 12's s_self, N'·L, H·N' (then its power), the specular gate, and a power's partial
+    /// product.
+    s_self: Lanes,
+    n_dot_l: Lanes,
+    h_dot_n: Lanes,
+    gate: Lanes,
+    acc: Lanes,
+}
+
+impl Scratch {
+    fn zeroed() -> Box<Self> {
+        let z = [0.0; LANES];
+        Box::new(Scratch {
+            coords: [z; 3],
+            normal: [z; 4],
+            decal: [z; 4],
+            gloss: [z; 4],
+            l: [z; 3],
+            h: [z; 3],
+            v: [z; 3],
+            w: [z; 3],
+            cube: [z; 4],
+            l_n: z,
+            h_n: z,
+            light: z,
+            s_self: z,
+            n_dot_l: z,
+            h_dot_n: z,
+            gate: z,
+            acc: z,
+        })
+    }
+}
+
+/// `normalize(v)`, or +Z where v has no direction (glam's `normalize_or`).
+#[inline(always)]
+fn normalize_or_z(x: f32, y: f32, z: f32) -> [f32; 3] {
+    let rcp = 1.0 / (x * x + y * y + z * z).sqrt();
+    let ok = rcp.is_finite() && rcp > 0.0;
+    [if ok { x * rcp } else { 0.0 }, if ok { y * rcp } else { 0.0 }, if ok { z * rcp } else { 1.0 }]
+}
+
+/// `v ← normalize_or_z(v)`, lanes `0..n`.
+fn normalize_lanes(v: &mut [Lanes; 3], n: usize) {
+    let [x, y, z] = v;
+    for j in 0..n {
+        [x[j], y[j], z[j]] = normalize_or_z(x[j], y[j], z[j]);
+    }
+}
+
+/// Dot products of two packed vectors, lanes `0..n`.
+fn dot_lanes(a: &[Lanes; 3], b: &[Lanes; 3], n: usize, out: &mut Lanes) {
+    for j in 0..n {
+        out[j] = a[0][j] * b[0][j] + a[1][j] * b[1][j] + a[2][j] * b[2][j];
+    }
+}
+
+impl SinglePass<'_> {
+    /// `out ← unit(v)`: per-fragment normalization by math or the cube map (expanded 2x − 1).
+    fn unit(&self, v: &[Lanes; 3], cube: &mut [Lanes; 4], n: usize, out: &mut [Lanes; 3]) {
+        match &self.cube {
+            Some(map) => {
+                sample_cube_lanes(map, &Sampler::LINEAR_CLAMP, [&v[0], &v[1], &v[2]], n, cube);
+                for c in 0..3 {
+                    for j in 0..n {
+                        out[c][j] = cube[c][j] * 2.0 - 1.0;
+                    }
+                }
+            }
+            None => {
+                let [x, y, z] = out;
+                for j in 0..n {
+                    [x[j], y[j], z[j]] = normalize_or_z(v[0][j], v[1][j], v[2][j]);
+                }
+            }
+        }
+    }
+
+    /// Samples a 2D texture at the live lanes at `scale ⊙ (s, t)`, λ once per quad. With
+    /// `same_coords` the coordinates packed for the previous lookup are reused (same texture
+    /// size and scale: same s, t and λ).
+    fn sample(
+        &self,
+        tex: &Texture2d,
+        batch: &FragmentBatch,
+        scale: [f32; 2],
+        sc: &mut Scratch,
+        n: usize,
+        which: Tex,
+        same_coords: bool,
+    ) {
+        if !same_coords {
+            pack_2d_coords(tex, batch, [var::S, var::T], scale, &mut sc.coords);
+        }
+        let out = match which {
+            Tex::Normal => &mut sc.normal,
+            Tex::Decal => &mut sc.decal,
+            Tex::Gloss => &mut sc.gloss,
+        };
+        let [s, t, lambda] = &sc.coords;
+        sample_2d_lanes(tex, &self.program.sampler, s, t, lambda, n, out);
+    }
+
+    /// Attenuation and the spotlight's cone and pattern, per live lane.
+    fn light_factor(&self, batch: &FragmentBatch, sc: &mut Scratch, n: usize) {
+        let live = batch.live();
+        let light = &self.program.light;
+        match light.attenuation {
+            Attenuation::None => sc.light[..n].fill(1.0),
+            attenuation => {
+                batch.pack(var::LIGHT_DISTANCE, &mut sc.light);
+                sc.light[..n].iter_mut().for_each(|d| *d = attenuation.factor(*d));
+            }
+        }
+        let Some(spot) = &light.spot else { return };
+        let v3 = |slot: usize, lane: usize| {
+            Vec3::new(batch.varyings[slot][lane], batch.varyings[slot + 1][lane], batch.varyings[slot + 2][lane])
+        };
+        for (j, &lane) in live.iter().enumerate() {
+            let lane = lane as usize;
+            let mut f = spot_cone(spot, v3(var::L, lane), v3(var::SPOT, lane));
+            if let Some(pattern) = &self.pattern {
+                f *= pattern_factor(pattern, v3(var::PROJ, lane));
+            }
+            sc.light[j] *= f;
+        }
+    }
+}
+
+/// The projected pattern's red channel at the projective coordinates (s, t, q), 0 behind the
+/// light (Segal et al.); LINEAR, CLAMP_TO_EDGE, level 0.
+fn pattern_factor(pattern: &Texture2d, p: Vec3) -> f32 {
+    if p.z > 0.0 { sample_2d(pattern, &Sampler::LINEAR_CLAMP, p.x / p.z, p.y / p.z, 0.0).x } else { 0.0 }
+}
+
+/// Which texture [`SinglePass::sample`] fills.
+#[derive(Clone, Copy)]
+enum Tex {
+    Normal,
+    Decal,
+    Gloss,
+}
+
+/// `acc ← x^k` for a whole k ≥ 0 by binary powering, lanes `0..n` (the order of compiler-rt's
+/// `__powisf2`, so the result is `powi`'s); `x` is used up.
+fn powi_lanes(x: &mut Lanes, k: u32, n: usize, acc: &mut Lanes) {
+    acc[..n].fill(1.0);
+    let mut e = k;
+    loop {
+        if e & 1 == 1 {
+            for j in 0..n {
+                acc[j] *= x[j];
+            }
+        }
+        e >>= 1;
+        if e == 0 {
+            break;
+        }
+        for j in 0..n {
+            x[j] *= x[j];
+        }
+    }
+}
+
+impl FragmentShader for SinglePass<'_> {
+    type Scratch = Box<Scratch>;
+
+    fn scratch(&self) -> Self::Scratch {
+        Scratch::zeroed()
+    }
+
+    fn shade(&self, batch: &FragmentBatch, sc: &mut Self::Scratch, out: &mut [Lanes; 4]) {
+        let o = self.program;
+        let live_n = batch.live().len();
+        // Every loop runs over whole 8-lane vectors; the lanes past live_n are never written out.
+        let n = live_n.next_multiple_of(8);
+        let (scale, object_space) = match o.normal_space {
+            NormalSpace::Tangent => ([1.0, 1.0], false),
+            NormalSpace::Object { scale } => ([scale.x, scale.y], true),
+        };
+        let size = |t: &Texture2d| (t.width(), t.height());
+        self.sample(&self.normal_map, batch, scale, sc, live_n, Tex::Normal, false);
+        let mut last = (size(&self.normal_map), scale);
+        match &self.decal {
+            Some(d) => {
+                self.sample(d, batch, [1.0, 1.0], sc, live_n, Tex::Decal, last == (size(d), [1.0, 1.0]));
+                last = (size(d), [1.0, 1.0]);
+            }
+            None => sc.decal.iter_mut().for_each(|c| c.fill(1.0)),
+        }
+        match (&o.gloss, &self.gloss) {
+            (Gloss::Map(_), Some(g)) => {
+                self.sample(g, batch, [1.0, 1.0], sc, live_n, Tex::Gloss, last == (size(g), [1.0, 1.0]))
+            }
+            (Gloss::DecalAlpha, _) => sc.gloss[0] = sc.decal[3],
+            _ => sc.gloss[0].fill(1.0),
+        }
+        // L, and H per vertex or per fragment (Cg Tutorial §8.1.4).
+        for k in 0..3 {
+            batch.pack(var::L + k, &mut sc.v[k]);
+        }
+        self.unit(&sc.v, &mut sc.cube, n, &mut sc.l);
+        match o.half_angle {
+            HalfAngle::Vertex => {
+                for k in 0..3 {
+                    batch.pack(var::H + k, &mut sc.v[k]);
+                }
+            }
+            HalfAngle::Fragment => {
+                // v = normalize(normalize(L) + normalize(V)); v still holds L.
+                normalize_lanes(&mut sc.v, n);
+                for k in 0..3 {
+                    batch.pack(var::V + k, &mut sc.w[k]);
+                }
+                normalize_lanes(&mut sc.w, n);
+                for k in 0..3 {
+                    for j in 0..n {
+                        sc.v[k][j] += sc.w[k][j];
+                    }
+                }
+                normalize_lanes(&mut sc.v, n);
+            }
+        }
+        self.unit(&sc.v, &mut sc.cube, n, &mut sc.h);
+        // L·N and H·N with the unperturbed normal: L_z and H_z in tangent space.
+        if object_space {
+            for k in 0..3 {
+                batch.pack(var::N + k, &mut sc.v[k]);
+            }
+            normalize_lanes(&mut sc.v, n);
+            dot_lanes(&sc.l, &sc.v, n, &mut sc.l_n);
+            dot_lanes(&sc.h, &sc.v, n, &mut sc.h_n);
+        }
+        self.light_factor(batch, sc, live_n);
+        lighting_lanes(&o.terms, sc, object_space, n, out);
+    }
+}
+
+/// The lane copy of `bumpmap_core::shading::shade` over lanes `0..n` (a multiple of 8): reads
+/// `normal`, `decal`, `gloss`, `l`, `h`, `light` and, in object space, `l_n` and `h_n` (in
+/// tangent space L_z and H_z); uses the other fields of `sc` as scratch.
+fn lighting_lanes(terms: &LitTerms, sc: &mut Scratch, object_space: bool, n: usize, out: &mut [Lanes; 4]) {
+    let Scratch { normal, decal, gloss, l, h, l_n, h_n, light, s_self, n_dot_l, h_dot_n, gate, acc, .. } = sc;
+    let (l_n, h_n) = if object_space { (&*l_n, &*h_n) } else { (&l[2], &h[2]) };
+    match terms.self_shadow {
+        SelfShadow::Ramp => (0..n).for_each(|j| s_self[j] = clamp_lo(8.0 * l_n[j], 0.0, 1.0)),
+        SelfShadow::Step => (0..n).for_each(|j| s_self[j] = (l_n[j] > 0.0) as u8 as f32),
+        SelfShadow::Off => s_self.fill(1.0),
+    }
+    // Eq. 14–15: the filtered normal's direction, expanded as the combiners do; the dot
+    // products clamp as the combiners' outputs do.
+    for j in 0..n {
+        let nv = [normal[0][j] * 2.0 - 1.0, normal[1][j] * 2.0 - 1.0, normal[2][j] * 2.0 - 1.0];
+        n_dot_l[j] = clamp_lo(l[0][j] * nv[0] + l[1][j] * nv[1] + l[2][j] * nv[2], -1.0, 1.0);
+        h_dot_n[j] = clamp_lo(h[0][j] * nv[0] + h[1][j] * nv[1] + h[2][j] * nv[2], 0.0, 1.0);
+    }
+    match terms.specular_shadow {
+        SpecularShadow::Kilgard => (0..n).for_each(|j| gate[j] = s_self[j] * (h_n[j] >= 0.0) as u8 as f32),
+        SpecularShadow::CgTutorial => (0..n).for_each(|j| gate[j] = (n_dot_l[j] > 0.0 && l_n[j] > 0.0) as u8 as f32),
+        SpecularShadow::Off => gate.fill(1.0),
+    }
+    let power: &Lanes = if shininess_is_whole(terms.shininess) {
+        powi_lanes(h_dot_n, terms.shininess as u32, n, acc);
+        acc
+    } else {
+        h_dot_n[..n].iter_mut().for_each(|x| *x = x.powf(terms.shininess));
+        h_dot_n
+    };
+    // Eq. 11 with the filtered (shortened) normal, Eq. 16 with the renormalized one.
+    let (ka, kd, ks) = (terms.ambient, terms.diffuse, terms.specular);
+    for c in 0..3 {
+        for j in 0..n {
+            let diffuse = min_hi(ka[c] + kd[c] * (light[j] * s_self[j] * max_lo(n_dot_l[j], 0.0) * normal[3][j]), 1.0);
+            let specular = ks[c] * (light[j] * gate[j] * gloss[0][j] * power[j]);
+            out[c][j] = decal[c][j] * diffuse + specular;
+        }
+    }
+    out[3][..n].fill(1.0);
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use bumpmap_core::shading::{Fragment, shade};
+    use glam::Vec4;
+    use proptest::prelude::*;
+
+    fn modes() -> impl Strategy<Value = (SelfShadow, SpecularShadow, f32)> {
+        (
+            prop_oneof![Just(SelfShadow::Ramp), Just(SelfShadow::Step), Just(SelfShadow::Off)],
+            prop_oneof![Just(SpecularShadow::Kilgard), Just(SpecularShadow::CgTutorial), Just(SpecularShadow::Off)],
+            prop_oneof![Just(8.0f32), Just(1.0), Just(13.0), Just(64.0), Just(7.5), Just(100.0)],
+        )
+    }
+
+    proptest! {
+        /// The lane loops give `shade`'s result bit for bit (the same operations in the same
+        /// order; neither side fuses multiply-adds).
+        #[test]
+        fn lighting_lanes_is_shade(
+            (self_shadow, specular_shadow, shininess) in modes(),
+            object_space in any::<bool>(),
+            seed in any::<u64>(),
+            k in (0.0f32..1.0, 0.0f32..1.0, 0.0f32..2.0),
+        ) {
+            let terms = LitTerms {
+                ambient: Vec3::new(k.0, k.0 * 0.5, 0.1),
+                diffuse: Vec3::new(k.1, 0.8, k.1 * 0.3),
+                specular: Vec3::new(k.2, 1.0, 0.5),
+                shininess,
+                self_shadow,
+                specular_shadow,
+            };
+            let mut rng = seed;
+            let mut next = move || {
+                rng = rng.wrapping_mul(6_364_136_223_846_793_005).wrapping_add(1_442_695_040_888_963_407);
+                ((rng >> 40) as f32) / (1u64 << 24) as f32
+            };
+            let mut sc = Scratch::zeroed();
+            let n = 64;
+            for j in 0..n {
+                for c in 0..4 {
+                    sc.normal[c][j] = next();
+                    sc.decal[c][j] = next();
+                }
+                sc.gloss[0][j] = next();
+                let l = Vec3::new(next() * 2.0 - 1.0, next() * 2.0 - 1.0, next() * 2.0 - 1.0).normalize_or(Vec3::Z);
+                let h = Vec3::new(next() * 2.0 - 1.0, next() * 2.0 - 1.0, next() * 2.0 - 1.0).normalize_or(Vec3::Z);
+                for c in 0..3 {
+                    sc.l[c][j] = l[c];
+                    sc.h[c][j] = h[c];
+                }
+                sc.l_n[j] = next() * 2.0 - 1.0;
+                sc.h_n[j] = next() * 2.0 - 1.0;
+                sc.light[j] = next();
+            }
+            let input = (*sc).clone();
+            let mut out = [[0.0; LANES]; 4];
+            lighting_lanes(&terms, &mut *sc, object_space, n, &mut out);
+            for j in 0..n {
+                let v3 = |a: &[Lanes; 3]| Vec3::new(a[0][j], a[1][j], a[2][j]);
+                let (l, h) = (v3(&input.l), v3(&input.h));
+                let f = Fragment {
+                    normal: Vec4::new(input.normal[0][j], input.normal[1][j], input.normal[2][j], input.normal[3][j]),
+                    decal: Vec3::new(input.decal[0][j], input.decal[1][j], input.decal[2][j]),
+                    gloss: input.gloss[0][j],
+                    l,
+                    h,
+                    l_n: if object_space { input.l_n[j] } else { l.z },
+                    h_n: if object_space { input.h_n[j] } else { h.z },
+                    light: input.light[j],
+                };
+                let expected = shade(&terms, &f);
+                for c in 0..3 {
+                    prop_assert_eq!(out[c][j].to_bits(), expected[c].to_bits(), "lane {} channel {}: {} vs {}", j, c, out[c][j], expected[c]);
+                }
+                prop_assert_eq!(out[3][j], 1.0);
+            }
+        }
+    }
+}

@@ -1,0 +1,171 @@
+//! Textures on the device: a scene's RGBA8 mip chains (every level uploaded, linear
+//! `Rgba8Unorm`, never sRGB), normalization cube maps (Kilgard Appendix D) as cube textures,
+//! white 1×1 stand-ins for absent units, and GL sampler state as wgpu samplers.
+//!
+//! Uploads are cached by the scene's `Arc`s, so a texture crosses the bus once however many
+//! passes and frames read it.
+
+use std::sync::Arc;
+
+use bumpmap_core::state::{MagFilter, MinFilter, Sampler, WrapMode};
+use bumpmap_math::{Encoding, NormalizationCubeMap, Rgba8Image, Rgba8Mips};
+
+use crate::context::Context;
+use crate::error::GpuError;
+
+/// Uploads kept at most; past it the cache starts again.
+const MAX_CACHED: usize = 32;
+
+/// The device's copies of textures and samplers.
+#[derive(Default)]
+pub struct Textures {
+    mips: Vec<(Arc<Rgba8Mips>, wgpu::TextureView)>,
+    cubes: Vec<((usize, Encoding), wgpu::TextureView)>,
+    samplers: Vec<(Sampler, wgpu::Sampler)>,
+    white_2d: Option<wgpu::TextureView>,
+    white_cube: Option<wgpu::TextureView>,
+}
+
+fn texture(ctx: &Context, label: &str, width: usize, height: usize, layers: u32, levels: u32) -> wgpu::Texture {
+    ctx.device.create_texture(&wgpu::TextureDescriptor {
+        label: Some(label),
+        size: wgpu::Extent3d { width: width as u32, height: height as u32, depth_or_array_layers: layers },
+        mip_level_count: levels,
+        sample_count: 1,
+        dimension: wgpu::TextureDimension::D2,
+        format: wgpu::TextureFormat::Rgba8Unorm,
+        usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
+        view_formats: &[],
+    })
+}
+
+fn write_level(ctx: &Context, texture: &wgpu::Texture, level: u32, layer: u32, image: &Rgba8Image) {
+    ctx.queue.write_texture(
+        wgpu::TexelCopyTextureInfo {
+            texture,
+            mip_level: level,
+            origin: wgpu::Origin3d { x: 0, y: 0, z: layer },
+            aspect: wgpu::TextureAspect::All,
+        },
+        image.as_bytes(),
+        wgpu::TexelCopyBufferLayout {
+            offset: 0,
+            bytes_per_row: Some(4 * image.width as u32),
+            rows_per_image: Some(image.height as u32),
+        },
+        wgpu::Extent3d { width: image.width as u32, height: image.height as u32, depth_or_array_layers: 1 },
+    );
+}
+
+impl Textures {
+    /// The device's copy of `mips`, every level; refused when larger than the adapter allows.
+    pub fn mips(&mut self, ctx: &Context, mips: &Arc<Rgba8Mips>) -> Result<wgpu::TextureView, GpuError> {
+        if let Some((_, v)) = self.mips.iter().find(|(m, _)| Arc::ptr_eq(m, mips)) {
+            return Ok(v.clone());
+        }
+        let max = ctx.max_texture_side();
+        if mips.width() > max as usize || mips.height() > max as usize {
+            return Err(GpuError::TooLarge { what: "a texture", width: mips.width(), height: mips.height(), max });
+        }
+        let t = texture(ctx, "texture", mips.width(), mips.height(), 1, mips.levels().len() as u32);
+        for (k, level) in mips.levels().iter().enumerate() {
+            write_level(ctx, &t, k as u32, 0, level);
+        }
+        let view = t.create_view(&wgpu::TextureViewDescriptor::default());
+        if self.mips.len() >= MAX_CACHED {
+            self.mips.clear();
+        }
+        self.mips.push((mips.clone(), view.clone()));
+        Ok(view)
+    }
+
+    /// The normalization cube map of face size `size` (faces +X, −X, +Y, −Y, +Z, −Z: wgpu's
+    /// layer order and face selection are GL's, Kilgard Table 1).
+    pub fn cube(&mut self, ctx: &Context, size: usize, encoding: Encoding) -> wgpu::TextureView {
+        if let Some((_, v)) = self.cubes.iter().find(|(k, _)| *k == (size, encoding)) {
+            return v.clone();
+        }
+        let map = NormalizationCubeMap::new(size, encoding);
+        let t = texture(ctx, "normalization cube map", size, size, 6, 1);
+        for (layer, face) in map.faces.iter().enumerate() {
+            let image = Rgba8Image::new(size, size, face.iter().map(|&[r, g, b]| [r, g, b, 255]).collect());
+            write_level(ctx, &t, 0, layer as u32, &image);
+        }
+        let view = t.create_view(&wgpu::TextureViewDescriptor {
+            label: Some("normalization cube map"),
+            dimension: Some(wgpu::TextureViewDimension::Cube),
+            array_layer_count: Some(6),
+            ..Default::default()
+        });
+        self.cubes.push(((size, encoding), view.clone()));
+        view
+    }
+
+    /// A white 1×1 texture: an absent decal or gloss map reads 1.
+    pub fn white_2d(&mut self, ctx: &Context) -> wgpu::TextureView {
+        self.white_2d
+            .get_or_insert_with(|| {
+                let t = texture(ctx, "white", 1, 1, 1, 1);
+                write_level(ctx, &t, 0, 0, &Rgba8Image::new(1, 1, vec![[255; 4]]));
+                t.create_view(&wgpu::TextureViewDescriptor::default())
+            })
+            .clone()
+    }
+
+    /// A white 1×1 cube texture for units that bind none.
+    pub fn white_cube(&mut self, ctx: &Context) -> wgpu::TextureView {
+        self.white_cube
+            .get_or_insert_with(|| {
+                let t = texture(ctx, "white cube", 1, 1, 6, 1);
+                for layer in 0..6 {
+                    write_level(ctx, &t, 0, layer, &Rgba8Image::new(1, 1, vec![[255; 4]]));
+                }
+                t.create_view(&wgpu::TextureViewDescriptor {
+                    dimension: Some(wgpu::TextureViewDimension::Cube),
+                    array_layer_count: Some(6),
+                    ..Default::default()
+                })
+            })
+            .clone()
+    }
+
+    /// The wgpu sampler for GL sampler state. GL 1.2's switch-over point c = 0.5 (for a
+    /// LINEAR magnification with a NEAREST_MIPMAP minification) has no wgpu equivalent: there
+    /// the GPU switches at λ = 0.
+    pub fn sampler(&mut self, ctx: &Context, s: Sampler) -> wgpu::Sampler {
+        if let Some((_, v)) = self.samplers.iter().find(|(k, _)| *k == s) {
+            return v.clone();
+        }
+        let address = |w| match w {
+            WrapMode::Repeat => wgpu::AddressMode::Repeat,
+            WrapMode::ClampToEdge => wgpu::AddressMode::ClampToEdge,
+        };
+        let filter = |linear| if linear { wgpu::FilterMode::Linear } else { wgpu::FilterMode::Nearest };
+        let (min, mip) = match s.min {
+            MinFilter::Nearest => (false, None),
+            MinFilter::Linear => (true, None),
+            MinFilter::NearestMipmapNearest => (false, Some(false)),
+            MinFilter::LinearMipmapNearest => (true, Some(false)),
+            MinFilter::NearestMipmapLinear => (false, Some(true)),
+            MinFilter::LinearMipmapLinear => (true, Some(true)),
+        };
+        let sampler = ctx.device.create_sampler(&wgpu::SamplerDescriptor {
+            label: Some("sampler"),
+            address_mode_u: address(s.wrap_s),
+            address_mode_v: address(s.wrap_t),
+            address_mode_w: wgpu::AddressMode::ClampToEdge,
+            mag_filter: filter(s.mag == MagFilter::Linear),
+            min_filter: filter(min),
+            mipmap_filter: if mip == Some(true) {
+                wgpu::MipmapFilterMode::Linear
+            } else {
+                wgpu::MipmapFilterMode::Nearest
+            },
+            // Without a mipmap filter only level 0 is read, as GL's NEAREST and LINEAR do.
+            lod_max_clamp: if mip.is_some() { 32.0 } else { 0.0 },
+            ..Default::default()
+        });
+        self.samplers.push((s, sampler.clone()));
+        sampler
+    }
+}

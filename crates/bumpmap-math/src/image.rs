@@ -1,0 +1,153 @@
+//! The one RGBA8 image type of the project, and a mip chain of them.
+//!
+//! A normal-map level, a decal, a gloss map, a spotlight pattern, a cube-map face and a file's
+//! pixels are all [`Rgba8Image`]s; textures with their smaller levels are [`Rgba8Mips`]. Row 0
+//! is texture coordinate t = 0, as `glTexImage2D` takes it. These types hold data only: how a
+//! texture is sampled belongs to the backends, and what the bytes mean (a normal's encoding,
+//! sRGB or linear) to whoever made them.
+
+use glam::Vec3;
+
+use crate::Encoding;
+use crate::mip::{footprint, next_size};
+
+/// `width`×`height` RGBA8 texels, row-major, row 0 (t = 0) first.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Rgba8Image {
+    pub width: usize,
+    pub height: usize,
+    pub texels: Vec<[u8; 4]>,
+}
+
+impl Rgba8Image {
+    /// An image from its texels. Panics unless `texels.len() == width · height`.
+    pub fn new(width: usize, height: usize, texels: Vec<[u8; 4]>) -> Self {
+        assert_eq!(texels.len(), width * height, "texel count of a {width}x{height} image");
+        Self { width, height, texels }
+    }
+
+    /// An image whose every texel is `(v, v, v, 255)` for the gray values `values`.
+    pub fn from_gray(width: usize, height: usize, values: &[u8]) -> Self {
+        Self::new(width, height, values.iter().map(|&v| [v, v, v, 255]).collect())
+    }
+
+    /// The texel at (x, y). Panics when out of range.
+    #[inline]
+    pub fn texel(&self, x: usize, y: usize) -> [u8; 4] {
+        self.texels[y * self.width + x]
+    }
+
+    /// The texels as one flat byte slice (R, G, B, A, R, …).
+    pub fn as_bytes(&self) -> &[u8] {
+        self.texels.as_flattened()
+    }
+
+    /// Decodes a normal-map texel into its unit direction (`encoding`'s inverse) and the
+    /// length stored in alpha.
+    pub fn decode(&self, x: usize, y: usize, encoding: Encoding) -> (Vec3, f32) {
+        let [r, g, b, a] = self.texel(x, y);
+        let d = Vec3::new(encoding.decode(r), encoding.decode(g), encoding.decode(b));
+        (d, a as f32 / 255.0)
+    }
+
+    /// The next smaller level by a box filter (`gluBuild2DMipmaps`-style): each texel the
+    /// rounded mean of its 2×2 footprint, odd sizes folding their last texel into the last
+    /// footprint. For colour images; normal maps average their unit normals instead (`mip`).
+    pub fn box_halved(&self) -> Self {
+        let (w, h) = (next_size(self.width), next_size(self.height));
+        let mut texels = Vec::with_capacity(w * h);
+        for j in 0..h {
+            for i in 0..w {
+                let (mut sum, mut n) = ([0u32; 4], 0);
+                for y in footprint(j, self.height) {
+                    for x in footprint(i, self.width) {
+                        let t = self.texel(x, y);
+                        for c in 0..4 {
+                            sum[c] += t[c] as u32;
+                        }
+                        n += 1;
+                    }
+                }
+                texels.push(sum.map(|s| ((s + n / 2) / n) as u8));
+            }
+        }
+        Self { width: w, height: h, texels }
+    }
+}
+
+/// A texture's levels: level 0 first, each level after it the next smaller size, possibly
+/// down to 1×1. Never empty.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Rgba8Mips {
+    levels: Vec<Rgba8Image>,
+}
+
+impl Rgba8Mips {
+    /// A texture of level 0 alone.
+    pub fn single(level0: Rgba8Image) -> Self {
+        Self { levels: vec![level0] }
+    }
+
+    /// A texture from its levels. Panics when `levels` is empty or a level is not the
+    /// [`next_size`] of the one before it.
+    pub fn from_levels(levels: Vec<Rgba8Image>) -> Self {
+        assert!(!levels.is_empty(), "a texture has at least level 0");
+        for pair in levels.windows(2) {
+            assert_eq!(
+                (pair[1].width, pair[1].height),
+                (next_size(pair[0].width), next_size(pair[0].height)),
+                "mip level sizes halve"
+            );
+        }
+        Self { levels }
+    }
+
+    /// Level 0 with a box-filtered chain down to 1×1 ([`Rgba8Image::box_halved`]).
+    pub fn with_box_mipmaps(level0: Rgba8Image) -> Self {
+        let mut levels = vec![level0];
+        loop {
+            let last = levels.last().expect("level 0");
+            if last.width == 1 && last.height == 1 {
+                return Self { levels };
+            }
+            let next = last.box_halved();
+            levels.push(next);
+        }
+    }
+
+    /// The levels, level 0 first.
+    pub fn levels(&self) -> &[Rgba8Image] {
+        &self.levels
+    }
+
+    /// Level 0's width.
+    pub fn width(&self) -> usize {
+        self.levels[0].width
+    }
+
+    /// Level 0's height.
+    pub fn height(&self) -> usize {
+        self.levels[0].height
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn box_chain_reaches_one_texel_and_keeps_a_constant() {
+        let img = Rgba8Image::new(5, 3, vec![[10, 20, 30, 40]; 15]);
+        let mips = Rgba8Mips::with_box_mipmaps(img);
+        let sizes: Vec<_> = mips.levels().iter().map(|l| (l.width, l.height)).collect();
+        assert_eq!(sizes, [(5, 3), (2, 1), (1, 1)]);
+        assert!(mips.levels().iter().all(|l| l.texels.iter().all(|&t| t == [10, 20, 30, 40])));
+    }
+
+    #[test]
+    fn box_filter_rounds_the_mean() {
+        // 0 and 255 average to 127.5, rounded to 128; the odd third column folds into the mean.
+        let img = Rgba8Image::new(3, 2, vec![[0; 4], [255; 4], [255; 4], [0; 4], [255; 4], [255; 4]]);
+        assert_eq!(img.box_halved().texels, vec![[170; 4]]);
+    }
+}
