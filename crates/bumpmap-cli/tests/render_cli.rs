@@ -56,7 +56,9 @@ fn passes_writes_one_image_per_pass() {
 
 /// `render ARGS… -o out.png` must exit 1 with `expect` in the message, no panic, no file.
 fn refused(args: &[&str], expect: &str) {
-    let dir = scratch("render_refused");
+    static CALLS: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::new(0);
+    let n = CALLS.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+    let dir = scratch(&format!("render_refused_{n}"));
     let out = dir.join("out.png");
     let mut all = vec!["render", "-o", out.to_str().unwrap()];
     if !args.contains(&"--size") {
@@ -114,4 +116,49 @@ fn gloss_map_of_another_size_than_the_decal_is_an_error() {
     assert_eq!(o.status.code(), Some(1));
     assert!(stderr(&o).contains("gloss map is 100x50 but the decal is 256x256"), "{}", stderr(&o));
     assert!(!out.exists());
+}
+
+#[test]
+fn no_gpu_adapter_is_a_clear_error_that_says_how_to_get_one() {
+    // WGPU_BACKEND names a backend this machine does not have (DX12 exists on Windows only).
+    let dir = scratch("render_no_adapter");
+    let out = dir.join("out.png");
+    let o = std::process::Command::new(env!("CARGO_BIN_EXE_bumpmap"))
+        .args(["render", "--backend", "gpu", "--size", "32", "-o", out.to_str().unwrap()])
+        .env("WGPU_BACKEND", "dx12")
+        .output()
+        .unwrap();
+    let err = stderr(&o);
+    assert_eq!(o.status.code(), Some(1), "{err}");
+    assert!(
+        err.contains("no GPU adapter") && err.contains("mesa-vulkan-drivers") && err.contains("--backend cpu"),
+        "{err}"
+    );
+    assert!(!err.contains("panicked"), "{err}");
+    assert!(listing(&dir).is_empty(), "no output file");
+}
+
+#[test]
+fn the_gpu_backend_renders_and_writes_its_passes() {
+    // Needs an adapter: lavapipe in CI (where a missing one fails), skipped elsewhere.
+    let dir = scratch("render_gpu");
+    let out = dir.join("g.png");
+    let o = bumpmap(&["render", "--backend", "gpu", "--passes", "--size", "64", "-o", out.to_str().unwrap()]);
+    if !o.status.success() && stderr(&o).contains("no GPU adapter") && std::env::var_os("CI").is_none() {
+        eprintln!("SKIPPED: {}", stderr(&o));
+        return;
+    }
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert_eq!(listing(&dir), ["g.decal.png", "g.diffuse.png", "g.png", "g.specular.png"]);
+    let (mean, colours) = mean_and_colours(&out);
+    assert!(mean > 5.0 && colours > 50, "the GPU image looks empty (mean {mean}, {colours} colours)");
+    assert!(stderr(&o).contains("gpu:"), "names the adapter: {}", stderr(&o));
+}
+
+#[test]
+fn options_that_do_not_apply_are_refused() {
+    refused(&["--technique", "single-pass", "--passes"], "--passes");
+    refused(&["--specular", "0.5"], "kilgard cannot do --specular");
+    refused(&["--technique", "single-pass", "--precision", "fixed9"], "--precision belongs to --technique kilgard");
+    refused(&["--space", "object"], "kilgard cannot do --space object");
 }

@@ -1,8 +1,8 @@
 //! What is rendered and how, with no backend in it.
 //!
-//! A [`Scene`](scene::Scene) (camera, lights, objects with meshes and materials holding plain
-//! RGBA8 textures) and a [`Technique`](technique::Technique) make a list of
-//! [`Pass`](technique::Pass)es — GL state plus a program — that a backend draws: the CPU
+//! A [`Scene`] (camera, lights, objects with meshes and materials holding plain
+//! RGBA8 textures) and a [`Technique`] make a list of
+//! [`Pass`]es — GL state plus a program — that a backend draws: the CPU
 //! pipeline (`bumpmap-cpu`), wgpu (`bumpmap-gpu`), or, for ground truth, a reference renderer.
 //! No module here rasterizes, samples a texture or evaluates a combiner over pixels.
 //!

@@ -394,7 +394,7 @@ mod tests {
             }
             let input = (*sc).clone();
             let mut out = [[0.0; LANES]; 4];
-            lighting_lanes(&terms, &mut *sc, object_space, n, &mut out);
+            lighting_lanes(&terms, &mut sc, object_space, n, &mut out);
             for j in 0..n {
                 let v3 = |a: &[Lanes; 3]| Vec3::new(a[0][j], a[1][j], a[2][j]);
                 let (l, h) = (v3(&input.l), v3(&input.h));

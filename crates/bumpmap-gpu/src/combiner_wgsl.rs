@@ -355,7 +355,7 @@ impl Gen {
 
 /// The whole fragment shader of a combiner pass: each texture unit samples its texture (2D at
 /// varyings (s, t) with implicit derivatives, or the cube map at varyings (r, r+1, r+2), level
-/// 0) into TEXTURE<i>, PRIMARY_COLOR is white and SECONDARY_COLOR black (the techniques use no
+/// 0) into `TEXTURE<i>`, PRIMARY_COLOR is white and SECONDARY_COLOR black (the techniques use no
 /// per-vertex colour), SPARE0's alpha starts as texture 0's alpha (0 without units), then
 /// [`combiners_wgsl`]'s function. Binding 3i is unit i's 2D texture, 3i + 1 its cube texture,
 /// 3i + 2 its sampler. Precondition: at most four units and a setup that validates.

@@ -1,5 +1,5 @@
-// The single pass's fragment program: bumpmap_core::shading's model, tested against it
-// (tests/lit_parity.rs). Texture units: the normal map, the decal, the gloss map (white 1x1
+// The single pass's fragment program: the texture lookups, per-fragment renormalization,
+// attenuation and spotlight that make a Fragment, then shading.wgsl's shade(). Texture units: the normal map, the decal, the gloss map (white 1x1
 // textures where absent), the spotlight pattern and the normalization cube map.
 
 struct Lit {
@@ -54,31 +54,6 @@ fn unit(v: vec3<f32>) -> vec3<f32> {
         return textureSampleLevel(cube_map, clamp_sampler, v, 0.0).rgb * 2.0 - 1.0;
     }
     return normalize_or_z(v);
-}
-
-// x^k for a whole k by binary powering (the order of f32::powi).
-fn powi(x0: f32, k: u32) -> f32 {
-    var x = x0;
-    var acc = 1.0;
-    var e = k;
-    loop {
-        if (e & 1u) == 1u {
-            acc = acc * x;
-        }
-        e = e >> 1u;
-        if e == 0u {
-            break;
-        }
-        x = x * x;
-    }
-    return acc;
-}
-
-fn specular_power(x: f32, s: f32) -> f32 {
-    if s == trunc(s) && s <= 64.0 {
-        return powi(x, u32(s));
-    }
-    return select(pow(x, s), 0.0, x <= 0.0);
 }
 
 fn attenuation(d: f32) -> f32 {
@@ -146,24 +121,7 @@ fn fs_lit(f: Varyings) -> @location(0) vec4<f32> {
         h_n = dot(h, n);
     }
     let light = attenuation(vary(f, LIGHT_DISTANCE)) * spot_factor(f);
-    // bumpmap_core::shading::shade.
-    let nv = normal.rgb * 2.0 - 1.0;
-    let n_dot_l = clamp(dot(l, nv), -1.0, 1.0);
-    let h_dot_n = clamp(dot(h, nv), 0.0, 1.0);
-    var s_self = 1.0;
-    if u.modes.x == 0u {
-        s_self = clamp(8.0 * l_n, 0.0, 1.0);
-    } else if u.modes.x == 1u {
-        s_self = select(0.0, 1.0, l_n > 0.0);
-    }
-    var gate = 1.0;
-    if u.modes.y == 0u {
-        gate = s_self * select(0.0, 1.0, h_n >= 0.0);
-    } else if u.modes.y == 1u {
-        gate = select(0.0, 1.0, n_dot_l > 0.0 && l_n > 0.0);
-    }
-    let power = specular_power(h_dot_n, u.specular.w);
-    let diffuse = min(u.ambient.rgb + u.diffuse.rgb * (light * s_self * max(n_dot_l, 0.0) * normal.a), vec3<f32>(1.0));
-    let specular = u.specular.rgb * (light * gate * gloss * power);
-    return vec4<f32>(decal.rgb * diffuse + specular, 1.0);
+    let t = Terms(u.ambient.rgb, u.diffuse.rgb, u.specular.rgb, u.specular.w, u.modes.x, u.modes.y);
+    let frag = Fragment(normal, decal.rgb, gloss, l, h, l_n, h_n, light);
+    return vec4<f32>(shade(t, frag), 1.0);
 }

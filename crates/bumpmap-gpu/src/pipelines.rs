@@ -25,6 +25,8 @@ pub const UNITS: usize = 4;
 
 const VERTEX_WGSL: &str = include_str!("vertex.wgsl");
 const LIT_WGSL: &str = include_str!("lit.wgsl");
+/// `bumpmap_core::shading::shade` in WGSL (with its `Terms` and `Fragment`).
+pub const SHADING_WGSL: &str = include_str!("shading.wgsl");
 
 /// Which fragment program a pipeline runs.
 #[derive(Clone, Debug, PartialEq, Eq, Hash)]
@@ -191,7 +193,7 @@ impl Pipelines {
             .entry(shader.clone())
             .or_insert_with(|| {
                 let source = match shader {
-                    Shader::Lit => format!("{VERTEX_WGSL}\n{LIT_WGSL}"),
+                    Shader::Lit => format!("{VERTEX_WGSL}\n{SHADING_WGSL}\n{LIT_WGSL}"),
                     Shader::Combiners(s) => format!("{VERTEX_WGSL}\n{s}"),
                 };
                 ctx.device.create_shader_module(wgpu::ShaderModuleDescriptor {

@@ -177,7 +177,7 @@ fn diffuse_setup(self_shadow: bool, ambient: Vec4, diffuse: Vec4) -> CombinerSet
 
 /// Appendix G's first stage, then `spare0 = max(0, L·N')·|N'|`, and in the final combiner
 /// `s_self · spare0 · decal` (texture 2) with alpha 0.
-fn decal_times_diffuse(self_shadow: bool, has_decal: bool) -> CombinerSetup {
+pub fn decal_times_diffuse(self_shadow: bool, has_decal: bool) -> CombinerSetup {
     let mut setup = diffuse_setup(self_shadow, Vec4::ZERO, Vec4::ONE);
     let f = &mut setup.final_combiner;
     f.a = FinalInput::reg(Spare0, Alpha);

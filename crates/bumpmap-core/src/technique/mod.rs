@@ -89,7 +89,7 @@ impl Program {
 /// Up to four texture units and the combiner setup they feed.
 #[derive(Clone, Debug, PartialEq)]
 pub struct CombinerProgram {
-    /// Unit i loads register TEXTURE<i>.
+    /// Unit i loads register `TEXTURE<i>`.
     pub units: Vec<TextureUnit>,
     /// A setup that [`CombinerSetup::validate`] accepts.
     pub setup: CombinerSetup,

@@ -1,0 +1,75 @@
+// bumpmap_core::shading, the lighting model, as WGSL: tests/lit_parity.rs checks shade()
+// against the Rust definition on random fragments. Kilgard Eq. 11 (diffuse with Eq. 12's
+// self-shadowing and the mip chain's length factor) and Eq. 16 (specular, gated).
+
+struct Terms {
+    ambient: vec3<f32>,
+    diffuse: vec3<f32>,
+    specular: vec3<f32>,
+    shininess: f32,
+    // 0: Eq. 12's ramp, 1: step, 2: off.
+    self_shadow: u32,
+    // 0: Kilgard (s_self, H_z >= 0), 1: Cg Tutorial (N'.L > 0 and L_z > 0), 2: off.
+    specular_shadow: u32,
+};
+
+struct Fragment {
+    // The filtered normal-map texel: RGB range-compressed N', A = |N'|.
+    normal: vec4<f32>,
+    decal: vec3<f32>,
+    gloss: f32,
+    l: vec3<f32>,
+    h: vec3<f32>,
+    // L.N and H.N with the unperturbed normal.
+    l_n: f32,
+    h_n: f32,
+    // Attenuation x spotlight.
+    light: f32,
+};
+
+// x^k for a whole k by binary powering (the order of f32::powi).
+fn powi(x0: f32, k: u32) -> f32 {
+    var x = x0;
+    var acc = 1.0;
+    var e = k;
+    loop {
+        if (e & 1u) == 1u {
+            acc = acc * x;
+        }
+        e = e >> 1u;
+        if e == 0u {
+            break;
+        }
+        x = x * x;
+    }
+    return acc;
+}
+
+fn specular_power(x: f32, s: f32) -> f32 {
+    if s == trunc(s) && s <= 64.0 {
+        return powi(x, u32(s));
+    }
+    return select(pow(x, s), 0.0, x <= 0.0);
+}
+
+fn shade(t: Terms, f: Fragment) -> vec3<f32> {
+    let nv = f.normal.rgb * 2.0 - 1.0;
+    let n_dot_l = clamp(dot(f.l, nv), -1.0, 1.0);
+    let h_dot_n = clamp(dot(f.h, nv), 0.0, 1.0);
+    var s_self = 1.0;
+    if t.self_shadow == 0u {
+        s_self = clamp(8.0 * f.l_n, 0.0, 1.0);
+    } else if t.self_shadow == 1u {
+        s_self = select(0.0, 1.0, f.l_n > 0.0);
+    }
+    var gate = 1.0;
+    if t.specular_shadow == 0u {
+        gate = s_self * select(0.0, 1.0, f.h_n >= 0.0);
+    } else if t.specular_shadow == 1u {
+        gate = select(0.0, 1.0, n_dot_l > 0.0 && f.l_n > 0.0);
+    }
+    let power = specular_power(h_dot_n, t.shininess);
+    let diffuse = min(t.ambient + t.diffuse * (f.light * s_self * max(n_dot_l, 0.0) * f.normal.a), vec3<f32>(1.0));
+    let specular = t.specular * (f.light * gate * f.gloss * power);
+    return f.decal * diffuse + specular;
+}

@@ -1,0 +1,116 @@
+//! `shading.wgsl`'s `shade()` against its definition, `bumpmap_core::shading::shade`, on random
+//! fragments for every self-shadowing and specular-gate mode and whole and fractional
+//! shininess, on a compute shader.
+//!
+//! Tolerance: 2e-4 per channel (a twentieth of one 8-bit step, 1/255 ≈ 3.9e-3). Both sides
+//! compute in f32; the GPU may fuse multiply-adds in the dot products, and its `pow` for a
+//! fractional exponent is `exp2(y·log2 x)` with a few ulps of error each, magnified by the
+//! exponent (up to 100 here) where x is near 1.
+
+mod common;
+
+use bumpmap_core::shading::{Fragment, LitTerms, shade};
+use bumpmap_core::technique::{SelfShadow, SpecularShadow};
+use bumpmap_gpu::pipelines::SHADING_WGSL;
+use glam::{Vec3, Vec4};
+
+struct Rng(u64);
+
+impl Rng {
+    fn unit(&mut self) -> f32 {
+        self.0 = self.0.wrapping_mul(6_364_136_223_846_793_005).wrapping_add(1_442_695_040_888_963_407);
+        (self.0 >> 40) as f32 / (1u64 << 24) as f32
+    }
+    fn vec3(&mut self) -> Vec3 {
+        Vec3::new(self.unit() * 2.0 - 1.0, self.unit() * 2.0 - 1.0, self.unit() * 2.0 - 1.0).normalize_or(Vec3::Z)
+    }
+}
+
+fn wgsl_literal(v: f32) -> String {
+    format!("bitcast<f32>({:#010x}u)", v.to_bits())
+}
+
+#[test]
+fn wgsl_shade_is_the_lighting_model() {
+    let Some(ctx) = common::context() else { return };
+    let mut rng = Rng(17);
+    let n = 2048;
+    let fragments: Vec<Fragment> = (0..n)
+        .map(|_| {
+            let (l, h) = (rng.vec3(), rng.vec3());
+            Fragment {
+                normal: Vec4::new(rng.unit(), rng.unit(), rng.unit(), rng.unit()),
+                decal: Vec3::new(rng.unit(), rng.unit(), rng.unit()),
+                gloss: rng.unit(),
+                l,
+                h,
+                l_n: l.z,
+                h_n: h.z,
+                light: rng.unit(),
+            }
+        })
+        .collect();
+    let flat: Vec<f32> = fragments
+        .iter()
+        .flat_map(|f| {
+            let mut v = f.normal.to_array().to_vec();
+            v.extend(f.decal.extend(f.gloss).to_array());
+            v.extend(f.l.extend(f.light).to_array());
+            v.extend(f.h.extend(f.l_n).to_array());
+            v.extend([f.h_n, 0.0, 0.0, 0.0]);
+            v
+        })
+        .collect();
+    let mut worst = 0f32;
+    let mut cases = 0;
+    for (self_shadow, ss) in [(SelfShadow::Ramp, 0), (SelfShadow::Step, 1), (SelfShadow::Off, 2)] {
+        for (specular_shadow, sg) in
+            [(SpecularShadow::Kilgard, 0), (SpecularShadow::CgTutorial, 1), (SpecularShadow::Off, 2)]
+        {
+            for shininess in [8.0f32, 1.0, 33.0, 7.5, 100.0] {
+                let terms = LitTerms {
+                    ambient: Vec3::new(0.2, 0.1, 0.05),
+                    diffuse: Vec3::new(0.8, 0.7, 0.9),
+                    specular: Vec3::new(1.0, 0.5, 0.25),
+                    shininess,
+                    self_shadow,
+                    specular_shadow,
+                };
+                let v3 =
+                    |v: Vec3| format!("vec3<f32>({}, {}, {})", wgsl_literal(v.x), wgsl_literal(v.y), wgsl_literal(v.z));
+                let wgsl = format!(
+                    "{SHADING_WGSL}
+struct In {{ normal: vec4<f32>, decal_gloss: vec4<f32>, l_light: vec4<f32>, h_ln: vec4<f32>, hn: vec4<f32> }};
+@group(0) @binding(0) var<storage, read> inputs: array<In>;
+@group(0) @binding(1) var<storage, read_write> outputs: array<vec4<f32>>;
+@compute @workgroup_size(64)
+fn main(@builtin(global_invocation_id) id: vec3<u32>) {{
+    if id.x >= arrayLength(&outputs) {{ return; }}
+    let i = inputs[id.x];
+    let t = Terms({}, {}, {}, {}, {ss}u, {sg}u);
+    let f = Fragment(i.normal, i.decal_gloss.xyz, i.decal_gloss.w, i.l_light.xyz, i.h_ln.xyz, i.h_ln.w, i.hn.x, i.l_light.w);
+    outputs[id.x] = vec4<f32>(shade(t, f), 1.0);
+}}",
+                    v3(terms.ambient),
+                    v3(terms.diffuse),
+                    v3(terms.specular),
+                    wgsl_literal(shininess)
+                );
+                let got = common::run_compute(&ctx, &wgsl, common::bytes(&flat), n).expect("shading.wgsl compiles");
+                for (f, g) in fragments.iter().zip(&got) {
+                    let want = shade(&terms, f);
+                    for c in 0..3 {
+                        let d = (want[c] - g[c]).abs();
+                        worst = worst.max(d);
+                        assert!(
+                            d <= 2e-4,
+                            "{self_shadow:?}, {specular_shadow:?}, shininess {shininess}: {want} vs {g:?} for {f:?}"
+                        );
+                    }
+                }
+                cases += 1;
+            }
+        }
+    }
+    println!("shading.wgsl vs bumpmap_core::shading::shade: {cases} term sets x {n} fragments, max |diff| {worst:e}");
+}
