@@ -29,11 +29,17 @@ echo "== renderer: torus 1024², 2 threads, ${RENDER_ROUNDS:=3} alternating roun
 # The machine's speed drifts by ±20 % within minutes, so the renderer and llvmpipe take turns and
 # each round gives its own ratio; the script prints every round and the median.
 rm -f "$OUT"/llvmpipe.*.json "$OUT"/bumpmap_render_*.json
+export XDG_RUNTIME_DIR="${XDG_RUNTIME_DIR:-/tmp}"
 for r in $(seq 1 "$RENDER_ROUNDS"); do
   quiet; python3 "$work/llvmpipe_torus.py" --size 1024 --frames 100 --repeats 3 --threads 2 --variants 1pass,3pass > "$OUT/llvmpipe.$r.log" 2>&1
   cp "$work/out/llvmpipe_results.json" "$OUT/llvmpipe.$r.json"
   quiet; $B bench render --scene torus --size 1024 --technique kilgard --threads 2 --frames 30 --runs 5 --json > "$OUT/bumpmap_render_kilgard.$r.json"
   quiet; $B bench render --scene torus --size 1024 --technique single-pass --threads 2 --frames 30 --runs 5 --json > "$OUT/bumpmap_render_single.$r.json"
+  # The wgpu backend on lavapipe: Mesa's rasterizer under Vulkan, with llvmpipe's thread count.
+  if [ "${GPU:-1}" = 1 ]; then
+    quiet; LP_NUM_THREADS=2 $B bench render --backend gpu --scene torus --size 1024 --technique kilgard --threads 2 --frames 30 --runs 5 --json > "$OUT/bumpmap_render_gpu_kilgard.$r.json"
+    quiet; LP_NUM_THREADS=2 $B bench render --backend gpu --scene torus --size 1024 --technique single-pass --threads 2 --frames 30 --runs 5 --json > "$OUT/bumpmap_render_gpu_single.$r.json"
+  fi
 done
 
 python3 - "$OUT" <<'PY'
@@ -49,14 +55,18 @@ if c:
     print(f"tangents 1M tris: C MikkTSpace {c*1e3:.0f} ms; bumpmap ours {ours['median_ms']:.0f} ms -> {c*1e3/ours['median_ms']:.2f}x; "
           f"bumpmap mikktspace {mikk['median_ms']:.0f} ms -> {c*1e3/mikk['median_ms']:.2f}x")
 rounds = sorted(int(p.name.split(".")[1]) for p in out.glob("llvmpipe.*.json"))
-for name, peer in (("bumpmap_render_kilgard", "3pass"), ("bumpmap_render_single", "1pass")):
+pairs = [("bumpmap_render_kilgard", "3pass"), ("bumpmap_render_single", "1pass"),
+         ("bumpmap_render_gpu_kilgard", "3pass"), ("bumpmap_render_gpu_single", "1pass")]
+for name, peer in pairs:
+    if not (out / f"{name}.{rounds[0]}.json").exists():
+        continue
     ratios = []
     for r in rounds:
         lp = {x["variant"]: x for x in j(f"llvmpipe.{r}.json") if str(x["threads"]) == "2"}
         ours = j(f"{name}.{r}.json")
         ratios.append(ours["fps"] / lp[peer]["fps_median"])
-        print(f"render torus 1024² round {r} ({ours['technique']} vs llvmpipe {peer}, 2 threads): "
+        print(f"render torus 1024² round {r} ({ours.get('backend', 'cpu')} {ours['technique']} vs llvmpipe {peer}, 2 threads): "
               f"{ours['fps']:.1f} fps vs {lp[peer]['fps_median']:.1f} fps -> {ratios[-1]:.2f}x")
-    print(f"render torus 1024² {name.split('_')[-1]} vs llvmpipe {peer}: median of {len(ratios)} rounds "
+    print(f"render torus 1024² {name.removeprefix('bumpmap_render_')} vs llvmpipe {peer}: median of {len(ratios)} rounds "
           f"{sorted(ratios)[len(ratios) // 2]:.2f}x (range {min(ratios):.2f}-{max(ratios):.2f}x)")
 PY

@@ -67,6 +67,21 @@ impl Backend {
         }
     }
 
+    /// Draws one frame of `width`×`height` and waits for it, without making an image: what a
+    /// benchmark times (the GPU's `glFinish`, the CPU's framebuffer left as it is).
+    pub fn draw(&mut self, scene: &Scene, technique: &Technique, width: usize, height: usize) -> Result<(), CliError> {
+        match self {
+            Backend::Cpu { renderer, fb } => {
+                if fb.as_ref().is_none_or(|f| (f.width, f.height) != (width, height)) {
+                    *fb = Some(Framebuffer::new(width, height).map_err(cpu_err)?);
+                }
+                let fb = fb.as_mut().expect("made above");
+                renderer.render(scene, technique, fb, |_, _| {}).map_err(cpu_err)
+            }
+            Backend::Gpu(g) => g.draw(scene, technique, width, height).map_err(gpu_err),
+        }
+    }
+
     /// Renders one frame of `width`×`height`; with `snapshots`, also the framebuffer after each
     /// named pass.
     pub fn render(

@@ -13,7 +13,30 @@ use glam::{Vec3, Vec4};
 
 use crate::lane_math::{clamp_lo, max_lo, min_hi};
 use crate::scene::Spot;
-use crate::technique::{SelfShadow, SpecularShadow};
+
+/// The geometric self-shadowing factor of Eq. 11.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum SelfShadow {
+    /// Eq. 12: `clamp(8·L_z, 0, 1)`.
+    #[default]
+    Ramp,
+    /// 1 where `L_z > 0`, else 0.
+    Step,
+    /// Always 1 (Figure 14, left).
+    Off,
+}
+
+/// Which geometric self-shadowing the specular term gets.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum SpecularShadow {
+    /// The paper's: times s_self, and zero where `H_z < 0` (Appendix H's mux).
+    #[default]
+    Kilgard,
+    /// Cg Tutorial §8.5: zero unless `N'·L > 0` and `L_z > 0`.
+    CgTutorial,
+    /// None.
+    Off,
+}
 
 /// The coefficients and switches of one lit pass: the material's, times the light's colour.
 #[derive(Clone, Copy, Debug, PartialEq)]

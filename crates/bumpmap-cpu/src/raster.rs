@@ -8,6 +8,10 @@
 //! near-plane (and far-plane) clipping; back-face culling. Pixel centres are at half-integers.
 //! Quads include helper pixels outside the triangle so a shader can take derivatives (λ) once
 //! per quad. Not done: line and point primitives, polygon offset, scissor, stencil.
+//!
+//! One file of ~800 lines on purpose: clipping, setup, binning, the quad loop and write-back
+//! share the private set-up types (`Setup`, `Plane`, `WindowVertex`) and are tuned together
+//! as one hot path (BENCHMARKS.md); the tests live in `raster/tests.rs`.
 
 use glam::Vec4;
 use rayon::prelude::*;

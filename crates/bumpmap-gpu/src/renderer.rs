@@ -25,11 +25,20 @@ use crate::textures::Textures;
 /// Renders scenes with wgpu, keeping its device, pipelines, textures and target between
 /// frames.
 pub struct GpuRenderer {
-    ctx: Context,
+    // Fields drop in order: every resource before the device that made it.
     pipelines: Pipelines,
     textures: Textures,
     target: Option<Target>,
     meshes: Vec<(Arc<Mesh>, wgpu::Buffer, u32)>,
+    ctx: Context,
+}
+
+impl Drop for GpuRenderer {
+    /// Waits for the device to finish before its resources go: tearing down a software
+    /// driver (lavapipe) while its threads still run work has crashed processes at exit.
+    fn drop(&mut self) {
+        let _ = self.ctx.device.poll(wgpu::PollType::wait_indefinitely());
+    }
 }
 
 /// The colour and depth attachments and the buffer they are read back through.
@@ -75,17 +84,39 @@ impl GpuRenderer {
         technique: &Technique,
         width: usize,
         height: usize,
-        mut on_snapshot: impl FnMut(&str, &Rgba8Image),
+        on_snapshot: impl FnMut(&str, &Rgba8Image),
     ) -> Result<Rgba8Image, GpuError> {
+        let encoder = self.encode(scene, technique, width, height, on_snapshot)?;
+        self.read_back(encoder)
+    }
+
+    /// Draws a frame as [`GpuRenderer::render`] does and waits until the GPU has finished it,
+    /// without reading it back (what `glFinish` after a frame measures).
+    pub fn draw(&mut self, scene: &Scene, technique: &Technique, width: usize, height: usize) -> Result<(), GpuError> {
+        let encoder = self.encode(scene, technique, width, height, |_, _| {})?;
+        let submission = self.ctx.queue.submit([encoder.finish()]);
+        let polled = self.ctx.device.poll(wgpu::PollType::Wait { submission_index: Some(submission), timeout: None });
+        self.ctx.check()?;
+        polled.map(|_| ()).map_err(|e| GpuError::Wgpu(e.to_string()))
+    }
+
+    /// Records the frame's passes; snapshots are read back on the way.
+    fn encode(
+        &mut self,
+        scene: &Scene,
+        technique: &Technique,
+        width: usize,
+        height: usize,
+        mut on_snapshot: impl FnMut(&str, &Rgba8Image),
+    ) -> Result<wgpu::CommandEncoder, GpuError> {
         self.ctx.check()?;
         let passes = technique.passes(scene)?;
         self.ensure_target(width, height)?;
         let aspect = width as f32 / height as f32;
-        let mut encoder = self.ctx.device.create_command_encoder(&Default::default());
-        {
-            let target = self.target.as_ref().expect("made above");
-            let _clear = begin(&mut encoder, target, true);
-        }
+        // Every pass's resources first; then the passes are recorded into as few render passes
+        // as possible (one per snapshot), which a tiling software rasterizer such as lavapipe
+        // flushes once instead of once per pass.
+        let mut draws = Vec::with_capacity(passes.len());
         let mut vertices: Option<((usize, usize), wgpu::Buffer)> = None;
         for pass in &passes {
             let key = (pass.object, pass.light);
@@ -108,24 +139,29 @@ impl GpuRenderer {
                 }
             };
             let pipeline = self.pipelines.get(&self.ctx, &shader, &pass.state)?;
-            let target = self.target.as_ref().expect("made above");
-            {
-                let mut rp = begin(&mut encoder, target, false);
-                rp.set_pipeline(&pipeline);
-                rp.set_bind_group(0, &bind_group, &[]);
-                let c = pass.state.blend.color;
-                rp.set_blend_constant(wgpu::Color { r: c[0] as f64, g: c[1] as f64, b: c[2] as f64, a: c[3] as f64 });
-                rp.set_vertex_buffer(0, vertices.as_ref().expect("filled above").1.slice(..));
-                rp.set_index_buffer(indices.slice(..), wgpu::IndexFormat::Uint32);
-                rp.draw_indexed(0..count, 0, 0..1);
+            let vertex_buffer = vertices.as_ref().expect("filled above").1.clone();
+            draws.push(Draw { pipeline, bind_group, vertex_buffer, indices, count, blend: pass.state.blend.color });
+        }
+        let mut encoder = self.ctx.device.create_command_encoder(&Default::default());
+        let mut first = true;
+        let mut start = 0;
+        for (i, pass) in passes.iter().enumerate() {
+            if pass.snapshot.is_none() && i + 1 < passes.len() {
+                continue;
             }
+            record(&mut encoder, self.target.as_ref().expect("made above"), first, &draws[start..=i]);
+            (first, start) = (false, i + 1);
             if let Some(name) = pass.snapshot {
                 let done = std::mem::replace(&mut encoder, self.ctx.device.create_command_encoder(&Default::default()));
                 let image = self.read_back(done)?;
                 on_snapshot(name, &image);
             }
         }
-        self.read_back(encoder)
+        if first {
+            // No passes: the frame is the cleared target.
+            record(&mut encoder, self.target.as_ref().expect("made above"), true, &[]);
+        }
+        Ok(encoder)
     }
 
     fn ensure_target(&mut self, width: usize, height: usize) -> Result<(), GpuError> {
@@ -303,6 +339,30 @@ impl GpuRenderer {
         }
         target.readback.unmap();
         Ok(Rgba8Image::new(target.width, target.height, texels))
+    }
+}
+
+/// One pass's pipeline and bindings, ready to record.
+struct Draw {
+    pipeline: wgpu::RenderPipeline,
+    bind_group: wgpu::BindGroup,
+    vertex_buffer: wgpu::Buffer,
+    indices: wgpu::Buffer,
+    count: u32,
+    blend: [f32; 4],
+}
+
+/// Records `draws` in order into one render pass on the target, cleared first when `clear`.
+fn record(encoder: &mut wgpu::CommandEncoder, target: &Target, clear: bool, draws: &[Draw]) {
+    let mut rp = begin(encoder, target, clear);
+    for d in draws {
+        rp.set_pipeline(&d.pipeline);
+        rp.set_bind_group(0, &d.bind_group, &[]);
+        let c = d.blend;
+        rp.set_blend_constant(wgpu::Color { r: c[0] as f64, g: c[1] as f64, b: c[2] as f64, a: c[3] as f64 });
+        rp.set_vertex_buffer(0, d.vertex_buffer.slice(..));
+        rp.set_index_buffer(d.indices.slice(..), wgpu::IndexFormat::Uint32);
+        rp.draw_indexed(0..d.count, 0, 0..1);
     }
 }
 

@@ -11,6 +11,9 @@
 //! MikkTSpace: the reference algorithm (through `bevy_mikktspace`, a faithful port), which
 //! Blender, Substance and glTF viewers bake and shade with; corners that receive different
 //! tangents are split into separate vertices.
+//!
+//! Longer than most files (~570 lines): both modes, the splitting at seams and the parallel
+//! piecewise MikkTSpace run share the per-corner bookkeeping; the tests take a third of it.
 
 use glam::{Vec3, Vec4};
 use rayon::prelude::*;

@@ -15,6 +15,7 @@ use bumpmap_math::Rgba8Mips;
 use crate::error::CoreError;
 use crate::scene::{Attenuation, Scene, SceneLight};
 use crate::shading::LitTerms;
+pub use crate::shading::{SelfShadow, SpecularShadow};
 use crate::state::{Blend, PassState, Sampler};
 use crate::technique::{LitProgram, Pass, Program};
 
@@ -31,18 +32,6 @@ pub enum Normalize {
     Cube,
 }
 
-/// The geometric self-shadowing factor of Eq. 11.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
-pub enum SelfShadow {
-    /// Eq. 12: `clamp(8·L_z, 0, 1)`.
-    #[default]
-    Ramp,
-    /// 1 where `L_z > 0`, else 0.
-    Step,
-    /// Always 1 (Figure 14, left).
-    Off,
-}
-
 /// Where the half-angle vector comes from (Cg Tutorial §8.1.4).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
 pub enum HalfAngle {
@@ -51,18 +40,6 @@ pub enum HalfAngle {
     Vertex,
     /// `normalize(L̂ + V̂)` from the interpolated L and V.
     Fragment,
-}
-
-/// Which geometric self-shadowing the specular term gets.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
-pub enum SpecularShadow {
-    /// The paper's: times s_self, and zero where `H_z < 0` (Appendix H's mux).
-    #[default]
-    Kilgard,
-    /// Cg Tutorial §8.5: zero unless `N'·L > 0` and `L_z > 0`.
-    CgTutorial,
-    /// None.
-    Off,
 }
 
 /// Where the gloss (specular scale) comes from (Cg Tutorial §8.5.2).
