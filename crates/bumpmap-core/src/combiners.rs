@@ -47,6 +47,22 @@ pub enum Register {
 pub const REGISTERS: usize = 12;
 
 impl Register {
+    /// Every register, in the order of [`Register`] (its index order).
+    pub const ALL: [Register; REGISTERS] = [
+        Register::Zero,
+        Register::ConstantColor0,
+        Register::ConstantColor1,
+        Register::Fog,
+        Register::PrimaryColor,
+        Register::SecondaryColor,
+        Register::Spare0,
+        Register::Spare1,
+        Register::Texture0,
+        Register::Texture1,
+        Register::Texture2,
+        Register::Texture3,
+    ];
+
     /// Whether a general combiner may write it (ZERO, the constants and FOG are read-only).
     pub fn writable(self) -> bool {
         !matches!(self, Register::Zero | Register::ConstantColor0 | Register::ConstantColor1 | Register::Fog)

@@ -61,20 +61,7 @@ impl Rng {
 // Random setups: drawn over (nearly) the whole state space, kept only if `validate()` accepts.
 
 use Register::*;
-const REGS: [Register; 12] = [
-    Zero,
-    ConstantColor0,
-    ConstantColor1,
-    Fog,
-    PrimaryColor,
-    SecondaryColor,
-    Spare0,
-    Spare1,
-    Texture0,
-    Texture1,
-    Texture2,
-    Texture3,
-];
+const REGS: [Register; 12] = Register::ALL;
 const WRITABLE: [Register; 8] = [PrimaryColor, SecondaryColor, Spare0, Spare1, Texture0, Texture1, Texture2, Texture3];
 
 fn random_input(rng: &mut Rng, rgb: bool) -> Input {
