@@ -260,9 +260,9 @@ pub enum BenchWhat {
         /// Timed runs (after one warm-up)
         #[arg(long, default_value_t = 9, value_parser = clap::value_parser!(u32).range(1..))]
         runs: u32,
-        /// Worker threads (default: all cores)
-        #[arg(long)]
-        threads: Option<usize>,
+        /// Worker threads, 1 to 256 (default: all cores)
+        #[arg(long, value_parser = clap::value_parser!(u16).range(1..=256))]
+        threads: Option<u16>,
         /// Print one JSON line instead of prose
         #[arg(long)]
         json: bool,
@@ -276,9 +276,9 @@ pub enum BenchWhat {
         mode: TangentModeArg,
         #[arg(long, default_value_t = 5, value_parser = clap::value_parser!(u32).range(1..))]
         runs: u32,
-        /// Worker threads (default: all cores)
-        #[arg(long)]
-        threads: Option<usize>,
+        /// Worker threads, 1 to 256 (default: all cores)
+        #[arg(long, value_parser = clap::value_parser!(u16).range(1..=256))]
+        threads: Option<u16>,
         /// Print one JSON line instead of prose
         #[arg(long)]
         json: bool,

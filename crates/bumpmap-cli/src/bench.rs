@@ -46,8 +46,9 @@ pub fn run(args: &BenchArgs) -> Result<(), CliError> {
 }
 
 /// Runs `f` on a pool of `threads` workers (all cores when `None`).
-pub fn with_threads<T: Send>(threads: Option<usize>, f: impl FnOnce() -> T + Send) -> T {
-    let pool = rayon::ThreadPoolBuilder::new().num_threads(threads.unwrap_or(0)).build().expect("thread pool");
+pub fn with_threads<T: Send>(threads: Option<u16>, f: impl FnOnce() -> T + Send) -> T {
+    let pool =
+        rayon::ThreadPoolBuilder::new().num_threads(threads.map_or(0, usize::from)).build().expect("thread pool");
     pool.install(f)
 }
 

@@ -25,13 +25,13 @@ pub struct SceneGroup {
     #[arg(long)]
     pub decal: Option<String>,
     /// Torus radii R,r (hole centre to tube centre, tube)
-    #[arg(long = "torus-radii", value_parser = parse_pair, default_value = "2,0.7")]
+    #[arg(long = "torus-radii", value_parser = parse_pair, default_value = "2,0.7", allow_hyphen_values = true)]
     pub torus_radii: (f32, f32),
     /// Quads along u and v (default: the scene's; torus 128,64)
     #[arg(long, value_parser = parse_counts)]
     pub tessellation: Option<(usize, usize)>,
-    /// Texture repeats along s and t (default: the scene's; torus 6,2)
-    #[arg(long, value_parser = parse_pair)]
+    /// Texture repeats along s and t (default: the scene's; torus 6,2); negative mirrors
+    #[arg(long, value_parser = parse_pair, allow_hyphen_values = true)]
     pub repeat: Option<(f32, f32)>,
     /// single-pass: light in tangent space, or in object space with an object-space normal map made for the surface (built-in surfaces only)
     #[arg(long, value_enum, default_value = "tangent")]
@@ -49,7 +49,7 @@ pub struct CameraGroup {
     #[arg(long, value_parser = parse_vec3, allow_hyphen_values = true)]
     pub target: Option<glam::Vec3>,
     /// Vertical field of view in degrees
-    #[arg(long, default_value_t = 45.0)]
+    #[arg(long, default_value_t = 45.0, allow_negative_numbers = true)]
     pub fov: f32,
     /// Local or infinite viewer for the half-angle vector
     #[arg(long, value_enum, default_value = "local")]
@@ -64,16 +64,16 @@ pub struct LightGroup {
     #[arg(long = "light", value_parser = parse_light, allow_hyphen_values = true)]
     pub lights: Vec<bumpmap_core::scene::SceneLight>,
     /// single-pass: attenuation with distance: C,L,Q (1/(C + L·d + Q·d²)), exp:D or exp2:D
-    #[arg(long, value_parser = parse_attenuation)]
+    #[arg(long, value_parser = parse_attenuation, allow_hyphen_values = true)]
     pub attenuation: Option<bumpmap_core::scene::Attenuation>,
     /// single-pass: make every positional light a spotlight aimed along DX,DY,DZ
     #[arg(long, value_parser = parse_vec3, allow_hyphen_values = true)]
     pub spot: Option<glam::Vec3>,
     /// Spotlight cone half-angle in degrees, in (0, 90)
-    #[arg(long = "spot-cutoff", default_value_t = 25.0)]
+    #[arg(long = "spot-cutoff", default_value_t = 25.0, allow_negative_numbers = true)]
     pub spot_cutoff: f32,
     /// Spotlight fall-off exponent (cos^E), ≥ 0
-    #[arg(long = "spot-exponent", default_value_t = 2.0)]
+    #[arg(long = "spot-exponent", default_value_t = 2.0, allow_negative_numbers = true)]
     pub spot_exponent: f32,
     /// Pattern projected by the spotlight: an image or a height-field preset (e.g. pinwheel)
     #[arg(long = "spot-pattern")]
@@ -85,16 +85,16 @@ pub struct LightGroup {
 #[command(next_help_heading = "Material")]
 pub struct MaterialGroup {
     /// Ambient intensity I_ambient
-    #[arg(long, default_value_t = 0.2)]
+    #[arg(long, default_value_t = 0.2, allow_negative_numbers = true)]
     pub ambient: f32,
     /// Diffuse coefficient k_diffuse
-    #[arg(long, default_value_t = 0.8)]
+    #[arg(long, default_value_t = 0.8, allow_negative_numbers = true)]
     pub diffuse: f32,
     /// Specular coefficient (0 drops the specular pass)
-    #[arg(long, default_value_t = 1.0)]
+    #[arg(long, default_value_t = 1.0, allow_negative_numbers = true)]
     pub specular: f32,
     /// Specular exponent (kilgard's combiners are fixed at 8)
-    #[arg(long, default_value_t = 8.0)]
+    #[arg(long, default_value_t = 8.0, allow_negative_numbers = true)]
     pub shininess: f32,
     /// single-pass: gloss map scaling the specular: decal-alpha, bricks (shiny bricks, dull mortar) or an image (red channel, same size as the decal)
     #[arg(long)]
@@ -208,9 +208,9 @@ pub struct BenchRenderArgs {
     /// Square framebuffer size
     #[arg(long, default_value_t = 1024)]
     pub size: usize,
-    /// Worker threads (default: all cores)
-    #[arg(long)]
-    pub threads: Option<usize>,
+    /// Worker threads, 1 to 256 (default: all cores)
+    #[arg(long, value_parser = clap::value_parser!(u16).range(1..=256))]
+    pub threads: Option<u16>,
     /// Frames per timed run
     #[arg(long, default_value_t = 30, value_parser = clap::value_parser!(u32).range(1..))]
     pub frames: u32,

@@ -78,3 +78,25 @@ fn output_must_not_replace_the_input() {
     assert!(stderr(&o).contains("overwrite the input"));
     assert_eq!(std::fs::read(&input).unwrap(), before);
 }
+
+#[test]
+fn a_gltf_pointing_outside_its_folder_is_refused_end_to_end() {
+    let root = scratch("tangents_outside");
+    let dir = root.join("model");
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::write(root.join("secret.bin"), vec![7u8; 64]).unwrap();
+    let json = r#"{"asset":{"version":"2.0"},"buffers":[{"uri":"../secret.bin","byteLength":64}],
+"bufferViews":[{"buffer":0,"byteLength":36}],
+"accessors":[{"bufferView":0,"componentType":5126,"count":3,"type":"VEC3","min":[0,0,0],"max":[1,1,1]}],
+"meshes":[{"primitives":[{"attributes":{"POSITION":0}}]}]}"#;
+    let input = dir.join("evil.gltf");
+    std::fs::write(&input, json).unwrap();
+    let out = dir.join("out.glb");
+    let (input_s, out_s, scene) =
+        (input.display().to_string(), out.display().to_string(), format!("mesh:{}", input.display()));
+    let tangents = ["tangents", input_s.as_str(), "-o", out_s.as_str()];
+    let render = ["render", "--size", "16", "-o", out_s.as_str(), "--scene", scene.as_str()];
+    for command in [&tangents[..], &render[..]] {
+        fails_cleanly(&dir, command, &input, "outside the glTF's folder");
+    }
+}

@@ -162,3 +162,21 @@ fn options_that_do_not_apply_are_refused() {
     refused(&["--technique", "single-pass", "--precision", "fixed9"], "--precision belongs to --technique kilgard");
     refused(&["--space", "object"], "kilgard cannot do --space object");
 }
+
+#[test]
+fn negative_numbers_get_a_range_error_not_an_unknown_argument() {
+    refused(&["--fov", "-5"], "--fov must be in [1, 170]");
+    refused(&["--technique", "single-pass", "--shininess", "-3"], "--shininess must be a positive number, got -3");
+    refused(&["--ambient", "-5"], "--ambient must be in [0, 1], got -5");
+    refused(&["--technique", "single-pass", "--spot", "0,0,-1", "--spot-cutoff", "-4"], "cutoff");
+    refused(&["--torus-radii", "-1,0.5"], "--torus-radii must be positive");
+}
+
+#[test]
+fn thread_counts_are_bounded() {
+    for bad in ["0", "2000"] {
+        let o = bumpmap(&["bench", "render", "--threads", bad, "--size", "16", "--frames", "1", "--runs", "1"]);
+        assert_eq!(o.status.code(), Some(2), "--threads {bad}: {}", stderr(&o));
+        assert!(stderr(&o).contains("1..=256"), "--threads {bad} names the range: {}", stderr(&o));
+    }
+}

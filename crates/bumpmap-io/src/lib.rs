@@ -7,6 +7,7 @@
 
 pub mod atomic;
 pub mod error;
+mod gltf_read;
 pub mod image_file;
 pub mod mesh_file;
 pub mod texture_file;

@@ -84,8 +84,7 @@ fn load_obj(path: &Path) -> Result<LoadedMesh, IoError> {
 }
 
 fn load_gltf(path: &Path) -> Result<LoadedMesh, IoError> {
-    let (document, buffers, _images) =
-        gltf::import(path).map_err(|e| mesh_err(path, format!("not a readable glTF file: {e}")))?;
+    let crate::gltf_read::GltfFile { document, buffers } = crate::gltf_read::read(path)?;
     for accessor in document.accessors() {
         if accessor.count() > MAX_ELEMENTS {
             return Err(mesh_err(
@@ -108,7 +107,7 @@ fn load_gltf(path: &Path) -> Result<LoadedMesh, IoError> {
                     ),
                 ));
             }
-            let reader = prim.reader(|b| buffers.get(b.index()).map(|d| &d.0[..]));
+            let reader = prim.reader(|b| buffers.get(b.index()).map(|d| &d[..]));
             let positions: Vec<Vec3> = reader
                 .read_positions()
                 .ok_or_else(|| mesh_err(path, "a primitive has no POSITION"))?

@@ -132,11 +132,14 @@ impl<'a> RowEvaluator<'a> {
             };
             let wt = tap.weight;
             // Interior: x + dx stays inside the row, a straight slice the compiler vectorizes.
-            let lo = (-tap.dx).max(0) as usize;
+            // On a row narrower than the kernel there is no interior (lo = hi): every x wraps.
+            let lo = ((-tap.dx).max(0) as usize).min(n);
             let hi = (w as i64 - tap.dx as i64).min(n as i64).max(lo as i64) as usize;
-            let shifted = &src[(lo as i64 + tap.dx as i64) as usize..(hi as i64 + tap.dx as i64) as usize];
-            for (a, &s) in acc[lo..hi].iter_mut().zip(shifted) {
-                *a += wt * s;
+            if hi > lo {
+                let shifted = &src[(lo as i64 + tap.dx as i64) as usize..(hi as i64 + tap.dx as i64) as usize];
+                for (a, &s) in acc[lo..hi].iter_mut().zip(shifted) {
+                    *a += wt * s;
+                }
             }
             for x in (0..lo.min(n)).chain(hi..n) {
                 acc[x] += wt * src[self.options.wrap.index(x as i64 + tap.dx as i64, w)];
@@ -261,6 +264,35 @@ pub fn encode_unit(n: Vec3, enc: Encoding) -> [u8; 4] {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn images_narrower_or_shorter_than_the_kernel_give_unit_normals() {
+        // A 1- to 3-texel-wide (or tall) image under a 5×5 or 7×7 kernel: every tap wraps.
+        for kernel in crate::Kernel::ALL {
+            for wrap in [crate::Wrap::Repeat, crate::Wrap::Clamp, crate::Wrap::Border] {
+                for (w, h) in [(1, 9), (2, 9), (3, 9), (9, 1), (9, 2), (2, 2), (4, 3)] {
+                    let data: Vec<f32> = (0..w * h).map(|i| ((i * 37) % 11) as f32 / 10.0).collect();
+                    let field = HeightField::new(w, h, data).unwrap();
+                    let options = NormalMapOptions { kernel, wrap, ..Default::default() };
+                    match normal_map_level0(&field, &options) {
+                        Ok(map) => {
+                            let (ow, oh) = output_size(w, h, &options).unwrap();
+                            assert_eq!((map.width, map.height), (ow, oh));
+                            for y in 0..oh {
+                                for x in 0..ow {
+                                    let (n, _) = map.decode(x, y, options.encoding);
+                                    assert!((n.length() - 1.0).abs() < 0.02, "{kernel:?} {wrap:?} {w}x{h}: {n}");
+                                }
+                            }
+                        }
+                        // Border needs one extra column and row.
+                        Err(NormalMapError::BorderTooSmall(..)) => assert!(w < 2 || h < 2),
+                        Err(e) => panic!("{kernel:?} {wrap:?} {w}x{h}: {e}"),
+                    }
+                }
+            }
+        }
+    }
 
     fn field(w: usize, h: usize, f: impl Fn(f32, f32) -> f32) -> HeightField {
         HeightField::from_fn(w, h, |x, y| f(x as f32, y as f32))

@@ -1,0 +1,261 @@
+//! Reading a glTF or GLB file without trusting it: the GLB header and chunk lengths checked
+//! before anything is allocated, buffers read only from `data:` URIs, the GLB's own chunk, or
+//! regular files inside the glTF's own folder — at most `byteLength` bytes each — and every
+//! accessor the mesh loader reads checked for its component type, shape and byte range, so the
+//! `gltf` crate's reader never indexes out of bounds.
+//!
+//! Not read: images, sparse accessors (refused), files outside the glTF's folder (refused; a
+//! URI with `..`, an absolute path, a scheme such as `file://`, or a link that leads out).
+
+use std::io::Read as _;
+use std::path::{Component, Path, PathBuf};
+
+use gltf::accessor::{DataType, Dimensions};
+
+use crate::error::IoError;
+
+/// The largest glTF, GLB or buffer file read, in bytes.
+pub const MAX_FILE_BYTES: u64 = 1 << 30;
+
+fn err(path: &Path, reason: impl std::fmt::Display) -> IoError {
+    IoError::Mesh { path: path.to_path_buf(), reason: reason.to_string() }
+}
+
+/// A parsed document and its buffers' bytes (each exactly its `byteLength`).
+pub(crate) struct GltfFile {
+    pub document: gltf::Document,
+    pub buffers: Vec<Vec<u8>>,
+}
+
+/// Reads and checks `path` (see the module docs).
+pub(crate) fn read(path: &Path) -> Result<GltfFile, IoError> {
+    let bytes = read_file(path, path, MAX_FILE_BYTES)?;
+    if bytes.starts_with(b"glTF") {
+        check_glb(path, &bytes)?;
+    }
+    let unread = |e: gltf::Error| err(path, format!("not a readable glTF file: {e}"));
+    let gltf = gltf::Gltf::from_slice_without_validation(&bytes).map_err(unread)?;
+    // The gltf crate's own validation indexes the accessors a primitive names without a bounds
+    // check: check those indices first, then let it validate the rest.
+    let json = gltf.document.as_json();
+    for (m, mesh) in json.meshes.iter().enumerate() {
+        for (p, prim) in mesh.primitives.iter().enumerate() {
+            let named = prim.attributes.values().chain(prim.indices.as_ref());
+            if let Some(bad) = named.map(|i| i.value()).find(|&i| i >= json.accessors.len()) {
+                return Err(err(
+                    path,
+                    format!("mesh {m} primitive {p} names accessor {bad}, but the file has {}", json.accessors.len()),
+                ));
+            }
+        }
+    }
+    let gltf =
+        gltf::Gltf { document: gltf::Document::from_json(gltf.document.into_json()).map_err(unread)?, blob: gltf.blob };
+    let dir = path.parent().map(Path::to_path_buf).unwrap_or_default();
+    let mut buffers = Vec::new();
+    for buffer in gltf.document.buffers() {
+        let length = buffer.length();
+        if length as u64 > MAX_FILE_BYTES {
+            return Err(err(
+                path,
+                format!("buffer {} declares {length} bytes; the limit is {MAX_FILE_BYTES}", buffer.index()),
+            ));
+        }
+        let mut data = match buffer.source() {
+            gltf::buffer::Source::Bin => gltf.blob.clone().ok_or_else(|| {
+                err(path, format!("buffer {} refers to a GLB chunk the file does not have", buffer.index()))
+            })?,
+            gltf::buffer::Source::Uri(uri) => read_uri(path, &dir, buffer.index(), uri, length)?,
+        };
+        if data.len() < length {
+            return Err(err(path, format!("buffer {} declares {length} bytes but has {}", buffer.index(), data.len())));
+        }
+        data.truncate(length);
+        buffers.push(data);
+    }
+    check_accessors(path, &gltf.document, &buffers)?;
+    Ok(GltfFile { document: gltf.document, buffers })
+}
+
+/// Reads at most `max` bytes of a regular file.
+fn read_file(named: &Path, file: &Path, max: u64) -> Result<Vec<u8>, IoError> {
+    let meta = std::fs::metadata(file).map_err(|source| IoError::Read { path: file.to_path_buf(), source })?;
+    if !meta.is_file() {
+        return Err(err(named, format!("{} is not a regular file", file.display())));
+    }
+    if meta.len() > MAX_FILE_BYTES {
+        return Err(err(named, format!("{} is {} bytes; the limit is {MAX_FILE_BYTES}", file.display(), meta.len())));
+    }
+    let mut data = Vec::new();
+    std::fs::File::open(file)
+        .and_then(|f| f.take(max).read_to_end(&mut data))
+        .map_err(|source| IoError::Read { path: file.to_path_buf(), source })?;
+    Ok(data)
+}
+
+/// GLB: magic, version 2, a total length equal to the file's, and chunks inside it.
+fn check_glb(path: &Path, bytes: &[u8]) -> Result<(), IoError> {
+    let word = |at: usize| bytes.get(at..at + 4).map(|b| u32::from_le_bytes(b.try_into().expect("4 bytes")) as usize);
+    let (Some(version), Some(length)) = (word(4), word(8)) else {
+        return Err(err(path, "GLB header is cut short (12 bytes expected)"));
+    };
+    if version != 2 {
+        return Err(err(path, format!("GLB version {version}; only version 2 is read")));
+    }
+    if length != bytes.len() {
+        return Err(err(path, format!("GLB header says {length} bytes but the file has {}", bytes.len())));
+    }
+    let mut at = 12;
+    while at < bytes.len() {
+        let Some(chunk) = word(at) else {
+            return Err(err(path, format!("GLB chunk header at byte {at} is cut short")));
+        };
+        if word(at + 4).is_none() || at + 8 + chunk > bytes.len() {
+            return Err(err(path, format!("GLB chunk at byte {at} claims {chunk} bytes, past the end of the file")));
+        }
+        at += 8 + chunk;
+    }
+    if word(12).is_none() {
+        return Err(err(path, "GLB has no JSON chunk"));
+    }
+    Ok(())
+}
+
+/// `%XX` escapes decoded (a URI's path, RFC 3986); a malformed escape is an error.
+fn percent_decode(uri: &str) -> Option<String> {
+    let b = uri.as_bytes();
+    let mut out = Vec::with_capacity(b.len());
+    let mut i = 0;
+    while i < b.len() {
+        if b[i] == b'%' {
+            let hex = std::str::from_utf8(b.get(i + 1..i + 3)?).ok()?;
+            out.push(u8::from_str_radix(hex, 16).ok()?);
+            i += 3;
+        } else {
+            out.push(b[i]);
+            i += 1;
+        }
+    }
+    String::from_utf8(out).ok()
+}
+
+/// A buffer's bytes from its URI: a base64 `data:` URI, or a relative path inside `dir`.
+fn read_uri(path: &Path, dir: &Path, index: usize, uri: &str, length: usize) -> Result<Vec<u8>, IoError> {
+    if let Some(rest) = uri.strip_prefix("data:") {
+        let (_, encoded) = rest
+            .split_once(";base64,")
+            .ok_or_else(|| err(path, format!("buffer {index}: only base64 data: URIs are read")))?;
+        if encoded.len() / 4 * 3 > length + 3 {
+            return Err(err(path, format!("buffer {index}: its data: URI holds more than its {length} bytes")));
+        }
+        return base64::decode(encoded)
+            .map_err(|e| err(path, format!("buffer {index}: bad base64 in its data: URI: {e}")));
+    }
+    let outside = || {
+        err(
+            path,
+            format!(
+                "buffer {index}'s uri '{uri}' points outside the glTF's folder; only files beside it or below it are read"
+            ),
+        )
+    };
+    let has_scheme = uri.split_once(':').is_some_and(|(scheme, _)| !scheme.is_empty() && !scheme.contains('/'));
+    let decoded = percent_decode(uri)
+        .ok_or_else(|| err(path, format!("buffer {index}'s uri '{uri}' has a malformed %-escape")))?;
+    if has_scheme || decoded.starts_with(['/', '\\']) || decoded.contains('\\') {
+        return Err(outside());
+    }
+    let relative = Path::new(&decoded);
+    if !relative.components().all(|c| matches!(c, Component::Normal(_) | Component::CurDir)) {
+        return Err(outside());
+    }
+    let file: PathBuf = dir.join(relative);
+    // A link may still lead out: compare where both really are.
+    let real_dir = std::fs::canonicalize(if dir.as_os_str().is_empty() { Path::new(".") } else { dir })
+        .map_err(|source| IoError::Read { path: dir.to_path_buf(), source })?;
+    let real_file = std::fs::canonicalize(&file).map_err(|source| IoError::Read { path: file.clone(), source })?;
+    if !real_file.starts_with(&real_dir) {
+        return Err(outside());
+    }
+    read_file(path, &real_file, length as u64)
+}
+
+/// The component types (and whether normalized) an accessor may have.
+type Accepted = &'static [(DataType, bool)];
+
+/// Every accessor a primitive gives the mesh loader: the component type and shape it reads,
+/// no sparse storage, and its bytes inside its buffer view and the view inside its buffer.
+fn check_accessors(path: &Path, doc: &gltf::Document, buffers: &[Vec<u8>]) -> Result<(), IoError> {
+    use gltf::Semantic;
+    for mesh in doc.meshes() {
+        for prim in mesh.primitives() {
+            let mut wanted: Vec<(&str, gltf::Accessor, Accepted, Dimensions)> = Vec::new();
+            const FLOAT: &[(DataType, bool)] = &[(DataType::F32, false)];
+            const UV: &[(DataType, bool)] = &[(DataType::F32, false), (DataType::U8, true), (DataType::U16, true)];
+            const INDEX: &[(DataType, bool)] = &[(DataType::U8, false), (DataType::U16, false), (DataType::U32, false)];
+            for (semantic, accessor) in prim.attributes() {
+                match semantic {
+                    Semantic::Positions => wanted.push(("POSITION", accessor, FLOAT, Dimensions::Vec3)),
+                    Semantic::Normals => wanted.push(("NORMAL", accessor, FLOAT, Dimensions::Vec3)),
+                    Semantic::Tangents => wanted.push(("TANGENT", accessor, FLOAT, Dimensions::Vec4)),
+                    Semantic::TexCoords(0) => wanted.push(("TEXCOORD_0", accessor, UV, Dimensions::Vec2)),
+                    _ => {}
+                }
+            }
+            if let Some(indices) = prim.indices() {
+                wanted.push(("indices", indices, INDEX, Dimensions::Scalar));
+            }
+            for (what, a, types, dims) in wanted {
+                let named = format!("{what} accessor {}", a.index());
+                let normalized = a.normalized();
+                if !types.contains(&(a.data_type(), normalized)) || a.dimensions() != dims {
+                    return Err(err(
+                        path,
+                        format!(
+                            "{named} is {:?} {:?}{}; expected {dims:?} of {types:?} (type, normalized)",
+                            a.dimensions(),
+                            a.data_type(),
+                            if normalized { " normalized" } else { "" }
+                        ),
+                    ));
+                }
+                if a.sparse().is_some() {
+                    return Err(err(path, format!("{named} is sparse, which is not read")));
+                }
+                let view = a.view().ok_or_else(|| err(path, format!("{named} has no bufferView")))?;
+                let buffer_len = buffers.get(view.buffer().index()).map_or(0, Vec::len);
+                if view.offset().checked_add(view.length()).is_none_or(|end| end > buffer_len) {
+                    return Err(err(
+                        path,
+                        format!(
+                            "bufferView {} (bytes {}..+{}) runs past its buffer of {buffer_len} bytes",
+                            view.index(),
+                            view.offset(),
+                            view.length()
+                        ),
+                    ));
+                }
+                let element = a.size();
+                let stride = view.stride().unwrap_or(element);
+                let end = a.count().checked_sub(1).map_or(Some(0), |last| {
+                    last.checked_mul(stride)
+                        .and_then(|x| x.checked_add(a.offset()))
+                        .and_then(|x| x.checked_add(element))
+                });
+                if end.is_none_or(|end| end > view.length()) {
+                    return Err(err(
+                        path,
+                        format!(
+                            "{named} ({} elements of {element} bytes from byte {}) runs past bufferView {} of {} bytes",
+                            a.count(),
+                            a.offset(),
+                            view.index(),
+                            view.length()
+                        ),
+                    ));
+                }
+            }
+        }
+    }
+    Ok(())
+}
