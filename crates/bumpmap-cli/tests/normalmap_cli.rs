@@ -128,3 +128,68 @@ fn cubemap_faces_match_the_library() {
         assert_eq!(img.as_raw().as_slice(), &golden[i * 3072..(i + 1) * 3072], "face {face}");
     }
 }
+
+/// A 4×4 paletted PNG whose PLTE chunk holds 4 bytes (not a whole RGB entry), CRCs valid.
+fn png_with_bad_palette() -> Vec<u8> {
+    fn crc32(bytes: &[u8]) -> u32 {
+        let mut c = !0u32;
+        for &b in bytes {
+            c ^= b as u32;
+            for _ in 0..8 {
+                c = if c & 1 == 1 { 0xEDB8_8320 ^ (c >> 1) } else { c >> 1 };
+            }
+        }
+        !c
+    }
+    let chunk = |kind: &[u8], data: &[u8]| {
+        let mut c = (data.len() as u32).to_be_bytes().to_vec();
+        let body: Vec<u8> = kind.iter().chain(data).copied().collect();
+        c.extend_from_slice(&body);
+        c.extend_from_slice(&crc32(&body).to_be_bytes());
+        c
+    };
+    let mut ihdr = Vec::new();
+    ihdr.extend_from_slice(&4u32.to_be_bytes());
+    ihdr.extend_from_slice(&4u32.to_be_bytes());
+    ihdr.extend_from_slice(&[8, 3, 0, 0, 0]);
+    // Stored (uncompressed) deflate block of 4 rows of filter byte 0 + 4 indices: 20 bytes.
+    let raw = [0u8; 20];
+    let mut z = vec![0x78, 0x01, 0x01, 20, 0, !20u8, 0xFF];
+    z.extend_from_slice(&raw);
+    let adler = {
+        let (mut a, mut b) = (1u32, 0u32);
+        for &x in &raw {
+            a = (a + x as u32) % 65521;
+            b = (b + a) % 65521;
+        }
+        (b << 16) | a
+    };
+    z.extend_from_slice(&adler.to_be_bytes());
+    let mut png = b"\x89PNG\r\n\x1a\n".to_vec();
+    png.extend(chunk(b"IHDR", &ihdr));
+    png.extend(chunk(b"PLTE", &[1, 2, 3, 4]));
+    png.extend(chunk(b"IDAT", &z));
+    png.extend(chunk(b"IEND", &[]));
+    png
+}
+
+#[test]
+fn a_palette_that_is_not_whole_rgb_entries_is_an_error_not_a_panic() {
+    let dir = scratch("bad_palette");
+    let input = dir.join("bad.png");
+    std::fs::write(&input, png_with_bad_palette()).unwrap();
+    let out = dir.join("out.png");
+    fails_cleanly(
+        &dir,
+        &["normalmap", input.to_str().unwrap(), "-o", out.to_str().unwrap()],
+        &input,
+        "PLTE chunk of 4 bytes",
+    );
+    let render_out = dir.join("r.png");
+    fails_cleanly(
+        &dir,
+        &["render", "--size", "16", "--height-field", input.to_str().unwrap(), "-o", render_out.to_str().unwrap()],
+        &input,
+        "PLTE chunk of 4 bytes",
+    );
+}

@@ -98,6 +98,7 @@ fn decode(path: &Path) -> Result<DynamicImage, IoError> {
             max: MAX_DIMENSION,
         });
     }
+    check_png_palette(path)?;
     let mut reader = open()?;
     let mut limits = Limits::default();
     limits.max_image_width = Some(MAX_DIMENSION);
@@ -105,6 +106,36 @@ fn decode(path: &Path) -> Result<DynamicImage, IoError> {
     limits.max_alloc = Some(4 << 30);
     reader.limits(limits);
     reader.decode().map_err(bad)
+}
+
+/// Refuses a PNG whose PLTE chunk is not a whole number of RGB entries (1 to 256): the `png`
+/// crate (0.18) panics on one while expanding the palette. Reads the chunk headers up to the
+/// first IDAT only; anything else is left to the decoder.
+fn check_png_palette(path: &Path) -> Result<(), IoError> {
+    use std::io::{Read, Seek, SeekFrom};
+    let read_err = |source| IoError::Read { path: path.to_path_buf(), source };
+    let mut f = std::io::BufReader::new(std::fs::File::open(path).map_err(read_err)?);
+    let mut signature = [0u8; 8];
+    if f.read_exact(&mut signature).is_err() || signature != *b"\x89PNG\r\n\x1a\n" {
+        return Ok(());
+    }
+    let mut header = [0u8; 8];
+    while f.read_exact(&mut header).is_ok() {
+        let length = u32::from_be_bytes(header[..4].try_into().expect("4 bytes"));
+        match &header[4..] {
+            b"PLTE" if length == 0 || length % 3 != 0 || length > 768 => {
+                return Err(IoError::Decode {
+                    path: path.to_path_buf(),
+                    reason: format!("PLTE chunk of {length} bytes is not 1 to 256 RGB entries (3 bytes each)"),
+                });
+            }
+            b"IDAT" | b"IEND" => return Ok(()),
+            _ => {}
+        }
+        // The chunk's data and CRC.
+        f.seek(SeekFrom::Current(length as i64 + 4)).map_err(read_err)?;
+    }
+    Ok(())
 }
 
 /// Loads heights in [0, 1] from one channel of an 8- or 16-bit image (`v/255` or `v/65535`).
