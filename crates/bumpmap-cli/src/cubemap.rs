@@ -1,6 +1,7 @@
 //! `bumpmap cubemap`: write a normalization cube map, or tabulate its accuracy.
 
-use bumpmap_io::image_file::{PngLayout, save_png};
+use bumpmap_io::atomic::FileSet;
+use bumpmap_io::image_file::{PngLayout, save_png_into};
 use bumpmap_io::texture_file::{TextureLayout, write_dds, write_ktx2};
 use bumpmap_math::Rgba8Image;
 use bumpmap_math::cubemap::worst_angular_error_degrees;
@@ -43,10 +44,12 @@ pub fn write(out: &std::path::Path, map: &NormalizationCubeMap) -> Result<(), Cl
         _ => {
             std::fs::create_dir_all(out)
                 .map_err(|e| CliError::Path { path: out.to_path_buf(), reason: e.to_string() })?;
+            let mut set = FileSet::new(&[]);
             for face in CubeFace::ALL {
                 let path = out.join(format!("{}.png", face.stem()));
-                save_png(&path, n, n, PngLayout::Rgb8, map.faces[face as usize].as_flattened())?;
+                save_png_into(&mut set, &path, n, n, PngLayout::Rgb8, map.faces[face as usize].as_flattened())?;
             }
+            set.commit()?;
         }
     }
     Ok(())

@@ -209,7 +209,7 @@ pub fn run(args: &DemoArgs) -> Result<(), CliError> {
         let (kind, params, technique) = (r.make)();
         let scene = scenes::build(&kind, &params).map_err(core_err)?;
         let frame = cpu.render(&scene, &technique, SIZE, SIZE, r.passes)?;
-        write_frame(&frame, &out.join(r.file))?;
+        write_frame(&frame, &out.join(r.file), &[])?;
         index += &format!("- `{}`: {}\n", r.file, r.what);
         bar.inc(1);
     }
@@ -244,7 +244,7 @@ fn gpu_renders(out: &Path, mode: DemoGpuArg) -> Result<String, CliError> {
         let (kind, params, technique) = (r.make)();
         let scene = scenes::build(&kind, &params).map_err(core_err)?;
         let frame = gpu.render(&scene, &technique, SIZE, SIZE, r.passes)?;
-        write_frame(&frame, &dir.join(r.file))?;
+        write_frame(&frame, &dir.join(r.file), &[])?;
         bar.inc(1);
     }
     bar.finish_and_clear();

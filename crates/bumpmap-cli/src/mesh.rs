@@ -1,8 +1,8 @@
 //! Meshes for `render --scene mesh:FILE` and `bumpmap tangents`.
 
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
-use bumpmap_io::atomic::ensure_not_input;
+use bumpmap_io::atomic::{FileSet, ensure_not_input};
 use bumpmap_math::mesh::Mesh;
 use bumpmap_math::tangent::{TangentMode, TangentOptions, generate_tangents};
 
@@ -47,7 +47,12 @@ pub fn run(args: &TangentsArgs) -> Result<(), CliError> {
         split_angle_degrees: args.split_angle,
     };
     let (mesh, report) = generate_tangents(&loaded.mesh, &options).map_err(|e| mesh_err(&args.input, e))?;
-    bumpmap_io::save_gltf(&args.output, &mesh)?;
+    // The outputs (a .gltf and its .bin, or a .glb) replace none of the files read, the
+    // input's buffer files included, and land together or not at all.
+    let sources: Vec<&Path> = loaded.sources.iter().map(PathBuf::as_path).collect();
+    let mut set = FileSet::new(&sources);
+    bumpmap_io::mesh_file::save_gltf_into(&mut set, &args.output, &mesh)?;
+    set.commit()?;
     println!(
         "{}: {} triangles, {} vertices in, {} out{}",
         args.input.display(),

@@ -2,9 +2,9 @@
 
 use std::path::{Path, PathBuf};
 
-use bumpmap_io::atomic::ensure_not_input;
-use bumpmap_io::image_file::{PngLayout, save_png};
-use bumpmap_io::texture_file::{TextureLayout, write_dds, write_ktx2};
+use bumpmap_io::atomic::{FileSet, ensure_not_input};
+use bumpmap_io::image_file::{PngLayout, save_png_into};
+use bumpmap_io::texture_file::{TextureLayout, write_dds_into, write_ktx2_into};
 use bumpmap_io::{Channel, HeightSource};
 use bumpmap_math::normalmap::normal_map_level0;
 use bumpmap_math::{HeightField, MipChain, MipMode, NormalMapOptions};
@@ -30,7 +30,19 @@ pub fn run(args: &NormalmapArgs) -> Result<(), CliError> {
     }
     let field = source.load(channel)?;
     let levels = make(&field, &options, args.mips, args.mip_mode.into(), &args.input)?;
-    write(&args.output, &levels)
+    let inputs: Vec<&Path> = source.path().into_iter().collect();
+    let written = write_set(&args.output, &levels, &inputs)?;
+    eprintln!("wrote {}", describe(&written));
+    Ok(())
+}
+
+/// `a.png` for one file, `a.png, a.mip1.png, … (9 files)` for a chain.
+fn describe(written: &[PathBuf]) -> String {
+    match written {
+        [one] => one.display().to_string(),
+        [first, .., last] => format!("{}, …, {} ({} files)", first.display(), last.display(), written.len()),
+        [] => "nothing".into(),
+    }
 }
 
 /// Level 0, or the whole chain.
@@ -61,17 +73,30 @@ pub fn level_path(out: &Path, k: usize) -> PathBuf {
 
 /// Writes a chain by the output's extension: PNG files, or one DDS / KTX2 file.
 pub fn write(out: &Path, chain: &MipChain) -> Result<(), CliError> {
+    write_set(out, chain, &[]).map(|_| ())
+}
+
+/// [`write`], all files or none, none of them replacing one of `inputs`; returns the paths.
+pub fn write_set(out: &Path, chain: &MipChain, inputs: &[&Path]) -> Result<Vec<PathBuf>, CliError> {
     let ext = out.extension().map(|e| e.to_string_lossy().to_ascii_lowercase()).unwrap_or_default();
     let images = || TextureLayout { faces: vec![chain.levels.iter().collect()] };
+    let mut set = FileSet::new(inputs);
     match ext.as_str() {
         "png" => {
             for (k, level) in chain.levels.iter().enumerate() {
-                save_png(&level_path(out, k), level.width, level.height, PngLayout::Rgba8, level.as_bytes())?;
+                let path = level_path(out, k);
+                save_png_into(&mut set, &path, level.width, level.height, PngLayout::Rgba8, level.as_bytes())?;
             }
-            Ok(())
+            Ok(set.commit()?)
         }
-        "dds" => Ok(write_dds(out, &images())?),
-        "ktx2" => Ok(write_ktx2(out, &images())?),
+        "dds" => {
+            write_dds_into(&mut set, out, &images())?;
+            Ok(set.commit()?)
+        }
+        "ktx2" => {
+            write_ktx2_into(&mut set, out, &images())?;
+            Ok(set.commit()?)
+        }
         _ => {
             Err(bumpmap_io::IoError::UnsupportedOutput { path: out.to_path_buf(), expected: ".png, .dds or .ktx2" }
                 .into())
@@ -103,6 +128,38 @@ fn run_folder(
     if files.is_empty() {
         return Err(CliError::Path { path: input.to_path_buf(), reason: "no image files in this folder".into() });
     }
+    // Two inputs whose outputs would be the same files (a.png and a.jpg; a.png and a.mip1.png
+    // with --mips) are refused before anything is read or written: one would be lost.
+    let stem = |p: &Path| p.file_stem().unwrap_or_default().to_string_lossy().into_owned();
+    let mut by_stem: std::collections::BTreeMap<String, &PathBuf> = std::collections::BTreeMap::new();
+    for file in &files {
+        if let Some(other) = by_stem.insert(stem(file), file) {
+            return Err(CliError::Path {
+                path: file.clone(),
+                reason: format!(
+                    "its output {}.png would also be the output of {}; rename one",
+                    stem(file),
+                    other.display()
+                ),
+            });
+        }
+    }
+    if args.mips {
+        for file in &files {
+            let s = stem(file);
+            let base = s.rsplit_once(".mip").filter(|(_, k)| k.parse::<u32>().is_ok_and(|k| k > 0)).map(|(b, _)| b);
+            if let Some(other) = base.and_then(|b| by_stem.get(b)) {
+                return Err(CliError::Path {
+                    path: file.clone(),
+                    reason: format!(
+                        "its output {s}.png would be a mip level of {}'s chain; rename one",
+                        other.display()
+                    ),
+                });
+            }
+        }
+    }
+    let created = !out_dir.exists();
     std::fs::create_dir_all(out_dir).map_err(|e| CliError::Path { path: out_dir.clone(), reason: e.to_string() })?;
     if std::fs::canonicalize(out_dir).ok() == std::fs::canonicalize(input).ok() {
         return Err(CliError::Path {
@@ -120,17 +177,22 @@ fn run_folder(
                 .map_err(CliError::from)
                 .and_then(|_| Ok(bumpmap_io::load_height_field(file, channel)?))
                 .and_then(|field| make(&field, options, args.mips, args.mip_mode.into(), &file.display().to_string()))
-                .and_then(|chain| write(&out, &chain));
+                .and_then(|chain| write_set(&out, &chain, &[file]).map(|_| ()));
             bar.inc(1);
             bar.set_message(file.file_name().unwrap_or_default().to_string_lossy().into_owned());
             result.map_err(|e| bar.suspend(|| eprintln!("error: {e}"))).is_err() as usize
         })
         .sum();
     bar.finish_and_clear();
+    if failed == files.len() && created {
+        // Nothing was written: leave no empty folder behind either.
+        let _ = std::fs::remove_dir(out_dir);
+    }
     if failed > 0 {
         return Err(CliError::Batch { failed, total: files.len() });
     }
-    eprintln!("wrote {} normal maps into {}", files.len(), out_dir.display());
+    let plural = if files.len() == 1 { "normal map" } else { "normal maps" };
+    eprintln!("wrote {} {plural} into {}", files.len(), out_dir.display());
     Ok(())
 }
 

@@ -16,8 +16,8 @@ use bumpmap_core::technique::{
     Technique, single_pass,
 };
 use bumpmap_core::{CoreError, Feature};
-use bumpmap_io::atomic::ensure_not_input;
-use bumpmap_io::image_file::{PngLayout, save_png};
+use bumpmap_io::atomic::{FileSet, ensure_not_input};
+use bumpmap_io::image_file::{PngLayout, save_png_into};
 use bumpmap_io::{Channel, HeightSource};
 use bumpmap_math::{NormalMapOptions, Rgba8Image, Rgba8Mips};
 use glam::{Vec2, Vec3};
@@ -48,7 +48,7 @@ pub fn run(args: &RenderArgs) -> Result<(), CliError> {
     }
     let mut backend = Backend::new(args.setup.backend.backend)?;
     let frame = backend.render(&scene, &technique, width, height, args.passes)?;
-    let written = write_frame(&frame, &args.output)?;
+    let written = write_frame(&frame, &args.output, &input_refs)?;
     eprintln!(
         "wrote {} ({})",
         written.iter().map(|p| p.display().to_string()).collect::<Vec<_>>().join(", "),
@@ -287,22 +287,21 @@ fn sampler(filter: FilterArg) -> Sampler {
     }
 }
 
-/// Writes `out` and, for each pass image of the frame, `OUT.NAME.png` beside it; returns the
-/// paths written. The colour buffer's alpha (s_self, not coverage) is left out.
-pub fn write_frame(frame: &Frame, out: &Path) -> Result<Vec<PathBuf>, CliError> {
+/// Writes `out` and, for each pass image of the frame, `OUT.NAME.png` beside it, all or none,
+/// none of them replacing one of `inputs`; returns the paths written. The colour buffer's alpha
+/// (s_self, not coverage) is left out.
+pub fn write_frame(frame: &Frame, out: &Path, inputs: &[&Path]) -> Result<Vec<PathBuf>, CliError> {
     if let Some(dir) = out.parent().filter(|d| !d.as_os_str().is_empty()) {
         std::fs::create_dir_all(dir).map_err(|e| CliError::Path { path: dir.to_path_buf(), reason: e.to_string() })?;
     }
-    let mut written = Vec::new();
+    let mut set = FileSet::new(inputs);
     for (name, image) in &frame.snapshots {
         let stem = out.file_stem().unwrap_or_default().to_string_lossy();
         let path = out.with_file_name(format!("{stem}.{name}.png"));
-        save_png(&path, image.width, image.height, PngLayout::Rgb8, &rgb(image))?;
-        written.push(path);
+        save_png_into(&mut set, &path, image.width, image.height, PngLayout::Rgb8, &rgb(image))?;
     }
-    save_png(out, frame.image.width, frame.image.height, PngLayout::Rgb8, &rgb(&frame.image))?;
-    written.push(out.to_path_buf());
-    Ok(written)
+    save_png_into(&mut set, out, frame.image.width, frame.image.height, PngLayout::Rgb8, &rgb(&frame.image))?;
+    Ok(set.commit()?)
 }
 
 /// An image's RGB bytes without alpha.

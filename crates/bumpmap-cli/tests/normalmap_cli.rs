@@ -131,16 +131,6 @@ fn cubemap_faces_match_the_library() {
 
 /// A 4×4 paletted PNG whose PLTE chunk holds 4 bytes (not a whole RGB entry), CRCs valid.
 fn png_with_bad_palette() -> Vec<u8> {
-    fn crc32(bytes: &[u8]) -> u32 {
-        let mut c = !0u32;
-        for &b in bytes {
-            c ^= b as u32;
-            for _ in 0..8 {
-                c = if c & 1 == 1 { 0xEDB8_8320 ^ (c >> 1) } else { c >> 1 };
-            }
-        }
-        !c
-    }
     let chunk = |kind: &[u8], data: &[u8]| {
         let mut c = (data.len() as u32).to_be_bytes().to_vec();
         let body: Vec<u8> = kind.iter().chain(data).copied().collect();

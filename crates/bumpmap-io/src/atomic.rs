@@ -6,28 +6,97 @@ use std::path::{Path, PathBuf};
 
 use crate::error::IoError;
 
-/// Writes `path` through `fill`: the bytes go to a hidden temporary file beside it, which is
-/// renamed over `path` only once `fill` and the flush succeeded. On any error the temporary file
-/// is removed and `path` is untouched.
+/// A set of output files written all or nothing: each file goes to a hidden temporary file
+/// beside its destination; [`FileSet::commit`] renames them all into place once every one was
+/// written. Until then no destination is touched, and a set dropped uncommitted (an error on
+/// the way) removes its temporary files. Every destination is checked against the inputs and
+/// against the set's other files before its bytes are written.
+///
+/// What it cannot promise: if a rename fails after others succeeded (the folder vanished, a
+/// disk error), the files renamed so far stay. Renames within one folder do not fail in
+/// practice once the temporary file exists.
+pub struct FileSet {
+    inputs: Vec<PathBuf>,
+    staged: Vec<(PathBuf, PathBuf)>,
+}
+
+impl FileSet {
+    /// A set whose files must not replace any of `inputs`.
+    pub fn new(inputs: &[&Path]) -> Self {
+        Self { inputs: inputs.iter().map(|p| p.to_path_buf()).collect(), staged: Vec::new() }
+    }
+
+    /// Writes `path`'s bytes through `fill` into its temporary file. Refuses a path that names
+    /// an input or a file already in the set.
+    pub fn write(
+        &mut self,
+        path: &Path,
+        fill: impl FnOnce(&mut BufWriter<File>) -> std::io::Result<()>,
+    ) -> Result<(), IoError> {
+        let inputs: Vec<&Path> = self.inputs.iter().map(PathBuf::as_path).collect();
+        ensure_not_input(path, &inputs)?;
+        let staged: Vec<&Path> = self.staged.iter().map(|(p, _)| p.as_path()).collect();
+        if staged.contains(&path) || ensure_not_input(path, &staged).is_err() {
+            return Err(IoError::Write {
+                path: path.to_path_buf(),
+                source: std::io::Error::other("two outputs of one command would be the same file"),
+            });
+        }
+        let err = |source| IoError::Write { path: path.to_path_buf(), source };
+        let dir = path.parent().filter(|d| !d.as_os_str().is_empty()).unwrap_or(Path::new("."));
+        let name = path.file_name().ok_or_else(|| err(std::io::Error::other("not a file name")))?;
+        let tmp = dir.join(format!(".{}.{}.{}.tmp", name.to_string_lossy(), std::process::id(), self.staged.len()));
+        let result = (|| {
+            let mut w = BufWriter::new(File::create(&tmp)?);
+            fill(&mut w)?;
+            w.flush()?;
+            w.into_inner().map_err(|e| e.into_error())?.sync_all()
+        })();
+        match result {
+            Ok(()) => {
+                self.staged.push((path.to_path_buf(), tmp));
+                Ok(())
+            }
+            Err(e) => {
+                let _ = std::fs::remove_file(&tmp);
+                Err(err(e))
+            }
+        }
+    }
+
+    /// Renames every file into place; returns their paths in the order they were written.
+    pub fn commit(mut self) -> Result<Vec<PathBuf>, IoError> {
+        let staged = std::mem::take(&mut self.staged);
+        let mut done = Vec::with_capacity(staged.len());
+        for (i, (path, tmp)) in staged.iter().enumerate() {
+            if let Err(source) = std::fs::rename(tmp, path) {
+                for (_, t) in &staged[i..] {
+                    let _ = std::fs::remove_file(t);
+                }
+                return Err(IoError::Write { path: path.clone(), source });
+            }
+            done.push(path.clone());
+        }
+        Ok(done)
+    }
+}
+
+impl Drop for FileSet {
+    fn drop(&mut self) {
+        for (_, tmp) in &self.staged {
+            let _ = std::fs::remove_file(tmp);
+        }
+    }
+}
+
+/// Writes one file atomically (a [`FileSet`] of one, with no inputs to protect).
 pub fn write_atomic(
     path: &Path,
     fill: impl FnOnce(&mut BufWriter<File>) -> std::io::Result<()>,
 ) -> Result<(), IoError> {
-    let err = |source| IoError::Write { path: path.to_path_buf(), source };
-    let dir = path.parent().filter(|d| !d.as_os_str().is_empty()).unwrap_or(Path::new("."));
-    let name = path.file_name().ok_or_else(|| err(std::io::Error::other("not a file name")))?;
-    let tmp = dir.join(format!(".{}.{}.tmp", name.to_string_lossy(), std::process::id()));
-    let result = (|| {
-        let mut w = BufWriter::new(File::create(&tmp)?);
-        fill(&mut w)?;
-        w.flush()?;
-        w.into_inner().map_err(|e| e.into_error())?.sync_all()?;
-        std::fs::rename(&tmp, path)
-    })();
-    if result.is_err() {
-        let _ = std::fs::remove_file(&tmp);
-    }
-    result.map_err(err)
+    let mut set = FileSet::new(&[]);
+    set.write(path, fill)?;
+    set.commit().map(|_| ())
 }
 
 /// Refuses an output path that names the same file as any input (also through links or
@@ -68,6 +137,31 @@ mod tests {
         assert_eq!(std::fs::read(&target).unwrap(), b"new");
         assert!(matches!(ensure_not_input(&dir.join("./out.bin"), &[&target]), Err(IoError::SameAsInput { .. })));
         assert!(ensure_not_input(&dir.join("other.bin"), &[&target]).is_ok());
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    #[test]
+    fn a_set_is_written_all_or_nothing_and_never_over_an_input() {
+        let dir = std::env::temp_dir().join(format!("bumpmap-fileset-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let input = dir.join("in.png");
+        std::fs::write(&input, b"input").unwrap();
+        // The third file names the input: nothing of the set may appear.
+        let mut set = FileSet::new(&[&input]);
+        set.write(&dir.join("a"), |w| w.write_all(b"a")).unwrap();
+        set.write(&dir.join("b"), |w| w.write_all(b"b")).unwrap();
+        assert!(matches!(set.write(&input, |w| w.write_all(b"x")), Err(IoError::SameAsInput { .. })));
+        drop(set);
+        let names: Vec<_> = std::fs::read_dir(&dir).unwrap().map(|e| e.unwrap().file_name()).collect();
+        assert_eq!(names, ["in.png"], "no file of an unfinished set, no temporary file");
+        assert_eq!(std::fs::read(&input).unwrap(), b"input");
+        // The same output twice is refused; a good set lands whole.
+        let mut set = FileSet::new(&[&input]);
+        set.write(&dir.join("a"), |w| w.write_all(b"a")).unwrap();
+        assert!(set.write(&dir.join("./a"), |w| w.write_all(b"again")).is_err());
+        set.write(&dir.join("b"), |w| w.write_all(b"b")).unwrap();
+        assert_eq!(set.commit().unwrap().len(), 2);
+        assert_eq!(std::fs::read(dir.join("a")).unwrap(), b"a");
         std::fs::remove_dir_all(&dir).unwrap();
     }
 }

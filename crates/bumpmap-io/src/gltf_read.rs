@@ -25,6 +25,8 @@ fn err(path: &Path, reason: impl std::fmt::Display) -> IoError {
 pub(crate) struct GltfFile {
     pub document: gltf::Document,
     pub buffers: Vec<Vec<u8>>,
+    /// The buffer files read besides the glTF itself.
+    pub files: Vec<PathBuf>,
 }
 
 /// Reads and checks `path` (see the module docs).
@@ -53,6 +55,7 @@ pub(crate) fn read(path: &Path) -> Result<GltfFile, IoError> {
         gltf::Gltf { document: gltf::Document::from_json(gltf.document.into_json()).map_err(unread)?, blob: gltf.blob };
     let dir = path.parent().map(Path::to_path_buf).unwrap_or_default();
     let mut buffers = Vec::new();
+    let mut files = Vec::new();
     for buffer in gltf.document.buffers() {
         let length = buffer.length();
         if length as u64 > MAX_FILE_BYTES {
@@ -65,7 +68,7 @@ pub(crate) fn read(path: &Path) -> Result<GltfFile, IoError> {
             gltf::buffer::Source::Bin => gltf.blob.clone().ok_or_else(|| {
                 err(path, format!("buffer {} refers to a GLB chunk the file does not have", buffer.index()))
             })?,
-            gltf::buffer::Source::Uri(uri) => read_uri(path, &dir, buffer.index(), uri, length)?,
+            gltf::buffer::Source::Uri(uri) => read_uri(path, &dir, buffer.index(), uri, length, &mut files)?,
         };
         if data.len() < length {
             return Err(err(path, format!("buffer {} declares {length} bytes but has {}", buffer.index(), data.len())));
@@ -74,7 +77,7 @@ pub(crate) fn read(path: &Path) -> Result<GltfFile, IoError> {
         buffers.push(data);
     }
     check_accessors(path, &gltf.document, &buffers)?;
-    Ok(GltfFile { document: gltf.document, buffers })
+    Ok(GltfFile { document: gltf.document, buffers, files })
 }
 
 /// Reads at most `max` bytes of a regular file.
@@ -140,7 +143,14 @@ fn percent_decode(uri: &str) -> Option<String> {
 }
 
 /// A buffer's bytes from its URI: a base64 `data:` URI, or a relative path inside `dir`.
-fn read_uri(path: &Path, dir: &Path, index: usize, uri: &str, length: usize) -> Result<Vec<u8>, IoError> {
+fn read_uri(
+    path: &Path,
+    dir: &Path,
+    index: usize,
+    uri: &str,
+    length: usize,
+    files: &mut Vec<PathBuf>,
+) -> Result<Vec<u8>, IoError> {
     if let Some(rest) = uri.strip_prefix("data:") {
         let (_, encoded) = rest
             .split_once(";base64,")
@@ -177,7 +187,9 @@ fn read_uri(path: &Path, dir: &Path, index: usize, uri: &str, length: usize) -> 
     if !real_file.starts_with(&real_dir) {
         return Err(outside());
     }
-    read_file(path, &real_file, length as u64)
+    let data = read_file(path, &real_file, length as u64)?;
+    files.push(real_file);
+    Ok(data)
 }
 
 /// The component types (and whether normalized) an accessor may have.

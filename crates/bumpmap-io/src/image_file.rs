@@ -9,7 +9,7 @@ use std::path::{Path, PathBuf};
 use bumpmap_math::{HeightField, HeightPreset, Rgba8Image};
 use image::{DynamicImage, ImageReader, Limits};
 
-use crate::atomic::write_atomic;
+use crate::atomic::FileSet;
 use crate::error::IoError;
 
 /// The largest width or height accepted for any image, in or out.
@@ -193,6 +193,20 @@ pub enum PngLayout {
 
 /// Writes an 8-bit PNG atomically. `bytes` holds `width·height` pixels, row 0 first.
 pub fn save_png(path: &Path, width: usize, height: usize, layout: PngLayout, bytes: &[u8]) -> Result<(), IoError> {
+    let mut set = FileSet::new(&[]);
+    save_png_into(&mut set, path, width, height, layout, bytes)?;
+    set.commit().map(|_| ())
+}
+
+/// [`save_png`] as one file of a [`FileSet`].
+pub fn save_png_into(
+    set: &mut FileSet,
+    path: &Path,
+    width: usize,
+    height: usize,
+    layout: PngLayout,
+    bytes: &[u8],
+) -> Result<(), IoError> {
     use image::ImageEncoder;
     let color = match layout {
         PngLayout::Gray8 => image::ExtendedColorType::L8,
@@ -200,7 +214,7 @@ pub fn save_png(path: &Path, width: usize, height: usize, layout: PngLayout, byt
         PngLayout::Rgba8 => image::ExtendedColorType::Rgba8,
     };
     debug_assert_eq!(bytes.len(), width * height * color.bits_per_pixel() as usize / 8);
-    write_atomic(path, |w| {
+    set.write(path, |w| {
         image::codecs::png::PngEncoder::new_with_quality(
             w,
             image::codecs::png::CompressionType::Fast,

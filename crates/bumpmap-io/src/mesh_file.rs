@@ -8,12 +8,12 @@
 //! refuses it. Counts are checked against `MAX_ELEMENTS` before any data is read.
 
 use std::io::Write;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 use bumpmap_math::mesh::{MAX_ELEMENTS, Mesh, MeshError};
 use glam::{Vec2, Vec3, Vec4};
 
-use crate::atomic::write_atomic;
+use crate::atomic::FileSet;
 use crate::error::IoError;
 
 /// A loaded mesh and what the file itself supplied.
@@ -22,6 +22,9 @@ pub struct LoadedMesh {
     pub mesh: Mesh,
     pub had_normals: bool,
     pub had_tangents: bool,
+    /// Every file read: the mesh file and, for glTF, its buffer files. An output must replace
+    /// none of them.
+    pub sources: Vec<PathBuf>,
 }
 
 fn mesh_err(path: &Path, reason: impl std::fmt::Display) -> IoError {
@@ -80,11 +83,11 @@ fn load_obj(path: &Path) -> Result<LoadedMesh, IoError> {
     if !has_texcoords {
         mesh.texcoords.clear();
     }
-    Ok(LoadedMesh { mesh, had_normals, had_tangents: false })
+    Ok(LoadedMesh { mesh, had_normals, had_tangents: false, sources: vec![path.to_path_buf()] })
 }
 
 fn load_gltf(path: &Path) -> Result<LoadedMesh, IoError> {
-    let crate::gltf_read::GltfFile { document, buffers } = crate::gltf_read::read(path)?;
+    let crate::gltf_read::GltfFile { document, buffers, files } = crate::gltf_read::read(path)?;
     for accessor in document.accessors() {
         if accessor.count() > MAX_ELEMENTS {
             return Err(mesh_err(
@@ -148,12 +151,21 @@ fn load_gltf(path: &Path) -> Result<LoadedMesh, IoError> {
     if !had_tangents {
         mesh.tangents.clear();
     }
-    Ok(LoadedMesh { mesh, had_normals, had_tangents })
+    let mut sources = vec![path.to_path_buf()];
+    sources.extend(files);
+    Ok(LoadedMesh { mesh, had_normals, had_tangents, sources })
 }
 
 /// Writes `mesh` (positions, normals, texture coordinates, tangents, indices) as glTF 2.0: a
 /// `.glb`, or a `.gltf` with its buffer in a `.bin` file beside it. Both written atomically.
 pub fn save_gltf(path: &Path, mesh: &Mesh) -> Result<(), IoError> {
+    let mut set = FileSet::new(&[]);
+    save_gltf_into(&mut set, path, mesh)?;
+    set.commit().map(|_| ())
+}
+
+/// [`save_gltf`] into a [`FileSet`]: the `.gltf` and its `.bin`, or the `.glb`.
+pub fn save_gltf_into(set: &mut FileSet, path: &Path, mesh: &Mesh) -> Result<(), IoError> {
     let ext = path.extension().map(|e| e.to_string_lossy().to_ascii_lowercase()).unwrap_or_default();
     if ext != "gltf" && ext != "glb" {
         return Err(IoError::UnsupportedOutput { path: path.to_path_buf(), expected: ".gltf or .glb" });
@@ -208,15 +220,15 @@ pub fn save_gltf(path: &Path, mesh: &Mesh) -> Result<(), IoError> {
         accessors.join(",")
     );
     if ext == "gltf" {
-        write_atomic(&path.with_file_name(&bin_name), |w| w.write_all(&bin))?;
-        return write_atomic(path, |w| w.write_all(json.as_bytes()));
+        set.write(&path.with_file_name(&bin_name), |w| w.write_all(&bin))?;
+        return set.write(path, |w| w.write_all(json.as_bytes()));
     }
     let mut json = json.into_bytes();
     while !json.len().is_multiple_of(4) {
         json.push(b' ');
     }
     let total = 12 + 8 + json.len() + 8 + bin.len();
-    write_atomic(path, |w| {
+    set.write(path, |w| {
         w.write_all(b"glTF")?;
         w.write_all(&2u32.to_le_bytes())?;
         w.write_all(&(total as u32).to_le_bytes())?;

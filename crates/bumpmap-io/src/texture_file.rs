@@ -7,7 +7,7 @@
 use std::io::Write;
 use std::path::Path;
 
-use crate::atomic::write_atomic;
+use crate::atomic::FileSet;
 use crate::error::IoError;
 use bumpmap_math::Rgba8Image;
 
@@ -19,6 +19,13 @@ pub struct TextureLayout<'a> {
 
 /// Writes a DDS file (legacy header, 32-bit RGBA masks, mipmap count, cube-map caps).
 pub fn write_dds(path: &Path, tex: &TextureLayout) -> Result<(), IoError> {
+    let mut set = FileSet::new(&[]);
+    write_dds_into(&mut set, path, tex)?;
+    set.commit().map(|_| ())
+}
+
+/// [`write_dds`] as one file of a [`FileSet`].
+pub fn write_dds_into(set: &mut FileSet, path: &Path, tex: &TextureLayout) -> Result<(), IoError> {
     let base = tex.faces[0][0];
     let levels = tex.faces[0].len() as u32;
     let cube = tex.faces.len() == 6;
@@ -55,7 +62,7 @@ pub fn write_dds(path: &Path, tex: &TextureLayout) -> Result<(), IoError> {
     for v in [caps, caps2, 0, 0, 0] {
         put(v);
     }
-    write_atomic(path, |w| {
+    set.write(path, |w| {
         w.write_all(&header)?;
         for face in &tex.faces {
             for level in face {
@@ -69,6 +76,13 @@ pub fn write_dds(path: &Path, tex: &TextureLayout) -> Result<(), IoError> {
 /// Writes a KTX 2.0 file: `VK_FORMAT_R8G8B8A8_UNORM`, a basic data-format descriptor with
 /// linear transfer, levels stored smallest first as the specification requires.
 pub fn write_ktx2(path: &Path, tex: &TextureLayout) -> Result<(), IoError> {
+    let mut set = FileSet::new(&[]);
+    write_ktx2_into(&mut set, path, tex)?;
+    set.commit().map(|_| ())
+}
+
+/// [`write_ktx2`] as one file of a [`FileSet`].
+pub fn write_ktx2_into(set: &mut FileSet, path: &Path, tex: &TextureLayout) -> Result<(), IoError> {
     let base = tex.faces[0][0];
     let levels = tex.faces[0].len();
     let faces = tex.faces.len();
@@ -99,7 +113,7 @@ pub fn write_ktx2(path: &Path, tex: &TextureLayout) -> Result<(), IoError> {
         }
     }
     head.extend_from_slice(&dfd);
-    write_atomic(path, |w| {
+    set.write(path, |w| {
         w.write_all(&head)?;
         let mut written = head.len();
         for level in (0..levels).rev() {

@@ -33,7 +33,8 @@ pub fn write_gray_png(path: &Path, w: u32, h: u32, f: impl Fn(u32, u32) -> u8) {
     image::GrayImage::from_fn(w, h, |x, y| image::Luma([f(x, y)])).save(path).unwrap();
 }
 
-fn crc32(bytes: &[u8]) -> u32 {
+/// CRC-32 (PNG chunks, zlib's polynomial).
+pub fn crc32(bytes: &[u8]) -> u32 {
     let mut crc = !0u32;
     for &b in bytes {
         crc ^= b as u32;
