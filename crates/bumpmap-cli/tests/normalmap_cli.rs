@@ -183,3 +183,21 @@ fn a_palette_that_is_not_whole_rgb_entries_is_an_error_not_a_panic() {
         "PLTE chunk of 4 bytes",
     );
 }
+
+#[test]
+fn misspelt_presets_say_what_is_wrong_with_them() {
+    let dir = scratch("bad_presets");
+    let out = dir.join("out.png");
+    for (spec, expect) in [
+        ("bricks@0", "size 0 is outside 1..=16384"),
+        ("bricks@100000", "size 100000 is outside 1..=16384"),
+        ("noise:abc", "noise:SEED takes a whole number, got 'abc'"),
+        ("foo@64", "unknown preset 'foo'"),
+        ("teapot", "unknown preset 'teapot'"),
+    ] {
+        let o = bumpmap(&["normalmap", spec, "-o", out.to_str().unwrap()]);
+        assert_eq!(o.status.code(), Some(1), "{spec}: {}", stderr(&o));
+        assert!(stderr(&o).contains(expect), "{spec}: message must say '{expect}': {}", stderr(&o));
+        assert!(listing(&dir).is_empty(), "{spec}: no output");
+    }
+}

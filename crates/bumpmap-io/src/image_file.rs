@@ -65,6 +65,16 @@ impl HeightSource {
     pub fn load(&self, channel: Channel) -> Result<HeightField, IoError> {
         match self {
             HeightSource::Preset { preset, size } => Ok(preset.render(*size, *size)),
+            HeightSource::File(path) if !path.exists() => match preset_hint(&path.to_string_lossy()) {
+                Some(hint) => Err(IoError::Read {
+                    path: path.clone(),
+                    source: std::io::Error::new(
+                        std::io::ErrorKind::NotFound,
+                        format!("no such file, and not a preset: {hint}"),
+                    ),
+                }),
+                None => load_height_field(path, channel),
+            },
             HeightSource::File(path) => load_height_field(path, channel),
         }
     }
@@ -76,6 +86,25 @@ impl HeightSource {
             HeightSource::Preset { .. } => None,
         }
     }
+}
+
+/// Why `spec`, which names no file, is not a preset either — when it looks like an attempt at
+/// one (a preset name with a bad `@SIZE`, `noise:` with a bad seed, or a bare word).
+fn preset_hint(spec: &str) -> Option<String> {
+    let sizes = format!("1..={MAX_DIMENSION}");
+    if let Some((name, size)) = spec.rsplit_once('@') {
+        let known = HeightPreset::parse(name).is_some();
+        return Some(match size.parse::<usize>() {
+            Ok(n) if known => format!("size {n} is outside {sizes}"),
+            Err(_) if known => format!("'{size}' is not a size ({sizes})"),
+            _ => format!("unknown preset '{name}' (use {}, optionally @SIZE)", HeightPreset::NAMES),
+        });
+    }
+    if let Some(seed) = spec.strip_prefix("noise:") {
+        return Some(format!("noise:SEED takes a whole number, got '{seed}'"));
+    }
+    let bare = !spec.contains(['.', '/', '\\']);
+    bare.then(|| format!("unknown preset '{spec}' (use {}, optionally @SIZE)", HeightPreset::NAMES))
 }
 
 fn decode(path: &Path) -> Result<DynamicImage, IoError> {
