@@ -72,10 +72,7 @@ impl Backend {
     pub fn draw(&mut self, scene: &Scene, technique: &Technique, width: usize, height: usize) -> Result<(), CliError> {
         match self {
             Backend::Cpu { renderer, fb } => {
-                if fb.as_ref().is_none_or(|f| (f.width, f.height) != (width, height)) {
-                    *fb = Some(Framebuffer::new(width, height).map_err(cpu_err)?);
-                }
-                let fb = fb.as_mut().expect("made above");
+                let fb = framebuffer(fb, width, height)?;
                 renderer.render(scene, technique, fb, |_, _| {}).map_err(cpu_err)
             }
             Backend::Gpu(g) => g.draw(scene, technique, width, height).map_err(gpu_err),
@@ -95,10 +92,7 @@ impl Backend {
         let mut shots = Vec::new();
         let image = match self {
             Backend::Cpu { renderer, fb } => {
-                if fb.as_ref().is_none_or(|f| (f.width, f.height) != (width, height)) {
-                    *fb = Some(Framebuffer::new(width, height).map_err(cpu_err)?);
-                }
-                let fb = fb.as_mut().expect("made above");
+                let fb = framebuffer(fb, width, height)?;
                 renderer
                     .render(scene, technique, fb, |name, fb| {
                         if snapshots {
@@ -118,6 +112,14 @@ impl Backend {
         };
         Ok(Frame { image, snapshots: shots })
     }
+}
+
+/// The kept framebuffer, made anew when the size changes.
+fn framebuffer(fb: &mut Option<Framebuffer>, width: usize, height: usize) -> Result<&mut Framebuffer, CliError> {
+    if fb.as_ref().is_none_or(|f| (f.width, f.height) != (width, height)) {
+        *fb = Some(Framebuffer::new(width, height).map_err(cpu_err)?);
+    }
+    Ok(fb.as_mut().expect("made above"))
 }
 
 fn cpu_err(e: CpuError) -> CliError {

@@ -203,21 +203,28 @@ pub fn run(args: &DemoArgs) -> Result<(), CliError> {
     crate::cubemap::write(&out.join("cubemap"), &NormalizationCubeMap::new(32, Encoding::Unorm))?;
     index += "- `cubemap/px.png` … `nz.png`: a 32² normalization cube map\n";
     bar.inc(1);
-    let mut cpu = Backend::new(BackendArg::Cpu)?;
+    render_all(&mut Backend::new(BackendArg::Cpu)?, out, &bar, "render")?;
     for r in RENDERS {
-        bar.set_message(format!("render: {}", r.file));
-        let (kind, params, technique) = (r.make)();
-        let scene = scenes::build(&kind, &params).map_err(core_err)?;
-        let frame = cpu.render(&scene, &technique, SIZE, SIZE, r.passes)?;
-        write_frame(&frame, &out.join(r.file), &[])?;
         index += &format!("- `{}`: {}\n", r.file, r.what);
-        bar.inc(1);
     }
     index += "- `fig11_torus.decal.png`, `.diffuse.png`, `.specular.png`: Kilgard Figure 12, the framebuffer after each pass\n";
     bar.finish_and_clear();
     index += &gpu_renders(out, args.gpu)?;
     crate::normalmap::write_text(&out.join("README.md"), &index)?;
     eprintln!("wrote the demo into {} (see its README.md)", out.display());
+    Ok(())
+}
+
+/// Every render of [`RENDERS`] by `backend` into `dir`, one step of `bar` each.
+fn render_all(backend: &mut Backend, dir: &Path, bar: &ProgressBar, label: &str) -> Result<(), CliError> {
+    for r in RENDERS {
+        bar.set_message(format!("{label}: {}", r.file));
+        let (kind, params, technique) = (r.make)();
+        let scene = scenes::build(&kind, &params).map_err(core_err)?;
+        let frame = backend.render(&scene, &technique, SIZE, SIZE, r.passes)?;
+        write_frame(&frame, &dir.join(r.file), &[])?;
+        bar.inc(1);
+    }
     Ok(())
 }
 
@@ -239,14 +246,7 @@ fn gpu_renders(out: &Path, mode: DemoGpuArg) -> Result<String, CliError> {
     std::fs::create_dir_all(&dir).map_err(|e| CliError::Path { path: dir.clone(), reason: e.to_string() })?;
     let bar = ProgressBar::new(RENDERS.len() as u64)
         .with_style(ProgressStyle::with_template("{bar:40} {pos}/{len} {wide_msg}").expect("valid template"));
-    for r in RENDERS {
-        bar.set_message(format!("gpu: {}", r.file));
-        let (kind, params, technique) = (r.make)();
-        let scene = scenes::build(&kind, &params).map_err(core_err)?;
-        let frame = gpu.render(&scene, &technique, SIZE, SIZE, r.passes)?;
-        write_frame(&frame, &dir.join(r.file), &[])?;
-        bar.inc(1);
-    }
+    render_all(&mut gpu, &dir, &bar, "gpu")?;
     bar.finish_and_clear();
     eprintln!("GPU images drawn by {}", gpu.name());
     Ok(format!("\n`gpu/`: the same renders by the wgpu backend on {}.\n", gpu.name()))

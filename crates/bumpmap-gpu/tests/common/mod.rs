@@ -12,11 +12,11 @@ fn adapter_required() -> bool {
     std::env::var_os("CI").is_some() || std::env::var_os("BUMPMAP_REQUIRE_GPU").is_some()
 }
 
-/// A GPU renderer, or `None` (with a note on stderr) where no adapter exists and CI is not
-/// set. Under CI a missing adapter fails the test.
-pub fn renderer() -> Option<GpuRenderer> {
-    match GpuRenderer::new() {
-        Ok(r) => Some(r),
+/// `Some` of an opened adapter; `None` (with a note on stderr) where none exists and CI is
+/// not set. Under CI a missing adapter fails the test.
+fn or_skip<T>(opened: Result<T, bumpmap_gpu::GpuError>) -> Option<T> {
+    match opened {
+        Ok(v) => Some(v),
         Err(e) if !adapter_required() => {
             eprintln!("SKIPPED: no GPU adapter ({e}); install mesa-vulkan-drivers for lavapipe");
             None
@@ -25,16 +25,14 @@ pub fn renderer() -> Option<GpuRenderer> {
     }
 }
 
-/// A device for compute tests, on the same terms as [`renderer`].
+/// A GPU renderer, on the terms of [`or_skip`].
+pub fn renderer() -> Option<GpuRenderer> {
+    or_skip(GpuRenderer::new())
+}
+
+/// A device for compute tests, on the terms of [`or_skip`].
 pub fn context() -> Option<Context> {
-    match Context::new() {
-        Ok(c) => Some(c),
-        Err(e) if !adapter_required() => {
-            eprintln!("SKIPPED: no GPU adapter ({e})");
-            None
-        }
-        Err(e) => panic!("no GPU adapter under CI: {e}"),
-    }
+    or_skip(Context::new())
 }
 
 /// Plain f32/u32 data as bytes.
