@@ -112,17 +112,19 @@ impl From<EncodingArg> for Encoding {
 
 #[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
 pub enum YArg {
-    /// Green = +Y toward the next row (t up): OpenGL, glTF, Blender, Unity
+    /// Green up: +Y toward the top of the image as displayed (glTF, OpenGL, Blender, Maya, Unity)
+    #[value(alias = "y-up")]
     Opengl,
-    /// Green flipped: DirectX, Unreal, 3ds Max
+    /// Green down: +Y toward the bottom of the image as displayed (DirectX, Unreal, 3ds Max)
+    #[value(alias = "y-down")]
     Directx,
 }
 
 impl From<YArg> for YConvention {
     fn from(y: YArg) -> Self {
         match y {
-            YArg::Opengl => YConvention::OpenGl,
-            YArg::Directx => YConvention::DirectX,
+            YArg::Opengl => YConvention::YUp,
+            YArg::Directx => YConvention::YDown,
         }
     }
 }
@@ -180,7 +182,7 @@ pub struct NormalMapOpts {
     /// Byte encoding of the normal's components
     #[arg(long, value_enum, default_value = "unorm")]
     pub encoding: EncodingArg,
-    /// Which way green points
+    /// Which way green points in the file, as the image is displayed: opengl (alias y-up: glTF, Blender, Unity) or directx (alias y-down: Unreal)
     #[arg(long = "y-convention", value_enum, default_value = "opengl")]
     pub y_convention: YArg,
     /// Which channel of a colour image holds the heights (greyscale images: their grey value)
@@ -239,8 +241,8 @@ pub struct CubemapArgs {
     /// A folder (six PNG faces), or a .dds / .ktx2 cube-map file
     #[arg(short, long, required_unless_present = "accuracy")]
     pub output: Option<PathBuf>,
-    /// Print the worst angular error of the bilinear lookup for face sizes 8–128, both encodings
-    #[arg(long)]
+    /// Print the worst angular error of the bilinear lookup for face sizes 8–128, both encodings (writes nothing; takes no other option)
+    #[arg(long, conflicts_with_all = ["output", "size", "encoding"])]
     pub accuracy: bool,
 }
 
@@ -333,6 +335,19 @@ pub fn parse_pair(s: &str) -> Result<(f32, f32), String> {
     }
 }
 
+/// The largest image side `render` and `bench render` take (the CPU framebuffer's limit on
+/// the pixel count applies as well).
+pub const MAX_SIDE: usize = 16384;
+
+/// An image side in pixels, 1..=[`MAX_SIDE`].
+pub fn parse_side(s: &str) -> Result<usize, String> {
+    s.trim()
+        .parse::<usize>()
+        .ok()
+        .filter(|n| (1..=MAX_SIDE).contains(n))
+        .ok_or_else(|| format!("'{s}' is not a size in 1..={MAX_SIDE} pixels"))
+}
+
 /// Two positive integers, `U,V`.
 pub fn parse_counts(s: &str) -> Result<(usize, usize), String> {
     let (a, b) = s.split_once(',').ok_or_else(|| format!("expected U,V, got '{s}'"))?;
@@ -344,6 +359,25 @@ pub fn parse_counts(s: &str) -> Result<(usize, usize), String> {
             .ok_or_else(|| format!("'{x}' is not a count in 1..=4096"))
     };
     Ok((p(a)?, p(b)?))
+}
+
+/// How an OBJ's `vt` map to the image.
+#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum ObjVArg {
+    /// v = 0 is the image's bottom row, as Blender, Maya and OBJ exporters write it
+    #[default]
+    Flip,
+    /// v = 0 is the image's top row (OBJ files from tools that write glTF's convention)
+    Keep,
+}
+
+impl From<ObjVArg> for bumpmap_io::ObjTexcoords {
+    fn from(v: ObjVArg) -> Self {
+        match v {
+            ObjVArg::Flip => bumpmap_io::ObjTexcoords::FlipV,
+            ObjVArg::Keep => bumpmap_io::ObjTexcoords::Keep,
+        }
+    }
 }
 
 #[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
@@ -372,4 +406,13 @@ pub struct TangentsArgs {
     /// Ours: tangents further apart than this many degrees split a vertex
     #[arg(long = "split-angle", default_value_t = 60.0)]
     pub split_angle: f32,
+    /// glTF only: let buffer URIs lead outside the glTF's folder (absolute paths, ..); off by default, so a downloaded glTF cannot make bumpmap read other files
+    #[arg(long = "allow-outside-paths")]
+    pub allow_outside_paths: bool,
+    /// OBJ only: flip (v = 0 at the image's bottom, the OBJ convention) or keep the file's v
+    #[arg(long = "obj-v", value_enum, default_value = "flip")]
+    pub obj_v: ObjVArg,
+    /// A PNG normal map (green up, as `normalmap` writes by default) to pack into the output as the material's normalTexture: a ready-to-view asset
+    #[arg(long = "normal-map")]
+    pub normal_map: Option<PathBuf>,
 }

@@ -147,7 +147,7 @@ fn bench_tangents(triangles: usize, mode: crate::args::TangentModeArg, runs: u32
 fn bench_render(args: &BenchRenderArgs) -> Result<(), CliError> {
     let (size, frames, runs) = (args.size, args.frames, args.runs);
     crate::backend::check_size(size, size)?;
-    let mut scene = crate::render::build_scene(&args.setup)?;
+    let (mut scene, _) = crate::render::build_scene(&args.setup)?;
     let technique = crate::render::technique(&args.setup)?;
     let mut backend = crate::backend::Backend::new(args.setup.backend.backend)?;
     let mut frame = |k: u32| -> Result<(), CliError> {

@@ -42,8 +42,7 @@ pub fn write(out: &std::path::Path, map: &NormalizationCubeMap) -> Result<(), Cl
             .into());
         }
         _ => {
-            std::fs::create_dir_all(out)
-                .map_err(|e| CliError::Path { path: out.to_path_buf(), reason: e.to_string() })?;
+            // The set makes the folder if it is missing (and removes it again on failure).
             let mut set = FileSet::new(&[]);
             for face in CubeFace::ALL {
                 let path = out.join(format!("{}.png", face.stem()));

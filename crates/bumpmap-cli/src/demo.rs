@@ -192,7 +192,9 @@ pub fn run(args: &DemoArgs) -> Result<(), CliError> {
         bar.set_message(format!("normal map: {name}"));
         let field = preset.render(256, 256);
         save_png(&out.join(format!("{name}_height.png")), 256, 256, PngLayout::Gray8, &field.to_u8())?;
-        let chain = crate::normalmap::make(&field, &NormalMapOptions::default(), true, MipMode::LengthInAlpha, name)?;
+        // A file for other tools: green up, as glTF and Blender read it.
+        let options = NormalMapOptions { y_convention: bumpmap_math::YConvention::YUp, ..Default::default() };
+        let chain = crate::normalmap::make(&field, &options, true, MipMode::LengthInAlpha, name)?;
         crate::normalmap::write(&out.join(format!("{name}_normal.png")), &chain)?;
         index += &format!(
             "- `{name}_height.png`, `{name}_normal.png` (+ `.mip1` … `.mip8`): the {name} preset and its normal map; alpha of the mips is the length of the averaged normal\n"

@@ -2,6 +2,7 @@
 
 use std::path::{Path, PathBuf};
 
+use bumpmap_io::MeshOptions;
 use bumpmap_io::atomic::{FileSet, ensure_not_input};
 use bumpmap_math::mesh::Mesh;
 use bumpmap_math::tangent::{TangentMode, TangentOptions, generate_tangents};
@@ -14,17 +15,21 @@ fn mesh_err(path: &Path, e: impl std::fmt::Display) -> CliError {
 }
 
 /// Loads a mesh and makes sure it has tangents (ours, generated, when the file has none).
-pub fn load_for_render(path: &Path) -> Result<Mesh, CliError> {
-    let loaded = bumpmap_io::load_mesh(path)?;
+/// Returns it with every file read (the mesh and its glTF buffers), which no output may replace.
+pub fn load_for_render(path: &Path, options: &MeshOptions) -> Result<(Mesh, Vec<PathBuf>), CliError> {
+    let loaded = bumpmap_io::load_mesh_with(path, options)?;
     if loaded.had_tangents {
-        return Ok(loaded.mesh);
+        return Ok((loaded.mesh, loaded.sources));
     }
     let (mesh, _) = generate_tangents(&loaded.mesh, &TangentOptions::default()).map_err(|e| mesh_err(path, e))?;
-    Ok(mesh)
+    Ok((mesh, loaded.sources))
 }
 
 /// `bumpmap tangents IN -o OUT`: generate tangents and write glTF with a TANGENT attribute.
 pub fn run(args: &TangentsArgs) -> Result<(), CliError> {
+    if !(0.0..=180.0).contains(&args.split_angle) {
+        return Err(CliError::Usage(format!("--split-angle must be in [0, 180], got {}", args.split_angle)));
+    }
     ensure_not_input(&args.output, &[&args.input])?;
     let ext = args.output.extension().map(|e| e.to_string_lossy().to_ascii_lowercase());
     if !matches!(ext.as_deref(), Some("gltf") | Some("glb")) {
@@ -32,13 +37,10 @@ pub fn run(args: &TangentsArgs) -> Result<(), CliError> {
             bumpmap_io::IoError::UnsupportedOutput { path: args.output.clone(), expected: ".gltf or .glb" }.into()
         );
     }
-    let loaded = bumpmap_io::load_mesh(&args.input)?;
-    if !(0.0..=180.0).contains(&args.split_angle) {
-        return Err(CliError::Path {
-            path: args.input.clone(),
-            reason: format!("--split-angle must be in [0, 180], got {}", args.split_angle),
-        });
-    }
+    let loaded = bumpmap_io::load_mesh_with(
+        &args.input,
+        &MeshOptions { allow_outside_paths: args.allow_outside_paths, obj_texcoords: args.obj_v.into() },
+    )?;
     let options = TangentOptions {
         mode: match args.mode {
             TangentModeArg::Ours => TangentMode::Ours,
@@ -49,9 +51,11 @@ pub fn run(args: &TangentsArgs) -> Result<(), CliError> {
     let (mesh, report) = generate_tangents(&loaded.mesh, &options).map_err(|e| mesh_err(&args.input, e))?;
     // The outputs (a .gltf and its .bin, or a .glb) replace none of the files read, the
     // input's buffer files included, and land together or not at all.
-    let sources: Vec<&Path> = loaded.sources.iter().map(PathBuf::as_path).collect();
+    let texture = args.normal_map.as_deref().map(read_normal_texture).transpose()?;
+    let mut sources: Vec<&Path> = loaded.sources.iter().map(PathBuf::as_path).collect();
+    sources.extend(args.normal_map.as_deref());
     let mut set = FileSet::new(&sources);
-    bumpmap_io::mesh_file::save_gltf_into(&mut set, &args.output, &mesh)?;
+    let repaired = bumpmap_io::mesh_file::save_gltf_into(&mut set, &args.output, &mesh, texture.as_deref())?;
     set.commit()?;
     println!(
         "{}: {} triangles, {} vertices in, {} out{}",
@@ -63,8 +67,32 @@ pub fn run(args: &TangentsArgs) -> Result<(), CliError> {
     );
     println!("  degenerate in texture space: {} triangles", report.degenerate_uv);
     println!("  degenerate in space:         {} triangles", report.degenerate_geometry);
-    println!("  mirrored (w = -1):           {} triangles", report.mirrored);
+    // Texture space runs t down the image, so a texture mirrored as displayed has w = +1 here:
+    // glTF's w = -1.
+    let mirrored = mesh
+        .indices
+        .iter()
+        .filter(|t| bumpmap_io::mesh_file::gltf_handedness(mesh.tangents[t[0] as usize].w) < 0.0)
+        .count();
+    println!("  mirrored (glTF w = -1):      {mirrored} triangles");
     println!("  vertices split:              {}", report.vertices_split);
+    if repaired.normals + repaired.tangents > 0 {
+        println!(
+            "  repaired for glTF:           {} normals (zero or not finite: made from the faces), {} tangents (made perpendicular to the normal)",
+            repaired.normals, repaired.tangents
+        );
+    }
     println!("wrote {}", args.output.display());
     Ok(())
+}
+
+/// The bytes of a PNG normal map for a glTF material, after decoding it once to be sure it is
+/// one (glTF carries PNG or JPEG; a normal map must not be JPEG's lossy colour).
+fn read_normal_texture(path: &Path) -> Result<Vec<u8>, CliError> {
+    let bytes = std::fs::read(path).map_err(|source| bumpmap_io::IoError::Read { path: path.to_path_buf(), source })?;
+    if !bytes.starts_with(b"\x89PNG\r\n\x1a\n") {
+        return Err(mesh_err(path, "--normal-map must be a PNG file (glTF carries PNG or JPEG, and JPEG is lossy)"));
+    }
+    bumpmap_io::read_rgba8(&bytes, path, &bumpmap_io::DecodeLimits::default())?;
+    Ok(bytes)
 }

@@ -25,15 +25,30 @@ pub fn run(args: &NormalmapArgs) -> Result<(), CliError> {
         return run_folder(input, args, &options, channel);
     }
     let source = HeightSource::parse(&args.input);
+    let output = output_file(&args.output, &source, &args.input);
     if let Some(path) = source.path() {
-        ensure_not_input(&args.output, &[path])?;
+        ensure_not_input(&output, &[path])?;
     }
     let field = source.load(channel)?;
     let levels = make(&field, &options, args.mips, args.mip_mode.into(), &args.input)?;
     let inputs: Vec<&Path> = source.path().into_iter().collect();
-    let written = write_set(&args.output, &levels, &inputs)?;
+    let written = write_set(&output, &levels, &inputs)?;
     eprintln!("wrote {}", describe(&written));
     Ok(())
+}
+
+/// The output file for one input: `-o` itself, or, when `-o` is a folder (an existing one, or
+/// a path ending in `/`), `FOLDER/STEM.png` with the input's file stem or the preset's name.
+fn output_file(output: &Path, source: &HeightSource, spec: &str) -> PathBuf {
+    let as_folder = output.is_dir() || output.as_os_str().to_string_lossy().ends_with(std::path::MAIN_SEPARATOR);
+    if !as_folder {
+        return output.to_path_buf();
+    }
+    let stem = match source.path() {
+        Some(p) => p.file_stem().unwrap_or_default().to_string_lossy().into_owned(),
+        None => spec.split(['@', ':']).next().unwrap_or("normal").to_string(),
+    };
+    output.join(format!("{stem}.png"))
 }
 
 /// `a.png` for one file, `a.png, a.mip1.png, … (9 files)` for a chain.

@@ -34,12 +34,14 @@ pub fn run(args: &RenderArgs) -> Result<(), CliError> {
         (Some(w), Some(h)) => (w, h),
         _ => (args.size, args.size),
     };
-    let inputs = input_files(&args.setup);
-    let input_refs: Vec<&Path> = inputs.iter().map(PathBuf::as_path).collect();
-    ensure_not_input(&args.output, &input_refs)?;
+    let mut inputs = input_files(&args.setup);
+    ensure_not_input(&args.output, &inputs.iter().map(PathBuf::as_path).collect::<Vec<_>>())?;
     // Refuse an impossible framebuffer before any work.
     crate::backend::check_size(width, height)?;
-    let scene = build_scene(&args.setup)?;
+    let (scene, read) = build_scene(&args.setup)?;
+    // The mesh's buffer files are inputs too.
+    inputs.extend(read);
+    let input_refs: Vec<&Path> = inputs.iter().map(PathBuf::as_path).collect();
     let technique = technique(&args.setup)?;
     if args.passes && !matches!(technique, Technique::Kilgard(_)) {
         return Err(CliError::Render(
@@ -106,11 +108,18 @@ fn input_files(setup: &SceneSetup) -> Vec<PathBuf> {
     files
 }
 
-/// The scene the options describe.
-pub fn build_scene(setup: &SceneSetup) -> Result<Scene, CliError> {
+/// The scene the options describe, and the mesh files it read (none for a built-in surface).
+pub fn build_scene(setup: &SceneSetup) -> Result<(Scene, Vec<PathBuf>), CliError> {
     let (s, camera, l, m) = (&setup.scene, &setup.camera, &setup.lights, &setup.material);
+    let mut read = Vec::new();
     let kind = match s.scene.strip_prefix("mesh:") {
-        Some(path) => SceneKind::Mesh(Arc::new(crate::mesh::load_for_render(Path::new(path))?)),
+        Some(path) => {
+            let options =
+                bumpmap_io::MeshOptions { allow_outside_paths: s.allow_outside_paths, obj_texcoords: s.obj_v.into() };
+            let (mesh, sources) = crate::mesh::load_for_render(Path::new(path), &options)?;
+            read = sources;
+            SceneKind::Mesh(Arc::new(mesh))
+        }
         None => SceneKind::parse(&s.scene).ok_or_else(|| {
             CliError::Render(format!(
                 "unknown scene '{}': use torus, wall, floor, wall-floor, patch, sphere or mesh:FILE",
@@ -127,18 +136,18 @@ pub fn build_scene(setup: &SceneSetup) -> Result<Scene, CliError> {
     };
     for (name, v) in [("--ambient", m.ambient), ("--diffuse", m.diffuse), ("--specular", m.specular)] {
         if !(0.0..=1.0).contains(&v) {
-            return Err(CliError::Render(format!("{name} must be in [0, 1], got {v}")));
+            return Err(CliError::Usage(format!("{name} must be in [0, 1], got {v}")));
         }
     }
     if !(1.0..=170.0).contains(&camera.fov) {
-        return Err(CliError::Render(format!("--fov must be in [1, 170] degrees, got {}", camera.fov)));
+        return Err(CliError::Usage(format!("--fov must be in [1, 170] degrees, got {}", camera.fov)));
     }
     let (major, minor) = s.torus_radii;
     if !(major > 0.0 && minor > 0.0) {
-        return Err(CliError::Render(format!("--torus-radii must be positive, got {major},{minor}")));
+        return Err(CliError::Usage(format!("--torus-radii must be positive, got {major},{minor}")));
     }
     if !(m.shininess > 0.0 && m.shininess.is_finite()) {
-        return Err(CliError::Render(format!("--shininess must be a positive number, got {}", m.shininess)));
+        return Err(CliError::Usage(format!("--shininess must be a positive number, got {}", m.shininess)));
     }
     let pattern = match l.spot_pattern.as_deref() {
         None => None,
@@ -189,9 +198,9 @@ pub fn build_scene(setup: &SceneSetup) -> Result<Scene, CliError> {
         object_space: s.space == SpaceArg::Object,
     };
     if params.eye.is_some() && params.eye == params.target {
-        return Err(CliError::Render("--eye and --target must differ".into()));
+        return Err(CliError::Usage("--eye and --target must differ".into()));
     }
-    scenes::build(&kind, &params).map_err(core_err)
+    Ok((scenes::build(&kind, &params).map_err(core_err)?, read))
 }
 
 /// The technique the options name, with its options; refuses options that belong to the other
@@ -291,9 +300,7 @@ fn sampler(filter: FilterArg) -> Sampler {
 /// none of them replacing one of `inputs`; returns the paths written. The colour buffer's alpha
 /// (s_self, not coverage) is left out.
 pub fn write_frame(frame: &Frame, out: &Path, inputs: &[&Path]) -> Result<Vec<PathBuf>, CliError> {
-    if let Some(dir) = out.parent().filter(|d| !d.as_os_str().is_empty()) {
-        std::fs::create_dir_all(dir).map_err(|e| CliError::Path { path: dir.to_path_buf(), reason: e.to_string() })?;
-    }
+    // The set makes a missing folder, and takes it away again if anything fails.
     let mut set = FileSet::new(inputs);
     for (name, image) in &frame.snapshots {
         let stem = out.file_stem().unwrap_or_default().to_string_lossy();

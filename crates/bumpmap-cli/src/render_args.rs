@@ -6,7 +6,7 @@ use std::path::PathBuf;
 
 use clap::{Args, ValueEnum};
 
-use crate::args::{parse_counts, parse_pair, parse_vec3};
+use crate::args::{ObjVArg, parse_counts, parse_pair, parse_side, parse_vec3};
 
 /// What is drawn: the geometry, the height field and decal, the texture layout.
 #[derive(Args, Debug, Clone)]
@@ -36,6 +36,12 @@ pub struct SceneGroup {
     /// single-pass: light in tangent space, or in object space with an object-space normal map made for the surface (built-in surfaces only)
     #[arg(long, value_enum, default_value = "tangent")]
     pub space: SpaceArg,
+    /// mesh: glTF only: let buffer URIs lead outside the glTF's folder (absolute paths, ..); off by default, so a downloaded glTF cannot make bumpmap read other files
+    #[arg(long = "allow-outside-paths")]
+    pub allow_outside_paths: bool,
+    /// OBJ only: flip (v = 0 at the image's bottom, the OBJ convention) or keep the file's v
+    #[arg(long = "obj-v", value_enum, default_value = "flip")]
+    pub obj_v: ObjVArg,
 }
 
 /// Where the scene is seen from.
@@ -70,13 +76,13 @@ pub struct LightGroup {
     #[arg(long, value_parser = parse_vec3, allow_hyphen_values = true)]
     pub spot: Option<glam::Vec3>,
     /// Spotlight cone half-angle in degrees, in (0, 90)
-    #[arg(long = "spot-cutoff", default_value_t = 25.0, allow_negative_numbers = true)]
+    #[arg(long = "spot-cutoff", default_value_t = 25.0, allow_negative_numbers = true, requires = "spot")]
     pub spot_cutoff: f32,
     /// Spotlight fall-off exponent (cos^E), ≥ 0
-    #[arg(long = "spot-exponent", default_value_t = 2.0, allow_negative_numbers = true)]
+    #[arg(long = "spot-exponent", default_value_t = 2.0, allow_negative_numbers = true, requires = "spot")]
     pub spot_exponent: f32,
     /// Pattern projected by the spotlight: an image or a height-field preset (e.g. pinwheel)
-    #[arg(long = "spot-pattern")]
+    #[arg(long = "spot-pattern", requires = "spot")]
     pub spot_pattern: Option<String>,
 }
 
@@ -182,13 +188,13 @@ pub struct RenderArgs {
     #[arg(short, long, default_value = "out/render.png")]
     pub output: PathBuf,
     /// Square image size (pixels)
-    #[arg(long, default_value_t = 512, conflicts_with_all = ["width", "height"])]
+    #[arg(long, default_value_t = 512, value_parser = parse_side, conflicts_with_all = ["width", "height"])]
     pub size: usize,
     /// Image width in pixels (with --height, instead of --size)
-    #[arg(long, requires = "height")]
+    #[arg(long, value_parser = parse_side, requires = "height")]
     pub width: Option<usize>,
     /// Image height in pixels (with --width)
-    #[arg(long, requires = "width")]
+    #[arg(long, value_parser = parse_side, requires = "width")]
     pub height: Option<usize>,
     /// Also write the framebuffer after each pass (Figure 12): OUT.decal.png, OUT.diffuse.png, …
     #[arg(long)]
@@ -206,7 +212,7 @@ pub struct BenchRenderArgs {
     #[command(flatten)]
     pub setup: SceneSetup,
     /// Square framebuffer size
-    #[arg(long, default_value_t = 1024)]
+    #[arg(long, default_value_t = 1024, value_parser = parse_side)]
     pub size: usize,
     /// Worker threads, 1 to 256 (default: all cores)
     #[arg(long, value_parser = clap::value_parser!(u16).range(1..=256))]

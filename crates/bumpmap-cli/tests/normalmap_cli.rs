@@ -66,6 +66,10 @@ fn bad_inputs_fail_with_a_clear_message_and_no_output() {
     let huge = dir.join("huge.png");
     std::fs::write(&huge, png_header_only(65535, 65535)).unwrap();
     fails(&dir, &huge, "65535x65535");
+    // Declared sizes the decoder's own memory limit would refuse first get the size message.
+    let giant = dir.join("giant.png");
+    std::fs::write(&giant, png_header_only(1 << 30, 1 << 30)).unwrap();
+    fails(&dir, &giant, "1073741824x1073741824; the limit is 16384x16384");
 
     fails(&dir, &dir.join("missing.png"), "cannot read");
 }
@@ -199,5 +203,48 @@ fn misspelt_presets_say_what_is_wrong_with_them() {
         assert_eq!(o.status.code(), Some(1), "{spec}: {}", stderr(&o));
         assert!(stderr(&o).contains(expect), "{spec}: message must say '{expect}': {}", stderr(&o));
         assert!(listing(&dir).is_empty(), "{spec}: no output");
+    }
+}
+
+/// The channel value near `at` (within 2 texels along the edge's normal) furthest from 128.
+fn strongest(img: &image::RgbaImage, c: usize, texels: impl Iterator<Item = (u32, u32)>) -> u8 {
+    texels.map(|(x, y)| img.get_pixel(x, y)[c]).max_by_key(|v| (*v as i32 - 128).abs()).unwrap()
+}
+
+#[test]
+fn green_and_red_point_as_the_formats_say_on_a_raised_square_as_displayed() {
+    let dir = scratch("y_convention");
+    let input = dir.join("square.png");
+    // Black with a white square in the middle (rows and columns 8..24 of 32).
+    write_gray_png(&input, 32, 32, |x, y| if (8..24).contains(&x) && (8..24).contains(&y) { 255 } else { 0 });
+    for (convention, top_edge_green_up) in [("opengl", true), ("y-up", true), ("directx", false), ("y-down", false)] {
+        let out = dir.join(format!("{convention}.png"));
+        let o = bumpmap(&[
+            "normalmap",
+            input.to_str().unwrap(),
+            "-o",
+            out.to_str().unwrap(),
+            "--y-convention",
+            convention,
+            "--wrap",
+            "clamp",
+        ]);
+        assert!(o.status.success(), "{}", stderr(&o));
+        let img = image::open(&out).unwrap().to_rgba8();
+        // The top edge as displayed (first rows of the file): its slope faces up the image.
+        let top = strongest(&img, 1, (5..=10).map(|y| (16, y)));
+        let bottom = strongest(&img, 1, (21..=26).map(|y| (16, y)));
+        // The left edge faces left: red below 128 in every convention; the right edge above.
+        let left = strongest(&img, 0, (5..=10).map(|x| (x, 16)));
+        let right = strongest(&img, 0, (21..=26).map(|x| (x, 16)));
+        assert!(left < 100 && right > 156, "{convention}: red left {left}, right {right}");
+        if top_edge_green_up {
+            assert!(top > 156 && bottom < 100, "{convention}: green must point up: top {top}, bottom {bottom}");
+        } else {
+            assert!(top < 100 && bottom > 156, "{convention}: green must point down: top {top}, bottom {bottom}");
+        }
+        // The flat middle is (128, 128, 255).
+        let mid = img.get_pixel(16, 16);
+        assert!((mid[0] as i32 - 128).abs() <= 1 && (mid[1] as i32 - 128).abs() <= 1 && mid[2] == 255, "{mid:?}");
     }
 }

@@ -109,3 +109,108 @@ fn a_folder_of_only_bad_files_leaves_no_output_folder() {
     assert!(stderr(&o).contains("2 of 2 files failed"), "{}", stderr(&o));
     assert!(!out.exists(), "no empty output folder");
 }
+
+#[test]
+fn a_render_whose_output_is_the_meshs_buffer_file_is_refused() {
+    let dir = scratch("out_render_bin");
+    let cube = concat!(env!("CARGO_MANIFEST_DIR"), "/../bumpmap-io/tests/data/mikktspace/cube.obj");
+    let mesh = dir.join("m.gltf");
+    let o = bumpmap(&["tangents", cube, "-o", mesh.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    // A buffer file named like the render's output.
+    let json = std::fs::read_to_string(&mesh).unwrap().replace("\"m.bin\"", "\"frame.png\"");
+    std::fs::write(&mesh, json).unwrap();
+    std::fs::rename(dir.join("m.bin"), dir.join("frame.png")).unwrap();
+    let before = std::fs::read(dir.join("frame.png")).unwrap();
+    let scene = format!("mesh:{}", mesh.display());
+    let out = dir.join("frame.png");
+    let o = bumpmap(&["render", "--scene", &scene, "--size", "16", "-o", out.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    assert!(stderr(&o).contains("overwrite the input"), "{}", stderr(&o));
+    assert_eq!(std::fs::read(dir.join("frame.png")).unwrap(), before, "the buffer file is unchanged");
+}
+
+#[test]
+fn missing_output_folders_are_made_by_every_command() {
+    let dir = scratch("out_folders");
+    let cube = concat!(env!("CARGO_MANIFEST_DIR"), "/../bumpmap-io/tests/data/mikktspace/cube.obj");
+    let runs: [(&str, Vec<String>); 4] = [
+        ("a/n.png", vec!["normalmap".into(), "bricks@16".into()]),
+        ("b/r.png", vec!["render".into(), "--size".into(), "16".into()]),
+        ("c/faces", vec!["cubemap".into(), "--size".into(), "2".into()]),
+        ("d/t.gltf", vec!["tangents".into(), cube.into()]),
+    ];
+    for (out, args) in runs {
+        let out = dir.join(out);
+        let mut all: Vec<&str> = args.iter().map(String::as_str).collect();
+        all.extend(["-o", out.to_str().unwrap()]);
+        let o = bumpmap(&all);
+        assert!(o.status.success(), "{all:?}: {}", stderr(&o));
+        assert!(out.exists(), "{all:?} wrote {}", out.display());
+    }
+}
+
+#[test]
+fn normalmap_into_an_existing_folder_writes_the_inputs_name_there() {
+    let dir = scratch("out_into_folder");
+    let input = dir.join("rocks.png");
+    write_gray_png(&input, 16, 16, |x, y| (x * 7 + y * 3) as u8);
+    let folder = dir.join("maps");
+    std::fs::create_dir_all(&folder).unwrap();
+    let o = bumpmap(&["normalmap", input.to_str().unwrap(), "-o", folder.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(folder.join("rocks.png").exists());
+    assert!(stderr(&o).contains("wrote"), "{}", stderr(&o));
+    // A preset's file is named after the preset.
+    let o = bumpmap(&["normalmap", "bricks@16", "-o", &format!("{}/", folder.display())]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(folder.join("bricks.png").exists());
+}
+
+#[test]
+fn value_errors_on_the_command_line_exit_2_everywhere_and_an_empty_path_is_named() {
+    let dir = scratch("out_exit_codes");
+    let out = dir.join("x.png");
+    let out = out.to_str().unwrap();
+    for args in [
+        vec!["render", "--size", "0", "-o", out],
+        vec!["cubemap", "--size", "0", "-o", out],
+        vec!["render", "--width", "20000", "--height", "5", "-o", out],
+        vec!["render", "--technique", "single-pass", "--spot-pattern", "pinwheel", "-o", out],
+        vec!["render", "--spot-cutoff", "10", "-o", out],
+        vec!["cubemap", "--accuracy", "--size", "3"],
+        // Ranges checked after parsing are usage errors too.
+        vec!["render", "--fov", "-5", "-o", out],
+        vec!["render", "--technique", "single-pass", "--shininess", "-3", "-o", out],
+        vec!["render", "--ambient", "-5", "-o", out],
+        vec!["tangents", "no-such.obj", "--split-angle", "200", "-o", "t.glb"],
+    ] {
+        let o = bumpmap(&args);
+        assert_eq!(o.status.code(), Some(2), "{args:?}: {}", stderr(&o));
+    }
+    assert!(listing(&dir).is_empty(), "nothing written: {:?}", listing(&dir));
+    let o = bumpmap(&["normalmap", "", "-o", out]);
+    assert_eq!(o.status.code(), Some(1));
+    assert!(stderr(&o).contains("(an empty path)"), "{}", stderr(&o));
+}
+
+#[test]
+fn tangents_follow_a_buffer_outside_the_folder_only_when_allowed() {
+    let dir = scratch("out_outside");
+    let cube = concat!(env!("CARGO_MANIFEST_DIR"), "/../bumpmap-io/tests/data/mikktspace/cube.obj");
+    let first = dir.join("c.gltf");
+    assert!(bumpmap(&["tangents", cube, "-o", first.to_str().unwrap()]).status.success());
+    let sub = dir.join("sub");
+    std::fs::create_dir_all(&sub).unwrap();
+    let json = std::fs::read_to_string(&first).unwrap().replace("\"c.bin\"", "\"../c.bin\"");
+    let input = sub.join("up.gltf");
+    std::fs::write(&input, json).unwrap();
+    let out = dir.join("t.glb");
+    let o = bumpmap(&["tangents", input.to_str().unwrap(), "-o", out.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(1));
+    assert!(stderr(&o).contains("outside the glTF's folder"), "{}", stderr(&o));
+    assert!(!out.exists());
+    let o = bumpmap(&["tangents", input.to_str().unwrap(), "-o", out.to_str().unwrap(), "--allow-outside-paths"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(out.exists());
+}

@@ -75,7 +75,8 @@ fn refused(args: &[&str], expect: &str) {
 
 #[test]
 fn bad_options_are_refused_with_clear_messages() {
-    refused(&["--size", "100000"], "framebuffer 100000x100000 refused");
+    refused(&["--size", "100000"], "'100000' is not a size in 1..=16384 pixels");
+    refused(&["--size", "16384"], "framebuffer 16384x16384 refused");
     refused(&["--technique", "single-pass", "--shininess", "0"], "shininess");
     refused(&["--technique", "single-pass", "--shininess", "NaN"], "shininess");
     refused(&["--shininess", "16"], "kilgard cannot do --shininess");

@@ -378,13 +378,27 @@ pub fn fragment_shader(p: &bumpmap_core::technique::CombinerProgram) -> String {
         let _ = match unit.binding {
             Binding::TwoD { s: ks, t: kt, .. } => writeln!(
                 s,
-                "    regs.tex{i} = textureSample(unit{i}_2d, unit{i}_sampler, vec2<f32>(vary(f, {ks}u), vary(f, {kt}u)));"
+                "    regs.tex{i} = textureSample(unit{i}_2d, unit{i}_sampler, vec2<f32>({}, {}));",
+                slot(ks),
+                slot(kt)
             ),
             Binding::NormalizationCube { r, .. } => {
-                writeln!(s, "    regs.tex{i} = textureSampleLevel(unit{i}_cube, unit{i}_sampler, vary3(f, {r}u), 0.0);")
+                writeln!(
+                    s,
+                    "    regs.tex{i} = textureSampleLevel(unit{i}_cube, unit{i}_sampler, vec3<f32>({}, {}, {}), 0.0);",
+                    slot(r),
+                    slot(r + 1),
+                    slot(r + 2)
+                )
             }
         };
     }
     s += "    return combiners(regs);\n}\n";
     s
+}
+
+/// Varying slot `k` (`bumpmap_core::vertex::var`) as a field of `vertex.wgsl`'s `Varyings`,
+/// e.g. `f.v1.z`: a static access, where `vary(f, k)` builds an array and indexes it.
+fn slot(k: usize) -> String {
+    format!("f.v{}.{}", k / 4, ['x', 'y', 'z', 'w'][k % 4])
 }

@@ -6,7 +6,8 @@
 //! - [`textures`]: mip chains, normalization cube maps and samplers on the device;
 //! - [`combiner_wgsl`]: register-combiner setups turned into WGSL by a generator;
 //! - [`context`]: the adapter and device, and the faults wgpu reports out of band;
-//! - `lit.wgsl`, `vertex.wgsl`: the single pass's fragment program, the shared vertex stage.
+//! - `lit.rs` (private) with `lit.wgsl`: the single pass's fragment program, its uniforms and
+//!   its override constants; `vertex.wgsl`: the shared vertex stage.
 //!
 //! Not here: a window or surface (the viewer's), and any CPU rasterization — this crate depends
 //! on the core and math crates only.
@@ -14,6 +15,7 @@
 pub mod combiner_wgsl;
 pub mod context;
 pub mod error;
+mod lit;
 pub mod pipelines;
 pub mod renderer;
 pub mod textures;

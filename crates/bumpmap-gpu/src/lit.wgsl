@@ -1,25 +1,39 @@
 // The single pass's fragment program: the texture lookups, per-fragment renormalization,
-// attenuation and spotlight that make a Fragment, then shading.wgsl's shade(). Texture units: the normal map, the decal, the gloss map (white 1x1
-// textures where absent), the spotlight pattern and the normalization cube map.
+// attenuation and spotlight that make a Fragment, then shading.wgsl's shade(). Texture units:
+// the normal map, the decal, the gloss map (white 1x1 textures where absent), the spotlight
+// pattern and the normalization cube map.
 
 struct Lit {
     ambient: vec4<f32>,
     diffuse: vec4<f32>,
-    // xyz: k_specular · light colour; w: shininess.
+    // xyz: k_specular · light colour.
     specular: vec4<f32>,
-    // x: self-shadow (0 Eq. 12's ramp, 1 step, 2 off); y: specular gate (0 Kilgard, 1 Cg
-    // Tutorial, 2 off); z: normalize (0 math, 1 cube map); w: half-angle (0 vertex, 1 fragment).
-    modes: vec4<u32>,
-    // x: gloss (0 none, 1 decal alpha, 2 map); y: object space (1) or tangent space (0);
-    // z: attenuation (0 none, 1 polynomial, 2 exp, 3 exp2); w: spotlight pattern (1) or none.
-    modes2: vec4<u32>,
     // Polynomial: constant, linear, quadratic; exponential: density in x.
     attenuation: vec4<f32>,
-    // x: spotlight (1) or none (0); y: cos(cutoff); z: exponent.
+    // x: cos(cutoff); y: exponent.
     spot: vec4<f32>,
     // xy: the object-space map's coordinate scale (1, 1 in tangent space).
     normal_scale: vec4<f32>,
 };
+
+// The model's switches, one pipeline per combination (src/lit.rs, LitVariant).
+// Self-shadow: 0 Eq. 12's ramp, 1 step, 2 off. Specular gate: 0 Kilgard, 1 Cg Tutorial, 2 off.
+override SELF_SHADOW: u32 = 0u;
+override SPECULAR_SHADOW: u32 = 0u;
+// Renormalize L and H by the cube map (1) or by math (0).
+override NORMALIZE_CUBE: u32 = 0u;
+// H per fragment from L and V (1) or interpolated from the vertices (0).
+override FRAGMENT_HALF_ANGLE: u32 = 0u;
+// Gloss: 0 none, 1 the decal's alpha, 2 the gloss map's red.
+override GLOSS: u32 = 0u;
+// The normal map is in object space (1) or tangent space (0).
+override OBJECT_SPACE: u32 = 0u;
+// Attenuation: 0 none, 1 polynomial, 2 exp, 3 exp2.
+override ATTENUATION: u32 = 0u;
+// A spotlight (1), and a pattern projected by it (1).
+override SPOTLIGHT: u32 = 0u;
+override SPOT_PATTERN: u32 = 0u;
+override SHININESS: f32 = 8.0;
 
 @group(0) @binding(0) var<uniform> u: Lit;
 @group(0) @binding(1) var normal_map: texture_2d<f32>;
@@ -50,7 +64,7 @@ fn normalize_or_z(v: vec3<f32>) -> vec3<f32> {
 
 // Per-fragment renormalization: by math, or by the cube map expanded as 2c - 1.
 fn unit(v: vec3<f32>) -> vec3<f32> {
-    if u.modes.z == 1u {
+    if NORMALIZE_CUBE == 1u {
         return textureSampleLevel(cube_map, clamp_sampler, v, 0.0).rgb * 2.0 - 1.0;
     }
     return normalize_or_z(v);
@@ -58,7 +72,7 @@ fn unit(v: vec3<f32>) -> vec3<f32> {
 
 fn attenuation(d: f32) -> f32 {
     let a = u.attenuation;
-    switch u.modes2.z {
+    switch ATTENUATION {
         case 1u: {
             return clamp(1.0 / (a.x + a.y * d + a.z * d * d), 0.0, 1.0);
         }
@@ -76,15 +90,15 @@ fn attenuation(d: f32) -> f32 {
 }
 
 fn spot_factor(f: Varyings) -> f32 {
-    if u.spot.x == 0.0 {
+    if SPOTLIGHT == 0u {
         return 1.0;
     }
     let c = -dot(normalize_or_z(vary3(f, L)), normalize_or_z(vary3(f, SPOT)));
     var k = 0.0;
-    if c >= u.spot.y {
-        k = select(select(pow(c, u.spot.z), 0.0, c <= 0.0), 1.0, u.spot.z == 0.0);
+    if c >= u.spot.x {
+        k = select(select(pow(c, u.spot.y), 0.0, c <= 0.0), 1.0, u.spot.y == 0.0);
     }
-    if u.modes2.w == 1u {
+    if SPOT_PATTERN == 1u {
         let p = vary3(f, PROJ);
         var pattern = 0.0;
         if p.z > 0.0 {
@@ -100,28 +114,27 @@ fn fs_lit(f: Varyings) -> @location(0) vec4<f32> {
     let st = vec2<f32>(vary(f, S), vary(f, S + 1u));
     let normal = textureSample(normal_map, material_sampler, st * u.normal_scale.xy);
     let decal = textureSample(decal_map, material_sampler, st);
-    let gloss_texel = textureSample(gloss_map, material_sampler, st);
     var gloss = 1.0;
-    if u.modes2.x == 1u {
+    if GLOSS == 1u {
         gloss = decal.a;
-    } else if u.modes2.x == 2u {
-        gloss = gloss_texel.r;
+    } else if GLOSS == 2u {
+        gloss = textureSample(gloss_map, material_sampler, st).r;
     }
     let l = unit(vary3(f, L));
     var h_in = vary3(f, H);
-    if u.modes.w == 1u {
+    if FRAGMENT_HALF_ANGLE == 1u {
         h_in = normalize_or_z(normalize_or_z(vary3(f, L)) + normalize_or_z(vary3(f, V)));
     }
     let h = unit(h_in);
     var l_n = l.z;
     var h_n = h.z;
-    if u.modes2.y == 1u {
+    if OBJECT_SPACE == 1u {
         let n = normalize_or_z(vary3(f, N));
         l_n = dot(l, n);
         h_n = dot(h, n);
     }
     let light = attenuation(vary(f, LIGHT_DISTANCE)) * spot_factor(f);
-    let t = Terms(u.ambient.rgb, u.diffuse.rgb, u.specular.rgb, u.specular.w, u.modes.x, u.modes.y);
+    let t = Terms(u.ambient.rgb, u.diffuse.rgb, u.specular.rgb, SHININESS, SELF_SHADOW, SPECULAR_SHADOW);
     let frag = Fragment(normal, decal.rgb, gloss, l, h, l_n, h_n, light);
     return vec4<f32>(shade(t, frag), 1.0);
 }

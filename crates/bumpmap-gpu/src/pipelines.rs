@@ -13,6 +13,7 @@ use bumpmap_core::vertex::MAX_VARYINGS;
 
 use crate::context::Context;
 use crate::error::GpuError;
+use crate::lit::LitVariant;
 
 /// The render target's format: 8 bits per channel between passes, as on the hardware.
 pub const COLOR_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8Unorm;
@@ -31,8 +32,8 @@ pub const SHADING_WGSL: &str = include_str!("shading.wgsl");
 /// Which fragment program a pipeline runs.
 #[derive(Clone, Debug, PartialEq, Eq, Hash)]
 pub enum Shader {
-    /// `lit.wgsl`.
-    Lit,
+    /// `lit.wgsl`, specialised by its override constants.
+    Lit(LitVariant),
     /// A generated combiner program (its whole WGSL source).
     Combiners(String),
 }
@@ -45,8 +46,16 @@ pub struct Pipelines {
     pub combiner_layout: wgpu::BindGroupLayout,
     lit_pipeline_layout: wgpu::PipelineLayout,
     combiner_pipeline_layout: wgpu::PipelineLayout,
-    modules: HashMap<Shader, wgpu::ShaderModule>,
+    /// Compiled WGSL by source: `lit.wgsl` once, each generated combiner program once.
+    modules: HashMap<ModuleKey, wgpu::ShaderModule>,
     pipelines: HashMap<(Shader, StateKey), wgpu::RenderPipeline>,
+}
+
+/// Which WGSL source a module was made from.
+#[derive(Clone, Debug, PartialEq, Eq, Hash)]
+enum ModuleKey {
+    Lit,
+    Combiners(String),
 }
 
 /// The parts of [`PassState`] a pipeline bakes in (the blend colour is set per pass).
@@ -188,12 +197,16 @@ impl Pipelines {
             return Ok(p.clone());
         }
         let scope = ctx.device.push_error_scope(wgpu::ErrorFilter::Validation);
+        let module_key = match shader {
+            Shader::Lit(_) => ModuleKey::Lit,
+            Shader::Combiners(s) => ModuleKey::Combiners(s.clone()),
+        };
         let module = self
             .modules
-            .entry(shader.clone())
+            .entry(module_key.clone())
             .or_insert_with(|| {
                 let source = match shader {
-                    Shader::Lit => format!("{VERTEX_WGSL}\n{SHADING_WGSL}\n{LIT_WGSL}"),
+                    Shader::Lit(_) => format!("{VERTEX_WGSL}\n{SHADING_WGSL}\n{LIT_WGSL}"),
                     Shader::Combiners(s) => format!("{VERTEX_WGSL}\n{s}"),
                 };
                 ctx.device.create_shader_module(wgpu::ShaderModuleDescriptor {
@@ -203,7 +216,7 @@ impl Pipelines {
             })
             .clone();
         let (layout, entry) = match shader {
-            Shader::Lit => (&self.lit_pipeline_layout, "fs_lit"),
+            Shader::Lit(_) => (&self.lit_pipeline_layout, "fs_lit"),
             Shader::Combiners(_) => (&self.combiner_pipeline_layout, "fs_combiners"),
         };
         const ATTRIBUTES: [wgpu::VertexAttribute; 7] = wgpu::vertex_attr_array![
@@ -214,6 +227,10 @@ impl Pipelines {
             step_mode: wgpu::VertexStepMode::Vertex,
             attributes: &ATTRIBUTES,
         })];
+        let constants = match shader {
+            Shader::Lit(v) => v.constants().to_vec(),
+            Shader::Combiners(_) => Vec::new(),
+        };
         let blend = (state.blend.src, state.blend.dst) != (BlendFactor::One, BlendFactor::Zero);
         let component = wgpu::BlendComponent {
             src_factor: blend_factor(state.blend.src),
@@ -258,7 +275,7 @@ impl Pipelines {
             fragment: Some(wgpu::FragmentState {
                 module: &module,
                 entry_point: Some(entry),
-                compilation_options: Default::default(),
+                compilation_options: wgpu::PipelineCompilationOptions { constants: &constants, ..Default::default() },
                 targets: &[Some(wgpu::ColorTargetState {
                     format: COLOR_FORMAT,
                     blend: blend.then_some(wgpu::BlendState { color: component, alpha: component }),
@@ -269,7 +286,7 @@ impl Pipelines {
             cache: None,
         });
         if let Some(e) = pollster::block_on(scope.pop()) {
-            self.modules.remove(shader);
+            self.modules.remove(&module_key);
             return Err(GpuError::Wgpu(e.to_string()));
         }
         self.pipelines.insert(key, pipeline.clone());

@@ -8,17 +8,14 @@
 use std::sync::Arc;
 
 use bumpmap_core::Scene;
-use bumpmap_core::scene::{Attenuation, NormalSpace};
-use bumpmap_core::shading::LitTerms;
-use bumpmap_core::technique::{
-    Binding, CombinerProgram, Gloss, HalfAngle, LitProgram, Normalize, Program, SelfShadow, SpecularShadow, Technique,
-};
+use bumpmap_core::technique::{Binding, CombinerProgram, Gloss, LitProgram, Normalize, Program, Technique};
 use bumpmap_math::{Rgba8Image, mesh::Mesh};
 use wgpu::util::DeviceExt as _;
 
 use crate::combiner_wgsl;
 use crate::context::Context;
 use crate::error::GpuError;
+use crate::lit::{self, LitVariant};
 use crate::pipelines::{COLOR_FORMAT, DEPTH_FORMAT, Pipelines, Shader, UNITS, VERTEX_FLOATS};
 use crate::textures::Textures;
 
@@ -133,7 +130,7 @@ impl GpuRenderer {
             }
             let (indices, count) = self.indices(&scene.objects[pass.object].mesh);
             let (shader, bind_group) = match &pass.program {
-                Program::Lit(p) => (Shader::Lit, self.lit_bind_group(p)?),
+                Program::Lit(p) => (Shader::Lit(LitVariant::of(p)), self.lit_bind_group(p)?),
                 Program::Combiners(p) => {
                     (Shader::Combiners(combiner_wgsl::fragment_shader(p)), self.combiner_bind_group(p)?)
                 }
@@ -251,7 +248,7 @@ impl GpuRenderer {
         let clamp = t.sampler(ctx, bumpmap_core::state::Sampler::LINEAR_CLAMP);
         let uniforms = ctx.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some("lit"),
-            contents: &lit_uniforms(p),
+            contents: &lit::uniforms(p),
             usage: wgpu::BufferUsages::UNIFORM,
         });
         use wgpu::BindingResource::{Sampler, TextureView};
@@ -395,59 +392,4 @@ fn bytes<T: Copy>(v: &[T]) -> &[u8] {
     // SAFETY: T is f32 or u32 here (plain data, no padding, every bit pattern valid as bytes);
     // the slice covers exactly the vector's initialized elements.
     unsafe { std::slice::from_raw_parts(v.as_ptr().cast::<u8>(), std::mem::size_of_val(v)) }
-}
-
-/// `lit.wgsl`'s `Lit` uniform block for `p`.
-pub(crate) fn lit_uniforms(p: &LitProgram) -> Vec<u8> {
-    let LitTerms { ambient, diffuse, specular, shininess, self_shadow, specular_shadow } = p.terms;
-    let mut f: Vec<[f32; 4]> = vec![ambient.extend(0.0).to_array(), diffuse.extend(0.0).to_array()];
-    f.push(specular.extend(shininess).to_array());
-    let modes = [
-        match self_shadow {
-            SelfShadow::Ramp => 0u32,
-            SelfShadow::Step => 1,
-            SelfShadow::Off => 2,
-        },
-        match specular_shadow {
-            SpecularShadow::Kilgard => 0,
-            SpecularShadow::CgTutorial => 1,
-            SpecularShadow::Off => 2,
-        },
-        (p.normalize == Normalize::Cube) as u32,
-        (p.half_angle == HalfAngle::Fragment) as u32,
-    ];
-    let (attenuation_mode, attenuation) = match p.light.attenuation {
-        Attenuation::None => (0u32, [0.0; 4]),
-        Attenuation::Polynomial { constant, linear, quadratic } => (1, [constant, linear, quadratic, 0.0]),
-        Attenuation::Exponential { density } => (2, [density, 0.0, 0.0, 0.0]),
-        Attenuation::ExponentialSquared { density } => (3, [density, 0.0, 0.0, 0.0]),
-    };
-    let (object_space, scale) = match p.normal_space {
-        NormalSpace::Tangent => (0u32, [1.0, 1.0]),
-        NormalSpace::Object { scale } => (1, [scale.x, scale.y]),
-    };
-    let modes2 = [
-        match p.gloss {
-            Gloss::None => 0u32,
-            Gloss::DecalAlpha => 1,
-            Gloss::Map(_) => 2,
-        },
-        object_space,
-        attenuation_mode,
-        p.light.spot.as_ref().is_some_and(|s| s.pattern.is_some()) as u32,
-    ];
-    let spot = match &p.light.spot {
-        Some(s) => [1.0, s.cutoff_degrees.to_radians().cos(), s.exponent, 0.0],
-        None => [0.0; 4],
-    };
-    let mut out = Vec::with_capacity(8 * 16);
-    for v in &f {
-        out.extend_from_slice(bytes(v));
-    }
-    out.extend_from_slice(bytes(&modes));
-    out.extend_from_slice(bytes(&modes2));
-    out.extend_from_slice(bytes(&attenuation));
-    out.extend_from_slice(bytes(&spot));
-    out.extend_from_slice(bytes(&[scale[0], scale[1], 0.0, 0.0]));
-    out
 }

@@ -10,7 +10,8 @@ use crate::error::IoError;
 /// beside its destination; [`FileSet::commit`] renames them all into place once every one was
 /// written. Until then no destination is touched, and a set dropped uncommitted (an error on
 /// the way) removes its temporary files. Every destination is checked against the inputs and
-/// against the set's other files before its bytes are written.
+/// against the set's other files before its bytes are written. Missing destination folders
+/// are created, and removed again if the set is dropped uncommitted (when still empty).
 ///
 /// What it cannot promise: if a rename fails after others succeeded (the folder vanished, a
 /// disk error), the files renamed so far stay. Renames within one folder do not fail in
@@ -18,12 +19,14 @@ use crate::error::IoError;
 pub struct FileSet {
     inputs: Vec<PathBuf>,
     staged: Vec<(PathBuf, PathBuf)>,
+    /// Folders this set created, outermost first.
+    created: Vec<PathBuf>,
 }
 
 impl FileSet {
     /// A set whose files must not replace any of `inputs`.
     pub fn new(inputs: &[&Path]) -> Self {
-        Self { inputs: inputs.iter().map(|p| p.to_path_buf()).collect(), staged: Vec::new() }
+        Self { inputs: inputs.iter().map(|p| p.to_path_buf()).collect(), staged: Vec::new(), created: Vec::new() }
     }
 
     /// Writes `path`'s bytes through `fill` into its temporary file. Refuses a path that names
@@ -45,6 +48,7 @@ impl FileSet {
         let err = |source| IoError::Write { path: path.to_path_buf(), source };
         let dir = path.parent().filter(|d| !d.as_os_str().is_empty()).unwrap_or(Path::new("."));
         let name = path.file_name().ok_or_else(|| err(std::io::Error::other("not a file name")))?;
+        self.create_folders(dir).map_err(err)?;
         let tmp = dir.join(format!(".{}.{}.{}.tmp", name.to_string_lossy(), std::process::id(), self.staged.len()));
         let result = (|| {
             let mut w = BufWriter::new(File::create(&tmp)?);
@@ -64,9 +68,24 @@ impl FileSet {
         }
     }
 
+    /// Creates `dir` and its missing ancestors, remembering which were new.
+    fn create_folders(&mut self, dir: &Path) -> std::io::Result<()> {
+        let mut missing: Vec<PathBuf> =
+            dir.ancestors().take_while(|d| !d.as_os_str().is_empty() && !d.exists()).map(Path::to_path_buf).collect();
+        if missing.is_empty() {
+            return Ok(());
+        }
+        std::fs::create_dir_all(dir)?;
+        missing.reverse();
+        self.created.extend(missing);
+        Ok(())
+    }
+
     /// Renames every file into place; returns their paths in the order they were written.
     pub fn commit(mut self) -> Result<Vec<PathBuf>, IoError> {
         let staged = std::mem::take(&mut self.staged);
+        // The folders now hold the set's files (or, if a rename fails, what was renamed).
+        self.created.clear();
         let mut done = Vec::with_capacity(staged.len());
         for (i, (path, tmp)) in staged.iter().enumerate() {
             if let Err(source) = std::fs::rename(tmp, path) {
@@ -85,6 +104,10 @@ impl Drop for FileSet {
     fn drop(&mut self) {
         for (_, tmp) in &self.staged {
             let _ = std::fs::remove_file(tmp);
+        }
+        // Innermost first; a folder something else wrote into meanwhile is not empty and stays.
+        for dir in self.created.iter().rev() {
+            let _ = std::fs::remove_dir(dir);
         }
     }
 }
@@ -162,6 +185,16 @@ mod tests {
         set.write(&dir.join("b"), |w| w.write_all(b"b")).unwrap();
         assert_eq!(set.commit().unwrap().len(), 2);
         assert_eq!(std::fs::read(dir.join("a")).unwrap(), b"a");
+        // Missing folders are made for the set, and taken away again with an unfinished one.
+        let mut set = FileSet::new(&[&input]);
+        set.write(&dir.join("new/deeper/c"), |w| w.write_all(b"c")).unwrap();
+        assert!(dir.join("new/deeper").is_dir());
+        drop(set);
+        assert!(!dir.join("new").exists(), "an unfinished set leaves no folder it made");
+        let mut set = FileSet::new(&[&input]);
+        set.write(&dir.join("new/deeper/c"), |w| w.write_all(b"c")).unwrap();
+        set.commit().unwrap();
+        assert_eq!(std::fs::read(dir.join("new/deeper/c")).unwrap(), b"c");
         std::fs::remove_dir_all(&dir).unwrap();
     }
 }

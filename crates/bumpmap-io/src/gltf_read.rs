@@ -29,14 +29,34 @@ pub(crate) struct GltfFile {
     pub files: Vec<PathBuf>,
 }
 
-/// Reads and checks `path` (see the module docs).
-pub(crate) fn read(path: &Path) -> Result<GltfFile, IoError> {
+/// Where a glTF's buffer files may come from.
+#[derive(Clone, Copy, Debug)]
+pub(crate) enum BufferFiles<'a> {
+    /// Nowhere: the glTF was read from memory; only `data:` URIs and the GLB chunk.
+    None,
+    /// Files inside `dir` (the glTF's folder), or anywhere if `allow_outside`.
+    Folder { dir: &'a Path, allow_outside: bool },
+}
+
+/// Reads and checks `path` (see the module docs); `allow_outside` lets buffer URIs lead out
+/// of its folder (absolute paths, `..`).
+pub(crate) fn read(path: &Path, allow_outside: bool) -> Result<GltfFile, IoError> {
     let bytes = read_file(path, path, MAX_FILE_BYTES)?;
+    let dir = path.parent().unwrap_or(Path::new(""));
+    parse(path, &bytes, BufferFiles::Folder { dir, allow_outside })
+}
+
+/// Checks and parses a glTF or GLB file's `bytes`; `name` is the file errors name.
+pub(crate) fn parse(name: &Path, bytes: &[u8], files_from: BufferFiles) -> Result<GltfFile, IoError> {
+    let path = name;
+    if bytes.len() as u64 > MAX_FILE_BYTES {
+        return Err(err(path, format!("{} bytes; the limit is {MAX_FILE_BYTES}", bytes.len())));
+    }
     if bytes.starts_with(b"glTF") {
-        check_glb(path, &bytes)?;
+        check_glb(path, bytes)?;
     }
     let unread = |e: gltf::Error| err(path, format!("not a readable glTF file: {e}"));
-    let gltf = gltf::Gltf::from_slice_without_validation(&bytes).map_err(unread)?;
+    let gltf = gltf::Gltf::from_slice_without_validation(bytes).map_err(unread)?;
     // The gltf crate's own validation indexes the accessors a primitive names without a bounds
     // check: check those indices first, then let it validate the rest.
     let json = gltf.document.as_json();
@@ -53,7 +73,6 @@ pub(crate) fn read(path: &Path) -> Result<GltfFile, IoError> {
     }
     let gltf =
         gltf::Gltf { document: gltf::Document::from_json(gltf.document.into_json()).map_err(unread)?, blob: gltf.blob };
-    let dir = path.parent().map(Path::to_path_buf).unwrap_or_default();
     let mut buffers = Vec::new();
     let mut files = Vec::new();
     for buffer in gltf.document.buffers() {
@@ -68,7 +87,7 @@ pub(crate) fn read(path: &Path) -> Result<GltfFile, IoError> {
             gltf::buffer::Source::Bin => gltf.blob.clone().ok_or_else(|| {
                 err(path, format!("buffer {} refers to a GLB chunk the file does not have", buffer.index()))
             })?,
-            gltf::buffer::Source::Uri(uri) => read_uri(path, &dir, buffer.index(), uri, length, &mut files)?,
+            gltf::buffer::Source::Uri(uri) => read_uri(path, files_from, buffer.index(), uri, length, &mut files)?,
         };
         if data.len() < length {
             return Err(err(path, format!("buffer {} declares {length} bytes but has {}", buffer.index(), data.len())));
@@ -81,7 +100,7 @@ pub(crate) fn read(path: &Path) -> Result<GltfFile, IoError> {
 }
 
 /// Reads at most `max` bytes of a regular file.
-fn read_file(named: &Path, file: &Path, max: u64) -> Result<Vec<u8>, IoError> {
+pub(crate) fn read_file(named: &Path, file: &Path, max: u64) -> Result<Vec<u8>, IoError> {
     let meta = std::fs::metadata(file).map_err(|source| IoError::Read { path: file.to_path_buf(), source })?;
     if !meta.is_file() {
         return Err(err(named, format!("{} is not a regular file", file.display())));
@@ -142,10 +161,10 @@ fn percent_decode(uri: &str) -> Option<String> {
     String::from_utf8(out).ok()
 }
 
-/// A buffer's bytes from its URI: a base64 `data:` URI, or a relative path inside `dir`.
+/// A buffer's bytes from its URI: a base64 `data:` URI, or a file `files_from` allows.
 fn read_uri(
     path: &Path,
-    dir: &Path,
+    files_from: BufferFiles,
     index: usize,
     uri: &str,
     length: usize,
@@ -161,18 +180,37 @@ fn read_uri(
         return base64::decode(encoded)
             .map_err(|e| err(path, format!("buffer {index}: bad base64 in its data: URI: {e}")));
     }
+    let BufferFiles::Folder { dir, allow_outside } = files_from else {
+        return Err(err(
+            path,
+            format!("buffer {index} is the file '{uri}', but a glTF read from memory has no folder"),
+        ));
+    };
     let outside = || {
         err(
             path,
             format!(
-                "buffer {index}'s uri '{uri}' points outside the glTF's folder; only files beside it or below it are read"
+                "buffer {index}'s uri '{uri}' points outside the glTF's folder; only files beside it or below it are read (unless outside paths are allowed)"
             ),
         )
     };
     let has_scheme = uri.split_once(':').is_some_and(|(scheme, _)| !scheme.is_empty() && !scheme.contains('/'));
     let decoded = percent_decode(uri)
         .ok_or_else(|| err(path, format!("buffer {index}'s uri '{uri}' has a malformed %-escape")))?;
-    if has_scheme || decoded.starts_with(['/', '\\']) || decoded.contains('\\') {
+    if has_scheme {
+        return Err(err(
+            path,
+            format!("buffer {index}'s uri '{uri}' has a scheme; only data: URIs and paths are read"),
+        ));
+    }
+    if allow_outside {
+        let file = dir.join(Path::new(&decoded));
+        let real_file = std::fs::canonicalize(&file).map_err(|source| IoError::Read { path: file.clone(), source })?;
+        let data = read_file(path, &real_file, length as u64)?;
+        files.push(real_file);
+        return Ok(data);
+    }
+    if decoded.starts_with(['/', '\\']) || decoded.contains('\\') {
         return Err(outside());
     }
     let relative = Path::new(&decoded);

@@ -107,43 +107,77 @@ fn preset_hint(spec: &str) -> Option<String> {
     bare.then(|| format!("unknown preset '{spec}' (use {}, optionally @SIZE)", HeightPreset::NAMES))
 }
 
-fn decode(path: &Path) -> Result<DynamicImage, IoError> {
-    let open = || {
-        ImageReader::open(path)
-            .map_err(|source| IoError::Read { path: path.to_path_buf(), source })?
-            .with_guessed_format()
-            .map_err(|source| IoError::Read { path: path.to_path_buf(), source })
-    };
-    let bad = |e: image::ImageError| IoError::Decode { path: path.to_path_buf(), reason: e.to_string() };
-    let (width, height) = open()?.into_dimensions().map_err(bad)?;
+/// How much one image decode may take: the largest width or height, and the largest single
+/// allocation the decoder may make. The command line uses [`DecodeLimits::default`]; an
+/// embedding program (or a fuzzer) can be stricter.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct DecodeLimits {
+    /// The largest width or height, in texels (at most [`MAX_DIMENSION`]).
+    pub max_dimension: u32,
+    /// The largest allocation the decoder may make, in bytes.
+    pub max_alloc: u64,
+}
+
+impl Default for DecodeLimits {
+    /// [`MAX_DIMENSION`] texels a side, 4 GiB at most (a 16384² RGBA image at 16 bits is 2 GiB).
+    fn default() -> Self {
+        Self { max_dimension: MAX_DIMENSION, max_alloc: 4 << 30 }
+    }
+}
+
+/// Something an image can be decoded from more than once (the header is read first, alone).
+trait Source {
+    type Reader: std::io::BufRead + std::io::Seek;
+    fn open(&self) -> std::io::Result<Self::Reader>;
+}
+
+impl Source for &Path {
+    type Reader = std::io::BufReader<std::fs::File>;
+    fn open(&self) -> std::io::Result<Self::Reader> {
+        std::fs::File::open(self).map(std::io::BufReader::new)
+    }
+}
+
+impl<'a> Source for &'a [u8] {
+    type Reader = std::io::Cursor<&'a [u8]>;
+    fn open(&self) -> std::io::Result<Self::Reader> {
+        Ok(std::io::Cursor::new(self))
+    }
+}
+
+/// Decodes the image from `source`; `name` is the file the errors name.
+fn decode(source: impl Source, name: &Path, limits: &DecodeLimits) -> Result<DynamicImage, IoError> {
+    let read_err = |source| IoError::Read { path: name.to_path_buf(), source };
+    let open = || ImageReader::new(source.open().map_err(read_err)?).with_guessed_format().map_err(read_err);
+    let bad = |e: image::ImageError| IoError::Decode { path: name.to_path_buf(), reason: e.to_string() };
+    // The header alone, without the decoder's own memory limit, so a huge declared size is
+    // reported as a size against MAX_DIMENSION rather than as "memory limit exceeded".
+    let mut header = open()?;
+    header.no_limits();
+    let (width, height) = header.into_dimensions().map_err(bad)?;
     if width == 0 || height == 0 {
-        return Err(IoError::Empty { path: path.to_path_buf(), width, height });
+        return Err(IoError::Empty { path: name.to_path_buf(), width, height });
     }
-    if width > MAX_DIMENSION || height > MAX_DIMENSION {
-        return Err(IoError::TooLarge {
-            path: path.to_path_buf(),
-            width: width as u64,
-            height: height as u64,
-            max: MAX_DIMENSION,
-        });
+    let max = limits.max_dimension.min(MAX_DIMENSION);
+    if width > max || height > max {
+        return Err(IoError::TooLarge { path: name.to_path_buf(), width: width as u64, height: height as u64, max });
     }
-    check_png_palette(path)?;
+    check_png_palette(source.open().map_err(read_err)?, name)?;
     let mut reader = open()?;
-    let mut limits = Limits::default();
-    limits.max_image_width = Some(MAX_DIMENSION);
-    limits.max_image_height = Some(MAX_DIMENSION);
-    limits.max_alloc = Some(4 << 30);
-    reader.limits(limits);
+    let mut image_limits = Limits::default();
+    image_limits.max_image_width = Some(max);
+    image_limits.max_image_height = Some(max);
+    image_limits.max_alloc = Some(limits.max_alloc);
+    reader.limits(image_limits);
     reader.decode().map_err(bad)
 }
 
 /// Refuses a PNG whose PLTE chunk is not a whole number of RGB entries (1 to 256): the `png`
 /// crate (0.18) panics on one while expanding the palette. Reads the chunk headers up to the
 /// first IDAT only; anything else is left to the decoder.
-fn check_png_palette(path: &Path) -> Result<(), IoError> {
-    use std::io::{Read, Seek, SeekFrom};
-    let read_err = |source| IoError::Read { path: path.to_path_buf(), source };
-    let mut f = std::io::BufReader::new(std::fs::File::open(path).map_err(read_err)?);
+fn check_png_palette(mut f: impl std::io::Read + std::io::Seek, name: &Path) -> Result<(), IoError> {
+    use std::io::SeekFrom;
+    let read_err = |source| IoError::Read { path: name.to_path_buf(), source };
     let mut signature = [0u8; 8];
     if f.read_exact(&mut signature).is_err() || signature != *b"\x89PNG\r\n\x1a\n" {
         return Ok(());
@@ -154,7 +188,7 @@ fn check_png_palette(path: &Path) -> Result<(), IoError> {
         match &header[4..] {
             b"PLTE" if length == 0 || length % 3 != 0 || length > 768 => {
                 return Err(IoError::Decode {
-                    path: path.to_path_buf(),
+                    path: name.to_path_buf(),
                     reason: format!("PLTE chunk of {length} bytes is not 1 to 256 RGB entries (3 bytes each)"),
                 });
             }
@@ -169,7 +203,21 @@ fn check_png_palette(path: &Path) -> Result<(), IoError> {
 
 /// Loads heights in [0, 1] from one channel of an 8- or 16-bit image (`v/255` or `v/65535`).
 pub fn load_height_field(path: &Path, channel: Channel) -> Result<HeightField, IoError> {
-    let img = decode(path)?;
+    height_field(decode(path, path, &DecodeLimits::default())?, path, channel)
+}
+
+/// [`load_height_field`] for an image file's bytes already in memory; `name` is the file
+/// that errors name.
+pub fn read_height_field(
+    bytes: &[u8],
+    name: &Path,
+    channel: Channel,
+    limits: &DecodeLimits,
+) -> Result<HeightField, IoError> {
+    height_field(decode(bytes, name, limits)?, name, channel)
+}
+
+fn height_field(img: DynamicImage, path: &Path, channel: Channel) -> Result<HeightField, IoError> {
     let (w, h) = (img.width() as usize, img.height() as usize);
     let color = img.color();
     let missing =
@@ -205,11 +253,21 @@ pub fn load_height_field(path: &Path, channel: Channel) -> Result<HeightField, I
     Ok(field.expect("decoded image has consistent dimensions"))
 }
 
-/// Loads any image as 8-bit RGBA (decals, gloss maps). Returns (width, height, texels).
+/// Loads any image as 8-bit RGBA (decals, gloss maps, normal maps).
 pub fn load_rgba8(path: &Path) -> Result<Rgba8Image, IoError> {
-    let img = decode(path)?.to_rgba8();
+    Ok(rgba8(decode(path, path, &DecodeLimits::default())?))
+}
+
+/// [`load_rgba8`] for an image file's bytes already in memory; `name` is the file that errors
+/// name.
+pub fn read_rgba8(bytes: &[u8], name: &Path, limits: &DecodeLimits) -> Result<Rgba8Image, IoError> {
+    Ok(rgba8(decode(bytes, name, limits)?))
+}
+
+fn rgba8(img: DynamicImage) -> Rgba8Image {
+    let img = img.to_rgba8();
     let (w, h) = (img.width() as usize, img.height() as usize);
-    Ok(Rgba8Image::new(w, h, img.pixels().map(|p| p.0).collect()))
+    Rgba8Image::new(w, h, img.pixels().map(|p| p.0).collect())
 }
 
 /// Pixel layouts [`save_png`] writes.

@@ -13,5 +13,9 @@ pub mod mesh_file;
 pub mod texture_file;
 
 pub use error::IoError;
-pub use image_file::{Channel, HeightSource, load_height_field, load_rgba8};
-pub use mesh_file::{LoadedMesh, load_mesh, save_gltf};
+pub use image_file::{
+    Channel, DecodeLimits, HeightSource, load_height_field, load_rgba8, read_height_field, read_rgba8,
+};
+pub use mesh_file::{
+    LoadedMesh, MeshFormat, MeshOptions, ObjTexcoords, load_mesh, load_mesh_with, read_mesh, save_gltf,
+};

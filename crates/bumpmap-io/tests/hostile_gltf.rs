@@ -82,7 +82,6 @@ fn buffers_outside_the_gltfs_folder_are_refused_without_reading_them() {
         ("encoded", "..%2Fsecret.bin"),
         ("encoded_dots", "%2E%2E/secret.bin"),
         ("absolute", "/etc/passwd"),
-        ("file_scheme", "file:///etc/passwd"),
         ("dev_zero", "/dev/zero"),
         ("backslash", "..\\\\secret.bin"),
     ] {
@@ -91,6 +90,23 @@ fn buffers_outside_the_gltfs_folder_are_refused_without_reading_them() {
         let e = refused(&path, "outside the glTF's folder");
         assert!(!e.contains("SECRET") && !e.contains("root:"), "no bytes of the file in the message: {e}");
     }
+    // A URI with a scheme is no path at all.
+    let path = dir.join("scheme.gltf");
+    std::fs::write(&path, gltf_json("file:///etc/passwd", 5123, 5126, false)).unwrap();
+    refused(&path, "has a scheme");
+    // With outside paths allowed, `..` is followed — still to a regular file, at most
+    // byteLength bytes; /dev/zero is still refused without being read.
+    std::fs::write(root.join("t.bin"), triangle_bin()).unwrap();
+    let path = dir.join("allowed.gltf");
+    std::fs::write(&path, gltf_json("../t.bin", 5123, 5126, false)).unwrap();
+    let allow = bumpmap_io::MeshOptions { allow_outside_paths: true, ..Default::default() };
+    let loaded = bumpmap_io::load_mesh_with(&path, &allow).unwrap();
+    assert_eq!(loaded.mesh.positions.len(), 3);
+    assert!(loaded.sources.iter().any(|s| s.ends_with("t.bin")), "the buffer file is a protected input");
+    let path = dir.join("zero_allowed.gltf");
+    std::fs::write(&path, gltf_json("/dev/zero", 5123, 5126, false)).unwrap();
+    let e = bumpmap_io::load_mesh_with(&path, &allow).unwrap_err().to_string();
+    assert!(e.contains("not a regular file"), "{e}");
     // A link inside the folder that leads out is refused too.
     #[cfg(unix)]
     {
@@ -173,4 +189,50 @@ fn glb_headers_that_lie_about_their_length_are_refused_before_any_allocation() {
         std::fs::write(&path, bytes).unwrap();
         refused(&path, expect);
     }
+}
+
+#[test]
+fn node_transforms_place_each_instance_and_mirrors_keep_the_winding() {
+    let dir = scratch("nodes");
+    std::fs::write(dir.join("t.bin"), triangle_bin()).unwrap();
+    let base = gltf_json("t.bin", 5123, 5126, false);
+    // Two instances of the triangle: one moved along x, one mirrored in x (scale -1).
+    let json = base.replacen(
+        r#""meshes""#,
+        r#""scene":0,"scenes":[{"nodes":[0,1]}],"nodes":[{"mesh":0,"translation":[10,0,0]},{"mesh":0,"scale":[-1,1,1],"children":[2]},{"mesh":0,"translation":[0,0,5]}],"meshes""#,
+        1,
+    );
+    let path = dir.join("two.gltf");
+    std::fs::write(&path, json).unwrap();
+    let m = load_mesh(&path).unwrap().mesh;
+    assert_eq!(m.positions.len(), 9, "three instances, three copies");
+    assert_eq!(m.positions[1], glam::Vec3::new(11.0, 0.0, 0.0));
+    assert_eq!(m.positions[4], glam::Vec3::new(-1.0, 0.0, 0.0));
+    // The child inherits the mirror: (1, 0, 0) + (0, 0, 5) seen through scale (-1, 1, 1).
+    assert_eq!(m.positions[7], glam::Vec3::new(-1.0, 0.0, 5.0));
+    // Every copy still faces +z: the mirrored ones' winding was turned around.
+    for t in &m.indices {
+        let [a, b, c] = t.map(|i| m.positions[i as usize]);
+        assert!((b - a).cross(c - a).z > 0.0, "triangle {t:?} faces away");
+    }
+    // A cycle in the hierarchy is an error, not a hang.
+    let cyclic = base.replacen(
+        r#""meshes""#,
+        r#""nodes":[{"mesh":0,"children":[1]},{"children":[0]}],"scenes":[{"nodes":[0]}],"meshes""#,
+        1,
+    );
+    let path = dir.join("cycle.gltf");
+    std::fs::write(&path, cyclic).unwrap();
+    let result = std::panic::catch_unwind(|| load_mesh(&path)).expect("no panic");
+    assert!(result.is_err(), "a node that is its own ancestor is refused");
+}
+
+#[test]
+fn a_gltf_in_memory_reads_no_files() {
+    let dir = scratch("memory");
+    std::fs::write(dir.join("t.bin"), triangle_bin()).unwrap();
+    let json = gltf_json("t.bin", 5123, 5126, false);
+    let name = dir.join("t.gltf");
+    let e = bumpmap_io::read_mesh(json.as_bytes(), &name, bumpmap_io::MeshFormat::Gltf).unwrap_err().to_string();
+    assert!(e.contains("has no folder"), "{e}");
 }

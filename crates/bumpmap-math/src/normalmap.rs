@@ -12,21 +12,32 @@ use crate::height::HeightField;
 use crate::image::Rgba8Image;
 use crate::kernel::{Kernel, Tap, Wrap};
 
-/// Which way the green channel points.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default)]
+/// Which way the green channel points, stated against the image as displayed (first row at
+/// the top), as the file formats and the tools that read them state it.
+///
+/// This crate's texture space has t = 0 at the first row and t growing down the image, so the
+/// normal's Y component, along +t, points *down* the displayed image: [`YConvention::YDown`] is
+/// what the renderers sample ([`YConvention::TEXTURE_SPACE`]). Files for glTF, Blender and
+/// Unity want [`YConvention::YUp`], whose green is the texture-space Y negated.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum YConvention {
-    /// +Y toward increasing t (the next row in memory): OpenGL, glTF, Blender, the paper.
-    #[default]
-    OpenGl,
-    /// +Y toward decreasing t: DirectX, Unreal, 3ds Max. Green is the OpenGL green negated.
-    DirectX,
+    /// Green is +Y toward the top of the image as displayed: glTF 2.0 (`normalTexture`: "+Y is
+    /// up"), OpenGL, Blender, Maya, Unity.
+    YUp,
+    /// Green is +Y toward the bottom of the image as displayed: DirectX, Unreal, 3ds Max — and
+    /// this crate's texture space.
+    YDown,
 }
 
 impl YConvention {
+    /// The convention of this crate's texture space (what its renderers sample).
+    pub const TEXTURE_SPACE: Self = Self::YDown;
+
+    /// The name the tools use: `opengl` (Y up) or `directx` (Y down).
     pub fn name(self) -> &'static str {
         match self {
-            YConvention::OpenGl => "opengl",
-            YConvention::DirectX => "directx",
+            YConvention::YUp => "opengl",
+            YConvention::YDown => "directx",
         }
     }
 }
@@ -39,6 +50,8 @@ pub struct NormalMapOptions {
     /// `scale` is the height of a unit step measured in texels.
     pub scale: f32,
     pub wrap: Wrap,
+    /// Which way green points; the default is [`YConvention::TEXTURE_SPACE`] (for rendering).
+    /// A normal map written for other tools usually wants [`YConvention::YUp`].
     pub y_convention: YConvention,
     pub encoding: Encoding,
 }
@@ -49,7 +62,7 @@ impl Default for NormalMapOptions {
             kernel: Kernel::Forward,
             scale: 4.0,
             wrap: Wrap::Repeat,
-            y_convention: YConvention::OpenGl,
+            y_convention: YConvention::TEXTURE_SPACE,
             encoding: Encoding::Unorm,
         }
     }
@@ -179,7 +192,8 @@ impl<'a> RowEvaluator<'a> {
         self.apply(&self.dv_taps, y, ny, rows);
         nz.resize(nx.len(), 0.0);
         let s = self.options.scale;
-        let flip = if self.options.y_convention == YConvention::DirectX { -1.0 } else { 1.0 };
+        // Texture-space Y is along +t, down the image; Y up negates it.
+        let flip = if self.options.y_convention == YConvention::YUp { -1.0 } else { 1.0 };
         // The paper's double-precision reciprocal only matters for its own byte encoding;
         // unorm takes the single-precision one, half the work per lane.
         if self.options.encoding == Encoding::Kilgard {
@@ -324,10 +338,10 @@ mod tests {
                 }
             });
         }
-        let dx = NormalMapOptions { y_convention: YConvention::DirectX, ..Default::default() };
-        let gl = normal_map_level0(&f, &NormalMapOptions::default()).unwrap();
-        let d3d = normal_map_level0(&f, &dx).unwrap();
-        let (a, b) = (gl.texel(5, 5), d3d.texel(5, 5));
+        let up = NormalMapOptions { y_convention: YConvention::YUp, ..Default::default() };
+        let down = normal_map_level0(&f, &NormalMapOptions::default()).unwrap();
+        let gl = normal_map_level0(&f, &up).unwrap();
+        let (a, b) = (down.texel(5, 5), gl.texel(5, 5));
         assert!(a[1] < 128 && b[1] > 128, "green flips between conventions: {a:?} vs {b:?}");
         assert_eq!((a[0], a[2]), (b[0], b[2]));
     }

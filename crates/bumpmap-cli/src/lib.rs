@@ -1,0 +1,38 @@
+//! The `bumpmap` command line as a library: `main.rs` parses and calls [`run`]; the fuzz
+//! targets (`fuzz/`) reach the argument parser through [`args::Cli`]. Each subcommand lives in
+//! its own module.
+//!
+//! - [`args`]: the command line (clap), its value parsers and limits;
+//! - `render_args`: the option groups `render` and `bench render` share;
+//! - `normalmap`, `cubemap`, `mesh` (tangents), `render`, `bench`, `demo`: the subcommands;
+//! - `backend`: the CPU or GPU renderer a command draws with;
+//! - [`error`]: every layer's errors as one type, in the words of the command line.
+
+// The argument structs' doc comments are clap's help texts, written for a terminal: their
+// `[dir:]X,Y,Z` and `[0,1]` are not intra-doc links.
+#![allow(rustdoc::broken_intra_doc_links)]
+
+pub mod args;
+mod backend;
+mod bench;
+mod cubemap;
+mod demo;
+pub mod error;
+mod mesh;
+mod normalmap;
+mod render;
+pub mod render_args;
+
+use crate::args::{Cli, Command};
+
+/// Runs the parsed command.
+pub fn run(cli: Cli) -> Result<(), error::CliError> {
+    match cli.command {
+        Command::Normalmap(a) => normalmap::run(&a),
+        Command::Cubemap(a) => cubemap::run(&a),
+        Command::Bench(a) => bench::run(&a),
+        Command::Render(a) => render::run(&a),
+        Command::Tangents(a) => mesh::run(&a),
+        Command::Demo(a) => demo::run(&a),
+    }
+}

@@ -1,0 +1,7 @@
+//! OBJ text to a mesh: a value or an error, never a panic.
+#![no_main]
+
+#[path = "../targets.rs"]
+mod targets;
+
+libfuzzer_sys::fuzz_target!(|data: &[u8]| targets::obj(data));

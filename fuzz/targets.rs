@@ -1,0 +1,47 @@
+//! The fuzz targets' bodies, in one place: the libFuzzer binaries in `fuzz_targets/` call them,
+//! and `crates/bumpmap-cli/tests/fuzz_regressions.rs` replays every saved crash through them on
+//! stable. Each must return (a value or an error, thrown away) and never panic.
+
+// Each binary calls one of these.
+#![allow(dead_code)]
+
+use std::path::Path;
+
+use bumpmap_io::{Channel, DecodeLimits, MeshFormat, read_height_field, read_mesh, read_rgba8};
+use clap::Parser;
+
+/// 1024² at most, so a declared size costs at most 1024² × 8 bytes (RGBA16) per image.
+pub const IMAGE_LIMITS: DecodeLimits = DecodeLimits { max_dimension: 1024, max_alloc: 64 << 20 };
+
+/// Image decoding as a height field (the first byte picks the channel) or, with the first
+/// byte's top bit set, as an RGBA8 texture (normal maps, decals, gloss maps).
+pub fn image(data: &[u8]) {
+    let Some((&pick, bytes)) = data.split_first() else { return };
+    let name = Path::new("fuzz.img");
+    let channel = [Channel::Luminance, Channel::Red, Channel::Green, Channel::Blue, Channel::Alpha][pick as usize % 5];
+    if pick & 0x80 == 0 {
+        let _ = read_height_field(bytes, name, channel, &IMAGE_LIMITS);
+    } else {
+        let _ = read_rgba8(bytes, name, &IMAGE_LIMITS);
+    }
+}
+
+/// OBJ text to a mesh.
+pub fn obj(data: &[u8]) {
+    let _ = read_mesh(data, Path::new("fuzz.obj"), MeshFormat::Obj);
+}
+
+/// glTF JSON or GLB to a mesh, from memory: only data: URIs and the GLB chunk supply buffers.
+pub fn gltf(data: &[u8]) {
+    let _ = read_mesh(data, Path::new("fuzz.gltf"), MeshFormat::Gltf);
+}
+
+/// The command line's parser and all its value parsers: words split on NUL, parsed, not run.
+pub fn cli_args(data: &[u8]) {
+    let Ok(text) = std::str::from_utf8(data) else { return };
+    let words = std::iter::once("bumpmap").chain(text.split('\0'));
+    if let Ok(cli) = bumpmap_cli::args::Cli::try_parse_from(words) {
+        // The debug form walks every parsed value.
+        let _ = format!("{cli:?}");
+    }
+}
