@@ -206,9 +206,11 @@ impl NormalMapOpts {
 #[command(after_help = "Examples:\n  \
 bumpmap normalmap heights.png -o normals.png --mips        # normals.png, normals.mip1.png, …\n  \
 bumpmap normalmap bricks@512 -o bricks.ktx2 --mips         # a preset, all levels in one file\n  \
-bumpmap normalmap textures/ -o normals/ --scale 8          # every image in a folder, in parallel\n\n\
+bumpmap normalmap textures/ -o normals/ --scale 8          # every image in a folder, in parallel\n  \
+bumpmap normalmap rock.png -o rock.dds --mips --format bc5  # BC5 for an engine (Z rebuilt in the shader)\n\n\
 IN is an image file (PNG, TGA, BMP, JPEG, TIFF, PNM; 8 or 16 bits), a folder of them, or a \
-preset: bricks, pinwheel, dimples, noise:SEED, each optionally @SIZE (default 256).")]
+preset: bricks, pinwheel, dimples, noise:SEED, each optionally @SIZE (default 256). Green points \
+up the image as displayed (glTF, Blender, Unity) unless --y-convention directx.")]
 pub struct NormalmapArgs {
     /// Height field: image file, folder, or preset (bricks, pinwheel, dimples, noise:SEED[@SIZE])
     pub input: String,
@@ -221,8 +223,36 @@ pub struct NormalmapArgs {
     /// What the smaller levels store
     #[arg(long = "mip-mode", value_enum, default_value = "length-in-alpha")]
     pub mip_mode: MipModeArg,
+    /// Texel format of .dds and .ktx2 outputs: rgba8 (uncompressed), bc5 (red and green, Z rebuilt in the shader; drops the length factor in alpha), bc7 (all four channels). texconv's names work too (BC5_UNORM, …); a folder run with bc5/bc7 writes .dds files
+    #[arg(long, value_enum, default_value = "rgba8", ignore_case = true)]
+    pub format: FormatArg,
     #[command(flatten)]
     pub map: NormalMapOpts,
+}
+
+/// Texel formats of DDS and KTX2 outputs.
+#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum FormatArg {
+    /// Uncompressed 8-bit RGBA
+    #[value(alias = "r8g8b8a8_unorm")]
+    Rgba8,
+    /// BC5: two channels (X, Y), 8 bits per texel
+    #[value(alias = "bc5_unorm")]
+    Bc5,
+    /// BC7: four channels, 8 bits per texel
+    #[value(alias = "bc7_unorm")]
+    Bc7,
+}
+
+impl From<FormatArg> for bumpmap_io::texture_file::TextureFormat {
+    fn from(f: FormatArg) -> Self {
+        use bumpmap_io::texture_file::TextureFormat;
+        match f {
+            FormatArg::Rgba8 => TextureFormat::Rgba8,
+            FormatArg::Bc5 => TextureFormat::Bc5,
+            FormatArg::Bc7 => TextureFormat::Bc7,
+        }
+    }
 }
 
 #[derive(Args, Debug)]
@@ -259,6 +289,9 @@ pub enum BenchWhat {
         /// Edge length of the square height field
         #[arg(long, default_value_t = 4096, value_parser = clap::value_parser!(u32).range(1..=16384))]
         size: u32,
+        /// Also time compressing the chain to this format (bc5, bc7), every level
+        #[arg(long, value_enum, ignore_case = true)]
+        format: Option<FormatArg>,
         /// Timed runs (after one warm-up)
         #[arg(long, default_value_t = 9, value_parser = clap::value_parser!(u32).range(1..))]
         runs: u32,

@@ -8,7 +8,7 @@ use std::time::Instant;
 use bumpmap_math::{HeightField, HeightPreset, MipChain, MipMode, NormalMapOptions, mip::next_size};
 use rayon::prelude::*;
 
-use crate::args::{BenchArgs, BenchWhat};
+use crate::args::{BenchArgs, BenchWhat, FormatArg};
 use crate::error::CliError;
 use crate::render_args::BenchRenderArgs;
 
@@ -35,8 +35,8 @@ pub fn time_runs(runs: u32, mut f: impl FnMut()) -> Stats {
 
 pub fn run(args: &BenchArgs) -> Result<(), CliError> {
     match args.what {
-        BenchWhat::Normalmap { size, runs, threads, json } => {
-            with_threads(threads, || bench_normalmap(size as usize, runs, json))
+        BenchWhat::Normalmap { size, format, runs, threads, json } => {
+            with_threads(threads, || bench_normalmap(size as usize, format, runs, json))
         }
         BenchWhat::Tangents { triangles, mode, runs, threads, json } => {
             with_threads(threads, || bench_tangents(triangles as usize, mode, runs, json))
@@ -59,15 +59,20 @@ pub fn bench_heights(size: usize) -> Vec<u8> {
     bricks.to_f32().iter().zip(&noise.to_f32()).map(|(b, n)| (b * 247.0 + n * 8.0).clamp(0.0, 255.0) as u8).collect()
 }
 
-fn bench_normalmap(size: usize, runs: u32, json: bool) -> Result<(), CliError> {
+fn bench_normalmap(size: usize, format: Option<FormatArg>, runs: u32, json: bool) -> Result<(), CliError> {
     let bytes = bench_heights(size);
     let options = NormalMapOptions::default();
     let mut levels = 0;
+    let mut last = None;
     let work = time_runs(runs, || {
         let field = HeightField::from_u8(size, size, &bytes).expect("square field");
         let chain = MipChain::from_height(&field, &options, MipMode::LengthInAlpha).expect("valid options");
         levels = chain.len();
+        last = Some(chain);
     });
+    if let Some(format) = format {
+        return bench_compression(size, &last.expect("ran"), format.into(), runs, json);
+    }
     let floor = time_runs(runs, || {
         std::hint::black_box(read_once_write_once(&bytes, size));
     });
@@ -94,6 +99,55 @@ fn bench_normalmap(size: usize, runs: u32, json: bool) -> Result<(), CliError> {
         );
         println!("  floor (read the input once, write every output byte once): median {:.2} ms", floor.median);
         println!("  ratio to the floor: {:.2}x", work.median / floor.median);
+    }
+    Ok(())
+}
+
+/// Compressing a finished chain (every level, in parallel) to `format`; the chain itself is
+/// made once, untimed.
+fn bench_compression(
+    size: usize,
+    chain: &MipChain,
+    format: bumpmap_io::texture_file::TextureFormat,
+    runs: u32,
+    json: bool,
+) -> Result<(), CliError> {
+    let layout = bumpmap_io::texture_file::TextureLayout { faces: vec![chain.levels.iter().collect()] };
+    let mut failed = None;
+    let stats = time_runs(runs, || {
+        if let Err(e) = bumpmap_io::texture_file::encode(std::path::Path::new("bench"), &layout, format) {
+            failed = Some(e);
+        }
+    });
+    if let Some(e) = failed {
+        return Err(e.into());
+    }
+    let threads = rayon::current_num_threads();
+    let texels: usize = chain.levels.iter().map(|l| l.width * l.height).sum();
+    let mpix = texels as f64 / 1e6;
+    if json {
+        println!(
+            "{{\"bench\":\"compress\",\"format\":\"{}\",\"size\":{size},\"levels\":{},\"threads\":{threads},\"runs\":{runs},\"median_ms\":{:.3},\"min_ms\":{:.3},\"max_ms\":{:.3},\"mpix_per_s\":{:.1}}}",
+            format.name(),
+            chain.len(),
+            stats.median,
+            stats.min,
+            stats.max,
+            mpix / (stats.median / 1e3)
+        );
+    } else {
+        println!(
+            "{} compression of a {size}x{size} normal map and its {} levels, {threads} threads, {runs} runs",
+            format.name(),
+            chain.len()
+        );
+        println!(
+            "  median {:.1} ms (min {:.1}, max {:.1}): {:.0} MPix/s",
+            stats.median,
+            stats.min,
+            stats.max,
+            mpix / (stats.median / 1e3)
+        );
     }
     Ok(())
 }

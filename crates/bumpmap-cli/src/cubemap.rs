@@ -2,7 +2,7 @@
 
 use bumpmap_io::atomic::FileSet;
 use bumpmap_io::image_file::{PngLayout, save_png_into};
-use bumpmap_io::texture_file::{TextureLayout, write_dds, write_ktx2};
+use bumpmap_io::texture_file::{TextureFormat, TextureLayout, write_dds, write_ktx2};
 use bumpmap_math::Rgba8Image;
 use bumpmap_math::cubemap::worst_angular_error_degrees;
 use bumpmap_math::{CubeFace, Encoding, NormalizationCubeMap};
@@ -32,7 +32,12 @@ pub fn write(out: &std::path::Path, map: &NormalizationCubeMap) -> Result<(), Cl
                 .map(|f| Rgba8Image::new(n, n, f.iter().map(|&[r, g, b]| [r, g, b, 255]).collect()))
                 .collect();
             let layout = TextureLayout { faces: rgba.iter().map(|f| vec![f]).collect() };
-            if ext.as_deref() == Some("dds") { write_dds(out, &layout)? } else { write_ktx2(out, &layout)? }
+            let format = TextureFormat::Rgba8;
+            if ext.as_deref() == Some("dds") {
+                write_dds(out, &layout, format)?
+            } else {
+                write_ktx2(out, &layout, format)?
+            }
         }
         Some(_) if !out.is_dir() => {
             return Err(bumpmap_io::IoError::UnsupportedOutput {

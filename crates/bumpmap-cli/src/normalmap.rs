@@ -4,7 +4,7 @@ use std::path::{Path, PathBuf};
 
 use bumpmap_io::atomic::{FileSet, ensure_not_input};
 use bumpmap_io::image_file::{PngLayout, save_png_into};
-use bumpmap_io::texture_file::{TextureLayout, write_dds_into, write_ktx2_into};
+use bumpmap_io::texture_file::{TextureFormat, TextureLayout, write_dds_into, write_ktx2_into};
 use bumpmap_io::{Channel, HeightSource};
 use bumpmap_math::normalmap::normal_map_level0;
 use bumpmap_math::{HeightField, MipChain, MipMode, NormalMapOptions};
@@ -25,21 +25,24 @@ pub fn run(args: &NormalmapArgs) -> Result<(), CliError> {
         return run_folder(input, args, &options, channel);
     }
     let source = HeightSource::parse(&args.input);
-    let output = output_file(&args.output, &source, &args.input);
+    let format: TextureFormat = args.format.into();
+    let output = output_file(&args.output, &source, &args.input, format);
+    check_format(&output, format)?;
     if let Some(path) = source.path() {
         ensure_not_input(&output, &[path])?;
     }
     let field = source.load(channel)?;
     let levels = make(&field, &options, args.mips, args.mip_mode.into(), &args.input)?;
     let inputs: Vec<&Path> = source.path().into_iter().collect();
-    let written = write_set(&output, &levels, &inputs)?;
+    let written = write_set(&output, &levels, &inputs, format)?;
     eprintln!("wrote {}", describe(&written));
     Ok(())
 }
 
 /// The output file for one input: `-o` itself, or, when `-o` is a folder (an existing one, or
-/// a path ending in `/`), `FOLDER/STEM.png` with the input's file stem or the preset's name.
-fn output_file(output: &Path, source: &HeightSource, spec: &str) -> PathBuf {
+/// a path ending in `/`), `FOLDER/STEM.png` (`.dds` for a compressed format) with the input's
+/// file stem or the preset's name.
+fn output_file(output: &Path, source: &HeightSource, spec: &str, format: TextureFormat) -> PathBuf {
     let as_folder = output.is_dir() || output.as_os_str().to_string_lossy().ends_with(std::path::MAIN_SEPARATOR);
     if !as_folder {
         return output.to_path_buf();
@@ -48,7 +51,7 @@ fn output_file(output: &Path, source: &HeightSource, spec: &str) -> PathBuf {
         Some(p) => p.file_stem().unwrap_or_default().to_string_lossy().into_owned(),
         None => spec.split(['@', ':']).next().unwrap_or("normal").to_string(),
     };
-    output.join(format!("{stem}.png"))
+    output.join(format!("{stem}.{}", if format == TextureFormat::Rgba8 { "png" } else { "dds" }))
 }
 
 /// `a.png` for one file, `a.png, a.mip1.png, … (9 files)` for a chain.
@@ -88,11 +91,30 @@ pub fn level_path(out: &Path, k: usize) -> PathBuf {
 
 /// Writes a chain by the output's extension: PNG files, or one DDS / KTX2 file.
 pub fn write(out: &Path, chain: &MipChain) -> Result<(), CliError> {
-    write_set(out, chain, &[]).map(|_| ())
+    write_set(out, chain, &[], TextureFormat::Rgba8).map(|_| ())
 }
 
-/// [`write`], all files or none, none of them replacing one of `inputs`; returns the paths.
-pub fn write_set(out: &Path, chain: &MipChain, inputs: &[&Path]) -> Result<Vec<PathBuf>, CliError> {
+/// A compressed format needs a container that holds it.
+fn check_format(out: &Path, format: TextureFormat) -> Result<(), CliError> {
+    let ext = out.extension().map(|e| e.to_string_lossy().to_ascii_lowercase()).unwrap_or_default();
+    if format != TextureFormat::Rgba8 && ext == "png" {
+        return Err(CliError::Usage(format!(
+            "{}: --format {} needs a .dds or .ktx2 output (PNG holds uncompressed texels only)",
+            out.display(),
+            format.name()
+        )));
+    }
+    Ok(())
+}
+
+/// [`write`], all files or none, none of them replacing one of `inputs`, texels of DDS and
+/// KTX2 files in `format`; returns the paths.
+pub fn write_set(
+    out: &Path,
+    chain: &MipChain,
+    inputs: &[&Path],
+    format: TextureFormat,
+) -> Result<Vec<PathBuf>, CliError> {
     let ext = out.extension().map(|e| e.to_string_lossy().to_ascii_lowercase()).unwrap_or_default();
     let images = || TextureLayout { faces: vec![chain.levels.iter().collect()] };
     let mut set = FileSet::new(inputs);
@@ -105,11 +127,11 @@ pub fn write_set(out: &Path, chain: &MipChain, inputs: &[&Path]) -> Result<Vec<P
             Ok(set.commit()?)
         }
         "dds" => {
-            write_dds_into(&mut set, out, &images())?;
+            write_dds_into(&mut set, out, &images(), format)?;
             Ok(set.commit()?)
         }
         "ktx2" => {
-            write_ktx2_into(&mut set, out, &images())?;
+            write_ktx2_into(&mut set, out, &images(), format)?;
             Ok(set.commit()?)
         }
         _ => {
@@ -129,6 +151,9 @@ fn run_folder(
     if out_dir.extension().is_some() && !out_dir.is_dir() {
         return Err(CliError::Path { path: out_dir.clone(), reason: "a folder input needs a folder output".into() });
     }
+    // Compressed texels need a container: one .dds per input.
+    let format: TextureFormat = args.format.into();
+    let ext = if format == TextureFormat::Rgba8 { "png" } else { "dds" };
     let read_err = |e: std::io::Error| CliError::Path { path: input.to_path_buf(), reason: e.to_string() };
     let mut files: Vec<PathBuf> = std::fs::read_dir(input)
         .map_err(read_err)?
@@ -187,12 +212,12 @@ fn run_folder(
     let failed: usize = files
         .par_iter()
         .map(|file| {
-            let out = out_dir.join(format!("{}.png", file.file_stem().unwrap_or_default().to_string_lossy()));
+            let out = out_dir.join(format!("{}.{ext}", file.file_stem().unwrap_or_default().to_string_lossy()));
             let result = ensure_not_input(&out, &[file])
                 .map_err(CliError::from)
                 .and_then(|_| Ok(bumpmap_io::load_height_field(file, channel)?))
                 .and_then(|field| make(&field, options, args.mips, args.mip_mode.into(), &file.display().to_string()))
-                .and_then(|chain| write_set(&out, &chain, &[file]).map(|_| ()));
+                .and_then(|chain| write_set(&out, &chain, &[file], format).map(|_| ()));
             bar.inc(1);
             bar.set_message(file.file_name().unwrap_or_default().to_string_lossy().into_owned());
             result.map_err(|e| bar.suspend(|| eprintln!("error: {e}"))).is_err() as usize

@@ -248,3 +248,22 @@ fn green_and_red_point_as_the_formats_say_on_a_raised_square_as_displayed() {
         assert!((mid[0] as i32 - 128).abs() <= 1 && (mid[1] as i32 - 128).abs() <= 1 && mid[2] == 255, "{mid:?}");
     }
 }
+
+#[test]
+fn compressed_formats_need_a_container_that_holds_them() {
+    let dir = scratch("bc_formats");
+    let png = dir.join("n.png");
+    let o = bumpmap(&["normalmap", "bricks@32", "--format", "bc5", "-o", png.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(stderr(&o).contains("needs a .dds or .ktx2 output"), "{}", stderr(&o));
+    assert!(listing(&dir).is_empty(), "nothing written");
+    // texconv's names are accepted; the file says BC7 in its DX10 header.
+    let dds = dir.join("n.dds");
+    let o = bumpmap(&["normalmap", "bricks@32", "--mips", "--format", "BC7_UNORM", "-o", dds.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let bytes = std::fs::read(&dds).unwrap();
+    assert_eq!(&bytes[84..88], b"DX10");
+    assert_eq!(u32::from_le_bytes(bytes[128..132].try_into().unwrap()), 98, "DXGI_FORMAT_BC7_UNORM");
+    // 32² with 6 levels: 64 + 16 + 4 + 1 + 1 + 1 blocks of 16 bytes after the 148-byte header.
+    assert_eq!(bytes.len(), 148 + 16 * (64 + 16 + 4 + 1 + 1 + 1));
+}

@@ -31,13 +31,29 @@ impl Context {
     }
 
     async fn open() -> Result<Self, GpuError> {
-        let mut desc = wgpu::InstanceDescriptor::new_without_display_handle();
-        desc.backends = wgpu::Backends::from_env().unwrap_or(wgpu::Backends::all());
-        desc.flags = wgpu::InstanceFlags::from_build_config().with_env();
-        let instance = wgpu::Instance::new(desc);
-        let adapter = wgpu::util::initialize_adapter_from_env_or_default(&instance, None)
-            .await
-            .map_err(|e| GpuError::NoAdapter(e.to_string()))?;
+        // Without WGPU_BACKEND: the primary backends (Vulkan, Metal, DX12) first, and GL only
+        // if none has an adapter. Loading the GL backend loads libEGL, whose exit-time
+        // destructors race with threads still ending (a "double free" abort about once in a
+        // hundred runs on Mesa 25) — a process that never needed GL should not carry it.
+        let tries = match wgpu::Backends::from_env() {
+            Some(chosen) => vec![chosen],
+            None => vec![wgpu::Backends::PRIMARY, wgpu::Backends::GL],
+        };
+        let mut last = None;
+        for backends in tries {
+            let mut desc = wgpu::InstanceDescriptor::new_without_display_handle();
+            desc.backends = backends;
+            desc.flags = wgpu::InstanceFlags::from_build_config().with_env();
+            let instance = wgpu::Instance::new(desc);
+            match wgpu::util::initialize_adapter_from_env_or_default(&instance, None).await {
+                Ok(adapter) => return Self::with_adapter(adapter).await,
+                Err(e) => last = Some(e.to_string()),
+            }
+        }
+        Err(GpuError::NoAdapter(last.unwrap_or_default()))
+    }
+
+    async fn with_adapter(adapter: wgpu::Adapter) -> Result<Self, GpuError> {
         let info = adapter.get_info();
         let (device, queue) = adapter
             .request_device(&wgpu::DeviceDescriptor {

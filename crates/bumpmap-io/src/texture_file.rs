@@ -1,8 +1,16 @@
 //! DDS and KTX2 containers: a whole mip chain, or a cube map, in one file an engine loads.
 //!
-//! Both hold uncompressed 8-bit RGBA (`DXGI R8G8B8A8_UNORM` / `VK_FORMAT_R8G8B8A8_UNORM`),
-//! linear (never sRGB: normal maps are data). Rows are written in memory order, row 0 first,
-//! exactly as `glTexImage2D` takes them. Block compression is left to dedicated tools.
+//! Three formats, all linear (never sRGB: normal maps are data), rows in memory order, row 0
+//! first, exactly as `glTexImage2D` takes them:
+//! - [`TextureFormat::Rgba8`]: uncompressed (`DXGI R8G8B8A8_UNORM` / `VK_FORMAT_R8G8B8A8_UNORM`);
+//! - [`TextureFormat::Bc5`]: red and green only, 8 bits per texel (`BC5_UNORM`), Z rebuilt in
+//!   the shader as √(1 − x² − y²) — blue and alpha (the mip chain's length factor) are dropped;
+//! - [`TextureFormat::Bc7`]: all four channels, 8 bits per texel (`BC7_UNORM`).
+//!
+//! Every level is compressed on its own from the chain given (the chain's own mips, not the
+//! encoder's), by Intel's ISPC texture compressor through `image_dds`. DDS files of the BC
+//! formats carry the DX10 header extension; KTX2 files a basic data-format descriptor of the
+//! format's colour model.
 
 use std::io::Write;
 use std::path::Path;
@@ -17,15 +25,97 @@ pub struct TextureLayout<'a> {
     pub faces: Vec<Vec<&'a Rgba8Image>>,
 }
 
-/// Writes a DDS file (legacy header, 32-bit RGBA masks, mipmap count, cube-map caps).
-pub fn write_dds(path: &Path, tex: &TextureLayout) -> Result<(), IoError> {
+/// How the texels are stored.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum TextureFormat {
+    /// 8-bit RGBA, uncompressed.
+    #[default]
+    Rgba8,
+    /// BC5 (two channels, red and green).
+    Bc5,
+    /// BC7 (four channels).
+    Bc7,
+}
+
+impl TextureFormat {
+    /// The name texconv uses.
+    pub fn name(self) -> &'static str {
+        match self {
+            TextureFormat::Rgba8 => "R8G8B8A8_UNORM",
+            TextureFormat::Bc5 => "BC5_UNORM",
+            TextureFormat::Bc7 => "BC7_UNORM",
+        }
+    }
+
+    fn dxgi(self) -> u32 {
+        match self {
+            TextureFormat::Rgba8 => 28,
+            TextureFormat::Bc5 => 83,
+            TextureFormat::Bc7 => 98,
+        }
+    }
+
+    fn vk(self) -> u32 {
+        match self {
+            TextureFormat::Rgba8 => 37,
+            TextureFormat::Bc5 => 141,
+            TextureFormat::Bc7 => 145,
+        }
+    }
+
+    /// Bytes of one texel block (1×1 for RGBA8, 4×4 for BC).
+    fn block_bytes(self) -> usize {
+        match self {
+            TextureFormat::Rgba8 => 4,
+            TextureFormat::Bc5 | TextureFormat::Bc7 => 16,
+        }
+    }
+}
+
+/// One level's bytes in `format`.
+fn encode_level(path: &Path, level: &Rgba8Image, format: TextureFormat) -> Result<Vec<u8>, IoError> {
+    let target = match format {
+        TextureFormat::Rgba8 => return Ok(level.as_bytes().to_vec()),
+        TextureFormat::Bc5 => image_dds::ImageFormat::BC5RgUnorm,
+        TextureFormat::Bc7 => image_dds::ImageFormat::BC7RgbaUnorm,
+    };
+    let surface = image_dds::SurfaceRgba8 {
+        width: level.width as u32,
+        height: level.height as u32,
+        depth: 1,
+        layers: 1,
+        mipmaps: 1,
+        data: level.as_bytes(),
+    };
+    let encoded = surface
+        .encode(target, image_dds::Quality::Slow, image_dds::Mipmaps::FromSurface)
+        .map_err(|e| IoError::Write { path: path.to_path_buf(), source: std::io::Error::other(e.to_string()) })?;
+    Ok(encoded.data)
+}
+
+/// Every level of every face in `format`, `[face][level]`, the levels in parallel: what the
+/// writers store. `path` is the file errors name.
+pub fn encode(path: &Path, tex: &TextureLayout, format: TextureFormat) -> Result<Vec<Vec<Vec<u8>>>, IoError> {
+    use rayon::prelude::*;
+    tex.faces.iter().map(|face| face.par_iter().map(|l| encode_level(path, l, format)).collect()).collect()
+}
+
+/// Writes a DDS file: the legacy header (32-bit RGBA masks for [`TextureFormat::Rgba8`], the
+/// DX10 extension for the BC formats), mipmap count, cube-map caps.
+pub fn write_dds(path: &Path, tex: &TextureLayout, format: TextureFormat) -> Result<(), IoError> {
     let mut set = FileSet::new(&[]);
-    write_dds_into(&mut set, path, tex)?;
+    write_dds_into(&mut set, path, tex, format)?;
     set.commit().map(|_| ())
 }
 
 /// [`write_dds`] as one file of a [`FileSet`].
-pub fn write_dds_into(set: &mut FileSet, path: &Path, tex: &TextureLayout) -> Result<(), IoError> {
+pub fn write_dds_into(
+    set: &mut FileSet,
+    path: &Path,
+    tex: &TextureLayout,
+    format: TextureFormat,
+) -> Result<(), IoError> {
+    let data = encode(path, tex, format)?;
     let base = tex.faces[0][0];
     let levels = tex.faces[0].len() as u32;
     let cube = tex.faces.len() == 6;
@@ -35,7 +125,9 @@ pub fn write_dds_into(set: &mut FileSet, path: &Path, tex: &TextureLayout) -> Re
     const PITCH: u32 = 0x8;
     const PIXELFORMAT: u32 = 0x1000;
     const MIPMAPCOUNT: u32 = 0x20000;
-    let mut flags = CAPS | HEIGHT | WIDTH | PITCH | PIXELFORMAT;
+    const LINEARSIZE: u32 = 0x80000;
+    let compressed = format != TextureFormat::Rgba8;
+    let mut flags = CAPS | HEIGHT | WIDTH | PIXELFORMAT | if compressed { LINEARSIZE } else { PITCH };
     let mut caps = 0x1000; // DDSCAPS_TEXTURE
     if levels > 1 {
         flags |= MIPMAPCOUNT;
@@ -49,58 +141,79 @@ pub fn write_dds_into(set: &mut FileSet, path: &Path, tex: &TextureLayout) -> Re
     let mut header = Vec::with_capacity(128);
     let mut put = |v: u32| header.extend_from_slice(&v.to_le_bytes());
     put(u32::from_le_bytes(*b"DDS "));
-    for v in [124, flags, base.height as u32, base.width as u32, 4 * base.width as u32, 0, levels] {
+    let pitch = if compressed { data[0][0].len() as u32 } else { 4 * base.width as u32 };
+    for v in [124, flags, base.height as u32, base.width as u32, pitch, 0, levels] {
         put(v);
     }
     for _ in 0..11 {
         put(0);
     }
-    // DDS_PIXELFORMAT: RGB | ALPHAPIXELS, 32 bits, R in the lowest byte.
-    for v in [32, 0x41, 0, 32, 0x0000_00ff, 0x0000_ff00, 0x00ff_0000, 0xff00_0000] {
-        put(v);
+    if compressed {
+        // DDS_PIXELFORMAT: FOURCC "DX10"; the format is in the extension header.
+        for v in [32, 0x4, u32::from_le_bytes(*b"DX10"), 0, 0, 0, 0, 0] {
+            put(v);
+        }
+    } else {
+        // DDS_PIXELFORMAT: RGB | ALPHAPIXELS, 32 bits, R in the lowest byte.
+        for v in [32, 0x41, 0, 32, 0x0000_00ff, 0x0000_ff00, 0x00ff_0000, 0xff00_0000] {
+            put(v);
+        }
     }
     for v in [caps, caps2, 0, 0, 0] {
         put(v);
     }
+    if compressed {
+        // DDS_HEADER_DXT10: format, TEXTURE2D, TEXTURECUBE if a cube, one array element.
+        for v in [format.dxgi(), 3, if cube { 0x4 } else { 0 }, 1, 0] {
+            put(v);
+        }
+    }
     set.write(path, |w| {
         w.write_all(&header)?;
-        for face in &tex.faces {
+        for face in &data {
             for level in face {
-                w.write_all(level.as_bytes())?;
+                w.write_all(level)?;
             }
         }
         Ok(())
     })
 }
 
-/// Writes a KTX 2.0 file: `VK_FORMAT_R8G8B8A8_UNORM`, a basic data-format descriptor with
+/// Writes a KTX 2.0 file: the format's `VK_FORMAT`, a basic data-format descriptor with
 /// linear transfer, levels stored smallest first as the specification requires.
-pub fn write_ktx2(path: &Path, tex: &TextureLayout) -> Result<(), IoError> {
+pub fn write_ktx2(path: &Path, tex: &TextureLayout, format: TextureFormat) -> Result<(), IoError> {
     let mut set = FileSet::new(&[]);
-    write_ktx2_into(&mut set, path, tex)?;
+    write_ktx2_into(&mut set, path, tex, format)?;
     set.commit().map(|_| ())
 }
 
 /// [`write_ktx2`] as one file of a [`FileSet`].
-pub fn write_ktx2_into(set: &mut FileSet, path: &Path, tex: &TextureLayout) -> Result<(), IoError> {
+pub fn write_ktx2_into(
+    set: &mut FileSet,
+    path: &Path,
+    tex: &TextureLayout,
+    format: TextureFormat,
+) -> Result<(), IoError> {
+    let data = encode(path, tex, format)?;
     let base = tex.faces[0][0];
     let levels = tex.faces[0].len();
     let faces = tex.faces.len();
     const IDENTIFIER: [u8; 12] = [0xAB, 0x4B, 0x54, 0x58, 0x20, 0x32, 0x30, 0xBB, 0x0D, 0x0A, 0x1A, 0x0A];
-    let dfd = rgba8_linear_dfd();
+    let dfd = linear_dfd(format);
     let dfd_offset = 12 + 9 * 4 + 4 * 4 + 2 * 8 + 24 * levels;
     let mut offset = dfd_offset + dfd.len();
-    // Level data, smallest level first; each level starts 4-byte aligned.
+    // Level data, smallest level first; each level starts at a multiple of lcm(block size, 4).
+    let align = format.block_bytes();
     let mut index = vec![(0u64, 0u64); levels];
     for level in (0..levels).rev() {
-        offset = offset.next_multiple_of(4);
-        let len: usize = tex.faces.iter().map(|f| f[level].as_bytes().len()).sum();
+        offset = offset.next_multiple_of(align);
+        let len: usize = data.iter().map(|f| f[level].len()).sum();
         index[level] = (offset as u64, len as u64);
         offset += len;
     }
     let mut head = Vec::with_capacity(dfd_offset + dfd.len());
     head.extend_from_slice(&IDENTIFIER);
-    for v in [37u32, 1, base.width as u32, base.height as u32, 0, 0, faces as u32, levels as u32, 0] {
+    for v in [format.vk(), 1, base.width as u32, base.height as u32, 0, 0, faces as u32, levels as u32, 0] {
         head.extend_from_slice(&v.to_le_bytes());
     }
     for v in [dfd_offset as u32, dfd.len() as u32, 0, 0] {
@@ -117,33 +230,44 @@ pub fn write_ktx2_into(set: &mut FileSet, path: &Path, tex: &TextureLayout) -> R
         w.write_all(&head)?;
         let mut written = head.len();
         for level in (0..levels).rev() {
-            let pad = written.next_multiple_of(4) - written;
-            w.write_all(&[0u8; 4][..pad])?;
+            let pad = written.next_multiple_of(align) - written;
+            w.write_all(&[0u8; 16][..pad])?;
             written += pad;
-            for face in &tex.faces {
-                w.write_all(face[level].as_bytes())?;
-                written += face[level].as_bytes().len();
+            for face in &data {
+                w.write_all(&face[level])?;
+                written += face[level].len();
             }
         }
         Ok(())
     })
 }
 
-/// The Khronos basic data-format descriptor of 8-bit linear RGBA, four samples.
-fn rgba8_linear_dfd() -> Vec<u8> {
-    let mut d = Vec::with_capacity(92);
-    d.extend_from_slice(&92u32.to_le_bytes()); // dfdTotalSize
+/// The Khronos basic data-format descriptor of `format`, linear: RGBA8 as four 8-bit samples
+/// (RGBSDA model); BC5 as two 64-bit samples, red and green (model BC5); BC7 as one 128-bit
+/// sample (model BC7), with 4×4 texel blocks.
+fn linear_dfd(format: TextureFormat) -> Vec<u8> {
+    // (model, block dimensions − 1, bytes per block, samples as (bit offset, bit length − 1, channel, upper))
+    let (model, dims, bytes, samples): (u8, [u8; 4], u8, &[(u16, u8, u8, u32)]) = match format {
+        TextureFormat::Rgba8 => {
+            (1, [0, 0, 0, 0], 4, &[(0, 7, 0, 255), (8, 7, 1, 255), (16, 7, 2, 255), (24, 7, 15, 255)])
+        }
+        TextureFormat::Bc5 => (132, [3, 3, 0, 0], 16, &[(0, 63, 0, u32::MAX), (64, 63, 1, u32::MAX)]),
+        TextureFormat::Bc7 => (134, [3, 3, 0, 0], 16, &[(0, 127, 0, u32::MAX)]),
+    };
+    let block = 24 + 16 * samples.len();
+    let mut d = Vec::with_capacity(4 + block);
+    d.extend_from_slice(&(4 + block as u32).to_le_bytes()); // dfdTotalSize
     d.extend_from_slice(&0u32.to_le_bytes()); // vendor 0 (Khronos), descriptor type 0 (basic)
     d.extend_from_slice(&2u16.to_le_bytes()); // version 1.3
-    d.extend_from_slice(&88u16.to_le_bytes()); // block size: 24 + 4 samples × 16
-    d.extend_from_slice(&[1, 1, 1, 0]); // RGBSDA model, BT.709 primaries, linear, straight alpha
-    d.extend_from_slice(&[0, 0, 0, 0]); // 1×1×1×1 texel block
-    d.extend_from_slice(&[4, 0, 0, 0, 0, 0, 0, 0]); // 4 bytes in plane 0
-    for (i, channel) in [0u8, 1, 2, 15].into_iter().enumerate() {
-        d.extend_from_slice(&(8 * i as u16).to_le_bytes());
-        d.extend_from_slice(&[7, channel, 0, 0, 0, 0]); // 8 bits, channel id, position 0
+    d.extend_from_slice(&(block as u16).to_le_bytes()); // descriptor block size
+    d.extend_from_slice(&[model, 1, 1, 0]); // model, BT.709 primaries, linear, straight alpha
+    d.extend_from_slice(&dims); // texel block dimensions, each minus one
+    d.extend_from_slice(&[bytes, 0, 0, 0, 0, 0, 0, 0]); // bytes in plane 0
+    for &(offset, length, channel, upper) in samples {
+        d.extend_from_slice(&offset.to_le_bytes());
+        d.extend_from_slice(&[length, channel, 0, 0, 0, 0]); // bit length − 1, channel id, position 0
         d.extend_from_slice(&0u32.to_le_bytes());
-        d.extend_from_slice(&255u32.to_le_bytes());
+        d.extend_from_slice(&upper.to_le_bytes());
     }
     d
 }
@@ -174,7 +298,7 @@ mod tests {
         let data = chain();
         for faces in [1, 6] {
             let path = tmp(&format!("t{faces}.ktx2"));
-            write_ktx2(&path, &layout(&data, faces)).unwrap();
+            write_ktx2(&path, &layout(&data, faces), TextureFormat::Rgba8).unwrap();
             let bytes = std::fs::read(&path).unwrap();
             let reader = ktx2::Reader::new(&bytes[..]).expect("valid KTX2");
             let h = reader.header();
@@ -191,7 +315,7 @@ mod tests {
     fn dds_parses_with_an_independent_reader() {
         let data = chain();
         let path = tmp("t.dds");
-        write_dds(&path, &layout(&data, 1)).unwrap();
+        write_dds(&path, &layout(&data, 1), TextureFormat::Rgba8).unwrap();
         let dds = ddsfile::Dds::read(&mut std::fs::File::open(&path).unwrap()).expect("valid DDS");
         assert_eq!((dds.get_width(), dds.get_height(), dds.get_num_mipmap_levels()), (4, 2, 3));
         assert_eq!(dds.data, data.iter().flat_map(|l| l.as_bytes().to_vec()).collect::<Vec<u8>>());

@@ -1,0 +1,102 @@
+//! BC5 and BC7 normal maps read back by readers other than ours: the DDS container by
+//! `ddsfile`, the KTX2 container by `ktx2`, the blocks by `image_dds`'s decoder (`bcdec_rs`,
+//! not the ISPC encoder that wrote them). The decoded normals must stay within a stated angle of
+//! the uncompressed map, on every level of the chain.
+
+use std::path::PathBuf;
+
+use bumpmap_io::texture_file::{TextureFormat, TextureLayout, write_dds, write_ktx2};
+use bumpmap_math::{HeightPreset, MipChain, MipMode, NormalMapOptions, Rgba8Image, YConvention};
+
+fn tmp(name: &str) -> PathBuf {
+    std::env::temp_dir().join(format!("bumpmap-bc-{}-{name}", std::process::id()))
+}
+
+/// The unit normal a texel encodes; for BC5, Z rebuilt from X and Y as a shader does.
+fn normal(t: [u8; 4], two_channel: bool) -> glam::Vec3 {
+    let x = t[0] as f32 / 255.0 * 2.0 - 1.0;
+    let y = t[1] as f32 / 255.0 * 2.0 - 1.0;
+    let z = if two_channel { (1.0 - x * x - y * y).max(0.0).sqrt() } else { t[2] as f32 / 255.0 * 2.0 - 1.0 };
+    glam::Vec3::new(x, y, z).normalize_or_zero()
+}
+
+/// Worst and mean angle in degrees between two levels' normals.
+fn angles(want: &Rgba8Image, got: &[u8], two_channel: bool) -> (f32, f32) {
+    let mut worst = 0.0f32;
+    let mut sum = 0.0f64;
+    for (w, g) in want.texels.iter().zip(got.chunks_exact(4)) {
+        let a =
+            normal(*w, false).dot(normal([g[0], g[1], g[2], g[3]], two_channel)).clamp(-1.0, 1.0).acos().to_degrees();
+        worst = worst.max(a);
+        sum += a as f64;
+    }
+    (worst, (sum / want.texels.len() as f64) as f32)
+}
+
+fn decode(format: image_dds::ImageFormat, w: usize, h: usize, data: &[u8]) -> Vec<u8> {
+    let surface = image_dds::Surface {
+        width: w as u32,
+        height: h as u32,
+        depth: 1,
+        layers: 1,
+        mipmaps: 1,
+        image_format: format,
+        data,
+    };
+    surface.decode_rgba8().unwrap().data
+}
+
+#[test]
+fn bc5_and_bc7_decode_elsewhere_to_within_a_stated_angle_of_the_uncompressed_map() {
+    let field = HeightPreset::Bricks.render(256, 256);
+    let options = NormalMapOptions { y_convention: YConvention::YUp, ..Default::default() };
+    let chain = MipChain::from_height(&field, &options, MipMode::LengthInAlpha).unwrap();
+    let layout = TextureLayout { faces: vec![chain.levels.iter().collect()] };
+    // (format, DXGI, theirs, worst bound, mean bound). BC5 keeps 8 bits of X and Y in 3-bit
+    // palettes of a 4×4 block; BC7's shared endpoints bend the steep mortar edges more. The
+    // bounds are about 1.4× the worst level measured (README).
+    let cases = [
+        (TextureFormat::Bc5, ddsfile::DxgiFormat::BC5_UNorm, image_dds::ImageFormat::BC5RgUnorm, 12.0, 2.0),
+        (TextureFormat::Bc7, ddsfile::DxgiFormat::BC7_UNorm, image_dds::ImageFormat::BC7RgbaUnorm, 36.0, 5.0),
+    ];
+    for (format, dxgi, theirs, worst_bound, mean_bound) in cases {
+        let path = tmp(&format!("{format:?}.dds"));
+        write_dds(&path, &layout, format).unwrap();
+        let dds = ddsfile::Dds::read(std::fs::File::open(&path).unwrap()).expect("a DDS ddsfile reads");
+        assert_eq!(dds.get_dxgi_format(), Some(dxgi));
+        assert_eq!((dds.get_width(), dds.get_height()), (256, 256));
+        assert_eq!(dds.get_num_mipmap_levels() as usize, chain.levels.len());
+        let mut offset = 0;
+        for (k, level) in chain.levels.iter().enumerate() {
+            let blocks = level.width.div_ceil(4) * level.height.div_ceil(4);
+            let bytes = &dds.data[offset..offset + 16 * blocks];
+            offset += 16 * blocks;
+            let (worst, mean) =
+                angles(level, &decode(theirs, level.width, level.height, bytes), format == TextureFormat::Bc5);
+            eprintln!("{format:?} level {k} ({}²): worst {worst:.2}°, mean {mean:.3}°", level.width);
+            if k == 0 {
+                assert!(mean > 0.0, "{format:?}: a lossless result would mean nothing was compressed");
+            }
+            assert!(worst < worst_bound && mean < mean_bound, "{format:?} level {k}: {worst}° worst, {mean}° mean");
+        }
+        assert_eq!(offset, dds.data.len(), "{format:?}: every level, nothing more");
+        // The same blocks in KTX2, smallest level last in the index, read by `ktx2`.
+        let path = tmp(&format!("{format:?}.ktx2"));
+        write_ktx2(&path, &layout, format).unwrap();
+        let bytes = std::fs::read(&path).unwrap();
+        let reader = ktx2::Reader::new(&bytes[..]).expect("a KTX2 the ktx2 crate reads");
+        let want =
+            if format == TextureFormat::Bc5 { ktx2::Format::BC5_UNORM_BLOCK } else { ktx2::Format::BC7_UNORM_BLOCK };
+        assert_eq!(reader.header().format, Some(want));
+        let mut offset = 0;
+        for (level, data) in chain.levels.iter().zip(reader.levels()) {
+            let blocks = level.width.div_ceil(4) * level.height.div_ceil(4);
+            assert_eq!(
+                data.data,
+                &dds.data[offset..offset + 16 * blocks],
+                "{format:?}: KTX2 and DDS hold the same blocks"
+            );
+            offset += 16 * blocks;
+        }
+    }
+}
