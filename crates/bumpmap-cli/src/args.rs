@@ -424,10 +424,15 @@ pub enum TangentModeArg {
 #[derive(Args, Debug)]
 #[command(after_help = "Examples:\n  \
 bumpmap tangents model.obj -o model.glb\n  \
-bumpmap tangents scan.gltf -o scan_tangents.gltf --mode mikktspace\n\n\
+bumpmap tangents scan.gltf -o scan_tangents.gltf --mode mikktspace\n  \
+bumpmap tangents model.obj --normal-map n.png -o model.glb   # a ready-to-view asset\n\n\
 Reads OBJ, glTF or GLB (positions, normals, texture coordinates; normals are computed when \
-missing). Writes positions, normals, TEXCOORD_0, TANGENT (VEC4, w = ±1 handedness) and indices, \
-and reports degenerate, mirrored and split geometry.")]
+missing; glTF node transforms applied; OBJ v flipped, see --obj-v). Writes positions, normals, \
+TEXCOORD_0, TANGENT (VEC4, glTF's w = ±1 handedness) and indices, repairs normals and tangents \
+glTF would call invalid, and reports degenerate, mirrored, split and repaired geometry.\n\n\
+Limits: files and glTF buffers up to 1 GiB each, buffers read only from data: URIs, the GLB \
+chunk or files inside the glTF's folder (see --allow-outside-paths), at most byteLength bytes; \
+50,000,000 vertices, triangles or accessor elements.")]
 pub struct TangentsArgs {
     /// Mesh file: .obj, .gltf or .glb
     pub input: PathBuf,

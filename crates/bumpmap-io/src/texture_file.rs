@@ -72,25 +72,38 @@ impl TextureFormat {
     }
 }
 
+/// Rows per band a level is compressed in, in parallel: a multiple of the 4-row block, so the
+/// bands' blocks laid end to end are the level's.
+const BAND_ROWS: usize = 64;
+
 /// One level's bytes in `format`.
 fn encode_level(path: &Path, level: &Rgba8Image, format: TextureFormat) -> Result<Vec<u8>, IoError> {
+    use rayon::prelude::*;
     let target = match format {
         TextureFormat::Rgba8 => return Ok(level.as_bytes().to_vec()),
         TextureFormat::Bc5 => image_dds::ImageFormat::BC5RgUnorm,
         TextureFormat::Bc7 => image_dds::ImageFormat::BC7RgbaUnorm,
     };
-    let surface = image_dds::SurfaceRgba8 {
-        width: level.width as u32,
-        height: level.height as u32,
-        depth: 1,
-        layers: 1,
-        mipmaps: 1,
-        data: level.as_bytes(),
-    };
-    let encoded = surface
-        .encode(target, image_dds::Quality::Slow, image_dds::Mipmaps::FromSurface)
-        .map_err(|e| IoError::Write { path: path.to_path_buf(), source: std::io::Error::other(e.to_string()) })?;
-    Ok(encoded.data)
+    let row_bytes = 4 * level.width;
+    let bands: Vec<Vec<u8>> = level
+        .as_bytes()
+        .par_chunks(BAND_ROWS * row_bytes)
+        .map(|band| {
+            let surface = image_dds::SurfaceRgba8 {
+                width: level.width as u32,
+                height: (band.len() / row_bytes) as u32,
+                depth: 1,
+                layers: 1,
+                mipmaps: 1,
+                data: band,
+            };
+            surface
+                .encode(target, image_dds::Quality::Slow, image_dds::Mipmaps::FromSurface)
+                .map(|s| s.data)
+                .map_err(|e| IoError::Write { path: path.to_path_buf(), source: std::io::Error::other(e.to_string()) })
+        })
+        .collect::<Result<_, _>>()?;
+    Ok(bands.concat())
 }
 
 /// Every level of every face in `format`, `[face][level]`, the levels in parallel: what the
@@ -246,8 +259,10 @@ pub fn write_ktx2_into(
 /// (RGBSDA model); BC5 as two 64-bit samples, red and green (model BC5); BC7 as one 128-bit
 /// sample (model BC7), with 4×4 texel blocks.
 fn linear_dfd(format: TextureFormat) -> Vec<u8> {
-    // (model, block dimensions − 1, bytes per block, samples as (bit offset, bit length − 1, channel, upper))
-    let (model, dims, bytes, samples): (u8, [u8; 4], u8, &[(u16, u8, u8, u32)]) = match format {
+    /// A sample: bit offset, bit length − 1, channel id, upper value.
+    type Sample = (u16, u8, u8, u32);
+    // Model, texel block dimensions − 1, bytes per block, samples.
+    let (model, dims, bytes, samples): (u8, [u8; 4], u8, &[Sample]) = match format {
         TextureFormat::Rgba8 => {
             (1, [0, 0, 0, 0], 4, &[(0, 7, 0, 255), (8, 7, 1, 255), (16, 7, 2, 255), (24, 7, 15, 255)])
         }
