@@ -197,7 +197,7 @@ pub fn run(args: &DemoArgs) -> Result<(), CliError> {
         let chain = crate::normalmap::make(&field, &options, true, MipMode::LengthInAlpha, name)?;
         crate::normalmap::write(&out.join(format!("{name}_normal.png")), &chain)?;
         index += &format!(
-            "- `{name}_height.png`, `{name}_normal.png` (+ `.mip1` … `.mip8`): the {name} preset and its normal map; alpha of the mips is the length of the averaged normal\n"
+            "- `{name}_height.png`, `{name}_normal.png` (+ `.mip1` … `.mip8`): the {name} preset and its normal map (green up, as glTF and Blender read it); alpha of the mips is the length of the averaged normal\n"
         );
         bar.inc(1);
     }
