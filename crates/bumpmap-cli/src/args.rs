@@ -39,6 +39,44 @@ pub enum Command {
     Tangents(TangentsArgs),
     /// Run everything on built-in defaults and write the results into a folder
     Demo(DemoArgs),
+    /// Render every technique on one scene, measure each against the reference, write a report
+    Compare(CompareArgs),
+}
+
+#[derive(Args, Debug)]
+#[command(after_help = "Examples:\n  \
+bumpmap compare                                    # the torus, out/compare/report.html\n  \
+bumpmap compare --scene patch --height-field pinwheel --spp 256\n  \
+bumpmap compare --techniques kilgard,single-pass --backend gpu\n\n\
+Writes OUT/results.json (every score), OUT/report.html (images, FLIP heat maps, the table and \
+plots; relative links only, so the folder can be copied), one PNG per technique and its \
+FLIP heat map, and the plots as SVG. A technique that cannot render the scene is skipped, with \
+its reason on stderr and in the report.")]
+pub struct CompareArgs {
+    /// Built-in scene: torus, wall, floor, wall-floor, patch, sphere (the reference needs an exact surface)
+    #[arg(long, default_value = "torus")]
+    pub scene: String,
+    /// Height field: image file or preset (bricks, pinwheel, dimples, noise:SEED[@SIZE])
+    #[arg(long = "height-field", default_value = "bricks")]
+    pub height_field: String,
+    /// Bump scale: the height of a unit step, in texels
+    #[arg(long = "bump-scale", default_value_t = 4.0)]
+    pub bump_scale: f32,
+    /// Square image size in pixels
+    #[arg(long, default_value_t = 256, value_parser = parse_side)]
+    pub size: usize,
+    /// The reference's samples per pixel (stratified); the convergence plot uses 1, 4, 16, … up to it
+    #[arg(long, default_value_t = 64, value_parser = clap::value_parser!(u32).range(1..=4096))]
+    pub spp: u32,
+    /// What draws the techniques (the reference always runs on the CPU)
+    #[arg(long, value_enum, default_value = "cpu")]
+    pub backend: crate::render_args::BackendArg,
+    /// Comma-separated techniques to run (default: all of kilgard, single-pass, single-pass-cube, object-space, mip-renormalized, no-bump)
+    #[arg(long, value_delimiter = ',')]
+    pub techniques: Vec<String>,
+    /// Output folder
+    #[arg(short, long, default_value = "out/compare")]
+    pub output: PathBuf,
 }
 
 #[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
@@ -207,8 +245,9 @@ impl NormalMapOpts {
 bumpmap normalmap heights.png -o normals.png --mips        # normals.png, normals.mip1.png, …\n  \
 bumpmap normalmap bricks@512 -o bricks.ktx2 --mips         # a preset, all levels in one file\n  \
 bumpmap normalmap textures/ -o normals/ --scale 8          # every image in a folder, in parallel\n  \
-bumpmap normalmap rock.png -o rock.dds --mips --format bc5  # BC5 for an engine (Z rebuilt in the shader)\n\n\
-IN is an image file (PNG, TGA, BMP, JPEG, TIFF, PNM; 8 or 16 bits), a folder of them, or a \
+bumpmap normalmap rock.png -o rock.dds --mips --format bc5  # BC5 for an engine (Z rebuilt in the shader)\n  \
+bumpmap normalmap scan16.png -o rock.png --bits 16         # 16-bit PNG, no banding on gentle slopes\n\n\
+IN is an image file (PNG, TGA, BMP, JPEG, TIFF, PNM at 8 or 16 bits; OpenEXR in float), a folder of them, or a \
 preset: bricks, pinwheel, dimples, noise:SEED, each optionally @SIZE (default 256). Green points \
 up the image as displayed (glTF, Blender, Unity) unless --y-convention directx.")]
 pub struct NormalmapArgs {
@@ -226,16 +265,30 @@ pub struct NormalmapArgs {
     /// Texel format of .dds and .ktx2 outputs: rgba8 (uncompressed), bc5 (red and green, Z rebuilt in the shader; drops the length factor in alpha), bc7 (all four channels). texconv's names work too (BC5_UNORM, …); a folder run with bc5/bc7 writes .dds files
     #[arg(long, value_enum, default_value = "rgba8", ignore_case = true)]
     pub format: FormatArg,
+    /// Bits per channel of uncompressed outputs: 8, or 16 (16-bit PNG, R16G16B16A16_UNORM in .dds and .ktx2)
+    #[arg(long, default_value_t = 8, value_parser = parse_bits)]
+    pub bits: u8,
     #[command(flatten)]
     pub map: NormalMapOpts,
+}
+
+fn parse_bits(s: &str) -> Result<u8, String> {
+    match s {
+        "8" => Ok(8),
+        "16" => Ok(16),
+        _ => Err(format!("'{s}' is not 8 or 16")),
+    }
 }
 
 /// Texel formats of DDS and KTX2 outputs.
 #[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
 pub enum FormatArg {
-    /// Uncompressed 8-bit RGBA
+    /// Uncompressed 8-bit RGBA (16-bit with --bits 16)
     #[value(alias = "r8g8b8a8_unorm")]
     Rgba8,
+    /// Uncompressed 16-bit RGBA (the same as --bits 16)
+    #[value(alias = "r16g16b16a16_unorm")]
+    Rgba16,
     /// BC5: two channels (X, Y), 8 bits per texel
     #[value(alias = "bc5_unorm")]
     Bc5,
@@ -249,6 +302,7 @@ impl From<FormatArg> for bumpmap_io::texture_file::TextureFormat {
         use bumpmap_io::texture_file::TextureFormat;
         match f {
             FormatArg::Rgba8 => TextureFormat::Rgba8,
+            FormatArg::Rgba16 => TextureFormat::Rgba16,
             FormatArg::Bc5 => TextureFormat::Bc5,
             FormatArg::Bc7 => TextureFormat::Bc7,
         }
@@ -321,6 +375,27 @@ pub enum BenchWhat {
     /// Frames per second of a scene, the light orbiting as in the llvmpipe peer; takes every
     /// scene, light, material, technique and backend option of `render`
     Render(Box<crate::render_args::BenchRenderArgs>),
+    /// The reference renderer: one image of a built-in scene at SIZE² with SPP samples per pixel
+    Reference {
+        /// Built-in scene: torus, wall, floor, wall-floor, patch, sphere
+        #[arg(long, default_value = "torus")]
+        scene: String,
+        /// Square image size
+        #[arg(long, default_value_t = 512, value_parser = parse_side)]
+        size: usize,
+        /// Samples per pixel
+        #[arg(long, default_value_t = 64, value_parser = clap::value_parser!(u32).range(1..=4096))]
+        spp: u32,
+        /// Timed runs (after one warm-up)
+        #[arg(long, default_value_t = 3, value_parser = clap::value_parser!(u32).range(1..))]
+        runs: u32,
+        /// Worker threads, 1 to 256 (default: all cores)
+        #[arg(long, value_parser = clap::value_parser!(u16).range(1..=256))]
+        threads: Option<u16>,
+        /// Print one JSON line instead of prose
+        #[arg(long)]
+        json: bool,
+    },
 }
 
 #[derive(Args, Debug)]

@@ -42,7 +42,43 @@ pub fn run(args: &BenchArgs) -> Result<(), CliError> {
             with_threads(threads, || bench_tangents(triangles as usize, mode, runs, json))
         }
         BenchWhat::Render(ref r) => with_threads(r.threads, || bench_render(r)),
+        BenchWhat::Reference { ref scene, size, spp, runs, threads, json } => {
+            with_threads(threads, || bench_reference(scene, size, spp as usize, runs, json))
+        }
     }
+}
+
+/// The reference renderer's time for one image; scene setup is not timed.
+fn bench_reference(scene: &str, size: usize, spp: usize, runs: u32, json: bool) -> Result<(), CliError> {
+    use bumpmap_core::scenes::{self, SceneKind, SceneParams};
+    let kind = SceneKind::parse(scene).ok_or_else(|| {
+        CliError::Usage(format!("unknown scene '{scene}': use torus, wall, floor, wall-floor, patch or sphere"))
+    })?;
+    let scene_value = scenes::build(&kind, &SceneParams::default()).map_err(crate::render::core_err)?;
+    let options = bumpmap_reference::ReferenceOptions { samples_per_pixel: spp, ..Default::default() };
+    let mut failure = None;
+    let stats = time_runs(runs, || {
+        if let Err(e) = bumpmap_reference::render(&scene_value, size, size, &options, &|_, _| {}) {
+            failure = Some(e);
+        }
+    });
+    if let Some(e) = failure {
+        return Err(CliError::Render(crate::render::reference_err(e)));
+    }
+    let threads = rayon::current_num_threads();
+    let msamples = (size * size * spp) as f64 / stats.median / 1e3;
+    if json {
+        println!(
+            "{{\"bench\":\"reference\",\"scene\":\"{scene}\",\"size\":{size},\"spp\":{spp},\"threads\":{threads},\"runs\":{runs},\"median_ms\":{:.3},\"min_ms\":{:.3},\"max_ms\":{:.3},\"msamples_per_s\":{msamples:.1}}}",
+            stats.median, stats.min, stats.max
+        );
+    } else {
+        println!(
+            "reference {scene} {size}² at {spp} samples per pixel on {threads} threads: median {:.1} ms ({msamples:.1} M samples/s; min {:.1}, max {:.1})",
+            stats.median, stats.min, stats.max
+        );
+    }
+    Ok(())
 }
 
 /// Runs `f` on a pool of `threads` workers (all cores when `None`).
@@ -66,7 +102,7 @@ fn bench_normalmap(size: usize, format: Option<FormatArg>, runs: u32, json: bool
     let mut last = None;
     let work = time_runs(runs, || {
         let field = HeightField::from_u8(size, size, &bytes).expect("square field");
-        let chain = MipChain::from_height(&field, &options, MipMode::LengthInAlpha).expect("valid options");
+        let chain = MipChain::<[u8; 4]>::from_height(&field, &options, MipMode::LengthInAlpha).expect("valid options");
         levels = chain.len();
         last = Some(chain);
     });
@@ -112,7 +148,7 @@ fn bench_compression(
     runs: u32,
     json: bool,
 ) -> Result<(), CliError> {
-    let layout = bumpmap_io::texture_file::TextureLayout { faces: vec![chain.levels.iter().collect()] };
+    let layout = bumpmap_io::texture_file::TextureLayout { faces: vec![chain.levels.iter().map(Into::into).collect()] };
     let mut failed = None;
     let stats = time_runs(runs, || {
         if let Err(e) = bumpmap_io::texture_file::encode(std::path::Path::new("bench"), &layout, format) {

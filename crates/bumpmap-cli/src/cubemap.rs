@@ -31,7 +31,7 @@ pub fn write(out: &std::path::Path, map: &NormalizationCubeMap) -> Result<(), Cl
                 .iter()
                 .map(|f| Rgba8Image::new(n, n, f.iter().map(|&[r, g, b]| [r, g, b, 255]).collect()))
                 .collect();
-            let layout = TextureLayout { faces: rgba.iter().map(|f| vec![f]).collect() };
+            let layout = TextureLayout { faces: rgba.iter().map(|f| vec![f.into()]).collect() };
             let format = TextureFormat::Rgba8;
             if ext.as_deref() == Some("dds") {
                 write_dds(out, &layout, format)?

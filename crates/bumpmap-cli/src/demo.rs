@@ -195,7 +195,7 @@ pub fn run(args: &DemoArgs) -> Result<(), CliError> {
         // A file for other tools: green up, as glTF and Blender read it.
         let options = NormalMapOptions { y_convention: bumpmap_math::YConvention::YUp, ..Default::default() };
         let chain = crate::normalmap::make(&field, &options, true, MipMode::LengthInAlpha, name)?;
-        crate::normalmap::write(&out.join(format!("{name}_normal.png")), &chain)?;
+        crate::normalmap::write(&out.join(format!("{name}_normal.png")), chain)?;
         index += &format!(
             "- `{name}_height.png`, `{name}_normal.png` (+ `.mip1` … `.mip8`): the {name} preset and its normal map (green up, as glTF and Blender read it); alpha of the mips is the length of the averaged normal\n"
         );
@@ -212,6 +212,19 @@ pub fn run(args: &DemoArgs) -> Result<(), CliError> {
     index += "- `fig11_torus.decal.png`, `.diffuse.png`, `.specular.png`: Kilgard Figure 12, the framebuffer after each pass\n";
     bar.finish_and_clear();
     index += &gpu_renders(out, args.gpu)?;
+    crate::compare::run(&crate::args::CompareArgs {
+        scene: "torus".into(),
+        height_field: "bricks".into(),
+        bump_scale: 4.0,
+        size: 256,
+        spp: 64,
+        backend: BackendArg::Cpu,
+        techniques: Vec::new(),
+        output: out.join("compare"),
+    })?;
+    index += "
+`compare/report.html`: every technique on the torus measured against the reference renderer                (RMSE, PSNR, bias, FLIP, SSIM), with FLIP heat maps, the reference's convergence and the golf                ball at a distance (Kilgard §2.4.2); the numbers are in `compare/results.json`.
+";
     crate::normalmap::write_text(&out.join("README.md"), &index)?;
     eprintln!("wrote the demo into {} (see its README.md)", out.display());
     Ok(())

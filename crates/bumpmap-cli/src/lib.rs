@@ -4,7 +4,8 @@
 //!
 //! - [`args`]: the command line (clap), its value parsers and limits;
 //! - `render_args`: the option groups `render` and `bench render` share;
-//! - `normalmap`, `cubemap`, `mesh` (tangents), `render`, `bench`, `demo`: the subcommands;
+//! - `normalmap`, `cubemap`, `mesh` (tangents), `render`, `bench`, `demo`, `compare`: the
+//!   subcommands;
 //! - `backend`: the CPU or GPU renderer a command draws with;
 //! - [`error`]: every layer's errors as one type, in the words of the command line.
 
@@ -15,6 +16,7 @@
 pub mod args;
 mod backend;
 mod bench;
+mod compare;
 mod cubemap;
 mod demo;
 pub mod error;
@@ -34,5 +36,6 @@ pub fn run(cli: Cli) -> Result<(), error::CliError> {
         Command::Render(a) => render::run(&a),
         Command::Tangents(a) => mesh::run(&a),
         Command::Demo(a) => demo::run(&a),
+        Command::Compare(a) => compare::run(&a),
     }
 }

@@ -4,10 +4,10 @@ use std::path::{Path, PathBuf};
 
 use bumpmap_io::atomic::{FileSet, ensure_not_input};
 use bumpmap_io::image_file::{PngLayout, save_png_into};
-use bumpmap_io::texture_file::{TextureFormat, TextureLayout, write_dds_into, write_ktx2_into};
+use bumpmap_io::texture_file::{Level, TextureFormat, TextureLayout, write_dds_into, write_ktx2_into};
 use bumpmap_io::{Channel, HeightSource};
-use bumpmap_math::normalmap::normal_map_level0;
-use bumpmap_math::{HeightField, MipChain, MipMode, NormalMapOptions};
+use bumpmap_math::normalmap::normal_map_level0_texels;
+use bumpmap_math::{HeightField, MipChain, MipMode, NormalMapOptions, Texel};
 use indicatif::{ProgressBar, ProgressStyle};
 use rayon::prelude::*;
 
@@ -15,7 +15,7 @@ use crate::args::NormalmapArgs;
 use crate::error::CliError;
 
 /// Image extensions a folder walk picks up.
-const IMAGE_EXTENSIONS: [&str; 9] = ["png", "tga", "bmp", "jpg", "jpeg", "tif", "tiff", "pgm", "ppm"];
+const IMAGE_EXTENSIONS: [&str; 10] = ["png", "tga", "bmp", "jpg", "jpeg", "tif", "tiff", "pgm", "ppm", "exr"];
 
 pub fn run(args: &NormalmapArgs) -> Result<(), CliError> {
     let options = args.map.options();
@@ -25,14 +25,14 @@ pub fn run(args: &NormalmapArgs) -> Result<(), CliError> {
         return run_folder(input, args, &options, channel);
     }
     let source = HeightSource::parse(&args.input);
-    let format: TextureFormat = args.format.into();
+    let format = texel_format(args)?;
     let output = output_file(&args.output, &source, &args.input, format);
     check_format(&output, format)?;
     if let Some(path) = source.path() {
         ensure_not_input(&output, &[path])?;
     }
     let field = source.load(channel)?;
-    let levels = make(&field, &options, args.mips, args.mip_mode.into(), &args.input)?;
+    let levels = make_chain(&field, &options, args.mips, args.mip_mode.into(), format, &args.input)?;
     let inputs: Vec<&Path> = source.path().into_iter().collect();
     let written = write_set(&output, &levels, &inputs, format)?;
     eprintln!("wrote {}", describe(&written));
@@ -51,7 +51,45 @@ fn output_file(output: &Path, source: &HeightSource, spec: &str, format: Texture
         Some(p) => p.file_stem().unwrap_or_default().to_string_lossy().into_owned(),
         None => spec.split(['@', ':']).next().unwrap_or("normal").to_string(),
     };
-    output.join(format!("{stem}.{}", if format == TextureFormat::Rgba8 { "png" } else { "dds" }))
+    output.join(format!("{stem}.{}", if format.is_compressed() { "dds" } else { "png" }))
+}
+
+/// The texel format `--format` and `--bits` ask for together.
+fn texel_format(args: &NormalmapArgs) -> Result<TextureFormat, CliError> {
+    let format: TextureFormat = args.format.into();
+    match (format, args.bits) {
+        (TextureFormat::Rgba8, 16) => Ok(TextureFormat::Rgba16),
+        (TextureFormat::Rgba16, _) => Ok(TextureFormat::Rgba16),
+        (f, 16) => Err(CliError::Usage(format!(
+            "--bits 16 cannot be stored as --format {}: BC5 and BC7 hold 8 bits a channel (use rgba8 with --bits 16)",
+            f.name()
+        ))),
+        (f, _) => Ok(f),
+    }
+}
+
+/// A chain at the depth its output format stores.
+pub enum Chain {
+    /// 8 bits a channel (RGBA8, BC5, BC7).
+    Rgba8(MipChain),
+    /// 16 bits a channel.
+    Rgba16(MipChain<[u16; 4]>),
+}
+
+/// [`make`] at the depth `format` stores.
+fn make_chain(
+    field: &HeightField,
+    options: &NormalMapOptions,
+    mips: bool,
+    mode: MipMode,
+    format: TextureFormat,
+    name: &str,
+) -> Result<Chain, CliError> {
+    Ok(if format == TextureFormat::Rgba16 {
+        Chain::Rgba16(make_texels(field, options, mips, mode, name)?)
+    } else {
+        Chain::Rgba8(make_texels(field, options, mips, mode, name)?)
+    })
 }
 
 /// `a.png` for one file, `a.png, a.mip1.png, … (9 files)` for a chain.
@@ -63,7 +101,7 @@ fn describe(written: &[PathBuf]) -> String {
     }
 }
 
-/// Level 0, or the whole chain.
+/// Level 0, or the whole chain, 8 bits a channel.
 pub fn make(
     field: &HeightField,
     options: &NormalMapOptions,
@@ -71,11 +109,22 @@ pub fn make(
     mode: MipMode,
     name: &str,
 ) -> Result<MipChain, CliError> {
+    make_texels(field, options, mips, mode, name)
+}
+
+/// [`make`] in texels of 8 or 16 bits.
+fn make_texels<T: Texel>(
+    field: &HeightField,
+    options: &NormalMapOptions,
+    mips: bool,
+    mode: MipMode,
+    name: &str,
+) -> Result<MipChain<T>, CliError> {
     let err = |source| CliError::NormalMap { path: name.to_string(), source };
     if mips {
         MipChain::from_height(field, options, mode).map_err(err)
     } else {
-        let level = normal_map_level0(field, options).map_err(err)?;
+        let level = normal_map_level0_texels(field, options).map_err(err)?;
         Ok(MipChain { levels: vec![level], encoding: options.encoding })
     }
 }
@@ -90,14 +139,14 @@ pub fn level_path(out: &Path, k: usize) -> PathBuf {
 }
 
 /// Writes a chain by the output's extension: PNG files, or one DDS / KTX2 file.
-pub fn write(out: &Path, chain: &MipChain) -> Result<(), CliError> {
-    write_set(out, chain, &[], TextureFormat::Rgba8).map(|_| ())
+pub fn write(out: &Path, chain: MipChain) -> Result<(), CliError> {
+    write_set(out, &Chain::Rgba8(chain), &[], TextureFormat::Rgba8).map(|_| ())
 }
 
 /// A compressed format needs a container that holds it.
 fn check_format(out: &Path, format: TextureFormat) -> Result<(), CliError> {
     let ext = out.extension().map(|e| e.to_string_lossy().to_ascii_lowercase()).unwrap_or_default();
-    if format != TextureFormat::Rgba8 && ext == "png" {
+    if format.is_compressed() && ext == "png" {
         return Err(CliError::Usage(format!(
             "{}: --format {} needs a .dds or .ktx2 output (PNG holds uncompressed texels only)",
             out.display(),
@@ -109,20 +158,31 @@ fn check_format(out: &Path, format: TextureFormat) -> Result<(), CliError> {
 
 /// [`write`], all files or none, none of them replacing one of `inputs`, texels of DDS and
 /// KTX2 files in `format`; returns the paths.
-pub fn write_set(
-    out: &Path,
-    chain: &MipChain,
-    inputs: &[&Path],
-    format: TextureFormat,
-) -> Result<Vec<PathBuf>, CliError> {
+pub fn write_set(out: &Path, chain: &Chain, inputs: &[&Path], format: TextureFormat) -> Result<Vec<PathBuf>, CliError> {
     let ext = out.extension().map(|e| e.to_string_lossy().to_ascii_lowercase()).unwrap_or_default();
-    let images = || TextureLayout { faces: vec![chain.levels.iter().collect()] };
+    let images = || TextureLayout {
+        faces: vec![match chain {
+            Chain::Rgba8(c) => c.levels.iter().map(Level::from).collect(),
+            Chain::Rgba16(c) => c.levels.iter().map(Level::from).collect(),
+        }],
+    };
     let mut set = FileSet::new(inputs);
     match ext.as_str() {
         "png" => {
-            for (k, level) in chain.levels.iter().enumerate() {
-                let path = level_path(out, k);
-                save_png_into(&mut set, &path, level.width, level.height, PngLayout::Rgba8, level.as_bytes())?;
+            match chain {
+                Chain::Rgba8(c) => {
+                    for (k, level) in c.levels.iter().enumerate() {
+                        let path = level_path(out, k);
+                        save_png_into(&mut set, &path, level.width, level.height, PngLayout::Rgba8, level.as_bytes())?;
+                    }
+                }
+                Chain::Rgba16(c) => {
+                    for (k, level) in c.levels.iter().enumerate() {
+                        let bytes: Vec<u8> = level.texels.iter().flatten().flat_map(|v| v.to_ne_bytes()).collect();
+                        let path = level_path(out, k);
+                        save_png_into(&mut set, &path, level.width, level.height, PngLayout::Rgba16, &bytes)?;
+                    }
+                }
             }
             Ok(set.commit()?)
         }
@@ -152,8 +212,8 @@ fn run_folder(
         return Err(CliError::Path { path: out_dir.clone(), reason: "a folder input needs a folder output".into() });
     }
     // Compressed texels need a container: one .dds per input.
-    let format: TextureFormat = args.format.into();
-    let ext = if format == TextureFormat::Rgba8 { "png" } else { "dds" };
+    let format = texel_format(args)?;
+    let ext = if format.is_compressed() { "dds" } else { "png" };
     let read_err = |e: std::io::Error| CliError::Path { path: input.to_path_buf(), reason: e.to_string() };
     let mut files: Vec<PathBuf> = std::fs::read_dir(input)
         .map_err(read_err)?
@@ -216,7 +276,9 @@ fn run_folder(
             let result = ensure_not_input(&out, &[file])
                 .map_err(CliError::from)
                 .and_then(|_| Ok(bumpmap_io::load_height_field(file, channel)?))
-                .and_then(|field| make(&field, options, args.mips, args.mip_mode.into(), &file.display().to_string()))
+                .and_then(|field| {
+                    make_chain(&field, options, args.mips, args.mip_mode.into(), format, &file.display().to_string())
+                })
                 .and_then(|chain| write_set(&out, &chain, &[file], format).map(|_| ()));
             bar.inc(1);
             bar.set_message(file.file_name().unwrap_or_default().to_string_lossy().into_owned());

@@ -42,6 +42,16 @@ pub fn run(args: &RenderArgs) -> Result<(), CliError> {
     // The mesh's buffer files are inputs too.
     inputs.extend(read);
     let input_refs: Vec<&Path> = inputs.iter().map(PathBuf::as_path).collect();
+    if args.setup.technique.technique == TechniqueArg::Reference {
+        if args.passes {
+            return Err(CliError::Usage("--passes shows the three passes of --technique kilgard".into()));
+        }
+        let image = reference(&scene, &args.setup, width, height, true)?;
+        let frame = Frame { image: image.to_rgba8(), snapshots: Vec::new() };
+        let written = write_frame(&frame, &args.output, &input_refs)?;
+        eprintln!("wrote {} (reference, {} samples per pixel)", written[0].display(), args.setup.technique.spp);
+        return Ok(());
+    }
     let technique = technique(&args.setup)?;
     if args.passes && !matches!(technique, Technique::Kilgard(_)) {
         return Err(CliError::Render(
@@ -196,11 +206,75 @@ pub fn build_scene(setup: &SceneSetup) -> Result<(Scene, Vec<PathBuf>), CliError
         tessellation: s.tessellation,
         repeat: s.repeat.map(|(s, t)| Vec2::new(s, t)),
         object_space: s.space == SpaceArg::Object,
+        mip_mode: bumpmap_math::MipMode::LengthInAlpha,
     };
     if params.eye.is_some() && params.eye == params.target {
         return Err(CliError::Usage("--eye and --target must differ".into()));
     }
     Ok((scenes::build(&kind, &params).map_err(core_err)?, read))
+}
+
+/// The options of `--technique reference` the other options imply.
+pub fn reference_options(setup: &SceneSetup) -> bumpmap_reference::ReferenceOptions {
+    let t = &setup.technique;
+    bumpmap_reference::ReferenceOptions {
+        samples_per_pixel: t.spp as usize,
+        self_shadow: self_shadow(t),
+        specular_shadow: specular_shadow(t),
+    }
+}
+
+/// Renders the reference image of `scene`, with a progress bar when `bar` is set.
+pub fn reference(
+    scene: &Scene,
+    setup: &SceneSetup,
+    width: usize,
+    height: usize,
+    bar: bool,
+) -> Result<bumpmap_reference::LinearImage, CliError> {
+    let options = reference_options(setup);
+    let progress = indicatif::ProgressBar::new(0).with_style(
+        indicatif::ProgressStyle::with_template("reference {bar:40} {pos}/{len} tiles {elapsed}")
+            .expect("valid template"),
+    );
+    if !bar {
+        progress.set_draw_target(indicatif::ProgressDrawTarget::hidden());
+    }
+    let image = bumpmap_reference::render(scene, width, height, &options, &|done, total| {
+        progress.set_length(total as u64);
+        progress.set_position(done as u64);
+    });
+    progress.finish_and_clear();
+    image.map_err(|e| CliError::Render(reference_err(e)))
+}
+
+/// A reference error in the words of the command line.
+pub fn reference_err(e: bumpmap_reference::ReferenceError) -> String {
+    use bumpmap_reference::ReferenceError;
+    match e {
+        ReferenceError::NoSurface { .. } => {
+            "--technique reference needs a built-in surface (torus, wall, floor, wall-floor, patch, sphere), not a mesh"
+                .into()
+        }
+        ReferenceError::SpotPattern { .. } => "--technique reference does not sample --spot-pattern".into(),
+        other => other.to_string(),
+    }
+}
+
+fn self_shadow(t: &crate::render_args::TechniqueGroup) -> SelfShadow {
+    match (t.no_self_shadow, t.self_shadow) {
+        (true, _) | (_, SelfShadowArg::Off) => SelfShadow::Off,
+        (_, SelfShadowArg::Ramp) => SelfShadow::Ramp,
+        (_, SelfShadowArg::Step) => SelfShadow::Step,
+    }
+}
+
+fn specular_shadow(t: &crate::render_args::TechniqueGroup) -> SpecularShadow {
+    match t.specular_shadow {
+        SpecularShadowArg::Kilgard => SpecularShadow::Kilgard,
+        SpecularShadowArg::Cg => SpecularShadow::CgTutorial,
+        SpecularShadowArg::Off => SpecularShadow::Off,
+    }
 }
 
 /// The technique the options name, with its options; refuses options that belong to the other
@@ -209,6 +283,10 @@ pub fn technique(setup: &SceneSetup) -> Result<Technique, CliError> {
     let (t, m) = (&setup.technique, &setup.material);
     let sampler = sampler(t.filter);
     match t.technique {
+        TechniqueArg::Reference => Err(CliError::Usage(
+            "--technique reference renders on the CPU alone and is not a pass list: use it with `render` or `compare`"
+                .into(),
+        )),
         TechniqueArg::Kilgard => {
             let refuse = |feature| Err(core_err(CoreError::Unsupported { technique: "kilgard", feature }));
             if m.gloss.is_some() {
@@ -267,20 +345,12 @@ pub fn technique(setup: &SceneSetup) -> Result<Technique, CliError> {
                     NormalizeArg::Math => Normalize::Math,
                     NormalizeArg::Cube => Normalize::Cube,
                 },
-                self_shadow: match (t.no_self_shadow, t.self_shadow) {
-                    (true, _) | (_, SelfShadowArg::Off) => SelfShadow::Off,
-                    (_, SelfShadowArg::Ramp) => SelfShadow::Ramp,
-                    (_, SelfShadowArg::Step) => SelfShadow::Step,
-                },
+                self_shadow: self_shadow(t),
                 half_angle: match t.half_angle {
                     HalfAngleArg::Vertex => HalfAngle::Vertex,
                     HalfAngleArg::Fragment => HalfAngle::Fragment,
                 },
-                specular_shadow: match t.specular_shadow {
-                    SpecularShadowArg::Kilgard => SpecularShadow::Kilgard,
-                    SpecularShadowArg::Cg => SpecularShadow::CgTutorial,
-                    SpecularShadowArg::Off => SpecularShadow::Off,
-                },
+                specular_shadow: specular_shadow(t),
                 gloss,
                 cube_size: t.cube_size as usize,
             }))

@@ -111,9 +111,12 @@ pub struct MaterialGroup {
 #[derive(Args, Debug, Clone)]
 #[command(next_help_heading = "Technique")]
 pub struct TechniqueGroup {
-    /// kilgard: the paper's three passes; single-pass: one float pass per light
+    /// kilgard: the paper's three passes; single-pass: one float pass per light; reference: ground truth (Blinn's perturbed normal on the exact surface, --spp samples per pixel)
     #[arg(long, value_enum, default_value = "kilgard")]
     pub technique: TechniqueArg,
+    /// reference: samples per pixel (stratified); the image converges as it grows
+    #[arg(long, default_value_t = 64, value_parser = clap::value_parser!(u32).range(1..=4096))]
+    pub spp: u32,
     /// Texture filtering of the normal map and decal
     #[arg(long, value_enum, default_value = "trilinear")]
     pub filter: FilterArg,
@@ -258,6 +261,8 @@ pub enum TechniqueArg {
     Kilgard,
     /// One float pass per light with the full lighting model (Kilgard §6, Cg Tutorial)
     SinglePass,
+    /// Ground truth: Blinn's perturbed normal from the exact surface and a C¹ height interpolant, many samples per pixel, on the CPU
+    Reference,
 }
 
 #[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]

@@ -267,3 +267,117 @@ fn compressed_formats_need_a_container_that_holds_them() {
     // 32² with 6 levels: 64 + 16 + 4 + 1 + 1 + 1 blocks of 16 bytes after the 148-byte header.
     assert_eq!(bytes.len(), 148 + 16 * (64 + 16 + 4 + 1 + 1 + 1));
 }
+
+#[test]
+fn sixteen_bit_outputs_are_the_eight_bit_map_with_more_bits() {
+    let dir = scratch("bits16");
+    let input = dir.join("square.png");
+    write_gray_png(&input, 32, 32, |x, y| if (8..24).contains(&x) && (8..24).contains(&y) { 255 } else { 0 });
+    let (p8, p16) = (dir.join("n8.png"), dir.join("n16.png"));
+    for (out, bits) in [(&p8, "8"), (&p16, "16")] {
+        let o = bumpmap(&["normalmap", input.to_str().unwrap(), "-o", out.to_str().unwrap(), "--mips", "--bits", bits]);
+        assert!(o.status.success(), "{}", stderr(&o));
+    }
+    // Every level is a 16-bit RGBA PNG whose channels round to the 8-bit file's within a step.
+    for k in 0..6 {
+        let name = |p: &std::path::Path| {
+            if k == 0 {
+                p.to_path_buf()
+            } else {
+                dir.join(format!("{}.mip{k}.png", p.file_stem().unwrap().to_str().unwrap()))
+            }
+        };
+        let wide = image::open(name(&p16)).unwrap();
+        assert_eq!(wide.color(), image::ColorType::Rgba16, "level {k}");
+        let narrow = image::open(name(&p8)).unwrap().to_rgba8();
+        let wide = wide.to_rgba16();
+        let mut finer = 0;
+        for (a, b) in narrow.pixels().zip(wide.pixels()) {
+            for c in 0..4 {
+                let rounded = (b[c] as u32 + 128) / 257;
+                assert!(rounded.abs_diff(a[c] as u32) <= 1, "level {k}: {a:?} vs {b:?}");
+                finer += (b[c] % 257 != 0) as usize;
+            }
+        }
+        if k == 0 {
+            assert!(finer > 0, "the 16-bit file holds values no byte can");
+            // Green up at the square's top edge as displayed, as in the 8-bit file.
+            let top = (5..=10).map(|y| wide.get_pixel(16, y)[1]).max().unwrap();
+            assert!(top > 40000, "top edge green {top}");
+        }
+    }
+    // Containers: R16G16B16A16_UNORM with every level.
+    let ktx = dir.join("n.ktx2");
+    let o = bumpmap(&["normalmap", "bricks@32", "--mips", "--bits", "16", "-o", ktx.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let bytes = std::fs::read(&ktx).unwrap();
+    assert_eq!(u32::from_le_bytes(bytes[12..16].try_into().unwrap()), 91, "VK_FORMAT_R16G16B16A16_UNORM");
+    assert_eq!(u32::from_le_bytes(bytes[40..44].try_into().unwrap()), 6, "levels");
+    let dds = dir.join("n.dds");
+    let o = bumpmap(&["normalmap", "bricks@32", "--format", "R16G16B16A16_UNORM", "-o", dds.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let bytes = std::fs::read(&dds).unwrap();
+    assert_eq!(u32::from_le_bytes(bytes[128..132].try_into().unwrap()), 11, "DXGI_FORMAT_R16G16B16A16_UNORM");
+    assert_eq!(bytes.len(), 148 + 8 * 32 * 32);
+    // BC formats are 8-bit: asking for both is a usage error, and nothing is written.
+    let before = listing(&dir);
+    let o = bumpmap(&[
+        "normalmap",
+        "bricks@32",
+        "--bits",
+        "16",
+        "--format",
+        "bc5",
+        "-o",
+        dir.join("x.dds").to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(stderr(&o).contains("--bits 16"), "{}", stderr(&o));
+    let o = bumpmap(&["normalmap", "bricks@32", "--bits", "12", "-o", dir.join("x.png").to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert_eq!(listing(&dir), before);
+}
+
+/// Writes a one-channel float height field as an RGB OpenEXR file (R = G = B = h).
+fn write_exr(path: &std::path::Path, w: u32, h: u32, f: impl Fn(u32, u32) -> f32) {
+    let img = image::Rgb32FImage::from_fn(w, h, |x, y| image::Rgb([f(x, y); 3]));
+    image::DynamicImage::ImageRgb32F(img).save(path).unwrap();
+}
+
+#[test]
+fn exr_heights_are_read_as_stored_in_float() {
+    let dir = scratch("exr");
+    // The same ramp-and-square field twice: in [0, 2] scene units in float, and in [0, 1] as a
+    // 16-bit PNG. Half the scale on twice the heights must give the same normals.
+    let height = |x: u32, y: u32| if (8..24).contains(&x) && (8..24).contains(&y) { 1.0 } else { x as f32 / 64.0 };
+    let exr = dir.join("h.exr");
+    write_exr(&exr, 32, 32, |x, y| 2.0 * height(x, y));
+    let png = dir.join("h16.png");
+    let wide = image::ImageBuffer::<image::Luma<u16>, _>::from_fn(32, 32, |x, y| {
+        image::Luma([(height(x, y) * 65535.0).round() as u16])
+    });
+    wide.save(&png).unwrap();
+    let (a, b) = (dir.join("a.png"), dir.join("b.png"));
+    let o = bumpmap(&["normalmap", exr.to_str().unwrap(), "-o", a.to_str().unwrap(), "--scale", "2", "--bits", "16"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let o = bumpmap(&["normalmap", png.to_str().unwrap(), "-o", b.to_str().unwrap(), "--scale", "4", "--bits", "16"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let (a, b) = (image::open(&a).unwrap().to_rgba16(), image::open(&b).unwrap().to_rgba16());
+    let worst = a.pixels().zip(b.pixels()).flat_map(|(p, q)| (0..3).map(move |c| p[c].abs_diff(q[c]))).max().unwrap();
+    // The PNG's heights are quantized to 1/65535; its normals differ from the float ones by
+    // far less than one 8-bit step (257).
+    assert!(worst < 64, "largest difference {worst} of 65535");
+    let top = (5..=10).map(|y| a.get_pixel(16, y)[1]).max().unwrap();
+    assert!(top > 40000, "the square's top edge faces up the image: green {top}");
+
+    // A NaN height is an error naming the file and the texel, and nothing is written.
+    let bad = dir.join("nan.exr");
+    write_exr(&bad, 8, 8, |x, y| if (x, y) == (3, 5) { f32::NAN } else { 0.0 });
+    let out = dir.join("nan.png");
+    fails_cleanly(
+        &dir,
+        &["normalmap", bad.to_str().unwrap(), "-o", out.to_str().unwrap()],
+        &bad,
+        "texel (3, 5) is NaN",
+    );
+}

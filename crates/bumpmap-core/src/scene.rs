@@ -9,9 +9,10 @@ use std::sync::Arc;
 
 use glam::{Mat4, Vec3};
 
-use bumpmap_math::Rgba8Mips;
 use bumpmap_math::lighting::Light;
 use bumpmap_math::mesh::Mesh;
+use bumpmap_math::surface::Surface;
+use bumpmap_math::{HeightField, NormalMapOptions, Rgba8Mips};
 
 /// A perspective camera (`gluLookAt` + `gluPerspective`).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -177,6 +178,25 @@ pub struct SceneObject {
     pub world_from_object: Mat4,
     /// The surface appearance.
     pub material: Material,
+    /// What the mesh and the normal map were made from, where they were made from an analytic
+    /// surface: what a reference renderer evaluates instead. `None` for a loaded mesh.
+    pub source: Option<SurfaceSource>,
+}
+
+/// The exact surface and height field behind a built-in object (Peercy §2, Kilgard Eq. 5).
+///
+/// The mesh is `surface` tessellated with texture coordinates `repeat ⊙ (u, v)`; the normal
+/// map is `height_field` differentiated with `normal_map`'s kernel and scale.
+#[derive(Clone, Debug)]
+pub struct SurfaceSource {
+    /// The analytic surface, in object space.
+    pub surface: Surface,
+    /// Texture repeats along s and t.
+    pub repeat: glam::Vec2,
+    /// The heights the normal map was made from.
+    pub height_field: Arc<HeightField>,
+    /// The options the normal map was made with (its scale and wrap matter here).
+    pub normal_map: NormalMapOptions,
 }
 
 /// Everything a technique renders.

@@ -11,7 +11,7 @@ use bumpmap_math::surface::{BicubicPatch, Surface};
 use bumpmap_math::{HeightField, MipChain, MipMode, NormalMapOptions, Rgba8Image, Rgba8Mips, bricks_decal};
 
 use crate::error::CoreError;
-use crate::scene::{Camera, Material, NormalSpace, Scene, SceneLight, SceneObject, ViewerModel};
+use crate::scene::{Camera, Material, NormalSpace, Scene, SceneLight, SceneObject, SurfaceSource, ViewerModel};
 
 /// Which geometry a scene shows.
 #[derive(Clone, Debug, PartialEq)]
@@ -85,6 +85,9 @@ pub struct SceneParams {
     pub repeat: Option<Vec2>,
     /// Light in object space with an object-space normal map made for the surface.
     pub object_space: bool,
+    /// What the normal map's smaller levels store: the length factor (Kilgard §5.3) or
+    /// renormalized normals.
+    pub mip_mode: MipMode,
 }
 
 impl Default for SceneParams {
@@ -108,6 +111,7 @@ impl Default for SceneParams {
             tessellation: None,
             repeat: None,
             object_space: false,
+            mip_mode: MipMode::LengthInAlpha,
         }
     }
 }
@@ -158,7 +162,7 @@ pub fn object_space_normal_map(surface: &Surface, repeat: Vec2, tangent_map: &Mi
 /// Builds a scene. Fails when the height field cannot become a normal map, or when an
 /// object-space map is asked of a mesh.
 pub fn build(kind: &SceneKind, params: &SceneParams) -> Result<Scene, CoreError> {
-    let chain = MipChain::from_height(&params.height_field, &params.normal_map, MipMode::LengthInAlpha)?;
+    let chain = MipChain::<[u8; 4]>::from_height(&params.height_field, &params.normal_map, params.mip_mode)?;
     let normal_map = Arc::new(chain.to_mips());
     let decal = match (&params.decal, params.default_decal) {
         (Some(d), _) => Some(Arc::new(Rgba8Mips::with_box_mipmaps(d.clone()))),
@@ -177,6 +181,7 @@ pub fn build(kind: &SceneKind, params: &SceneParams) -> Result<Scene, CoreError>
         specular: params.specular,
         shininess: params.shininess,
     };
+    let heights = Arc::new(params.height_field.clone());
     let object = |surface: Surface, tess: (usize, usize), repeat: Vec2, world_from_object: Mat4| {
         let repeat = params.repeat.unwrap_or(repeat);
         let mut material = material.clone();
@@ -193,6 +198,12 @@ pub fn build(kind: &SceneKind, params: &SceneParams) -> Result<Scene, CoreError>
             )),
             world_from_object,
             material,
+            source: Some(SurfaceSource {
+                surface,
+                repeat,
+                height_field: heights.clone(),
+                normal_map: params.normal_map,
+            }),
         }
     };
     let (objects, eye, target, up) = match kind {
@@ -236,7 +247,8 @@ pub fn build(kind: &SceneKind, params: &SceneParams) -> Result<Scene, CoreError>
             let centre = (lo + hi) * 0.5;
             let radius = ((hi - lo).length() * 0.5).max(1e-6);
             let world_from_object = Mat4::from_scale(Vec3::splat(1.5 / radius)) * Mat4::from_translation(-centre);
-            let object = SceneObject { mesh: mesh.clone(), world_from_object, material: material.clone() };
+            let object =
+                SceneObject { mesh: mesh.clone(), world_from_object, material: material.clone(), source: None };
             (vec![object], Vec3::new(0.0, -2.5, 3.5), Vec3::ZERO, Vec3::Z)
         }
     };

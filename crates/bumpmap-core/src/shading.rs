@@ -55,6 +55,27 @@ pub struct LitTerms {
     pub specular_shadow: SpecularShadow,
 }
 
+impl LitTerms {
+    /// The terms of `material` lit by `light`: its colour times the material's diffuse and
+    /// specular coefficients, and the ambient term only on the first light's (`first`).
+    pub fn of(
+        material: &crate::scene::Material,
+        light: &crate::scene::SceneLight,
+        first: bool,
+        self_shadow: SelfShadow,
+        specular_shadow: SpecularShadow,
+    ) -> Self {
+        Self {
+            ambient: if first { material.ambient } else { Vec3::ZERO },
+            diffuse: material.diffuse * light.color,
+            specular: material.specular * light.color,
+            shininess: material.shininess,
+            self_shadow,
+            specular_shadow,
+        }
+    }
+}
+
 /// What one fragment brings to the model.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Fragment {

@@ -49,6 +49,14 @@ pub struct Vertex {
 }
 
 impl Scene {
+    /// The viewer of the half-angle vector: the eye, or the direction toward it.
+    pub fn viewer(&self) -> Viewer {
+        match self.viewer {
+            ViewerModel::Local => Viewer::Local(self.camera.eye),
+            ViewerModel::Infinite => Viewer::Infinite((self.camera.eye - self.camera.target).normalize_or(Vec3::Z)),
+        }
+    }
+
     /// The vertex stage for one object and one light: clip position, texture coordinates and
     /// the tangent-space L, H and V of every vertex.
     pub fn vertices(&self, object: &SceneObject, light: &SceneLight, aspect: f32) -> Vec<Vertex> {
@@ -56,11 +64,7 @@ impl Scene {
         let mesh = &object.mesh;
         debug_assert_eq!(mesh.tangents.len(), mesh.positions.len(), "meshes carry tangents");
         let clip_from_object = self.camera.clip_from_world(aspect) * object.world_from_object;
-        let viewer = match self.viewer {
-            ViewerModel::Local => Viewer::Local(self.camera.eye),
-            ViewerModel::Infinite => Viewer::Infinite((self.camera.eye - self.camera.target).normalize_or(Vec3::Z)),
-        };
-        let lighting = ObjectLighting::new(object.world_from_object, light.light, viewer);
+        let lighting = ObjectLighting::new(object.world_from_object, light.light, self.viewer());
         let object_from_world = object.world_from_object.inverse();
         (0..mesh.positions.len())
             .into_par_iter()

@@ -201,7 +201,10 @@ fn check_png_palette(mut f: impl std::io::Read + std::io::Seek, name: &Path) -> 
     Ok(())
 }
 
-/// Loads heights in [0, 1] from one channel of an 8- or 16-bit image (`v/255` or `v/65535`).
+/// Loads heights from one channel of an image: in [0, 1] from 8 or 16 bits (`v/255` or
+/// `v/65535`); as stored from a floating-point image (OpenEXR, 32-bit TIFF), where heights
+/// are often in scene units — `--scale` then says how many texels one unit is. A NaN or
+/// infinite height is an error naming the texel.
 pub fn load_height_field(path: &Path, channel: Channel) -> Result<HeightField, IoError> {
     height_field(decode(path, path, &DecodeLimits::default())?, path, channel)
 }
@@ -228,6 +231,7 @@ fn height_field(img: DynamicImage, path: &Path, channel: Channel) -> Result<Heig
     {
         return Err(missing());
     }
+    let float = matches!(color, image::ColorType::Rgb32F | image::ColorType::Rgba32F);
     let sixteen = color.bytes_per_pixel() / color.channel_count() >= 2;
     let pick = |c: [f32; 4]| match channel {
         Channel::Luminance if !has_color => c[0],
@@ -237,7 +241,17 @@ fn height_field(img: DynamicImage, path: &Path, channel: Channel) -> Result<Heig
         Channel::Blue => c[2],
         Channel::Alpha => c[3],
     };
-    let field = if sixteen {
+    let field = if float {
+        let rgba = img.to_rgba32f();
+        let heights: Vec<f32> = rgba.pixels().map(|p| pick(p.0)).collect();
+        if let Some(i) = heights.iter().position(|h| !h.is_finite()) {
+            return Err(IoError::Decode {
+                path: path.to_path_buf(),
+                reason: format!("the height at texel ({}, {}) is {}; heights must be finite", i % w, i / w, heights[i]),
+            });
+        }
+        HeightField::new(w, h, heights)
+    } else if sixteen {
         if !has_color && channel == Channel::Luminance {
             HeightField::from_u16(w, h, img.to_luma16().as_raw())
         } else {
@@ -276,9 +290,11 @@ pub enum PngLayout {
     Gray8,
     Rgb8,
     Rgba8,
+    /// 16 bits a channel, each in the machine's byte order (as `u16::to_ne_bytes` gives it).
+    Rgba16,
 }
 
-/// Writes an 8-bit PNG atomically. `bytes` holds `width·height` pixels, row 0 first.
+/// Writes an 8- or 16-bit PNG atomically. `bytes` holds `width·height` pixels, row 0 first.
 pub fn save_png(path: &Path, width: usize, height: usize, layout: PngLayout, bytes: &[u8]) -> Result<(), IoError> {
     let mut set = FileSet::new(&[]);
     save_png_into(&mut set, path, width, height, layout, bytes)?;
@@ -299,6 +315,7 @@ pub fn save_png_into(
         PngLayout::Gray8 => image::ExtendedColorType::L8,
         PngLayout::Rgb8 => image::ExtendedColorType::Rgb8,
         PngLayout::Rgba8 => image::ExtendedColorType::Rgba8,
+        PngLayout::Rgba16 => image::ExtendedColorType::Rgba16,
     };
     debug_assert_eq!(bytes.len(), width * height * color.bits_per_pixel() as usize / 8);
     set.write(path, |w| {

@@ -1,15 +1,18 @@
 //! DDS and KTX2 containers: a whole mip chain, or a cube map, in one file an engine loads.
 //!
-//! Three formats, all linear (never sRGB: normal maps are data), rows in memory order, row 0
+//! Four formats, all linear (never sRGB: normal maps are data), rows in memory order, row 0
 //! first, exactly as `glTexImage2D` takes them:
 //! - [`TextureFormat::Rgba8`]: uncompressed (`DXGI R8G8B8A8_UNORM` / `VK_FORMAT_R8G8B8A8_UNORM`);
+//! - [`TextureFormat::Rgba16`]: uncompressed, 16 bits a channel (`R16G16B16A16_UNORM`, little
+//!   endian), for bakers' 16-bit normal maps;
 //! - [`TextureFormat::Bc5`]: red and green only, 8 bits per texel (`BC5_UNORM`), Z rebuilt in
 //!   the shader as √(1 − x² − y²) — blue and alpha (the mip chain's length factor) are dropped;
 //! - [`TextureFormat::Bc7`]: all four channels, 8 bits per texel (`BC7_UNORM`).
 //!
 //! Every level is compressed on its own from the chain given (the chain's own mips, not the
-//! encoder's), by Intel's ISPC texture compressor through `image_dds`. DDS files of the BC
-//! formats carry the DX10 header extension; KTX2 files a basic data-format descriptor of the
+//! encoder's), by Intel's ISPC texture compressor through `image_dds`; a 16-bit level is
+//! rounded to 8 bits first, an 8-bit level stored as 16 bits is widened exactly (`v·257`).
+//! DDS files of every format but RGBA8 carry the DX10 header extension; KTX2 files a basic data-format descriptor of the
 //! format's colour model.
 
 use std::io::Write;
@@ -17,12 +20,43 @@ use std::path::Path;
 
 use crate::atomic::FileSet;
 use crate::error::IoError;
-use bumpmap_math::Rgba8Image;
+use bumpmap_math::{Rgba8Image, Rgba16Image};
 
 /// What a texture file holds: `levels[face][level]`, one face for 2D, six (+X, −X, +Y, −Y, +Z,
 /// −Z) for a cube map. Every face has the same number of levels and sizes.
 pub struct TextureLayout<'a> {
-    pub faces: Vec<Vec<&'a Rgba8Image>>,
+    pub faces: Vec<Vec<Level<'a>>>,
+}
+
+/// One level's texels, at the depth they were made in.
+#[derive(Clone, Copy, Debug)]
+pub enum Level<'a> {
+    /// 8 bits a channel.
+    Rgba8(&'a Rgba8Image),
+    /// 16 bits a channel.
+    Rgba16(&'a Rgba16Image),
+}
+
+impl Level<'_> {
+    /// Width and height in texels.
+    pub fn size(self) -> (usize, usize) {
+        match self {
+            Level::Rgba8(l) => (l.width, l.height),
+            Level::Rgba16(l) => (l.width, l.height),
+        }
+    }
+}
+
+impl<'a> From<&'a Rgba8Image> for Level<'a> {
+    fn from(level: &'a Rgba8Image) -> Self {
+        Level::Rgba8(level)
+    }
+}
+
+impl<'a> From<&'a Rgba16Image> for Level<'a> {
+    fn from(level: &'a Rgba16Image) -> Self {
+        Level::Rgba16(level)
+    }
 }
 
 /// How the texels are stored.
@@ -31,6 +65,8 @@ pub enum TextureFormat {
     /// 8-bit RGBA, uncompressed.
     #[default]
     Rgba8,
+    /// 16-bit RGBA, uncompressed.
+    Rgba16,
     /// BC5 (two channels, red and green).
     Bc5,
     /// BC7 (four channels).
@@ -42,6 +78,7 @@ impl TextureFormat {
     pub fn name(self) -> &'static str {
         match self {
             TextureFormat::Rgba8 => "R8G8B8A8_UNORM",
+            TextureFormat::Rgba16 => "R16G16B16A16_UNORM",
             TextureFormat::Bc5 => "BC5_UNORM",
             TextureFormat::Bc7 => "BC7_UNORM",
         }
@@ -50,6 +87,7 @@ impl TextureFormat {
     fn dxgi(self) -> u32 {
         match self {
             TextureFormat::Rgba8 => 28,
+            TextureFormat::Rgba16 => 11,
             TextureFormat::Bc5 => 83,
             TextureFormat::Bc7 => 98,
         }
@@ -58,15 +96,22 @@ impl TextureFormat {
     fn vk(self) -> u32 {
         match self {
             TextureFormat::Rgba8 => 37,
+            TextureFormat::Rgba16 => 91,
             TextureFormat::Bc5 => 141,
             TextureFormat::Bc7 => 145,
         }
     }
 
-    /// Bytes of one texel block (1×1 for RGBA8, 4×4 for BC).
+    /// Whether texels are stored in 4×4 compressed blocks.
+    pub fn is_compressed(self) -> bool {
+        matches!(self, TextureFormat::Bc5 | TextureFormat::Bc7)
+    }
+
+    /// Bytes of one texel block (1×1 uncompressed, 4×4 for BC).
     fn block_bytes(self) -> usize {
         match self {
             TextureFormat::Rgba8 => 4,
+            TextureFormat::Rgba16 => 8,
             TextureFormat::Bc5 | TextureFormat::Bc7 => 16,
         }
     }
@@ -77,10 +122,23 @@ impl TextureFormat {
 const BAND_ROWS: usize = 64;
 
 /// One level's bytes in `format`.
-fn encode_level(path: &Path, level: &Rgba8Image, format: TextureFormat) -> Result<Vec<u8>, IoError> {
+fn encode_level(path: &Path, level: Level, format: TextureFormat) -> Result<Vec<u8>, IoError> {
     use rayon::prelude::*;
+    let narrowed;
+    let level = match (level, format) {
+        (Level::Rgba16(l), TextureFormat::Rgba16) => return Ok(l.to_le_bytes()),
+        (Level::Rgba8(l), TextureFormat::Rgba16) => {
+            return Ok(l.as_bytes().iter().flat_map(|&b| (b as u16 * 257).to_le_bytes()).collect());
+        }
+        (Level::Rgba8(l), _) => l,
+        (Level::Rgba16(l), _) => {
+            narrowed = l.to_rgba8();
+            &narrowed
+        }
+    };
     let target = match format {
         TextureFormat::Rgba8 => return Ok(level.as_bytes().to_vec()),
+        TextureFormat::Rgba16 => unreachable!("handled above"),
         TextureFormat::Bc5 => image_dds::ImageFormat::BC5RgUnorm,
         TextureFormat::Bc7 => image_dds::ImageFormat::BC7RgbaUnorm,
     };
@@ -110,11 +168,11 @@ fn encode_level(path: &Path, level: &Rgba8Image, format: TextureFormat) -> Resul
 /// writers store. `path` is the file errors name.
 pub fn encode(path: &Path, tex: &TextureLayout, format: TextureFormat) -> Result<Vec<Vec<Vec<u8>>>, IoError> {
     use rayon::prelude::*;
-    tex.faces.iter().map(|face| face.par_iter().map(|l| encode_level(path, l, format)).collect()).collect()
+    tex.faces.iter().map(|face| face.par_iter().map(|&l| encode_level(path, l, format)).collect()).collect()
 }
 
 /// Writes a DDS file: the legacy header (32-bit RGBA masks for [`TextureFormat::Rgba8`], the
-/// DX10 extension for the BC formats), mipmap count, cube-map caps.
+/// DX10 extension for the others), mipmap count, cube-map caps.
 pub fn write_dds(path: &Path, tex: &TextureLayout, format: TextureFormat) -> Result<(), IoError> {
     let mut set = FileSet::new(&[]);
     write_dds_into(&mut set, path, tex, format)?;
@@ -129,7 +187,7 @@ pub fn write_dds_into(
     format: TextureFormat,
 ) -> Result<(), IoError> {
     let data = encode(path, tex, format)?;
-    let base = tex.faces[0][0];
+    let (base_width, base_height) = tex.faces[0][0].size();
     let levels = tex.faces[0].len() as u32;
     let cube = tex.faces.len() == 6;
     const CAPS: u32 = 0x1;
@@ -139,7 +197,8 @@ pub fn write_dds_into(
     const PIXELFORMAT: u32 = 0x1000;
     const MIPMAPCOUNT: u32 = 0x20000;
     const LINEARSIZE: u32 = 0x80000;
-    let compressed = format != TextureFormat::Rgba8;
+    let compressed = format.is_compressed();
+    let dx10 = format != TextureFormat::Rgba8;
     let mut flags = CAPS | HEIGHT | WIDTH | PIXELFORMAT | if compressed { LINEARSIZE } else { PITCH };
     let mut caps = 0x1000; // DDSCAPS_TEXTURE
     if levels > 1 {
@@ -154,14 +213,14 @@ pub fn write_dds_into(
     let mut header = Vec::with_capacity(128);
     let mut put = |v: u32| header.extend_from_slice(&v.to_le_bytes());
     put(u32::from_le_bytes(*b"DDS "));
-    let pitch = if compressed { data[0][0].len() as u32 } else { 4 * base.width as u32 };
-    for v in [124, flags, base.height as u32, base.width as u32, pitch, 0, levels] {
+    let pitch = if compressed { data[0][0].len() } else { format.block_bytes() * base_width } as u32;
+    for v in [124, flags, base_height as u32, base_width as u32, pitch, 0, levels] {
         put(v);
     }
     for _ in 0..11 {
         put(0);
     }
-    if compressed {
+    if dx10 {
         // DDS_PIXELFORMAT: FOURCC "DX10"; the format is in the extension header.
         for v in [32, 0x4, u32::from_le_bytes(*b"DX10"), 0, 0, 0, 0, 0] {
             put(v);
@@ -175,7 +234,7 @@ pub fn write_dds_into(
     for v in [caps, caps2, 0, 0, 0] {
         put(v);
     }
-    if compressed {
+    if dx10 {
         // DDS_HEADER_DXT10: format, TEXTURE2D, TEXTURECUBE if a cube, one array element.
         for v in [format.dxgi(), 3, if cube { 0x4 } else { 0 }, 1, 0] {
             put(v);
@@ -208,7 +267,7 @@ pub fn write_ktx2_into(
     format: TextureFormat,
 ) -> Result<(), IoError> {
     let data = encode(path, tex, format)?;
-    let base = tex.faces[0][0];
+    let (base_width, base_height) = tex.faces[0][0].size();
     let levels = tex.faces[0].len();
     let faces = tex.faces.len();
     const IDENTIFIER: [u8; 12] = [0xAB, 0x4B, 0x54, 0x58, 0x20, 0x32, 0x30, 0xBB, 0x0D, 0x0A, 0x1A, 0x0A];
@@ -226,7 +285,8 @@ pub fn write_ktx2_into(
     }
     let mut head = Vec::with_capacity(dfd_offset + dfd.len());
     head.extend_from_slice(&IDENTIFIER);
-    for v in [format.vk(), 1, base.width as u32, base.height as u32, 0, 0, faces as u32, levels as u32, 0] {
+    let type_size = if format == TextureFormat::Rgba16 { 2 } else { 1 };
+    for v in [format.vk(), type_size, base_width as u32, base_height as u32, 0, 0, faces as u32, levels as u32, 0] {
         head.extend_from_slice(&v.to_le_bytes());
     }
     for v in [dfd_offset as u32, dfd.len() as u32, 0, 0] {
@@ -256,7 +316,7 @@ pub fn write_ktx2_into(
 }
 
 /// The Khronos basic data-format descriptor of `format`, linear: RGBA8 as four 8-bit samples
-/// (RGBSDA model); BC5 as two 64-bit samples, red and green (model BC5); BC7 as one 128-bit
+/// (RGBSDA model), RGBA16 as four 16-bit ones; BC5 as two 64-bit samples, red and green (model BC5); BC7 as one 128-bit
 /// sample (model BC7), with 4×4 texel blocks.
 fn linear_dfd(format: TextureFormat) -> Vec<u8> {
     /// A sample: bit offset, bit length − 1, channel id, upper value.
@@ -265,6 +325,9 @@ fn linear_dfd(format: TextureFormat) -> Vec<u8> {
     let (model, dims, bytes, samples): (u8, [u8; 4], u8, &[Sample]) = match format {
         TextureFormat::Rgba8 => {
             (1, [0, 0, 0, 0], 4, &[(0, 7, 0, 255), (8, 7, 1, 255), (16, 7, 2, 255), (24, 7, 15, 255)])
+        }
+        TextureFormat::Rgba16 => {
+            (1, [0, 0, 0, 0], 8, &[(0, 15, 0, 65535), (16, 15, 1, 65535), (32, 15, 2, 65535), (48, 15, 15, 65535)])
         }
         TextureFormat::Bc5 => (132, [3, 3, 0, 0], 16, &[(0, 63, 0, u32::MAX), (64, 63, 1, u32::MAX)]),
         TextureFormat::Bc7 => (134, [3, 3, 0, 0], 16, &[(0, 127, 0, u32::MAX)]),
@@ -301,7 +364,7 @@ mod tests {
     }
 
     fn layout(data: &[Rgba8Image], faces: usize) -> TextureLayout<'_> {
-        TextureLayout { faces: vec![data.iter().collect(); faces] }
+        TextureLayout { faces: vec![data.iter().map(Level::from).collect(); faces] }
     }
 
     fn tmp(name: &str) -> std::path::PathBuf {
@@ -324,6 +387,34 @@ mod tests {
             }
             std::fs::remove_file(path).unwrap();
         }
+    }
+
+    #[test]
+    fn sixteen_bit_levels_parse_with_independent_readers() {
+        let data: Vec<Rgba16Image> = vec![
+            Rgba16Image::new(4, 2, (0..8).map(|i| [i * 1000, 65535 - i, 257, 65535]).collect()),
+            Rgba16Image::new(2, 1, vec![[1, 2, 3, 4]; 2]),
+            Rgba16Image::new(1, 1, vec![[40000; 4]]),
+        ];
+        let tex = TextureLayout { faces: vec![data.iter().map(Level::from).collect()] };
+        let path = tmp("t16.ktx2");
+        write_ktx2(&path, &tex, TextureFormat::Rgba16).unwrap();
+        let bytes = std::fs::read(&path).unwrap();
+        let reader = ktx2::Reader::new(&bytes[..]).expect("valid KTX2");
+        assert_eq!(reader.header().format, Some(ktx2::Format::R16G16B16A16_UNORM));
+        assert_eq!(reader.header().type_size, 2);
+        for (k, level) in reader.levels().enumerate() {
+            assert_eq!(level.data, data[k].to_le_bytes().as_slice(), "level {k}");
+        }
+        std::fs::remove_file(&path).unwrap();
+
+        let path = tmp("t16.dds");
+        write_dds(&path, &tex, TextureFormat::Rgba16).unwrap();
+        let dds = ddsfile::Dds::read(&mut std::fs::File::open(&path).unwrap()).expect("valid DDS");
+        assert_eq!(dds.get_dxgi_format(), Some(ddsfile::DxgiFormat::R16G16B16A16_UNorm));
+        assert_eq!((dds.get_width(), dds.get_height(), dds.get_num_mipmap_levels()), (4, 2, 3));
+        assert_eq!(dds.data, data.iter().flat_map(|l| l.to_le_bytes()).collect::<Vec<u8>>());
+        std::fs::remove_file(path).unwrap();
     }
 
     #[test]

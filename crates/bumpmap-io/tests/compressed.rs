@@ -50,8 +50,8 @@ fn decode(format: image_dds::ImageFormat, w: usize, h: usize, data: &[u8]) -> Ve
 fn bc5_and_bc7_decode_elsewhere_to_within_a_stated_angle_of_the_uncompressed_map() {
     let field = HeightPreset::Bricks.render(256, 256);
     let options = NormalMapOptions { y_convention: YConvention::YUp, ..Default::default() };
-    let chain = MipChain::from_height(&field, &options, MipMode::LengthInAlpha).unwrap();
-    let layout = TextureLayout { faces: vec![chain.levels.iter().collect()] };
+    let chain = MipChain::<[u8; 4]>::from_height(&field, &options, MipMode::LengthInAlpha).unwrap();
+    let layout = TextureLayout { faces: vec![chain.levels.iter().map(Into::into).collect()] };
     // (format, DXGI, theirs, worst bound, mean bound). BC5 keeps 8 bits of X and Y in 3-bit
     // palettes of a 4×4 block; BC7's shared endpoints bend the steep mortar edges more. The
     // bounds are about 1.4× the worst level measured (README).

@@ -23,7 +23,7 @@ fn bench(c: &mut Criterion) {
     g.bench_function("full_chain_from_u8", |b| {
         b.iter(|| {
             let f = HeightField::from_u8(size, size, &bytes).unwrap();
-            MipChain::from_height(&f, &opts, MipMode::LengthInAlpha).unwrap()
+            MipChain::<[u8; 4]>::from_height(&f, &opts, MipMode::LengthInAlpha).unwrap()
         })
     });
     g.finish();

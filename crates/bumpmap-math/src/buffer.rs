@@ -8,13 +8,18 @@
 
 /// A zeroed vector of `n` RGBA8 texels, backed by huge pages where the system allows.
 pub fn zeroed_rgba8(n: usize) -> Vec<[u8; 4]> {
+    zeroed(n)
+}
+
+/// A zeroed vector of `n` texels of 8 or 16 bits, backed by huge pages where the system allows.
+pub fn zeroed<T: crate::Texel>(n: usize) -> Vec<T> {
     const HUGE: usize = 2 << 20;
     if n == 0 {
         return Vec::new();
     }
-    let layout = std::alloc::Layout::array::<[u8; 4]>(n).expect("texel buffer size overflows");
+    let layout = std::alloc::Layout::array::<T>(n).expect("texel buffer size overflows");
     // SAFETY: the layout has a non-zero size; a null result is handled below.
-    let ptr = unsafe { std::alloc::alloc_zeroed(layout) } as *mut [u8; 4];
+    let ptr = unsafe { std::alloc::alloc_zeroed(layout) } as *mut T;
     if ptr.is_null() {
         std::alloc::handle_alloc_error(layout);
     }
@@ -29,7 +34,7 @@ pub fn zeroed_rgba8(n: usize) -> Vec<[u8; 4]> {
             unsafe { libc::madvise(start as *mut libc::c_void, end - start, libc::MADV_HUGEPAGE) };
         }
     }
-    // SAFETY: allocated by the global allocator with `Layout::array::<[u8; 4]>(n)`, which is the
+    // SAFETY: allocated by the global allocator with `Layout::array::<T>(n)`, which is the
     // layout `Vec` uses for this capacity; zeroed bytes are valid texels.
     unsafe { Vec::from_raw_parts(ptr, n, n) }
 }

@@ -40,6 +40,39 @@ impl Encoding {
         }
     }
 
+    /// [`Encoding::encode`] at 16 bits: `round(32767.5·n + 32767.5)` or the truncated
+    /// `32768 + 32767·n`. Inputs outside [-1, 1] saturate; NaN encodes as 0.
+    #[inline(always)]
+    pub fn encode16(self, n: f32) -> u16 {
+        let v = match self {
+            Encoding::Unorm => n * 32767.5 + 32768.0,
+            Encoding::Kilgard => 32768.0 + 32767.0 * n,
+        };
+        #[allow(clippy::manual_clamp)] // as in `encode`: NaN must become 0 before the conversion
+        let v = v.max(0.0).min(65535.0);
+        // SAFETY: v is finite and in [0, 65535].
+        unsafe { v.to_int_unchecked::<i32>() as u16 }
+    }
+
+    /// [`Encoding::encode_unsigned`] at 16 bits.
+    #[inline(always)]
+    pub fn encode16_unsigned(self, a: f32) -> u16 {
+        let a = a.clamp(0.0, 1.0);
+        match self {
+            Encoding::Unorm => (a * 65535.0 + 0.5) as u16,
+            Encoding::Kilgard => (a * 65535.0) as u16,
+        }
+    }
+
+    /// The inverse of [`Encoding::encode16`] at its steps.
+    #[inline(always)]
+    pub fn decode16(self, v: u16) -> f32 {
+        match self {
+            Encoding::Unorm => v as f32 * (2.0 / 65535.0) - 1.0,
+            Encoding::Kilgard => (v as f32 - 32768.0) / 32767.0,
+        }
+    }
+
     /// The exact inverse of [`Encoding::encode`] at byte centres.
     #[inline(always)]
     pub fn decode(self, b: u8) -> f32 {
@@ -58,6 +91,52 @@ impl Encoding {
     }
 }
 
+/// A stored normal-map texel: four unsigned-normalized channels, 8 or 16 bits each.
+///
+/// The normal map and its mip chain are written through this trait, so one code path (and
+/// its SIMD variants) makes both depths. At 16 bits the encodings are the same formulas
+/// with 2¹⁶ in place of 2⁸: unorm rounds `32767.5·n + 32767.5`, Kilgard truncates
+/// `32768 + 32767·n`. Sealed: all-zero bytes are a valid value of every implementor, which
+/// the zeroed output buffers rely on.
+pub trait Texel: sealed::Sealed + Copy + Default + PartialEq + std::fmt::Debug + Send + Sync + 'static {
+    /// Bits per channel.
+    const BITS: u32;
+    /// A direction's three signed components in RGB and an unsigned magnitude in [0, 1] in A.
+    fn pack(x: f32, y: f32, z: f32, a: f32, enc: Encoding) -> Self;
+    /// A unit direction with A at its largest value (level 0, whose length is 1).
+    fn pack_opaque(x: f32, y: f32, z: f32, enc: Encoding) -> Self;
+}
+
+mod sealed {
+    pub trait Sealed {}
+    impl Sealed for [u8; 4] {}
+    impl Sealed for [u16; 4] {}
+}
+
+impl Texel for [u8; 4] {
+    const BITS: u32 = 8;
+    #[inline(always)]
+    fn pack(x: f32, y: f32, z: f32, a: f32, enc: Encoding) -> Self {
+        [enc.encode(x), enc.encode(y), enc.encode(z), enc.encode_unsigned(a)]
+    }
+    #[inline(always)]
+    fn pack_opaque(x: f32, y: f32, z: f32, enc: Encoding) -> Self {
+        [enc.encode(x), enc.encode(y), enc.encode(z), 255]
+    }
+}
+
+impl Texel for [u16; 4] {
+    const BITS: u32 = 16;
+    #[inline(always)]
+    fn pack(x: f32, y: f32, z: f32, a: f32, enc: Encoding) -> Self {
+        [enc.encode16(x), enc.encode16(y), enc.encode16(z), enc.encode16_unsigned(a)]
+    }
+    #[inline(always)]
+    fn pack_opaque(x: f32, y: f32, z: f32, enc: Encoding) -> Self {
+        [enc.encode16(x), enc.encode16(y), enc.encode16(z), u16::MAX]
+    }
+}
+
 /// What the register combiners' `EXPAND_NORMAL_NV` does to a texel byte: `2·b/255 − 1`.
 #[inline(always)]
 pub fn expand_normal(b: u8) -> f32 {
@@ -73,6 +152,29 @@ mod tests {
         for b in 0..=255u8 {
             assert_eq!(Encoding::Unorm.encode(Encoding::Unorm.decode(b)), b);
         }
+    }
+
+    #[test]
+    fn sixteen_bits_round_trip_and_agree_with_eight() {
+        for enc in [Encoding::Unorm, Encoding::Kilgard] {
+            for v in (0..=65535u16).step_by(7).chain([65535]) {
+                let n = enc.decode16(v);
+                if enc == Encoding::Kilgard && v == 0 {
+                    continue; // below −1: Kilgard's formula never writes 0
+                }
+                assert_eq!(enc.encode16(n), v, "{enc:?} {v}");
+            }
+            // 16-bit values are 8-bit values with 8 more bits: the top byte of a 16-bit code is
+            // within one step of the 8-bit code of the same component.
+            for i in 0..=200 {
+                let n = i as f32 / 100.0 - 1.0;
+                let (a, b) = (enc.encode(n) as i32, (enc.encode16(n) >> 8) as i32);
+                assert!((a - b).abs() <= 1, "{enc:?} {n}: {a} vs {b}");
+            }
+        }
+        assert_eq!(Encoding::Unorm.encode16(f32::NAN), 0);
+        assert_eq!(Encoding::Unorm.encode16(1.0), 65535);
+        assert_eq!(Encoding::Unorm.encode16(-1.0), 0);
     }
 
     #[test]

@@ -1,7 +1,8 @@
-//! The one RGBA8 image type of the project, and a mip chain of them.
+//! The project's image type, and a mip chain of them.
 //!
 //! A normal-map level, a decal, a gloss map, a spotlight pattern, a cube-map face and a file's
-//! pixels are all [`Rgba8Image`]s; textures with their smaller levels are [`Rgba8Mips`]. Row 0
+//! pixels are all [`Rgba8Image`]s; a 16-bit normal map written for a file is an
+//! [`Rgba16Image`], the same [`Image`] with wider texels; textures with their smaller levels are [`Rgba8Mips`]. Row 0
 //! is texture coordinate t = 0, as `glTexImage2D` takes it. These types hold data only: how a
 //! texture is sampled belongs to the backends, and what the bytes mean (a normal's encoding,
 //! sRGB or linear) to whoever made them.
@@ -11,30 +12,59 @@ use glam::Vec3;
 use crate::Encoding;
 use crate::mip::{footprint, next_size};
 
-/// `width`×`height` RGBA8 texels, row-major, row 0 (t = 0) first.
+/// `width`×`height` texels of type `T`, row-major, row 0 (t = 0) first.
 #[derive(Clone, Debug, PartialEq, Eq)]
-pub struct Rgba8Image {
+pub struct Image<T> {
     pub width: usize,
     pub height: usize,
-    pub texels: Vec<[u8; 4]>,
+    pub texels: Vec<T>,
 }
 
-impl Rgba8Image {
+/// 8-bit RGBA: what every renderer samples.
+pub type Rgba8Image = Image<[u8; 4]>;
+
+/// 16-bit RGBA: normal maps for files only (`bumpmap normalmap --bits 16`).
+pub type Rgba16Image = Image<[u16; 4]>;
+
+impl<T: Copy> Image<T> {
     /// An image from its texels. Panics unless `texels.len() == width · height`.
-    pub fn new(width: usize, height: usize, texels: Vec<[u8; 4]>) -> Self {
+    pub fn new(width: usize, height: usize, texels: Vec<T>) -> Self {
         assert_eq!(texels.len(), width * height, "texel count of a {width}x{height} image");
         Self { width, height, texels }
     }
 
+    /// The texel at (x, y). Panics when out of range.
+    #[inline]
+    pub fn texel(&self, x: usize, y: usize) -> T {
+        self.texels[y * self.width + x]
+    }
+}
+
+impl Rgba16Image {
+    /// The texels as little-endian bytes (R, G, B, A, two bytes each): the layout of DDS's
+    /// `R16G16B16A16_UNORM` and KTX2's `VK_FORMAT_R16G16B16A16_UNORM`.
+    pub fn to_le_bytes(&self) -> Vec<u8> {
+        self.texels.iter().flat_map(|t| t.iter().flat_map(|c| c.to_le_bytes())).collect()
+    }
+
+    /// Decodes a normal-map texel into its unit direction and the length stored in alpha.
+    pub fn decode(&self, x: usize, y: usize, encoding: Encoding) -> (Vec3, f32) {
+        let [r, g, b, a] = self.texel(x, y);
+        let d = Vec3::new(encoding.decode16(r), encoding.decode16(g), encoding.decode16(b));
+        (d, a as f32 / 65535.0)
+    }
+
+    /// The image at 8 bits, each channel rounded to the nearest byte (`(v + 128) / 257`).
+    pub fn to_rgba8(&self) -> Rgba8Image {
+        let texels = self.texels.iter().map(|t| t.map(|c| ((c as u32 + 128) / 257) as u8)).collect();
+        Image { width: self.width, height: self.height, texels }
+    }
+}
+
+impl Rgba8Image {
     /// An image whose every texel is `(v, v, v, 255)` for the gray values `values`.
     pub fn from_gray(width: usize, height: usize, values: &[u8]) -> Self {
         Self::new(width, height, values.iter().map(|&v| [v, v, v, 255]).collect())
-    }
-
-    /// The texel at (x, y). Panics when out of range.
-    #[inline]
-    pub fn texel(&self, x: usize, y: usize) -> [u8; 4] {
-        self.texels[y * self.width + x]
     }
 
     /// The texels as one flat byte slice (R, G, B, A, R, …).

@@ -25,9 +25,9 @@ pub mod surface;
 pub mod tangent;
 
 pub use cubemap::{CubeFace, NormalizationCubeMap};
-pub use encoding::Encoding;
+pub use encoding::{Encoding, Texel};
 pub use height::{HeightField, HeightPreset, bricks_decal};
-pub use image::{Rgba8Image, Rgba8Mips};
+pub use image::{Image, Rgba8Image, Rgba8Mips, Rgba16Image};
 pub use kernel::{Kernel, Wrap};
 pub use mip::{MipChain, MipMode};
 pub use normalmap::{NormalMapOptions, YConvention};

@@ -15,9 +15,9 @@
 use glam::Vec3;
 use rayon::prelude::*;
 
-use crate::encoding::Encoding;
+use crate::encoding::{Encoding, Texel};
 use crate::height::HeightField;
-use crate::image::{Rgba8Image, Rgba8Mips};
+use crate::image::{Image, Rgba8Mips};
 use crate::normalmap::{NormalMapError, NormalMapOptions, RowEvaluator, RowScratch, encode_unit, output_size};
 
 /// What the RGB and A of levels below 0 hold.
@@ -30,10 +30,10 @@ pub enum MipMode {
     Renormalize,
 }
 
-/// Level 0 and every smaller level down to 1×1.
+/// Level 0 and every smaller level down to 1×1, 8 bits per channel unless `T` says 16.
 #[derive(Clone, Debug, PartialEq, Eq)]
-pub struct MipChain {
-    pub levels: Vec<Rgba8Image>,
+pub struct MipChain<T = [u8; 4]> {
+    pub levels: Vec<Image<T>>,
     pub encoding: Encoding,
 }
 
@@ -106,16 +106,16 @@ fn add_pairs_generic(src: [&[f32]; 3], dst: &mut RowSums) {
 /// Encodes a mean of unit vectors, given their sum and the reciprocal of their count: its
 /// direction in RGB (straight up if it vanished, as Appendix F does) and its length in A.
 #[inline(always)]
-pub fn encode_mean(sum: Vec3, inv_count: f32, mode: MipMode, enc: Encoding) -> [u8; 4] {
+pub fn encode_mean<T: Texel>(sum: Vec3, inv_count: f32, mode: MipMode, enc: Encoding) -> T {
     let mean = sum * inv_count;
     let len = mean.length();
     let inv = if len > 0.0 { 1.0 / len } else { 0.0 };
     let z = if len > 0.0 { mean.z * inv } else { 1.0 };
     let a = match mode {
-        MipMode::LengthInAlpha => enc.encode_unsigned(len),
-        MipMode::Renormalize => 255,
+        MipMode::LengthInAlpha => len,
+        MipMode::Renormalize => 1.0,
     };
-    [enc.encode(mean.x * inv), enc.encode(mean.y * inv), enc.encode(z), a]
+    T::pack(mean.x * inv, mean.y * inv, z, a, enc)
 }
 
 /// The size of every level and, per level, the reciprocal of how many level-0 columns each
@@ -154,26 +154,26 @@ impl Shape {
 }
 
 /// Encodes one row of level-k sums into bytes.
-fn encode_sums_row(
+fn encode_sums_row<T: Texel>(
     acc: &RowSums,
     shape: &Shape,
     k: usize,
     j: usize,
     mode: MipMode,
     enc: Encoding,
-    out: &mut [[u8; 4]],
+    out: &mut [T],
 ) {
     #[cfg(target_arch = "x86_64")]
     if std::is_x86_feature_detected!("avx2") {
         #[target_feature(enable = "avx2")]
-        unsafe fn avx2(
+        unsafe fn avx2<T: Texel>(
             acc: &RowSums,
             shape: &Shape,
             k: usize,
             j: usize,
             mode: MipMode,
             enc: Encoding,
-            out: &mut [[u8; 4]],
+            out: &mut [T],
         ) {
             encode_sums_row_generic(acc, shape, k, j, mode, enc, out)
         }
@@ -184,14 +184,14 @@ fn encode_sums_row(
 }
 
 #[inline(always)]
-fn encode_sums_row_generic(
+fn encode_sums_row_generic<T: Texel>(
     acc: &RowSums,
     shape: &Shape,
     k: usize,
     j: usize,
     mode: MipMode,
     enc: Encoding,
-    out: &mut [[u8; 4]],
+    out: &mut [T],
 ) {
     let inv_row = 1.0 / shape.rows[k][j] as f32;
     let n = out.len();
@@ -213,8 +213,8 @@ struct BandScratch {
 }
 
 /// One band: its slice of rows in each streamed level and the first row index of each slice.
-struct Band<'a> {
-    out: Vec<&'a mut [[u8; 4]]>,
+struct Band<'a, T> {
+    out: Vec<&'a mut [T]>,
     first: Vec<usize>,
 }
 
@@ -227,7 +227,7 @@ struct Streamer<'a> {
 
 impl Streamer<'_> {
     /// Computes row `r` of level `k` and everything under it, then adds it into level k+1.
-    fn process(&self, band: &mut Band, scratch: &mut BandScratch, k: usize, r: usize, top: &mut [Vec3]) {
+    fn process<T: Texel>(&self, band: &mut Band<T>, scratch: &mut BandScratch, k: usize, r: usize, top: &mut [Vec3]) {
         let (w, last) = (self.shape.w[k], band.out.len() - 1);
         let local = r - band.first[k];
         let out = &mut band.out[k][local * w..(local + 1) * w];
@@ -258,7 +258,7 @@ impl Streamer<'_> {
     }
 }
 
-impl MipChain {
+impl<T: Texel> MipChain<T> {
     /// Builds level 0 from the height field and every level below it.
     ///
     /// Level 0 and the next few levels are made in one pass over row bands, one band per row
@@ -268,14 +268,14 @@ impl MipChain {
         let (w0, h0) = output_size(field.width(), field.height(), options)?;
         let shape = Shape::new(w0, h0);
         let deepest = STREAMED_LEVELS.min(shape.levels() - 1);
-        let mut bytes: Vec<Vec<[u8; 4]>> =
-            (0..shape.levels()).map(|k| crate::buffer::zeroed_rgba8(shape.w[k] * shape.h[k])).collect();
+        let mut bytes: Vec<Vec<T>> =
+            (0..shape.levels()).map(|k| crate::buffer::zeroed::<T>(shape.w[k] * shape.h[k])).collect();
         let streamer =
             Streamer { eval: RowEvaluator::new(field, *options)?, shape: &shape, mode, enc: options.encoding };
 
         // Split each streamed level into per-band row slices.
         let bands_n = shape.h[deepest];
-        let mut bands: Vec<Band> = (0..bands_n).map(|_| Band { out: Vec::new(), first: Vec::new() }).collect();
+        let mut bands: Vec<Band<T>> = (0..bands_n).map(|_| Band { out: Vec::new(), first: Vec::new() }).collect();
         for (k, level) in bytes.iter_mut().enumerate().take(deepest + 1) {
             let mut rest = level.as_mut_slice();
             for (j, band) in bands.iter_mut().enumerate() {
@@ -297,7 +297,7 @@ impl MipChain {
         let levels = bytes
             .into_iter()
             .enumerate()
-            .map(|(k, texels)| Rgba8Image { width: shape.w[k], height: shape.h[k], texels })
+            .map(|(k, texels)| Image { width: shape.w[k], height: shape.h[k], texels })
             .collect();
         Ok(Self { levels, encoding: options.encoding })
     }
@@ -308,14 +308,14 @@ impl MipChain {
     pub fn from_normals(width: usize, height: usize, normals: &[Vec3], encoding: Encoding, mode: MipMode) -> Self {
         assert!(width > 0 && height > 0 && normals.len() == width * height, "{width}x{height} normals");
         let shape = Shape::new(width, height);
-        let mut bytes: Vec<Vec<[u8; 4]>> =
-            (0..shape.levels()).map(|k| crate::buffer::zeroed_rgba8(shape.w[k] * shape.h[k])).collect();
+        let mut bytes: Vec<Vec<T>> =
+            (0..shape.levels()).map(|k| crate::buffer::zeroed::<T>(shape.w[k] * shape.h[k])).collect();
         bytes[0] = normals.iter().map(|&n| encode_unit(n, encoding)).collect();
         reduce_levels(&shape, 0, normals.to_vec(), &mut bytes, mode, encoding);
         let levels = bytes
             .into_iter()
             .enumerate()
-            .map(|(k, texels)| Rgba8Image { width: shape.w[k], height: shape.h[k], texels })
+            .map(|(k, texels)| Image { width: shape.w[k], height: shape.h[k], texels })
             .collect();
         Self { levels, encoding }
     }
@@ -328,7 +328,9 @@ impl MipChain {
     pub fn is_empty(&self) -> bool {
         self.levels.is_empty()
     }
+}
 
+impl MipChain {
     /// The levels as a texture (a copy): what a scene's material holds.
     pub fn to_mips(&self) -> Rgba8Mips {
         Rgba8Mips::from_levels(self.levels.clone())
@@ -337,11 +339,11 @@ impl MipChain {
 
 /// Fills `bytes[k]` for every level below `from`, reducing `sums` (level `from`'s sums of unit
 /// normals) one level at a time.
-fn reduce_levels(
+fn reduce_levels<T: Texel>(
     shape: &Shape,
     from: usize,
     sums: Vec<Vec3>,
-    bytes: &mut [Vec<[u8; 4]>],
+    bytes: &mut [Vec<T>],
     mode: MipMode,
     enc: Encoding,
 ) {
@@ -383,7 +385,7 @@ mod tests {
     use crate::normalmap::normal_map_level0;
 
     fn chain(field: &HeightField, mode: MipMode) -> MipChain {
-        MipChain::from_height(field, &NormalMapOptions::default(), mode).unwrap()
+        MipChain::<[u8; 4]>::from_height(field, &NormalMapOptions::default(), mode).unwrap()
     }
 
     #[test]
@@ -405,7 +407,7 @@ mod tests {
         // every texel averages whole dimples.
         let steep = NormalMapOptions { scale: 16.0, ..Default::default() };
         let dimples = HeightPreset::Dimples.render(256, 256);
-        let c = MipChain::from_height(&dimples, &steep, MipMode::LengthInAlpha).unwrap();
+        let c = MipChain::<[u8; 4]>::from_height(&dimples, &steep, MipMode::LengthInAlpha).unwrap();
         let mean_alpha = |k: usize| {
             let l = &c.levels[k];
             l.texels.iter().map(|t| t[3] as f32).sum::<f32>() / l.texels.len() as f32
@@ -413,7 +415,7 @@ mod tests {
         assert_eq!(mean_alpha(0), 255.0);
         assert!(mean_alpha(5) < 235.0, "level 5 mean alpha {}", mean_alpha(5));
         assert!(mean_alpha(5) < mean_alpha(1), "dimming grows with the footprint");
-        let renorm = MipChain::from_height(&dimples, &steep, MipMode::Renormalize).unwrap();
+        let renorm = MipChain::<[u8; 4]>::from_height(&dimples, &steep, MipMode::Renormalize).unwrap();
         assert!(renorm.levels[5].texels.iter().all(|t| t[3] == 255));
         assert_eq!(
             renorm.levels[5].texels.iter().map(|t| [t[0], t[1], t[2]]).collect::<Vec<_>>(),
@@ -427,7 +429,7 @@ mod tests {
         // mean over the footprint composed level by level.
         let field = HeightPreset::Noise(3).render(11, 6);
         let opts = NormalMapOptions { kernel: Kernel::Sobel3, scale: 8.0, ..Default::default() };
-        let c = MipChain::from_height(&field, &opts, MipMode::LengthInAlpha).unwrap();
+        let c = MipChain::<[u8; 4]>::from_height(&field, &opts, MipMode::LengthInAlpha).unwrap();
         let sizes: Vec<_> = c.levels.iter().map(|l| (l.width, l.height)).collect();
         assert_eq!(sizes, vec![(11, 6), (5, 3), (2, 1), (1, 1)]);
         let eval = RowEvaluator::new(&field, opts).unwrap();
@@ -453,7 +455,7 @@ mod tests {
                             mean += normals[y * 11 + x];
                         }
                     }
-                    let want =
+                    let want: [u8; 4] =
                         encode_mean(mean, 1.0 / (rs.len() * cs.len()) as f32, MipMode::LengthInAlpha, c.encoding);
                     // The brute-force sum adds in another order; f32 rounding may move a value
                     // across a byte boundary, never by more than one step.
@@ -463,5 +465,26 @@ mod tests {
             }
         }
         assert_eq!(c.levels[0], normal_map_level0(&field, &opts).unwrap());
+    }
+
+    #[test]
+    fn sixteen_bit_chain_is_the_eight_bit_chain_with_more_bits() {
+        // One code path makes both depths: every channel of every level of the 16-bit chain
+        // rounds to the 8-bit chain's byte, within one step (the two round at different places).
+        let field = HeightPreset::Bricks.render(37, 20);
+        let opts = NormalMapOptions { scale: 6.0, ..Default::default() };
+        let c8 = MipChain::<[u8; 4]>::from_height(&field, &opts, MipMode::LengthInAlpha).unwrap();
+        let c16 = MipChain::<[u16; 4]>::from_height(&field, &opts, MipMode::LengthInAlpha).unwrap();
+        assert_eq!(c8.len(), c16.len());
+        let mut finer = 0;
+        for (l8, l16) in c8.levels.iter().zip(&c16.levels) {
+            assert_eq!((l8.width, l8.height), (l16.width, l16.height));
+            for (a, b) in l8.texels.iter().zip(&l16.to_rgba8().texels) {
+                assert!(a.iter().zip(b).all(|(x, y)| x.abs_diff(*y) <= 1), "{a:?} vs {b:?}");
+            }
+            finer += l16.texels.iter().filter(|t| t[0] % 257 != 0).count();
+        }
+        assert!(finer > 0, "16-bit texels hold values no byte can");
+        assert!(c16.levels[0].texels.iter().all(|t| t[3] == u16::MAX));
     }
 }

@@ -7,9 +7,9 @@
 
 use glam::Vec3;
 
-use crate::encoding::Encoding;
+use crate::encoding::{Encoding, Texel};
 use crate::height::HeightField;
-use crate::image::Rgba8Image;
+use crate::image::{Image, Rgba8Image};
 use crate::kernel::{Kernel, Tap, Wrap};
 
 /// Which way the green channel points, stated against the image as displayed (first row at
@@ -162,7 +162,7 @@ impl<'a> RowEvaluator<'a> {
 
     /// Computes output row `y`: its unit normals into `scratch` and their bytes into `out`.
     #[inline]
-    pub(crate) fn process_row(&self, y: usize, scratch: &mut RowScratch, out: &mut [[u8; 4]]) {
+    pub(crate) fn process_row<T: Texel>(&self, y: usize, scratch: &mut RowScratch, out: &mut [T]) {
         #[cfg(target_arch = "x86_64")]
         if std::is_x86_feature_detected!("avx2") {
             // SAFETY: the CPU supports AVX2, checked just above.
@@ -174,12 +174,12 @@ impl<'a> RowEvaluator<'a> {
 
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx2")]
-    unsafe fn process_row_avx2(&self, y: usize, scratch: &mut RowScratch, out: &mut [[u8; 4]]) {
+    unsafe fn process_row_avx2<T: Texel>(&self, y: usize, scratch: &mut RowScratch, out: &mut [T]) {
         self.process_row_generic(y, scratch, out);
     }
 
     #[inline(always)]
-    fn process_row_generic(&self, y: usize, scratch: &mut RowScratch, out: &mut [[u8; 4]]) {
+    fn process_row_generic<T: Texel>(&self, y: usize, scratch: &mut RowScratch, out: &mut [T]) {
         self.normals_generic(y, scratch);
         encode_row(scratch, out, self.options.encoding);
     }
@@ -220,27 +220,21 @@ impl<'a> RowEvaluator<'a> {
     }
 }
 
-/// Range-compresses a row of unit normals into RGBA with A = 255 (Kilgard Eq. 28).
+/// Range-compresses a row of unit normals into RGBA with A at its largest (Kilgard Eq. 28).
 #[inline(always)]
-pub(crate) fn encode_row(scratch: &RowScratch, out: &mut [[u8; 4]], enc: Encoding) {
+pub(crate) fn encode_row<T: Texel>(scratch: &RowScratch, out: &mut [T], enc: Encoding) {
     let n = out.len();
     let (nx, ny, nz) = (&scratch.nx[..n], &scratch.ny[..n], &scratch.nz[..n]);
     // One loop per encoding keeps the match out of the lanes.
     match enc {
         Encoding::Unorm => {
             for i in 0..n {
-                out[i] =
-                    [Encoding::Unorm.encode(nx[i]), Encoding::Unorm.encode(ny[i]), Encoding::Unorm.encode(nz[i]), 255];
+                out[i] = T::pack_opaque(nx[i], ny[i], nz[i], Encoding::Unorm);
             }
         }
         Encoding::Kilgard => {
             for i in 0..n {
-                out[i] = [
-                    Encoding::Kilgard.encode(nx[i]),
-                    Encoding::Kilgard.encode(ny[i]),
-                    Encoding::Kilgard.encode(nz[i]),
-                    255,
-                ];
+                out[i] = T::pack_opaque(nx[i], ny[i], nz[i], Encoding::Kilgard);
             }
         }
     }
@@ -259,20 +253,28 @@ pub fn perturbed_normal(a: f32, b: f32, y_sign: f32) -> Vec3 {
 
 /// Level 0 only: each texel's unit normal range-compressed in RGB, A = 255.
 pub fn normal_map_level0(field: &HeightField, options: &NormalMapOptions) -> Result<Rgba8Image, NormalMapError> {
+    normal_map_level0_texels(field, options)
+}
+
+/// [`normal_map_level0`] in texels of 8 or 16 bits (A = 65535 at 16 bits).
+pub fn normal_map_level0_texels<T: Texel>(
+    field: &HeightField,
+    options: &NormalMapOptions,
+) -> Result<Image<T>, NormalMapError> {
     use rayon::prelude::*;
     let (w, h) = output_size(field.width(), field.height(), options)?;
     let eval = RowEvaluator::new(field, *options)?;
-    let mut texels = crate::buffer::zeroed_rgba8(w * h);
+    let mut texels = crate::buffer::zeroed::<T>(w * h);
     texels.par_chunks_mut(w).enumerate().for_each_init(RowScratch::default, |scratch, (y, row)| {
         eval.process_row(y, scratch, row);
     });
-    Ok(Rgba8Image { width: w, height: h, texels })
+    Ok(Image { width: w, height: h, texels })
 }
 
-/// Range-compresses a unit normal with A = 255 (Kilgard Eq. 28; level 0's length is 1).
+/// Range-compresses a unit normal with A at its largest (Kilgard Eq. 28; level 0's length is 1).
 #[inline(always)]
-pub fn encode_unit(n: Vec3, enc: Encoding) -> [u8; 4] {
-    [enc.encode(n.x), enc.encode(n.y), enc.encode(n.z), 255]
+pub fn encode_unit<T: Texel>(n: Vec3, enc: Encoding) -> T {
+    T::pack_opaque(n.x, n.y, n.z, enc)
 }
 
 #[cfg(test)]

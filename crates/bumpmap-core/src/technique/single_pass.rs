@@ -8,8 +8,6 @@
 
 use std::sync::Arc;
 
-use glam::Vec3;
-
 use bumpmap_math::Rgba8Mips;
 
 use crate::error::CoreError;
@@ -165,14 +163,7 @@ pub fn passes(scene: &Scene, options: &SinglePassOptions) -> Result<Vec<Pass>, C
     for (o, object) in scene.objects.iter().enumerate() {
         let m = &object.material;
         for (l, light) in scene.lights.iter().enumerate() {
-            let terms = LitTerms {
-                ambient: if l == 0 { m.ambient } else { Vec3::ZERO },
-                diffuse: m.diffuse * light.color,
-                specular: m.specular * light.color,
-                shininess: m.shininess,
-                self_shadow: options.self_shadow,
-                specular_shadow: options.specular_shadow,
-            };
+            let terms = LitTerms::of(m, light, l == 0, options.self_shadow, options.specular_shadow);
             let program = LitProgram {
                 normal_map: m.normal_map.clone(),
                 normal_space: m.normal_space,

@@ -1,0 +1,225 @@
+//! What `compare` writes besides images: `results.json`, the plots as SVG (`plotters`), and
+//! `report.html`, which links only files in its own folder so the folder can be copied and
+//! opened anywhere.
+
+use plotters::prelude::*;
+use serde_json::{Value, json};
+
+use super::{Results, TECHNIQUES};
+
+/// The numbers, machine-readable: `{"techniques": {NAME: {"rmse", "psnr", "bias", "flip_mean",
+/// "ssim", "millis"}}, "skipped": {NAME: reason}, …}`.
+pub fn json(r: &Results) -> String {
+    let mut techniques = serde_json::Map::new();
+    let mut skipped = serde_json::Map::new();
+    for o in &r.outcomes {
+        match &o.result {
+            Ok(x) => {
+                let s = &x.scores;
+                techniques.insert(
+                    o.name.clone(),
+                    json!({"rmse": s.rmse, "psnr": s.psnr, "bias": s.bias, "flip_mean": s.flip_mean,
+                           "ssim": s.ssim, "millis": x.millis, "image": format!("{}.png", o.name),
+                           "heat_map": format!("{}.flip.png", o.name)}),
+                );
+            }
+            Err(reason) => {
+                skipped.insert(o.name.clone(), Value::String(reason.clone()));
+            }
+        }
+    }
+    let value = json!({
+        "scene": r.scene,
+        "size": r.size,
+        "spp": r.spp,
+        "backend": r.backend,
+        "reference": {"image": "reference.png", "millis": r.reference_millis},
+        "techniques": techniques,
+        "skipped": skipped,
+        "convergence": r.convergence.iter().map(|(k, e)| json!({"k": k, "rmse_to_4k": e})).collect::<Vec<_>>(),
+        "golf_ball": golf_json(&r.golf_ball),
+        "golf_ball_side_light": golf_json(&r.golf_ball_side),
+        "total_millis": r.total_millis,
+    });
+    serde_json::to_string_pretty(&value).expect("a JSON value serializes") + "\n"
+}
+
+fn golf_json(rows: &[(f32, f64, f64, f64)]) -> Vec<Value> {
+    rows.iter()
+        .map(|(d, re, l, n)| json!({"distance": d, "reference": re, "length_factor": l, "renormalized": n}))
+        .collect()
+}
+
+/// `(file name, SVG)` of each plot.
+pub fn plots(r: &Results) -> Vec<(&'static str, String)> {
+    vec![("convergence.svg", convergence_plot(r)), ("golf_ball.svg", golf_ball_plot(r))]
+}
+
+fn convergence_plot(r: &Results) -> String {
+    let mut svg = String::new();
+    {
+        let root = SVGBackend::with_string(&mut svg, (560, 360)).into_drawing_area();
+        root.fill(&WHITE).expect("drawing into a string");
+        let kmax = r.convergence.last().map_or(4.0, |(k, _)| *k as f64 * 2.0);
+        let emax = r.convergence.iter().map(|(_, e)| *e).fold(1e-4, f64::max) * 2.0;
+        let emin = r.convergence.iter().map(|(_, e)| *e).fold(emax, f64::min).max(1e-6) / 2.0;
+        let mut chart = ChartBuilder::on(&root)
+            .caption("Reference: RMSE between K and 4K samples per pixel", ("sans-serif", 16))
+            .margin(12)
+            .x_label_area_size(36)
+            .y_label_area_size(56)
+            .build_cartesian_2d((0.5f64..kmax).log_scale(), (emin..emax).log_scale())
+            .expect("valid ranges");
+        chart
+            .configure_mesh()
+            .light_line_style(TRANSPARENT)
+            .x_desc("K (samples per pixel)")
+            .y_desc("RMSE")
+            .draw()
+            .expect("mesh");
+        let points: Vec<(f64, f64)> = r.convergence.iter().map(|(k, e)| (*k as f64, *e)).collect();
+        chart.draw_series(LineSeries::new(points.clone(), BLUE.stroke_width(2))).expect("series");
+        chart.draw_series(points.iter().map(|p| Circle::new(*p, 4, BLUE.filled()))).expect("points");
+        root.present().expect("drawing into a string");
+    }
+    svg
+}
+
+fn golf_ball_plot(r: &Results) -> String {
+    let mut svg = String::new();
+    {
+        let root = SVGBackend::with_string(&mut svg, (560, 360)).into_drawing_area();
+        root.fill(&WHITE).expect("drawing into a string");
+        let values = r.golf_ball.iter().flat_map(|(_, a, b, c)| [*a, *b, *c]);
+        let (lo, hi) = values.fold((f64::MAX, f64::MIN), |(lo, hi), v| (lo.min(v), hi.max(v)));
+        let pad = ((hi - lo) * 0.15).max(0.01);
+        let dmax = r.golf_ball.last().map_or(8.0, |row| row.0 as f64 * 1.3);
+        let mut chart = ChartBuilder::on(&root)
+            .caption("Golf ball at a distance: mean brightness (Kilgard §2.4.2)", ("sans-serif", 16))
+            .margin(12)
+            .x_label_area_size(36)
+            .y_label_area_size(56)
+            .build_cartesian_2d((0.8f64..dmax).log_scale(), (lo - pad)..(hi + pad))
+            .expect("valid ranges");
+        chart
+            .configure_mesh()
+            .light_line_style(TRANSPARENT)
+            .x_desc("distance (× nearest)")
+            .y_desc("mean brightness")
+            .draw()
+            .expect("mesh");
+        let series = [("reference", 1usize, BLACK), ("length factor in alpha", 2, BLUE), ("renormalized mips", 3, RED)];
+        for (label, column, color) in series {
+            let points: Vec<(f64, f64)> =
+                r.golf_ball.iter().map(|row| (row.0 as f64, [row.1, row.2, row.3][column - 1])).collect();
+            chart
+                .draw_series(LineSeries::new(points.clone(), color.stroke_width(2)))
+                .expect("series")
+                .label(label)
+                .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], color.stroke_width(2)));
+            chart.draw_series(points.iter().map(|p| Circle::new(*p, 3, color.filled()))).expect("points");
+        }
+        chart.configure_series_labels().border_style(BLACK).background_style(WHITE).draw().expect("legend");
+        root.present().expect("drawing into a string");
+    }
+    svg
+}
+
+/// Escapes text for HTML.
+fn escape(s: &str) -> String {
+    s.replace('&', "&amp;").replace('<', "&lt;").replace('>', "&gt;").replace('"', "&quot;")
+}
+
+/// The page: the reference and every technique with its heat map, the table sorted by RMSE,
+/// the skipped techniques with their reasons, and the plots.
+pub fn html(r: &Results) -> String {
+    let mut rows: Vec<_> = r.outcomes.iter().filter_map(|o| o.result.as_ref().ok().map(|x| (o, x))).collect();
+    rows.sort_by(|a, b| a.1.scores.rmse.total_cmp(&b.1.scores.rmse));
+    let mut table = String::new();
+    for (o, x) in &rows {
+        let s = &x.scores;
+        table += &format!(
+            "<tr><td><b>{}</b></td><td>{:.4}</td><td>{:.2}</td><td>{:+.4}</td><td>{:.4}</td><td>{:.4}</td><td>{:.0}</td><td>{}</td></tr>\n",
+            escape(&o.name),
+            s.rmse,
+            s.psnr,
+            s.bias,
+            s.flip_mean,
+            s.ssim,
+            x.millis,
+            escape(&o.description)
+        );
+    }
+    let mut grid = format!(
+        "<figure><img src=\"reference.png\" alt=\"reference\"><figcaption>reference ({} samples per pixel, {:.0} ms)</figcaption></figure>\n",
+        r.spp, r.reference_millis
+    );
+    for (o, _) in &rows {
+        let n = escape(&o.name);
+        grid += &format!(
+            "<figure><img src=\"{n}.png\" alt=\"{n}\"><img src=\"{n}.flip.png\" alt=\"{n} FLIP error\"><figcaption>{n}: image and FLIP error</figcaption></figure>\n"
+        );
+    }
+    let skipped: String = r
+        .outcomes
+        .iter()
+        .filter_map(|o| {
+            o.result.as_ref().err().map(|why| format!("<li><b>{}</b>: {}</li>\n", escape(&o.name), escape(why)))
+        })
+        .collect();
+    let skipped = if skipped.is_empty() { "<p>None.</p>".to_string() } else { format!("<ul>{skipped}</ul>") };
+    let known: String = TECHNIQUES.iter().map(|(n, d)| format!("<li><b>{n}</b>: {}</li>", escape(d))).collect();
+    let golf_rows = |rows: &[(f32, f64, f64, f64)]| -> String {
+        rows.iter()
+            .map(|(d, re, l, n)| format!("<tr><td>{d}×</td><td>{re:.4}</td><td>{l:.4}</td><td>{n:.4}</td></tr>"))
+            .collect()
+    };
+    let (golf, golf_side) = (golf_rows(&r.golf_ball), golf_rows(&r.golf_ball_side));
+    format!(
+        r#"<!DOCTYPE html>
+<html lang="en"><head><meta charset="utf-8"><title>bumpmap compare: {scene}</title>
+<style>
+body {{ font-family: sans-serif; margin: 2em; max-width: 1200px; }}
+table {{ border-collapse: collapse; margin: 1em 0; }} td, th {{ border: 1px solid #ccc; padding: 4px 8px; text-align: right; }}
+td:first-child, td:last-child {{ text-align: left; }}
+.grid {{ display: flex; flex-wrap: wrap; gap: 12px; }} figure {{ margin: 0; }} figure img {{ display: block; image-rendering: pixelated; }}
+figcaption {{ font-size: 0.85em; max-width: {size}px; }}
+</style></head><body>
+<h1>bumpmap compare: {scene}, {size}×{size}</h1>
+<p>Every technique against the reference (Blinn's perturbed normal on the exact surface from a C¹ interpolant of the height field, {spp} samples per pixel, in float). Backend: {backend}. Total time {total:.1} s.</p>
+<h2>Errors against the reference</h2>
+<table><tr><th>technique</th><th>RMSE</th><th>PSNR (dB)</th><th>bias</th><th>FLIP mean</th><th>SSIM</th><th>ms</th><th>what it is</th></tr>
+{table}</table>
+<p>RMSE, PSNR and bias over linear RGB in [0, 1] (bias: mean of image − reference, positive is too bright); FLIP (NVIDIA) and SSIM of the luminance on the 8-bit images. The heat maps are FLIP's per-pixel error, black none, yellow most.</p>
+<h2>Skipped</h2>
+{skipped}
+<h2>Images</h2>
+<div class="grid">
+{grid}</div>
+<h2>The reference converges</h2>
+<p><img src="convergence.svg" alt="convergence plot"></p>
+<h2>A golf ball at a distance (Kilgard §2.4.2)</h2>
+<p>A dimpled sphere (no specular) moving away, 96×96 pixels, lit from behind the eye: the mean brightness over the ball (the frame's sum over the pixels the reference's ball touches). Averaged bumpy normals are shorter than 1, so a bumpy ball far away is dimmer than a smooth one (the reference). Mips that renormalize the average forget that and stay too bright; mips that keep its length in alpha (Kilgard §5.3) dim the ball, and the table says by how much compared with the reference — the ball's limb, lit at grazing angles, pushes them a little too dark (the next paragraph says why).</p>
+<table><tr><th>distance</th><th>reference</th><th>length factor</th><th>renormalized</th></tr>{golf}</table>
+<p><img src="golf_ball.svg" alt="golf ball plot"></p>
+<p>The same ball with the sphere scene's own light, from the side. Here much of each footprint faces away from the light, N·L is clamped at 0, and the length factor becomes a lower bound (the mean of clamped dot products is at least the clamped dot product of the mean normal): it is too dark.</p>
+<table><tr><th>distance</th><th>reference</th><th>length factor</th><th>renormalized</th></tr>{golf_side}</table>
+<h2>Techniques</h2>
+<ul>{known}</ul>
+<pre id="loaded"></pre>
+<script>
+// Records whether each image loaded (its natural width), for a headless browser to read.
+window.addEventListener('load', () => {{
+  document.getElementById('loaded').textContent =
+    Array.from(document.images).map(i => i.getAttribute('src') + ' ' + i.naturalWidth).join('\n');
+}});
+</script>
+</body></html>
+"#,
+        scene = escape(&r.scene),
+        size = r.size,
+        spp = r.spp,
+        backend = escape(&r.backend),
+        total = r.total_millis / 1e3,
+    )
+}

@@ -1,0 +1,154 @@
+//! `bumpmap compare`: the numbers the papers' claims rest on, the files a person opens, and
+//! the errors a user meets.
+
+mod common;
+
+use common::*;
+use serde_json::Value;
+
+fn compare(dir: &std::path::Path, extra: &[&str]) -> Value {
+    compare_at(dir, "64", extra)
+}
+
+fn compare_at(dir: &std::path::Path, size: &str, extra: &[&str]) -> Value {
+    let out = dir.join("cmp");
+    let mut args = vec!["compare", "--size", size, "--spp", "16", "-o", out.to_str().unwrap()];
+    args.extend_from_slice(extra);
+    let o = bumpmap(&args);
+    assert!(o.status.success(), "{}", stderr(&o));
+    serde_json::from_str(&std::fs::read_to_string(out.join("results.json")).unwrap()).unwrap()
+}
+
+fn rmse(r: &Value, name: &str) -> f64 {
+    r["techniques"][name]["rmse"].as_f64().unwrap_or_else(|| panic!("{name} has an rmse: {r}"))
+}
+
+#[test]
+fn every_technique_is_scored_and_the_bumps_matter() {
+    // 160² pixels: at 64² the bricks are smaller than a pixel and every technique, flat or not,
+    // is mostly the filtered mean.
+    let dir = scratch("compare_torus");
+    let r = compare_at(&dir, "160", &[]);
+    for name in ["kilgard", "single-pass", "single-pass-cube", "object-space", "mip-renormalized", "no-bump"] {
+        let t = &r["techniques"][name];
+        for key in ["rmse", "psnr", "bias", "flip_mean", "ssim"] {
+            assert!(t[key].as_f64().is_some_and(f64::is_finite), "{name}.{key}: {t}");
+        }
+        // Every image and heat map is there and is not black.
+        for file in [format!("{name}.png"), format!("{name}.flip.png")] {
+            let img = image::open(dir.join("cmp").join(&file)).unwrap().to_rgb8();
+            assert!(img.pixels().any(|p| p.0.iter().any(|&c| c > 40)), "{file} is black");
+        }
+    }
+    // Leaving the bumps out is clearly worse than any bump-mapping technique.
+    for name in ["kilgard", "single-pass", "object-space"] {
+        assert!(
+            rmse(&r, name) < 0.8 * rmse(&r, "no-bump"),
+            "{name}: {} vs no-bump {}",
+            rmse(&r, name),
+            rmse(&r, "no-bump")
+        );
+    }
+    // Kilgard §5.4: the cube map normalizes within 8-bit error of math. The two single-pass
+    // images differ only there; their scores agree to well within one byte step (1/255).
+    assert!((rmse(&r, "single-pass-cube") - rmse(&r, "single-pass")).abs() < 1.0 / 255.0);
+    let img = |n: &str| image::open(dir.join("cmp").join(format!("{n}.png"))).unwrap().to_rgb8();
+    let (math, cube) = (img("single-pass"), img("single-pass-cube"));
+    let diffs: Vec<u8> = math.as_raw().iter().zip(cube.as_raw()).map(|(a, b)| a.abs_diff(*b)).collect();
+    let within = diffs.iter().filter(|&&d| d <= 2).count() as f64 / diffs.len() as f64;
+    assert!(within > 0.99, "{:.4} of channels within 2 steps", within);
+    // The reference converges: each quadrupling of the samples cuts the error to K·4.
+    let conv: Vec<f64> =
+        r["convergence"].as_array().unwrap().iter().map(|c| c["rmse_to_4k"].as_f64().unwrap()).collect();
+    assert_eq!(conv.len(), 2, "K = 1, 4 for --spp 16");
+    assert!(conv[1] < 0.8 * conv[0], "{conv:?}");
+}
+
+#[test]
+fn renormalized_mips_are_too_bright_at_a_distance_and_the_length_factor_is_closer() {
+    // Kilgard §2.4.2 on a dimpled sphere lit from behind the eye, at 1×, 2×, 4×, 8×.
+    let dir = scratch("compare_golf");
+    let r = compare(&dir, &["--techniques", "single-pass"]);
+    let rows = r["golf_ball"].as_array().unwrap();
+    assert_eq!(rows.len(), 4);
+    for row in rows {
+        let (d, reference, length, renorm) = (
+            row["distance"].as_f64().unwrap(),
+            row["reference"].as_f64().unwrap(),
+            row["length_factor"].as_f64().unwrap(),
+            row["renormalized"].as_f64().unwrap(),
+        );
+        // Too bright by more than an 8-bit step, at every distance.
+        assert!(renorm > reference + 2.0 / 255.0, "{d}×: renormalized {renorm} vs reference {reference}");
+        // From 2× on, where whole dimples fall in a texel's footprint, the length factor is
+        // the closer of the two (at 1× both are within 0.02; the limb, lit at grazing angles,
+        // makes the length factor a lower bound there).
+        if d >= 2.0 {
+            assert!((length - reference).abs() < (renorm - reference).abs(), "{d}×: {row}");
+        }
+    }
+}
+
+#[test]
+fn unknown_techniques_are_skipped_with_their_reason_and_bad_options_are_refused() {
+    let dir = scratch("compare_bad");
+    let r = compare(&dir, &["--techniques", "kilgard,emboss-2000"]);
+    assert!(r["skipped"]["emboss-2000"].as_str().unwrap().contains("unknown technique"), "{r}");
+    assert!(r["techniques"]["kilgard"].is_object());
+    let html = std::fs::read_to_string(dir.join("cmp/report.html")).unwrap();
+    assert!(html.contains("emboss-2000") && html.contains("unknown technique"));
+
+    // --spp 0 is a usage error; an output that is a file is refused and left alone.
+    let o = bumpmap(&["compare", "--spp", "0", "-o", dir.join("x").to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    let file = dir.join("a_file");
+    std::fs::write(&file, b"keep me").unwrap();
+    let o = bumpmap(&["compare", "--size", "16", "-o", file.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    assert!(stderr(&o).contains("is a file") && stderr(&o).contains("a_file"), "{}", stderr(&o));
+    assert_eq!(std::fs::read(&file).unwrap(), b"keep me");
+    // A mesh cannot be compared: the reference needs the exact surface.
+    let o = bumpmap(&["compare", "--scene", "mesh:x.obj", "-o", dir.join("y").to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(stderr(&o).contains("exact surface"), "{}", stderr(&o));
+    assert!(!dir.join("x").exists() && !dir.join("y").exists());
+}
+
+#[test]
+fn the_report_opens_in_a_real_browser_with_every_image_and_plot_loaded() {
+    // Headless Chromium (Debian's `chromium`, installed by .ci/run) loads report.html from the
+    // file system and runs its script, which writes each image's natural width into the page;
+    // --dump-dom prints the page after that.
+    let Some(browser) = ["chromium", "chromium-browser", "google-chrome"]
+        .into_iter()
+        .find(|b| std::process::Command::new(b).arg("--version").output().is_ok_and(|o| o.status.success()))
+    else {
+        panic!("no Chromium on PATH: install Debian's `chromium` (as .ci/run does)");
+    };
+    let dir = scratch("compare_browser");
+    compare(&dir, &["--techniques", "kilgard,single-pass"]);
+    let report = dir.join("cmp/report.html");
+    let o = std::process::Command::new(browser)
+        .args([
+            "--headless",
+            "--no-sandbox",
+            "--disable-gpu",
+            "--allow-file-access-from-files",
+            "--virtual-time-budget=5000",
+            "--dump-dom",
+        ])
+        .arg(format!("file://{}", report.canonicalize().unwrap().display()))
+        .output()
+        .unwrap();
+    let dom = String::from_utf8_lossy(&o.stdout);
+    let start = dom.find("<pre id=\"loaded\">").expect("the page rendered") + "<pre id=\"loaded\">".len();
+    let loaded = &dom[start..start + dom[start..].find("</pre>").unwrap()];
+    let widths: Vec<(&str, u32)> =
+        loaded.lines().map(|l| l.rsplit_once(' ').map(|(src, w)| (src, w.parse().unwrap())).unwrap()).collect();
+    // reference + 2 × (image + heat map) + 2 plots.
+    assert_eq!(widths.len(), 7, "{loaded}");
+    for (src, w) in &widths {
+        assert!(*w > 0, "{src} did not load");
+    }
+    assert!(widths.iter().any(|(s, _)| *s == "convergence.svg") && widths.iter().any(|(s, _)| *s == "golf_ball.svg"));
+}

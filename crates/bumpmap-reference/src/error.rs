@@ -1,0 +1,38 @@
+//! What the reference renderer refuses, as values.
+
+/// Why a reference image could not be made.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum ReferenceError {
+    /// An object with no analytic surface behind it (a loaded mesh).
+    #[error(
+        "object {object} is a loaded mesh: the reference needs an analytic surface (torus, wall, floor, patch, sphere)"
+    )]
+    NoSurface {
+        /// Index into the scene's objects.
+        object: usize,
+    },
+    /// A spotlight that projects a pattern.
+    #[error("light {light} projects a spotlight pattern, which the reference does not sample")]
+    SpotPattern {
+        /// Index into the scene's lights.
+        light: usize,
+    },
+    /// Zero samples per pixel, or more than the limit.
+    #[error("samples per pixel must be in 1..={max}, got {got}")]
+    SamplesPerPixel {
+        /// What was asked.
+        got: usize,
+        /// The most allowed.
+        max: usize,
+    },
+    /// An empty image, or one larger than the limit.
+    #[error("image size {width}x{height} is outside 1..={max} a side")]
+    Size {
+        /// Width asked.
+        width: usize,
+        /// Height asked.
+        height: usize,
+        /// The largest side.
+        max: usize,
+    },
+}

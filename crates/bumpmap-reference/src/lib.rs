@@ -1,0 +1,32 @@
+//! Ground truth: what a bump-mapped scene looks like when nothing is approximated that the
+//! techniques approximate.
+//!
+//! Each sample of each pixel finds the surface it sees, evaluates the built-in object's exact
+//! surface there (P, ∂P/∂u, ∂P/∂v), perturbs its normal as Blinn does (Kilgard Eq. 5, Peercy
+//! Eq. 1–2) with the derivatives of a C¹ bicubic interpolant of the height field, and lights it
+//! with the project's one lighting model (`bumpmap_core::shading::shade`) in float, with L and H
+//! exact at the sample. A pixel is the mean of its samples: box filtering over the pixel, which
+//! is what a mip chain approximates at a distance.
+//!
+//! - [`heights`]: the C¹ interpolant of a height field and its derivatives;
+//! - [`perturb`]: Blinn's perturbed normal and the displacement the normal map stands for;
+//! - [`visibility`]: which triangle each sample sees (sample positions, tiles, depth);
+//! - [`render`](render()): the whole image, in parallel over tiles, with a progress callback;
+//! - [`error`]: what the reference refuses.
+//!
+//! What this crate does not do: it depends on no backend (it is an oracle for them); it
+//! rasterizes no mip level and quantizes nothing to 8 bits; it finds visibility on the same
+//! tessellation the techniques draw, so silhouettes agree and the comparison measures shading,
+//! while everything shaded is evaluated on the exact surface. Loaded meshes (no analytic
+//! surface) and projected spotlight patterns are refused.
+
+#![warn(missing_docs)]
+
+pub mod error;
+pub mod heights;
+pub mod perturb;
+mod render;
+pub mod visibility;
+
+pub use error::ReferenceError;
+pub use render::{LinearImage, ReferenceOptions, render};

@@ -1,0 +1,247 @@
+//! The reference image: visibility per sample, the exact surface and Blinn's normal at each
+//! visible sample, the one lighting model, and the mean of the samples of each pixel.
+
+use std::sync::atomic::{AtomicUsize, Ordering};
+
+use glam::{Vec2, Vec3, Vec4};
+use rayon::prelude::*;
+
+use bumpmap_core::Scene;
+use bumpmap_core::scene::SceneObject;
+use bumpmap_core::shading::{Fragment, LitTerms, SelfShadow, SpecularShadow, shade, spot_cone};
+use bumpmap_math::lighting::{Light, ObjectLighting, TangentFrame};
+use bumpmap_math::{Rgba8Image, Rgba8Mips};
+
+use crate::error::ReferenceError;
+use crate::heights;
+use crate::perturb::{displacement_per_unit_height, perturbed_normal};
+use crate::visibility::{Hit, ScreenTriangle, TILE, resolve_tile};
+
+/// The most samples per pixel a reference takes.
+pub const MAX_SAMPLES_PER_PIXEL: usize = 4096;
+
+/// The largest image side.
+pub const MAX_SIDE: usize = 16384;
+
+/// What the reference is asked for; the lighting switches should be the techniques' it is
+/// compared with.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ReferenceOptions {
+    /// Samples per pixel, in 1..=[`MAX_SAMPLES_PER_PIXEL`].
+    pub samples_per_pixel: usize,
+    /// The self-shadowing factor of Eq. 11.
+    pub self_shadow: SelfShadow,
+    /// The specular term's gating.
+    pub specular_shadow: SpecularShadow,
+}
+
+impl Default for ReferenceOptions {
+    /// 64 samples per pixel; the paper's Eq. 12 ramp and specular gating.
+    fn default() -> Self {
+        Self { samples_per_pixel: 64, self_shadow: SelfShadow::Ramp, specular_shadow: SpecularShadow::Kilgard }
+    }
+}
+
+/// A linear RGB image in [0, 1], row 0 at the top of the picture.
+#[derive(Clone, Debug, PartialEq)]
+pub struct LinearImage {
+    /// Width in pixels.
+    pub width: usize,
+    /// Height in pixels.
+    pub height: usize,
+    /// `width·height` colours, row-major.
+    pub pixels: Vec<Vec3>,
+}
+
+impl LinearImage {
+    /// The image rounded to 8 bits a channel, alpha 255.
+    pub fn to_rgba8(&self) -> Rgba8Image {
+        let byte = |v: f32| (v.clamp(0.0, 1.0) * 255.0 + 0.5) as u8;
+        let texels = self.pixels.iter().map(|c| [byte(c.x), byte(c.y), byte(c.z), 255]).collect();
+        Rgba8Image::new(self.width, self.height, texels)
+    }
+}
+
+/// Per-object state the samples share.
+struct Prepared<'a> {
+    object: &'a SceneObject,
+    lighting: Vec<ObjectLighting>,
+    /// Object-space displacement per unit height ([`displacement_per_unit_height`]).
+    displacement: f32,
+}
+
+/// Renders `scene` at `width`×`height` with `options`, calling `progress(done, total)` as tiles
+/// of [`TILE`]² pixels finish (from any thread).
+pub fn render(
+    scene: &Scene,
+    width: usize,
+    height: usize,
+    options: &ReferenceOptions,
+    progress: &(dyn Fn(usize, usize) + Sync),
+) -> Result<LinearImage, ReferenceError> {
+    let spp = options.samples_per_pixel;
+    if !(1..=MAX_SAMPLES_PER_PIXEL).contains(&spp) {
+        return Err(ReferenceError::SamplesPerPixel { got: spp, max: MAX_SAMPLES_PER_PIXEL });
+    }
+    if !(1..=MAX_SIDE).contains(&width) || !(1..=MAX_SIDE).contains(&height) {
+        return Err(ReferenceError::Size { width, height, max: MAX_SIDE });
+    }
+    if let Some(light) = scene.lights.iter().position(|l| l.spot.as_ref().is_some_and(|s| s.pattern.is_some())) {
+        return Err(ReferenceError::SpotPattern { light });
+    }
+    let prepared: Vec<Prepared> = scene
+        .objects
+        .iter()
+        .enumerate()
+        .map(|(i, object)| {
+            let source = object.source.as_ref().ok_or(ReferenceError::NoSurface { object: i })?;
+            let field = &source.height_field;
+            let lighting = scene
+                .lights
+                .iter()
+                .map(|l| ObjectLighting::new(object.world_from_object, l.light, scene.viewer()))
+                .collect();
+            let size = (field.width(), field.height());
+            let displacement =
+                displacement_per_unit_height(&source.surface, source.repeat, size, source.normal_map.scale);
+            Ok(Prepared { object, lighting, displacement })
+        })
+        .collect::<Result<_, ReferenceError>>()?;
+
+    // Triangles in screen space, and which tiles each may cover.
+    let clip_from_world = scene.camera.clip_from_world(width as f32 / height as f32);
+    let mut triangles = Vec::new();
+    for (o, object) in scene.objects.iter().enumerate() {
+        let clip_from_object = clip_from_world * object.world_from_object;
+        let mesh = &object.mesh;
+        for tri in &mesh.indices {
+            let p = tri.map(|i| mesh.positions[i as usize]);
+            triangles.extend(ScreenTriangle::project(&clip_from_object, p, (width, height), o as u32, *tri));
+        }
+    }
+    let (tiles_x, tiles_y) = (width.div_ceil(TILE), height.div_ceil(TILE));
+    let mut bins: Vec<Vec<u32>> = vec![Vec::new(); tiles_x * tiles_y];
+    for (i, tri) in triangles.iter().enumerate() {
+        let (x0, x1, y0, y1) = tri.pixel_bounds(width, height);
+        if x0 >= x1 || y0 >= y1 {
+            continue;
+        }
+        for ty in y0 / TILE..=(y1 - 1) / TILE {
+            for tx in x0 / TILE..=(x1 - 1) / TILE {
+                bins[ty * tiles_x + tx].push(i as u32);
+            }
+        }
+    }
+
+    let done = AtomicUsize::new(0);
+    let total = bins.len();
+    let tiles: Vec<Vec<Vec3>> = bins
+        .par_iter()
+        .enumerate()
+        .map(|(index, candidates)| {
+            let (x0, y0) = ((index % tiles_x) * TILE, (index / tiles_x) * TILE);
+            let (tw, th) = (TILE.min(width - x0), TILE.min(height - y0));
+            let hits = resolve_tile(&triangles, candidates, (x0, y0, tw, th), spp, (width, height));
+            let pixels = hits
+                .chunks(spp)
+                .map(|samples| {
+                    let sum: Vec3 = samples
+                        .iter()
+                        .flatten()
+                        .map(|hit| shade_sample(scene, &prepared, &triangles, hit, options))
+                        .sum();
+                    sum / spp as f32
+                })
+                .collect();
+            progress(done.fetch_add(1, Ordering::Relaxed) + 1, total);
+            pixels
+        })
+        .collect();
+
+    let mut pixels = vec![Vec3::ZERO; width * height];
+    for (index, tile) in tiles.iter().enumerate() {
+        let (x0, y0) = ((index % tiles_x) * TILE, (index / tiles_x) * TILE);
+        let tw = TILE.min(width - x0);
+        for (i, &c) in tile.iter().enumerate() {
+            pixels[(y0 + i / tw) * width + x0 + i % tw] = c;
+        }
+    }
+    Ok(LinearImage { width, height, pixels })
+}
+
+/// The colour one sample sees: every light's [`shade`], each clamped to [0, 1] as a pass into
+/// an 8-bit framebuffer is, summed and clamped as additive blending does.
+fn shade_sample(
+    scene: &Scene,
+    prepared: &[Prepared],
+    triangles: &[ScreenTriangle],
+    hit: &Hit,
+    options: &ReferenceOptions,
+) -> Vec3 {
+    let tri = &triangles[hit.triangle as usize];
+    let Prepared { object, lighting, displacement } = &prepared[tri.object as usize];
+    let source = object.source.as_ref().expect("checked when prepared");
+    let mesh = &object.mesh;
+    let st: Vec2 = (0..3).map(|i| hit.weights[i] * mesh.texcoords[tri.vertices[i] as usize]).sum();
+    let (u, v) = (st.x / source.repeat.x, st.y / source.repeat.y);
+    let point = source.surface.eval(u, v);
+
+    // Blinn's normal from the interpolant's derivatives: d = k·F(s, t), s = repeat.x·u, and
+    // F's derivatives come per texel, so ∂d/∂u = k · repeat.x · width · ∂F/∂x.
+    let field = &source.height_field;
+    let local = st - st.floor();
+    let f = heights::sample(field, source.normal_map.wrap, local.x, local.y);
+    let d_u = displacement * source.repeat.x * field.width() as f32 * f.dx;
+    let d_v = displacement * source.repeat.y * field.height() as f32 * f.dy;
+    let bumped = perturbed_normal(&point, d_u, d_v);
+
+    // Any orthonormal frame will do: the model reads only dot products and L·N, H·N.
+    let (t, b, n) = point.frame();
+    let frame = TangentFrame { t, b, n };
+    let normal = frame.tangent_from_object(bumped);
+    let decal = object.material.decal.as_deref().map_or(Vec3::ONE, |d| bilinear_repeat(d, local));
+    let world = object.world_from_object.transform_point3(point.position);
+    let mut color = Vec3::ZERO;
+    for (i, light) in scene.lights.iter().enumerate() {
+        let (l, h) = lighting[i].tangent_space(point.position, &frame);
+        let mut factor = 1.0;
+        if let Light::Positional(at) = light.light {
+            factor *= light.attenuation.factor((at - world).length());
+            if let Some(spot) = &light.spot {
+                factor *= spot_cone(spot, at - world, spot.direction);
+            }
+        }
+        let terms = LitTerms::of(&object.material, light, i == 0, options.self_shadow, options.specular_shadow);
+        let fragment = Fragment {
+            normal: Vec4::new(normal.x * 0.5 + 0.5, normal.y * 0.5 + 0.5, normal.z * 0.5 + 0.5, 1.0),
+            decal,
+            gloss: 1.0,
+            l,
+            h,
+            l_n: l.z,
+            h_n: h.z,
+            light: factor,
+        };
+        color += shade(&terms, &fragment).clamp(Vec3::ZERO, Vec3::ONE);
+    }
+    color.min(Vec3::ONE)
+}
+
+/// Level 0 of `texture` at (s, t) ∈ [0, 1)², bilinear with repeat: the decal as the surface
+/// carries it (the samples of a pixel do the filtering).
+fn bilinear_repeat(texture: &Rgba8Mips, st: Vec2) -> Vec3 {
+    let level = &texture.levels()[0];
+    let (w, h) = (level.width, level.height);
+    let x = st.x * w as f32 - 0.5;
+    let y = st.y * h as f32 - 0.5;
+    let (x0, y0) = (x.floor(), y.floor());
+    let (fx, fy) = (x - x0, y - y0);
+    let texel = |i: i64, j: i64| {
+        let c = level.texel(i.rem_euclid(w as i64) as usize, j.rem_euclid(h as i64) as usize);
+        Vec3::new(c[0] as f32, c[1] as f32, c[2] as f32) / 255.0
+    };
+    let (x0, y0) = (x0 as i64, y0 as i64);
+    let top = texel(x0, y0).lerp(texel(x0 + 1, y0), fx);
+    let bottom = texel(x0, y0 + 1).lerp(texel(x0 + 1, y0 + 1), fx);
+    top.lerp(bottom, fy)
+}
