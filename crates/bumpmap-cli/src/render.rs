@@ -206,6 +206,7 @@ pub fn build_scene(setup: &SceneSetup) -> Result<(Scene, Vec<PathBuf>), CliError
         tessellation: s.tessellation,
         repeat: s.repeat.map(|(s, t)| Vec2::new(s, t)),
         object_space: s.space == SpaceArg::Object,
+        object_map: scenes::ObjectMap::RotatedTangent,
         mip_mode: bumpmap_math::MipMode::LengthInAlpha,
     };
     if params.eye.is_some() && params.eye == params.target {

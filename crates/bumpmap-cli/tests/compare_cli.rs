@@ -29,7 +29,7 @@ fn every_technique_is_scored_and_the_bumps_matter() {
     // is mostly the filtered mean.
     let dir = scratch("compare_torus");
     let r = compare_at(&dir, "160", &[]);
-    for name in ["kilgard", "single-pass", "single-pass-cube", "object-space", "mip-renormalized", "no-bump"] {
+    for name in bumpmap_names() {
         let t = &r["techniques"][name];
         for key in ["rmse", "psnr", "bias", "flip_mean", "ssim"] {
             assert!(t[key].as_f64().is_some_and(f64::is_finite), "{name}.{key}: {t}");
@@ -151,4 +151,35 @@ fn the_report_opens_in_a_real_browser_with_every_image_and_plot_loaded() {
         assert!(*w > 0, "{src} did not load");
     }
     assert!(widths.iter().any(|(s, _)| *s == "convergence.svg") && widths.iter().any(|(s, _)| *s == "golf_ball.svg"));
+}
+
+#[test]
+fn peercys_surface_dependent_map_beats_the_independent_one_where_the_surface_stretches() {
+    // Peercy Figures 6–7: the stretched, sheared bicubic patch with the pinwheel. Both maps use
+    // the paper's 7×7 derivative of a Gaussian, so they differ only in using the surface's
+    // exact ∂P/∂u, ∂P/∂v (dependent) or assuming a square patch (independent).
+    let dir = scratch("compare_peercy");
+    let techniques = ["--techniques", "peercy-dependent,peercy-independent"];
+    let r = compare_at(&dir, "128", &[&["--scene", "patch", "--height-field", "pinwheel"][..], &techniques].concat());
+    let (dep, ind) = (rmse(&r, "peercy-dependent"), rmse(&r, "peercy-independent"));
+    assert!(dep < 0.95 * ind, "dependent {dep} vs independent {ind}");
+    // On the wall, whose texels are squares, the two maps are the same map.
+    let dir = scratch("compare_peercy_wall");
+    let r = compare_at(&dir, "96", &[&["--scene", "wall"][..], &techniques].concat());
+    let (dep, ind) = (rmse(&r, "peercy-dependent"), rmse(&r, "peercy-independent"));
+    assert!((dep - ind).abs() < 0.01 * ind, "dependent {dep} vs independent {ind}");
+}
+
+/// Every technique `compare` runs by default.
+fn bumpmap_names() -> [&'static str; 8] {
+    [
+        "kilgard",
+        "single-pass",
+        "single-pass-cube",
+        "object-space",
+        "mip-renormalized",
+        "no-bump",
+        "peercy-independent",
+        "peercy-dependent",
+    ]
 }

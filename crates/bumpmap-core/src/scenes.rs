@@ -85,6 +85,8 @@ pub struct SceneParams {
     pub repeat: Option<Vec2>,
     /// Light in object space with an object-space normal map made for the surface.
     pub object_space: bool,
+    /// How that object-space map is made.
+    pub object_map: ObjectMap,
     /// What the normal map's smaller levels store: the length factor (Kilgard §5.3) or
     /// renormalized normals.
     pub mip_mode: MipMode,
@@ -111,9 +113,22 @@ impl Default for SceneParams {
             tessellation: None,
             repeat: None,
             object_space: false,
+            object_map: ObjectMap::RotatedTangent,
             mip_mode: MipMode::LengthInAlpha,
         }
     }
+}
+
+/// How an object-space normal map is made for a surface.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum ObjectMap {
+    /// The tangent-space map's normals rotated by the surface's frame at each texel (Peercy
+    /// §2.1): the surface-independent normal, in object space.
+    #[default]
+    RotatedTangent,
+    /// Blinn's perturbed normal computed per texel from the surface's exact ∂P/∂u and ∂P/∂v
+    /// (Peercy Eq. 3–6, the map of Figure 3): the surface-dependent normal.
+    Blinn,
 }
 
 /// The default light of each scene: the peer's orbit start for the torus, upper left for the
@@ -159,6 +174,42 @@ pub fn object_space_normal_map(surface: &Surface, repeat: Vec2, tangent_map: &Mi
     MipChain::from_normals(w, h, &normals, enc, MipMode::LengthInAlpha)
 }
 
+/// Peercy's surface-dependent map (Eq. 3–6): for each texel of the repeated map, Blinn's perturbed
+/// normal (`bumpmap_math::blinn`) from the surface's exact ∂P/∂u, ∂P/∂v at its centre and the
+/// height field's slopes as `options`' kernel measures them, in object space. One texel per
+/// texel of the repeated map (at most 4096 a side), with its own mip chain.
+pub fn surface_dependent_normal_map(
+    surface: &Surface,
+    repeat: Vec2,
+    field: &HeightField,
+    options: &NormalMapOptions,
+) -> Result<MipChain, CoreError> {
+    use bumpmap_math::blinn::{displacement_per_unit_height, perturbed_normal};
+    use rayon::prelude::*;
+    // The slopes at 16 bits, so quantizing them is far below the 8-bit map's own step.
+    let slopes = bumpmap_math::normalmap::normal_map_level0_texels::<[u16; 4]>(field, options)?;
+    let (mw, mh) = (slopes.width, slopes.height);
+    let w = ((mw as f32 * repeat.x.abs()).round() as usize).clamp(1, 4096);
+    let h = ((mh as f32 * repeat.y.abs()).round() as usize).clamp(1, 4096);
+    // d = ℓ·(scale·F), and the map's texel holds n ∝ (−scale·F_x, −scale·F_y, 1).
+    let texel_side = displacement_per_unit_height(surface, repeat, (mw, mh), 1.0);
+    let normals: Vec<Vec3> = (0..w * h)
+        .into_par_iter()
+        .map(|i| {
+            let (u, v) = (((i % w) as f32 + 0.5) / w as f32, ((i / w) as f32 + 0.5) / h as f32);
+            let (s, t) = (repeat.x * u, repeat.y * v);
+            let x = ((s - s.floor()) * mw as f32) as usize % mw;
+            let y = ((t - t.floor()) * mh as f32) as usize % mh;
+            let (n, _) = slopes.decode(x, y, options.encoding);
+            let (a, b) = (-n.x / n.z.max(1e-4), -n.y / n.z.max(1e-4));
+            let d_u = texel_side * repeat.x * mw as f32 * a;
+            let d_v = texel_side * repeat.y * mh as f32 * b;
+            perturbed_normal(&surface.eval(u, v), d_u, d_v)
+        })
+        .collect();
+    Ok(MipChain::from_normals(w, h, &normals, options.encoding, MipMode::LengthInAlpha))
+}
+
 /// Builds a scene. Fails when the height field cannot become a normal map, or when an
 /// object-space map is asked of a mesh.
 pub fn build(kind: &SceneKind, params: &SceneParams) -> Result<Scene, CoreError> {
@@ -186,7 +237,14 @@ pub fn build(kind: &SceneKind, params: &SceneParams) -> Result<Scene, CoreError>
         let repeat = params.repeat.unwrap_or(repeat);
         let mut material = material.clone();
         if params.object_space {
-            let map = object_space_normal_map(&surface, repeat, &chain);
+            let map = match params.object_map {
+                ObjectMap::RotatedTangent => object_space_normal_map(&surface, repeat, &chain),
+                // The same field and options already made `chain`, so they cannot fail here.
+                ObjectMap::Blinn => {
+                    surface_dependent_normal_map(&surface, repeat, &params.height_field, &params.normal_map)
+                        .expect("the field and options made the tangent-space chain")
+                }
+            };
             material.normal_map = Arc::new(map.to_mips());
             material.normal_space = NormalSpace::Object { scale: Vec2::ONE / repeat };
         }

@@ -11,6 +11,7 @@
 //! - normals follow Kilgard Eq. 25, `n ∝ (-∂F/∂u, -∂F/∂v, 1)`;
 //! - tangent frames are `T = normalize(∂P/∂s)`, `B = N × T` (times the handedness `w`).
 
+pub mod blinn;
 pub mod buffer;
 pub mod cubemap;
 pub mod encoding;

@@ -5,11 +5,10 @@
 //! surface there (P, ∂P/∂u, ∂P/∂v), perturbs its normal as Blinn does (Kilgard Eq. 5, Peercy
 //! Eq. 1–2) with the derivatives of a C¹ bicubic interpolant of the height field, and lights it
 //! with the project's one lighting model (`bumpmap_core::shading::shade`) in float, with L and H
-//! exact at the sample. A pixel is the mean of its samples: box filtering over the pixel, which
+//! exact at the sample. Blinn's formula itself is `bumpmap_math::blinn`. A pixel is the mean of its samples: box filtering over the pixel, which
 //! is what a mip chain approximates at a distance.
 //!
 //! - [`heights`]: the C¹ interpolant of a height field and its derivatives;
-//! - [`perturb`]: Blinn's perturbed normal and the displacement the normal map stands for;
 //! - [`visibility`]: which triangle each sample sees (sample positions, tiles, depth);
 //! - [`render`](render()): the whole image, in parallel over tiles, with a progress callback;
 //! - [`error`]: what the reference refuses.
@@ -24,7 +23,6 @@
 
 pub mod error;
 pub mod heights;
-pub mod perturb;
 mod render;
 pub mod visibility;
 

@@ -14,8 +14,8 @@ use bumpmap_math::{Rgba8Image, Rgba8Mips};
 
 use crate::error::ReferenceError;
 use crate::heights;
-use crate::perturb::{displacement_per_unit_height, perturbed_normal};
 use crate::visibility::{Hit, ScreenTriangle, TILE, resolve_tile};
+use bumpmap_math::blinn::{displacement_per_unit_height, perturbed_normal};
 
 /// The most samples per pixel a reference takes.
 pub const MAX_SAMPLES_PER_PIXEL: usize = 4096;

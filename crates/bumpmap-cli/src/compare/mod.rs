@@ -33,7 +33,7 @@ pub use metrics::Scores;
 
 /// The techniques `compare` knows, in the report's order: name and what it is, in the papers'
 /// words.
-pub const TECHNIQUES: [(&str, &str); 6] = [
+pub const TECHNIQUES: [(&str, &str); 8] = [
     (
         "kilgard",
         "Kilgard's three passes on the emulated GeForce 256: normalization cube map, register combiners, 8-bit framebuffer (§5)",
@@ -46,6 +46,14 @@ pub const TECHNIQUES: [(&str, &str); 6] = [
         "the single pass with mips that renormalize the averaged normal, dropping its length (§2.4.2)",
     ),
     ("no-bump", "the single pass on a flat height field: the surface without bumps"),
+    (
+        "peercy-independent",
+        "Peercy's surface-independent map (Eq. 8–11, Figure 7): tangent-space normals from the 7×7 derivative of a Gaussian, lit per pixel in the interpolated frame",
+    ),
+    (
+        "peercy-dependent",
+        "Peercy's surface-dependent map (Eq. 3–6, Figures 3 and 6): Blinn's normal per texel from the surface's exact ∂P/∂u, ∂P/∂v and the same 7×7 kernel, in object space",
+    ),
 ];
 
 /// One technique's outcome.
@@ -222,6 +230,16 @@ fn render_technique(
         }
         "mip-renormalized" => {
             params.mip_mode = MipMode::Renormalize;
+            Technique::SinglePass(single)
+        }
+        "peercy-independent" => {
+            params.normal_map.kernel = bumpmap_math::Kernel::Gaussian7;
+            Technique::SinglePass(single)
+        }
+        "peercy-dependent" => {
+            params.normal_map.kernel = bumpmap_math::Kernel::Gaussian7;
+            params.object_space = true;
+            params.object_map = bumpmap_core::scenes::ObjectMap::Blinn;
             Technique::SinglePass(single)
         }
         "no-bump" => {

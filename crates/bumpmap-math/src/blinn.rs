@@ -3,10 +3,11 @@
 //!
 //! Displacing the surface along its unit normal by `d(u, v)`, `P' = P + d·n̂`, and dropping the
 //! terms in `d` itself (Blinn's approximation, the one every technique here makes), the normal
-//! becomes `N' = N + d_u (n̂ × P_v) − d_v (n̂ × P_u)` with `N = P_u × P_v`. What this module does
-//! not do: Peercy's approximations of it (those are techniques being measured).
+//! becomes `N' = N + d_u (n̂ × P_v) − d_v (n̂ × P_u)` with `N = P_u × P_v`. The reference renderer
+//! evaluates it per sample; Peercy's surface-dependent map (`peercy-dependent`) per texel. What
+//! this module does not do: the surface-independent approximation (that is `normalmap`).
 
-use bumpmap_math::surface::{Surface, SurfacePoint};
+use crate::surface::{Surface, SurfacePoint};
 use glam::{Vec2, Vec3};
 
 /// The unit perturbed normal for displacement derivatives `d_u = ∂d/∂u`, `d_v = ∂d/∂v`, oriented
@@ -73,7 +74,7 @@ mod tests {
             Surface::Floor { width: 3.0, depth: 2.0 },
             Surface::default_torus(),
             Surface::Sphere { radius: 1.5 },
-            Surface::Patch(bumpmap_math::surface::BicubicPatch::stretched()),
+            Surface::Patch(crate::surface::BicubicPatch::stretched()),
         ] {
             for (u, v) in [(0.1, 0.2), (0.5, 0.5), (0.9, 0.7)] {
                 let p = surface.eval(u, v);
