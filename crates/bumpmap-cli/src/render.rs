@@ -82,6 +82,9 @@ pub fn core_err(e: CoreError) -> CliError {
         }
         Feature::ObjectSpace => "--space object (its self-shadowing reads tangent-space L_z)".into(),
         Feature::SpecularColor => "--specular other than 0 or 1 (its specular is white)".into(),
+        Feature::MultipleLights => "more than one --light".into(),
+        Feature::BumpScale(s) => format!("--bump-scale {s} (its combiners scale by 1, 2 or 4)"),
+        Feature::HeightMap => "a scene without its height field".into(),
     }
     };
     match e {
@@ -284,6 +287,11 @@ pub fn technique(setup: &SceneSetup) -> Result<Technique, CliError> {
     let (t, m) = (&setup.technique, &setup.material);
     let sampler = sampler(t.filter);
     match t.technique {
+        TechniqueArg::Emboss => Ok(Technique::Emboss(bumpmap_core::technique::EmbossOptions {
+            sampler,
+            cube_size: t.cube_size as usize,
+            ..Default::default()
+        })),
         TechniqueArg::Reference => Err(CliError::Usage(
             "--technique reference renders on the CPU alone and is not a pass list: use it with `render` or `compare`"
                 .into(),

@@ -111,7 +111,7 @@ pub struct MaterialGroup {
 #[derive(Args, Debug, Clone)]
 #[command(next_help_heading = "Technique")]
 pub struct TechniqueGroup {
-    /// kilgard: the paper's three passes; single-pass: one float pass per light; reference: ground truth (Blinn's perturbed normal on the exact surface, --spp samples per pixel)
+    /// kilgard: the paper's three passes; single-pass: one float pass per light; emboss: the technique the paper replaces (§3.1); reference: ground truth (Blinn's perturbed normal on the exact surface, --spp samples per pixel)
     #[arg(long, value_enum, default_value = "kilgard")]
     pub technique: TechniqueArg,
     /// reference: samples per pixel (stratified); the image converges as it grows
@@ -261,6 +261,8 @@ pub enum TechniqueArg {
     Kilgard,
     /// One float pass per light with the full lighting model (Kilgard §6, Cg Tutorial)
     SinglePass,
+    /// Embossing (Kilgard §3.1): two height fetches, one shifted toward the light, subtracted, plus L_z; diffuse only, one light, bump scale 1, 2 or 4
+    Emboss,
     /// Ground truth: Blinn's perturbed normal from the exact surface and a C¹ height interpolant, many samples per pixel, on the CPU
     Reference,
 }

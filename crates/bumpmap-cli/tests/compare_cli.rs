@@ -145,8 +145,8 @@ fn the_report_opens_in_a_real_browser_with_every_image_and_plot_loaded() {
     let loaded = &dom[start..start + dom[start..].find("</pre>").unwrap()];
     let widths: Vec<(&str, u32)> =
         loaded.lines().map(|l| l.rsplit_once(' ').map(|(src, w)| (src, w.parse().unwrap())).unwrap()).collect();
-    // reference + 2 × (image + heat map) + 2 plots.
-    assert_eq!(widths.len(), 7, "{loaded}");
+    // reference + 2 × (image + heat map) + 3 plots.
+    assert_eq!(widths.len(), 8, "{loaded}");
     for (src, w) in &widths {
         assert!(*w > 0, "{src} did not load");
     }
@@ -171,7 +171,7 @@ fn peercys_surface_dependent_map_beats_the_independent_one_where_the_surface_str
 }
 
 /// Every technique `compare` runs by default.
-fn bumpmap_names() -> [&'static str; 8] {
+fn bumpmap_names() -> [&'static str; 10] {
     [
         "kilgard",
         "single-pass",
@@ -181,5 +181,33 @@ fn bumpmap_names() -> [&'static str; 8] {
         "no-bump",
         "peercy-independent",
         "peercy-dependent",
+        "emboss",
+        "emboss-unforced",
     ]
+}
+
+#[test]
+fn embossing_fails_as_kilgard_section_3_1_says() {
+    let dir = scratch("compare_emboss");
+    let r = compare(&dir, &["--techniques", "kilgard,emboss"]);
+    // The paper's technique beats the one it replaces on the torus.
+    assert!(rmse(&r, "kilgard") < 0.7 * rmse(&r, "emboss"), "{} vs {}", rmse(&r, "kilgard"), rmse(&r, "emboss"));
+    let e = &r["emboss"];
+    let f = |v: &Value, k: &str| v[k].as_f64().unwrap_or_else(|| panic!("{k} in {v}"));
+    // Light along the normal: flat (no contrast at all) and too bright, where the single pass
+    // keeps the bumps' dimming.
+    let head_on = &e["by_angle"][0];
+    assert_eq!(f(head_on, "degrees"), 0.0);
+    assert!(f(head_on, "emboss_contrast_ratio") < 0.02, "{head_on}");
+    assert!(f(head_on, "emboss_bias") > f(head_on, "single_pass_bias") + 0.02, "{head_on}");
+    // At a distance the one-texel shift sees the same filtered height twice: by 4× embossing
+    // has lost its bumps, the single pass keeps several times more contrast.
+    let far = &e["by_distance"][2];
+    assert_eq!(f(far, "distance"), 4.0);
+    assert!(f(far, "emboss_contrast_ratio") < 0.1, "{far}");
+    assert!(f(far, "emboss_contrast_ratio") < 0.5 * f(far, "single_pass_contrast_ratio"), "{far}");
+    // Faces turned away: without forcing L_x, L_y to 0 where L_z ≤ 0, more of the dark side is lit.
+    let away = &e["facing_away"];
+    assert!(f(away, "dark_fraction") > 0.1, "{away}");
+    assert!(f(away, "unforced_lit_fraction") > 1.3 * f(away, "forced_lit_fraction"), "{away}");
 }

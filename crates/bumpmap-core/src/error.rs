@@ -26,6 +26,12 @@ pub enum Feature {
     ObjectSpace,
     /// A specular colour other than white.
     SpecularColor,
+    /// More than one light.
+    MultipleLights,
+    /// A bump scale the combiners' output scales cannot make.
+    BumpScale(f32),
+    /// A material without the height field as a texture.
+    HeightMap,
 }
 
 impl std::fmt::Display for Feature {
@@ -40,6 +46,9 @@ impl std::fmt::Display for Feature {
             Feature::SelfShadowStep => f.write_str("a step self-shadowing term (Eq. 12's ramp or none)"),
             Feature::ObjectSpace => f.write_str("object-space lighting (its self-shadowing reads tangent-space L_z)"),
             Feature::SpecularColor => f.write_str("a specular colour other than white or black"),
+            Feature::MultipleLights => f.write_str("more than one light"),
+            Feature::BumpScale(s) => write!(f, "a bump scale of {s} (its combiners scale by 1, 2 or 4)"),
+            Feature::HeightMap => f.write_str("a material without its height field (a loaded normal map)"),
         }
     }
 }

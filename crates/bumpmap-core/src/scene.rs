@@ -167,6 +167,11 @@ pub struct Material {
     pub specular: Vec3,
     /// The specular exponent of Eq. 16, > 0.
     pub shininess: f32,
+    /// The height field itself as a gray texture with box mipmaps, for embossing (Kilgard
+    /// §3.1), or `None`.
+    pub height_map: Option<Arc<Rgba8Mips>>,
+    /// The bump scale the normal map was made with (the height of a unit step, in texels).
+    pub bump_scale: f32,
 }
 
 /// A mesh placed in the world. The mesh must have normals, texture coordinates and tangents.

@@ -231,6 +231,12 @@ pub fn build(kind: &SceneKind, params: &SceneParams) -> Result<Scene, CoreError>
         diffuse: params.diffuse,
         specular: params.specular,
         shininess: params.shininess,
+        height_map: Some(Arc::new(Rgba8Mips::with_box_mipmaps(Rgba8Image::from_gray(
+            params.height_field.width(),
+            params.height_field.height(),
+            &params.height_field.to_u8(),
+        )))),
+        bump_scale: params.normal_map.scale,
     };
     let heights = Arc::new(params.height_field.clone());
     let object = |surface: Surface, tess: (usize, usize), repeat: Vec2, world_from_object: Mat4| {

@@ -163,3 +163,55 @@ pub fn specular_ramp() -> CombinerSetup {
     setup.final_combiner.b = FinalInput::reg(Spare0, Alpha);
     setup
 }
+
+/// Embossing (Kilgard §3.1, Eq. 29–30) in two general combiners: texture 0 is the height map
+/// at (s, t), texture 1 the same map at (s, t) shifted toward the light by (L_x, L_y) texels,
+/// texture 2 the cube map indexed by L. `scale` is the bump scale (1, 2 or 4: the combiners'
+/// output scales).
+///
+/// `diffuse ≈ L_z − scale·(∂F/∂x·L_x + ∂F/∂y·L_y) ≈ L_z + scale·(F(s, t) − F(shifted))`, then
+/// `rgb = I_ambient + k_diffuse · max(0, diffuse)`, alpha 0. Every intermediate clamps to
+/// [−1, 1] and the sum to [0, 1], as the hardware did.
+pub fn emboss(scale: Scale, ambient: Vec4, diffuse: Vec4) -> CombinerSetup {
+    let stage0 = GeneralStage {
+        // spare0rgb = scale·(texture0 − texture1): F(s, t) − F(s + L_x, t + L_y).
+        rgb: Portion {
+            a: Input::new(Texture0, UnsignedIdentity, Rgb),
+            b: Input::one(Rgb),
+            c: Input::new(Texture1, SignedNegate, Rgb),
+            d: Input::one(Rgb),
+            outputs: Outputs { sum: Some(Spare0), scale, ..Outputs::DISCARD },
+        },
+        // spare0a = expand(texture2b) = L_z (BLUE may be read by the alpha portion only).
+        alpha: Portion {
+            a: Input::new(Texture2, ExpandNormal, Blue),
+            b: Input::one(Alpha),
+            c: Input::zero(Alpha),
+            d: Input::zero(Alpha),
+            outputs: Outputs { ab: Some(Spare0), ..Outputs::DISCARD },
+        },
+    };
+    let stage1 = GeneralStage {
+        // spare0rgb = spare0rgb + spare0a = the difference + L_z.
+        rgb: Portion {
+            a: Input::new(Spare0, SignedIdentity, Rgb),
+            b: Input::one(Rgb),
+            c: Input::new(Spare0, SignedIdentity, Alpha),
+            d: Input::one(Rgb),
+            outputs: Outputs { sum: Some(Spare0), ..Outputs::DISCARD },
+        },
+        alpha: Portion::discarded(Alpha),
+    };
+    // rgb = A·B + D = k_diffuse · max(0, spare0) + I_ambient (A's unsigned mapping clamps at 0).
+    let final_combiner = FinalCombiner {
+        a: FinalInput::reg(Spare0, Rgb),
+        b: FinalInput::reg(ConstantColor1, Rgb),
+        c: FinalInput::ZERO,
+        d: FinalInput::reg(ConstantColor0, Rgb),
+        e: FinalInput::ZERO,
+        f: FinalInput::ZERO,
+        g: FinalInput::reg(Zero, Alpha),
+        color_sum_clamp: true,
+    };
+    CombinerSetup { stages: vec![stage0, stage1], final_combiner, constant0: ambient, constant1: diffuse }
+}

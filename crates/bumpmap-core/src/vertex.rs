@@ -32,12 +32,18 @@ pub mod var {
     /// The geometric normal in the lighting space (3 slots): (0, 0, 1) in tangent space, the
     /// surface normal in object space.
     pub const N: usize = 18;
+    /// Embossing's shifted texture coordinates (2 slots): (s, t) moved toward the light by
+    /// `(L_x, L_y)` texels of the height map (Kilgard Eq. 29–30), the shift forced to 0 where
+    /// `L_z ≤ 0` as §3.1 says it must be.
+    pub const EMBOSS: usize = 21;
+    /// The same shift never forced to 0: what embossing does when nobody tests `L_z`.
+    pub const EMBOSS_UNFORCED: usize = 23;
     /// Slots in use.
-    pub const COUNT: usize = 21;
+    pub const COUNT: usize = 25;
 }
 
-/// Varyings per vertex (texture coordinates, light and half-angle vectors, …).
-pub const MAX_VARYINGS: usize = 24;
+/// Varyings per vertex (texture coordinates, light and half-angle vectors, …): seven vec4s.
+pub const MAX_VARYINGS: usize = 28;
 
 /// A vertex after the vertex stage: clip-space position and its varyings.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -88,6 +94,14 @@ impl Scene {
                 varyings[var::H..var::H + 3].copy_from_slice(&h.to_array());
                 varyings[var::V..var::V + 3].copy_from_slice(&v.to_array());
                 varyings[var::N..var::N + 3].copy_from_slice(&geometric.to_array());
+                if let Some(heights) = &object.material.height_map {
+                    // One texel of the height map's level 0 per unit of L_x, L_y.
+                    let shift = glam::Vec2::new(l.x / heights.width() as f32, l.y / heights.height() as f32);
+                    let st = mesh.texcoords[i];
+                    let forced = if l.z > 0.0 { st + shift } else { st };
+                    varyings[var::EMBOSS..var::EMBOSS + 2].copy_from_slice(&forced.to_array());
+                    varyings[var::EMBOSS_UNFORCED..var::EMBOSS_UNFORCED + 2].copy_from_slice(&(st + shift).to_array());
+                }
                 varyings[var::LIGHT_DISTANCE] = match light.light {
                     Light::Positional(_) => (object.world_from_object.transform_vector3(lighting.to_light(p))).length(),
                     Light::Directional(_) => 0.0,

@@ -219,8 +219,9 @@ impl Pipelines {
             Shader::Lit(_) => (&self.lit_pipeline_layout, "fs_lit"),
             Shader::Combiners(_) => (&self.combiner_pipeline_layout, "fs_combiners"),
         };
-        const ATTRIBUTES: [wgpu::VertexAttribute; 7] = wgpu::vertex_attr_array![
-            0 => Float32x4, 1 => Float32x4, 2 => Float32x4, 3 => Float32x4, 4 => Float32x4, 5 => Float32x4, 6 => Float32x4
+        const ATTRIBUTES: [wgpu::VertexAttribute; 8] = wgpu::vertex_attr_array![
+            0 => Float32x4, 1 => Float32x4, 2 => Float32x4, 3 => Float32x4, 4 => Float32x4, 5 => Float32x4, 6 => Float32x4,
+            7 => Float32x4
         ];
         let buffers = [Some(wgpu::VertexBufferLayout {
             array_stride: (VERTEX_FLOATS * 4) as u64,

@@ -1,5 +1,5 @@
 // The vertex stage's output as the GPU interpolates it: the clip position (depth remapped from
-// GL's [-1, 1] to wgpu's [0, 1], so window depth is GL's (z/w + 1)/2) and the 24 varying slots
+// GL's [-1, 1] to wgpu's [0, 1], so window depth is GL's (z/w + 1)/2) and the 28 varying slots
 // of bumpmap_core::vertex::var, four to a location, interpolated perspective-correctly.
 
 struct VertexIn {
@@ -10,6 +10,7 @@ struct VertexIn {
     @location(4) v3: vec4<f32>,
     @location(5) v4: vec4<f32>,
     @location(6) v5: vec4<f32>,
+    @location(7) v6: vec4<f32>,
 };
 
 struct Varyings {
@@ -22,6 +23,7 @@ struct Varyings {
     @location(3) v3: vec4<f32>,
     @location(4) v4: vec4<f32>,
     @location(5) v5: vec4<f32>,
+    @location(6) v6: vec4<f32>,
 };
 
 @vertex
@@ -34,12 +36,13 @@ fn vs_main(v: VertexIn) -> Varyings {
     o.v3 = v.v3;
     o.v4 = v.v4;
     o.v5 = v.v5;
+    o.v6 = v.v6;
     return o;
 }
 
 // Varying slot k (bumpmap_core::vertex::var).
 fn vary(f: Varyings, k: u32) -> f32 {
-    let slots = array<vec4<f32>, 6>(f.v0, f.v1, f.v2, f.v3, f.v4, f.v5);
+    let slots = array<vec4<f32>, 7>(f.v0, f.v1, f.v2, f.v3, f.v4, f.v5, f.v6);
     return slots[k / 4u][k % 4u];
 }
 

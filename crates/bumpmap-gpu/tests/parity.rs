@@ -189,6 +189,27 @@ fn the_three_passes_match_the_cpu_in_every_variant() {
 }
 
 #[test]
+fn embossing_matches_the_cpu_forced_and_unforced() {
+    // Two height fetches (one at the vertex stage's shifted coordinates), the cube map's L_z in
+    // the alpha portion, two general combiners, MODULATE over the decal.
+    let Some(mut gpu) = common::renderer() else { return };
+    use bumpmap_core::technique::{BackFacing, EmbossOptions};
+    let side = SceneParams {
+        lights: vec![SceneLight::white(Light::Directional(Vec3::new(1.0, 0.0, 0.2)))],
+        ..Default::default()
+    };
+    check(
+        &mut gpu,
+        "gpu_emboss",
+        SceneKind::Torus,
+        SceneParams::default(),
+        Technique::Emboss(EmbossOptions::default()),
+    );
+    let unforced = Technique::Emboss(EmbossOptions { back_facing: BackFacing::Unforced, ..Default::default() });
+    check(&mut gpu, "gpu_emboss_unforced", SceneKind::Sphere, side, unforced);
+}
+
+#[test]
 fn pass_snapshots_are_the_figure_12_passes() {
     let Some(mut gpu) = common::renderer() else { return };
     let scene = scenes::build(&SceneKind::Torus, &SceneParams::default()).unwrap();

@@ -27,4 +27,4 @@ mod render;
 pub mod visibility;
 
 pub use error::ReferenceError;
-pub use render::{LinearImage, ReferenceOptions, render};
+pub use render::{LinearImage, MAX_SAMPLES_PER_PIXEL, MAX_SIDE, ReferenceOptions, render};

@@ -15,7 +15,7 @@ use std::path::Path;
 use std::time::Instant;
 
 use bumpmap_core::scenes::{self, SceneKind, SceneParams};
-use bumpmap_core::technique::{KilgardOptions, Normalize, SinglePassOptions, Technique};
+use bumpmap_core::technique::{BackFacing, EmbossOptions, KilgardOptions, Normalize, SinglePassOptions, Technique};
 use bumpmap_io::atomic::FileSet;
 use bumpmap_io::image_file::{PngLayout, save_png_into};
 use bumpmap_io::{Channel, HeightSource};
@@ -33,7 +33,7 @@ pub use metrics::Scores;
 
 /// The techniques `compare` knows, in the report's order: name and what it is, in the papers'
 /// words.
-pub const TECHNIQUES: [(&str, &str); 8] = [
+pub const TECHNIQUES: [(&str, &str); 10] = [
     (
         "kilgard",
         "Kilgard's three passes on the emulated GeForce 256: normalization cube map, register combiners, 8-bit framebuffer (§5)",
@@ -54,6 +54,11 @@ pub const TECHNIQUES: [(&str, &str); 8] = [
         "peercy-dependent",
         "Peercy's surface-dependent map (Eq. 3–6, Figures 3 and 6): Blinn's normal per texel from the surface's exact ∂P/∂u, ∂P/∂v and the same 7×7 kernel, in object space",
     ),
+    (
+        "emboss",
+        "embossing (Kilgard §3.1, Eq. 29–30): the height field fetched twice, shifted toward the light by a texel, subtracted, plus L_z; L_x, L_y forced to 0 where L_z ≤ 0; diffuse only",
+    ),
+    ("emboss-unforced", "embossing without forcing the shift to 0 where the light is behind the surface"),
 ];
 
 /// One technique's outcome.
@@ -101,8 +106,27 @@ pub struct Results {
     pub golf_ball: Vec<(f32, f64, f64, f64)>,
     /// The same with the sphere's own light, from the side.
     pub golf_ball_side: Vec<(f32, f64, f64, f64)>,
+    /// Kilgard §3.1's embossing studies.
+    pub emboss: EmbossStudy,
     /// Total milliseconds of the command.
     pub total_millis: f64,
+}
+
+/// Kilgard §3.1 measured, on the brick wall without specular (embossing is diffuse only), 96²,
+/// directional lights.
+pub struct EmbossStudy {
+    /// `(angle of the light from the normal in degrees, emboss RMSE, emboss bias, single-pass
+    /// RMSE, single-pass bias, emboss contrast / reference contrast)`; contrast is the standard
+    /// deviation of the wall's brightness.
+    pub by_angle: Vec<(f32, f64, f64, f64, f64, f64)>,
+    /// `(distance factor, emboss contrast / reference contrast, single-pass contrast / reference
+    /// contrast)` with the light at 45°: embossing's shift is one level-0 texel, so at small mip
+    /// levels the two fetches agree and the bumps vanish.
+    pub by_distance: Vec<(f32, f64, f64)>,
+    /// The sphere lit from the side (half of it turned away from the light): the fraction of the
+    /// image the reference leaves dark (ambient only), and the fraction of those pixels that
+    /// emboss lights with the shift forced to 0 where `L_z ≤ 0`, and without.
+    pub facing_away: (f64, f64, f64),
 }
 
 /// Runs `bumpmap compare`.
@@ -146,7 +170,7 @@ pub fn run(args: &CompareArgs) -> Result<(), CliError> {
         args.techniques.iter().map(|t| t.trim().to_string()).filter(|t| !t.is_empty()).collect()
     };
     let mut backend = Backend::new(args.backend)?;
-    let steps = (wanted.len() + 3) as u64;
+    let steps = (wanted.len() + 4) as u64;
     let bar = ProgressBar::new(steps)
         .with_style(ProgressStyle::with_template("{bar:40} {pos}/{len} {elapsed} {wide_msg}").expect("valid template"));
 
@@ -177,6 +201,8 @@ pub fn run(args: &CompareArgs) -> Result<(), CliError> {
     bar.inc(1);
     bar.set_message("golf ball at a distance (Kilgard §2.4.2)");
     let (golf_ball, golf_ball_side) = (golf_ball_study(&mut backend, true)?, golf_ball_study(&mut backend, false)?);
+    bar.set_message("embossing (Kilgard §3.1)");
+    let emboss = emboss_study(&mut backend)?;
     bar.inc(1);
     bar.finish_and_clear();
 
@@ -191,6 +217,7 @@ pub fn run(args: &CompareArgs) -> Result<(), CliError> {
         convergence,
         golf_ball,
         golf_ball_side,
+        emboss,
         total_millis: start.elapsed().as_secs_f64() * 1e3,
     };
     let written = write(out, &results, &inputs)?;
@@ -241,6 +268,10 @@ fn render_technique(
             params.object_space = true;
             params.object_map = bumpmap_core::scenes::ObjectMap::Blinn;
             Technique::SinglePass(single)
+        }
+        "emboss" => Technique::Emboss(EmbossOptions::default()),
+        "emboss-unforced" => {
+            Technique::Emboss(EmbossOptions { back_facing: BackFacing::Unforced, ..Default::default() })
         }
         "no-bump" => {
             let f = &base.height_field;
@@ -327,6 +358,90 @@ fn golf_ball_study(backend: &mut Backend, headlight: bool) -> Result<Vec<(f32, f
         rows.push((factor, mean(&reference.pixels), length, renormalized));
     }
     Ok(rows)
+}
+
+/// The pixels the reference covers whose eight neighbours it covers too: the surface without
+/// its antialiased edge.
+fn interior(reference: &LinearImage) -> Vec<bool> {
+    let (w, h) = (reference.width, reference.height);
+    let covered = |x: usize, y: usize| reference.pixels[y * w + x].max_element() > 0.0;
+    (0..w * h)
+        .map(|i| {
+            let (x, y) = (i % w, i / w);
+            x > 0 && y > 0 && x + 1 < w && y + 1 < h && (0..9).all(|k| covered(x + k % 3 - 1, y + k / 3 - 1))
+        })
+        .collect()
+}
+
+/// Mean and standard deviation of the brightness of `pixels` where `mask` is set.
+fn brightness_stats(pixels: &[Vec3], mask: &[bool]) -> (f64, f64) {
+    let values: Vec<f64> =
+        pixels.iter().zip(mask).filter(|(_, m)| **m).map(|(p, _)| (p.x + p.y + p.z) as f64 / 3.0).collect();
+    let n = values.len().max(1) as f64;
+    let mean = values.iter().sum::<f64>() / n;
+    (mean, (values.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / n).sqrt())
+}
+
+/// [`EmbossStudy`]: the wall at six light angles and four distances, the sphere lit from the side.
+fn emboss_study(backend: &mut Backend) -> Result<EmbossStudy, CliError> {
+    use bumpmap_core::scene::SceneLight;
+    use bumpmap_math::lighting::Light;
+    const SIZE: usize = 96;
+    let directional = |degrees: f32| {
+        let a = degrees.to_radians();
+        vec![SceneLight::white(Light::Directional(Vec3::new(a.sin(), 0.0, a.cos())))]
+    };
+    // No decal, so brightness varies with the bumps alone.
+    let base = SceneParams { specular: Vec3::ZERO, default_decal: false, ..Default::default() };
+    let forced = Technique::Emboss(EmbossOptions::default());
+    let single = Technique::SinglePass(SinglePassOptions::default());
+    // Renders the reference and the techniques of `params` on `kind`: the reference, then each.
+    let mut run = |kind: &SceneKind, params: &SceneParams, techniques: &[&Technique]| {
+        let scene = scenes::build(kind, params).map_err(core_err)?;
+        let reference = reference_image(&scene, SIZE, 16)?;
+        let mut images = Vec::new();
+        for t in techniques {
+            images.push(metrics::linear(&backend.render(&scene, t, SIZE, SIZE, false)?.image));
+        }
+        Ok::<_, CliError>((reference, images))
+    };
+    let mut by_angle = Vec::new();
+    for degrees in [0.0f32, 15.0, 30.0, 45.0, 60.0, 75.0] {
+        let params = SceneParams { lights: directional(degrees), ..base.clone() };
+        let (reference, images) = run(&SceneKind::Wall, &params, &[&forced, &single])?;
+        let mask = interior(&reference);
+        let (emboss_rmse, _, emboss_bias) = metrics::pixel_errors(&reference.pixels, &images[0]);
+        let (single_rmse, _, single_bias) = metrics::pixel_errors(&reference.pixels, &images[1]);
+        let contrast = brightness_stats(&images[0], &mask).1 / brightness_stats(&reference.pixels, &mask).1.max(1e-9);
+        by_angle.push((degrees, emboss_rmse, emboss_bias, single_rmse, single_bias, contrast));
+    }
+    let mut by_distance = Vec::new();
+    for factor in [1.0f32, 2.0, 4.0, 8.0] {
+        let params =
+            SceneParams { lights: directional(45.0), eye: Some(Vec3::new(0.0, 0.0, 6.0 * factor)), ..base.clone() };
+        let (reference, images) = run(&SceneKind::Wall, &params, &[&forced, &single])?;
+        let mask = interior(&reference);
+        let reference_contrast = brightness_stats(&reference.pixels, &mask).1.max(1e-9);
+        by_distance.push((
+            factor,
+            brightness_stats(&images[0], &mask).1 / reference_contrast,
+            brightness_stats(&images[1], &mask).1 / reference_contrast,
+        ));
+    }
+    let unforced = Technique::Emboss(EmbossOptions { back_facing: BackFacing::Unforced, ..Default::default() });
+    let params = SceneParams { lights: directional(90.0), default_decal: false, ..base.clone() };
+    let (reference, images) = run(&SceneKind::Sphere, &params, &[&forced, &unforced])?;
+    // The dark side: pixels the reference leaves at the ambient term (0.2, white surface). A
+    // pixel there is wrongly lit when it is more than 5 steps of 8 bits brighter.
+    let dark: Vec<bool> =
+        reference.pixels.iter().map(|c| c.max_element() > 0.0 && c.max_element() < 0.2 + 1.5 / 255.0).collect();
+    let lit = |image: &[Vec3]| {
+        let n = dark.iter().filter(|&&d| d).count().max(1) as f64;
+        image.iter().zip(&dark).filter(|(c, d)| **d && c.max_element() > 0.2 + 5.0 / 255.0).count() as f64 / n
+    };
+    let facing_away =
+        (dark.iter().filter(|&&d| d).count() as f64 / (SIZE * SIZE) as f64, lit(&images[0]), lit(&images[1]));
+    Ok(EmbossStudy { by_angle, by_distance, facing_away })
 }
 
 /// Writes every image, heat map, plot, `results.json` and `report.html` into `out`, all or none.

@@ -39,6 +39,14 @@ pub fn json(r: &Results) -> String {
         "convergence": r.convergence.iter().map(|(k, e)| json!({"k": k, "rmse_to_4k": e})).collect::<Vec<_>>(),
         "golf_ball": golf_json(&r.golf_ball),
         "golf_ball_side_light": golf_json(&r.golf_ball_side),
+        "emboss": {
+            "by_angle": r.emboss.by_angle.iter().map(|(a, er, eb, sr, sb, c)| json!({"degrees": a, "emboss_rmse": er,
+                "emboss_bias": eb, "single_pass_rmse": sr, "single_pass_bias": sb, "emboss_contrast_ratio": c})).collect::<Vec<_>>(),
+            "by_distance": r.emboss.by_distance.iter().map(|(d, e, s)| json!({"distance": d,
+                "emboss_contrast_ratio": e, "single_pass_contrast_ratio": s})).collect::<Vec<_>>(),
+            "facing_away": {"dark_fraction": r.emboss.facing_away.0, "forced_lit_fraction": r.emboss.facing_away.1,
+                "unforced_lit_fraction": r.emboss.facing_away.2},
+        },
         "total_millis": r.total_millis,
     });
     serde_json::to_string_pretty(&value).expect("a JSON value serializes") + "\n"
@@ -52,7 +60,53 @@ fn golf_json(rows: &[(f32, f64, f64, f64)]) -> Vec<Value> {
 
 /// `(file name, SVG)` of each plot.
 pub fn plots(r: &Results) -> Vec<(&'static str, String)> {
-    vec![("convergence.svg", convergence_plot(r)), ("golf_ball.svg", golf_ball_plot(r))]
+    vec![
+        ("convergence.svg", convergence_plot(r)),
+        ("golf_ball.svg", golf_ball_plot(r)),
+        ("emboss_angle.svg", emboss_plot(r)),
+    ]
+}
+
+fn emboss_plot(r: &Results) -> String {
+    let mut svg = String::new();
+    {
+        let root = SVGBackend::with_string(&mut svg, (560, 360)).into_drawing_area();
+        root.fill(&WHITE).expect("drawing into a string");
+        let emax = r.emboss.by_angle.iter().map(|row| row.1.max(row.3)).fold(0.01, f64::max) * 1.2;
+        let mut chart = ChartBuilder::on(&root)
+            .caption("Embossing against the reference by light angle (Kilgard §3.1)", ("sans-serif", 16))
+            .margin(12)
+            .x_label_area_size(36)
+            .y_label_area_size(56)
+            .build_cartesian_2d(-5f64..80.0, 0f64..emax)
+            .expect("valid ranges");
+        chart
+            .configure_mesh()
+            .light_line_style(TRANSPARENT)
+            .x_desc("light angle from the normal (degrees)")
+            .y_desc("RMSE")
+            .draw()
+            .expect("mesh");
+        for (label, column, color) in [("emboss", 1usize, RED), ("single-pass", 3, BLUE)] {
+            let points: Vec<(f64, f64)> =
+                r.emboss.by_angle.iter().map(|row| (row.0 as f64, if column == 1 { row.1 } else { row.3 })).collect();
+            chart
+                .draw_series(LineSeries::new(points.clone(), color.stroke_width(2)))
+                .expect("series")
+                .label(label)
+                .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], color.stroke_width(2)));
+            chart.draw_series(points.iter().map(|p| Circle::new(*p, 3, color.filled()))).expect("points");
+        }
+        chart
+            .configure_series_labels()
+            .position(SeriesLabelPosition::UpperRight)
+            .border_style(BLACK)
+            .background_style(WHITE)
+            .draw()
+            .expect("legend");
+        root.present().expect("drawing into a string");
+    }
+    svg
 }
 
 fn convergence_plot(r: &Results) -> String {
@@ -119,7 +173,13 @@ fn golf_ball_plot(r: &Results) -> String {
                 .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], color.stroke_width(2)));
             chart.draw_series(points.iter().map(|p| Circle::new(*p, 3, color.filled()))).expect("points");
         }
-        chart.configure_series_labels().border_style(BLACK).background_style(WHITE).draw().expect("legend");
+        chart
+            .configure_series_labels()
+            .position(SeriesLabelPosition::UpperRight)
+            .border_style(BLACK)
+            .background_style(WHITE)
+            .draw()
+            .expect("legend");
         root.present().expect("drawing into a string");
     }
     svg
@@ -175,6 +235,22 @@ pub fn html(r: &Results) -> String {
             .collect()
     };
     let (golf, golf_side) = (golf_rows(&r.golf_ball), golf_rows(&r.golf_ball_side));
+    let emboss_angles: String = r
+        .emboss
+        .by_angle
+        .iter()
+        .map(|(a, er, eb, sr, sb, c)| {
+            format!("<tr><td>{a}°</td><td>{er:.4}</td><td>{eb:+.4}</td><td>{c:.3}</td><td>{sr:.4}</td><td>{sb:+.4}</td></tr>")
+        })
+        .collect();
+    let emboss_distances: String = r
+        .emboss
+        .by_distance
+        .iter()
+        .map(|(d, e, s)| format!("<tr><td>{d}×</td><td>{e:.3}</td><td>{s:.3}</td></tr>"))
+        .collect();
+    let (away_dark, away_forced, away_unforced) =
+        (100.0 * r.emboss.facing_away.0, 100.0 * r.emboss.facing_away.1, 100.0 * r.emboss.facing_away.2);
     format!(
         r#"<!DOCTYPE html>
 <html lang="en"><head><meta charset="utf-8"><title>bumpmap compare: {scene}</title>
@@ -204,6 +280,13 @@ figcaption {{ font-size: 0.85em; max-width: {size}px; }}
 <p><img src="golf_ball.svg" alt="golf ball plot"></p>
 <p>The same ball with the sphere scene's own light, from the side. Here much of each footprint faces away from the light, N·L is clamped at 0, and the length factor becomes a lower bound (the mean of clamped dot products is at least the clamped dot product of the mean normal): it is too dark.</p>
 <table><tr><th>distance</th><th>reference</th><th>length factor</th><th>renormalized</th></tr>{golf_side}</table>
+<h2>Embossing (Kilgard §3.1)</h2>
+<p>The brick wall without specular (embossing is diffuse only), 96×96 pixels, a directional light at each angle from the wall's normal. Contrast is the standard deviation of the wall's brightness, as a fraction of the reference's. With the light along the normal the shift is zero, the two fetches agree, and embossing is flat (contrast near 0) and too bright (positive bias): it shows L_z = 1 where the bumps should turn the normal away from the light.</p>
+<table><tr><th>light</th><th>emboss RMSE</th><th>emboss bias</th><th>emboss contrast</th><th>single-pass RMSE</th><th>single-pass bias</th></tr>{emboss_angles}</table>
+<p><img src="emboss_angle.svg" alt="emboss error by light angle"></p>
+<p>At a distance (light at 45°): embossing's shift is one texel of level 0, so at the small mip levels a distant wall samples, both fetches land on nearly the same filtered height and the bumps vanish; the single pass keeps them.</p>
+<table><tr><th>distance</th><th>emboss contrast</th><th>single-pass contrast</th></tr>{emboss_distances}</table>
+<p>Faces turned away: a sphere lit from the side, half of it away from the light; the reference leaves {away_dark:.1} % of the image at the ambient term. Of those pixels, embossing lights (more than 5 steps above ambient) {away_forced:.1} % with L_x, L_y forced to 0 where L_z ≤ 0, and {away_unforced:.1} % without forcing: the unforced shift keeps lighting bumps on the dark side.</p>
 <h2>Techniques</h2>
 <ul>{known}</ul>
 <pre id="loaded"></pre>

@@ -2,11 +2,13 @@
 //! for one light. A backend executes the list in order; it never decides what a technique is.
 //!
 //! - [`kilgard`]: the paper's three passes, register-combiner programs (Kilgard §5.4–5.6);
-//! - [`single_pass`]: the same lighting model in one float pass per light ([`crate::shading`]).
+//! - [`single_pass`]: the same lighting model in one float pass per light ([`crate::shading`]);
+//! - [`emboss`]: the technique the paper replaces (§3.1), register-combiner programs.
 //!
 //! Capability checks live here: [`Technique::passes`] refuses what a technique cannot do with
 //! a typed [`CoreError`], so every backend refuses the same things.
 
+pub mod emboss;
 pub mod kilgard;
 pub mod single_pass;
 
@@ -20,6 +22,7 @@ use crate::scene::{NormalSpace, Scene, SceneLight};
 use crate::state::{PassState, Sampler};
 use crate::vertex::var;
 
+pub use emboss::{BackFacing, EmbossOptions};
 pub use kilgard::{KilgardOptions, SpecularMode};
 pub use single_pass::{Gloss, HalfAngle, Normalize, SelfShadow, SinglePassOptions, SpecularShadow};
 
@@ -30,6 +33,8 @@ pub enum Technique {
     Kilgard(KilgardOptions),
     /// One float pass per light.
     SinglePass(SinglePassOptions),
+    /// Embossing (Kilgard §3.1): two height fetches subtracted, plus L_z.
+    Emboss(EmbossOptions),
 }
 
 impl Technique {
@@ -38,6 +43,7 @@ impl Technique {
         match self {
             Technique::Kilgard(_) => kilgard::NAME,
             Technique::SinglePass(_) => single_pass::NAME,
+            Technique::Emboss(_) => emboss::NAME,
         }
     }
 
@@ -48,6 +54,7 @@ impl Technique {
         match self {
             Technique::Kilgard(o) => kilgard::passes(scene, o),
             Technique::SinglePass(o) => single_pass::passes(scene, o),
+            Technique::Emboss(o) => emboss::passes(scene, o),
         }
     }
 }

@@ -1,0 +1,113 @@
+//! Embossing (Kilgard §3.1, Eq. 29–30), the technique the paper's replaces: the height field
+//! fetched twice, once shifted toward the light by about one texel, the two subtracted and L_z
+//! added — on the GeForce pipeline with its 8-bit framebuffer and clamping.
+//!
+//! 1. the decal, depth LESS (when there is one);
+//! 2. `I_ambient + k_diffuse · max(0, L_z + scale·(F − F_shifted))` ([`setups::emboss`]),
+//!    `glBlendFunc(GL_DST_COLOR, GL_ZERO)`, depth EQUAL.
+//!
+//! Diffuse only, one light: embossing has no normal to take a half-angle vector to, and the
+//! paper's point is what it gets wrong even so. [`BackFacing::Unforced`] leaves the shift on
+//! where `L_z ≤ 0`, which lights faces turned away from the light (§3.1).
+
+use glam::Vec3;
+
+use crate::combiners::{Precision, Scale};
+use crate::error::{CoreError, Feature};
+use crate::scene::{Attenuation, NormalSpace, Scene};
+use crate::setups;
+use crate::state::{Blend, PassState, Sampler};
+use crate::technique::{Binding, CombinerProgram, Pass, Program, TextureUnit};
+use crate::vertex::var;
+
+/// The technique's name.
+pub const NAME: &str = "emboss";
+
+/// What the shift does where the light is behind the surface (`L_z ≤ 0`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum BackFacing {
+    /// L_x, L_y forced to 0 there, as §3.1 says: the difference vanishes and L_z ≤ 0 leaves
+    /// only the ambient term.
+    #[default]
+    Forced,
+    /// The shift left on: bumps stay lit on the side turned away from the light.
+    Unforced,
+}
+
+/// Options of embossing.
+#[derive(Clone, Debug, PartialEq)]
+pub struct EmbossOptions {
+    /// The height map's and decal's filtering.
+    pub sampler: Sampler,
+    /// Where `L_z ≤ 0`.
+    pub back_facing: BackFacing,
+    /// Face size of the normalization cube map that gives L_z.
+    pub cube_size: usize,
+}
+
+impl Default for EmbossOptions {
+    fn default() -> Self {
+        Self { sampler: Sampler::TRILINEAR_REPEAT, back_facing: BackFacing::Forced, cube_size: 32 }
+    }
+}
+
+/// The combiners' output scale for a bump scale, if they have one.
+fn scale_of(bump_scale: f32) -> Option<Scale> {
+    match bump_scale {
+        1.0 => Some(Scale::None),
+        2.0 => Some(Scale::ByTwo),
+        4.0 => Some(Scale::ByFour),
+        _ => None,
+    }
+}
+
+/// The passes of `scene`: one light, every object.
+pub fn passes(scene: &Scene, options: &EmbossOptions) -> Result<Vec<Pass>, CoreError> {
+    let unsupported = |feature| Err(CoreError::Unsupported { technique: NAME, feature });
+    if scene.lights.len() > 1 {
+        return unsupported(Feature::MultipleLights);
+    }
+    if scene.lights.iter().any(|l| l.attenuation != Attenuation::None || l.spot.is_some()) {
+        return unsupported(Feature::Attenuation);
+    }
+    let mut passes = Vec::new();
+    for (o, object) in scene.objects.iter().enumerate() {
+        let m = &object.material;
+        if m.normal_space != NormalSpace::Tangent {
+            return unsupported(Feature::ObjectSpace);
+        }
+        let Some(scale) = scale_of(m.bump_scale) else {
+            return unsupported(Feature::BumpScale(m.bump_scale));
+        };
+        let Some(heights) = m.height_map.clone() else {
+            return unsupported(Feature::HeightMap);
+        };
+        let shifted = match options.back_facing {
+            BackFacing::Forced => var::EMBOSS,
+            BackFacing::Unforced => var::EMBOSS_UNFORCED,
+        };
+        let unit = |texture, s, t| TextureUnit { binding: Binding::TwoD { texture, s, t }, sampler: options.sampler };
+        let cube = TextureUnit {
+            binding: Binding::NormalizationCube {
+                size: options.cube_size,
+                encoding: bumpmap_math::Encoding::Unorm,
+                r: var::L,
+            },
+            sampler: Sampler::LINEAR_CLAMP,
+        };
+        let color = scene.lights.first().map_or(Vec3::ONE, |l| l.color);
+        let mut push = |state, units, setup: crate::combiners::CombinerSetup| {
+            setup.validate()?;
+            let program = Program::Combiners(CombinerProgram { units, setup, precision: Precision::Float });
+            passes.push(Pass { object: o, light: 0, snapshot: None, state, program });
+            Ok::<_, CoreError>(())
+        };
+        if let Some(decal) = &m.decal {
+            push(PassState::OPAQUE, vec![unit(decal.clone(), var::S, var::T)], setups::decal())?;
+        }
+        let state = if m.decal.is_some() { PassState::equal(Blend::MODULATE) } else { PassState::OPAQUE };
+        let units = vec![unit(heights.clone(), var::S, var::T), unit(heights, shifted, shifted + 1), cube];
+        push(state, units, setups::emboss(scale, m.ambient.extend(0.0), (m.diffuse * color).extend(0.0)))?;
+    }
+    Ok(passes)
+}
