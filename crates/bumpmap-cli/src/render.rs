@@ -85,6 +85,7 @@ pub fn core_err(e: CoreError) -> CliError {
         Feature::MultipleLights => "more than one --light".into(),
         Feature::BumpScale(s) => format!("--bump-scale {s} (its combiners scale by 1, 2 or 4)"),
         Feature::HeightMap => "a scene without its height field".into(),
+        Feature::OffsetMap => "an offset map (its combiners cannot renormalize N + D per pixel)".into(),
     }
     };
     match e {
@@ -210,6 +211,7 @@ pub fn build_scene(setup: &SceneSetup) -> Result<(Scene, Vec<PathBuf>), CliError
         repeat: s.repeat.map(|(s, t)| Vec2::new(s, t)),
         object_space: s.space == SpaceArg::Object,
         object_map: scenes::ObjectMap::RotatedTangent,
+        offset_map: false,
         mip_mode: bumpmap_math::MipMode::LengthInAlpha,
     };
     if params.eye.is_some() && params.eye == params.target {

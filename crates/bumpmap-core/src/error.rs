@@ -32,6 +32,8 @@ pub enum Feature {
     BumpScale(f32),
     /// A material without the height field as a texture.
     HeightMap,
+    /// An offset map, whose normal must be renormalized per pixel.
+    OffsetMap,
 }
 
 impl std::fmt::Display for Feature {
@@ -49,6 +51,7 @@ impl std::fmt::Display for Feature {
             Feature::MultipleLights => f.write_str("more than one light"),
             Feature::BumpScale(s) => write!(f, "a bump scale of {s} (its combiners scale by 1, 2 or 4)"),
             Feature::HeightMap => f.write_str("a material without its height field (a loaded normal map)"),
+            Feature::OffsetMap => f.write_str("an offset map (its combiners cannot renormalize N + D per pixel)"),
         }
     }
 }

@@ -149,6 +149,20 @@ pub enum NormalSpace {
     },
 }
 
+/// What a normal map's texels hold.
+#[derive(Clone, Copy, Debug, PartialEq, Default)]
+pub enum NormalTexels {
+    /// RGB the range-compressed unit normal, A its length after filtering (Kilgard §5.3).
+    #[default]
+    UnitVector,
+    /// An offset map (Kilgard §2.2, Eq. 6–7): RG the range-compressed offset `D / range`, the
+    /// normal rebuilt per pixel as `normalize(N + D)`; B and A unused.
+    Offset {
+        /// The largest offset component the map stores, > 0.
+        range: f32,
+    },
+}
+
 /// Surface appearance: a normal map with its mip chain, an optional decal and the lighting
 /// coefficients of Kilgard Eq. 11 and 16.
 #[derive(Clone, Debug)]
@@ -157,6 +171,8 @@ pub struct Material {
     pub normal_map: Arc<Rgba8Mips>,
     /// The space the normal map's vectors are in.
     pub normal_space: NormalSpace,
+    /// What the normal map's texels hold.
+    pub normal_texels: NormalTexels,
     /// A decal whose RGB multiplies the diffuse term (white when `None`).
     pub decal: Option<Arc<Rgba8Mips>>,
     /// The ambient term of Eq. 11, added once rather than per light.

@@ -11,7 +11,9 @@ use bumpmap_math::surface::{BicubicPatch, Surface};
 use bumpmap_math::{HeightField, MipChain, MipMode, NormalMapOptions, Rgba8Image, Rgba8Mips, bricks_decal};
 
 use crate::error::CoreError;
-use crate::scene::{Camera, Material, NormalSpace, Scene, SceneLight, SceneObject, SurfaceSource, ViewerModel};
+use crate::scene::{
+    Camera, Material, NormalSpace, NormalTexels, Scene, SceneLight, SceneObject, SurfaceSource, ViewerModel,
+};
 
 /// Which geometry a scene shows.
 #[derive(Clone, Debug, PartialEq)]
@@ -87,6 +89,8 @@ pub struct SceneParams {
     pub object_space: bool,
     /// How that object-space map is made.
     pub object_map: ObjectMap,
+    /// An offset map (Kilgard §2.2) instead of a normal map, tangent space.
+    pub offset_map: bool,
     /// What the normal map's smaller levels store: the length factor (Kilgard §5.3) or
     /// renormalized normals.
     pub mip_mode: MipMode,
@@ -114,6 +118,7 @@ impl Default for SceneParams {
             repeat: None,
             object_space: false,
             object_map: ObjectMap::RotatedTangent,
+            offset_map: false,
             mip_mode: MipMode::LengthInAlpha,
         }
     }
@@ -210,6 +215,28 @@ pub fn surface_dependent_normal_map(
     Ok(MipChain::from_normals(w, h, &normals, options.encoding, MipMode::LengthInAlpha))
 }
 
+/// An offset map (Kilgard §2.2, Eq. 6–7): each texel's offset `D = (−s·∂F/∂x, −s·∂F/∂y)` (the
+/// normal map's slopes) range-compressed as `D / range` in RG, `range` the largest component
+/// over the map; the smaller levels box-filter the offsets (what the hardware's mipmapping
+/// would do to them). Returns the texture and `range`.
+pub fn offset_map(field: &HeightField, options: &NormalMapOptions) -> Result<(Rgba8Mips, f32), CoreError> {
+    // The slopes at 16 bits, as for the surface-dependent map.
+    let slopes = bumpmap_math::normalmap::normal_map_level0_texels::<[u16; 4]>(field, options)?;
+    let offsets: Vec<Vec2> = (0..slopes.width * slopes.height)
+        .map(|i| {
+            let (n, _) = slopes.decode(i % slopes.width, i / slopes.width, options.encoding);
+            Vec2::new(n.x, n.y) / n.z.max(1e-4)
+        })
+        .collect();
+    let range = offsets.iter().fold(1e-6f32, |m, d| m.max(d.x.abs()).max(d.y.abs()));
+    let texels = offsets
+        .iter()
+        .map(|d| [options.encoding.encode(d.x / range), options.encoding.encode(d.y / range), 128, 255])
+        .collect();
+    let level0 = Rgba8Image::new(slopes.width, slopes.height, texels);
+    Ok((Rgba8Mips::with_box_mipmaps(level0), range))
+}
+
 /// Builds a scene. Fails when the height field cannot become a normal map, or when an
 /// object-space map is asked of a mesh.
 pub fn build(kind: &SceneKind, params: &SceneParams) -> Result<Scene, CoreError> {
@@ -226,6 +253,7 @@ pub fn build(kind: &SceneKind, params: &SceneParams) -> Result<Scene, CoreError>
     let material = Material {
         normal_map,
         normal_space: NormalSpace::Tangent,
+        normal_texels: NormalTexels::UnitVector,
         decal,
         ambient: params.ambient,
         diffuse: params.diffuse,
@@ -238,11 +266,18 @@ pub fn build(kind: &SceneKind, params: &SceneParams) -> Result<Scene, CoreError>
         )))),
         bump_scale: params.normal_map.scale,
     };
+    let mut material = material;
+    if params.offset_map {
+        let (map, range) = offset_map(&params.height_field, &params.normal_map)?;
+        material.normal_map = Arc::new(map);
+        material.normal_texels = NormalTexels::Offset { range };
+    }
     let heights = Arc::new(params.height_field.clone());
     let object = |surface: Surface, tess: (usize, usize), repeat: Vec2, world_from_object: Mat4| {
         let repeat = params.repeat.unwrap_or(repeat);
         let mut material = material.clone();
         if params.object_space {
+            material.normal_texels = NormalTexels::UnitVector;
             let map = match params.object_map {
                 ObjectMap::RotatedTangent => object_space_normal_map(&surface, repeat, &chain),
                 // The same field and options already made `chain`, so they cannot fail here.

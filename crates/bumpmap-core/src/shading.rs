@@ -167,6 +167,17 @@ pub fn shade(terms: &LitTerms, f: &Fragment) -> Vec3 {
     }))
 }
 
+/// An offset-map texel (Kilgard §2.2, Eq. 6–7) as the normal-map texel [`shade`] takes: the
+/// offset `D = range · (2·rg − 1)` added to the unperturbed normal (0, 0, 1) and renormalized,
+/// range-compressed, with A = 1 (an offset map keeps no length: filtering averages the offsets
+/// and renormalizing forgets how much they disagreed).
+#[inline(always)]
+pub fn offset_to_normal(texel: Vec4, range: f32) -> Vec4 {
+    let (dx, dy) = ((texel.x * 2.0 - 1.0) * range, (texel.y * 2.0 - 1.0) * range);
+    let inv = 1.0 / (dx * dx + dy * dy + 1.0).sqrt();
+    Vec4::new(dx * inv * 0.5 + 0.5, dy * inv * 0.5 + 0.5, inv * 0.5 + 0.5, 1.0)
+}
+
 /// A spotlight's cone factor: GL's `max(0, cos)^exponent` inside the cutoff, 0 outside, where
 /// `to_light` is the (unnormalized) vector from the fragment to the light and `axis` the spot
 /// direction, both in the lighting space. The pattern, if any, multiplies this.
@@ -224,6 +235,15 @@ mod tests {
     fn light_below_the_surface_leaves_ambient_only() {
         let c = shade(&terms(), &flat(-Vec3::Z, -Vec3::Z));
         assert_eq!(c, Vec3::splat(0.2));
+    }
+
+    #[test]
+    fn offset_texels_rebuild_the_normal_of_eq_7() {
+        // No offset: straight up. D = (range, 0) with range 1: 45° toward +x.
+        assert_eq!(offset_to_normal(Vec4::new(0.5, 0.5, 0.0, 0.0), 3.0), Vec4::new(0.5, 0.5, 1.0, 1.0));
+        let n = offset_to_normal(Vec4::new(1.0, 0.5, 0.0, 0.0), 1.0);
+        let h = 0.5f32.sqrt();
+        assert!((n - Vec4::new(h * 0.5 + 0.5, 0.5, h * 0.5 + 0.5, 1.0)).length() < 1e-6, "{n}");
     }
 
     #[test]

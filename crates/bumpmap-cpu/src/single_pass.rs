@@ -11,8 +11,8 @@ use std::sync::Arc;
 use glam::Vec3;
 
 use bumpmap_core::lane_math::{clamp_lo, max_lo, min_hi};
-use bumpmap_core::scene::{Attenuation, NormalSpace};
-use bumpmap_core::shading::{LitTerms, shininess_is_whole, spot_cone};
+use bumpmap_core::scene::{Attenuation, NormalSpace, NormalTexels};
+use bumpmap_core::shading::{LitTerms, offset_to_normal, shininess_is_whole, spot_cone};
 use bumpmap_core::technique::{Gloss, HalfAngle, LitProgram, SelfShadow, SpecularShadow};
 use bumpmap_core::vertex::var;
 
@@ -238,6 +238,14 @@ impl FragmentShader for SinglePass<'_> {
         };
         let size = |t: &Texture2d| (t.width(), t.height());
         self.sample(&self.normal_map, batch, scale, sc, live_n, Tex::Normal, false);
+        if let NormalTexels::Offset { range } = o.normal_texels {
+            // Kilgard Eq. 7 per fragment, after filtering the offsets.
+            let nm = &mut sc.normal;
+            for j in 0..n {
+                let v = offset_to_normal(glam::Vec4::new(nm[0][j], nm[1][j], nm[2][j], nm[3][j]), range);
+                (nm[0][j], nm[1][j], nm[2][j], nm[3][j]) = (v.x, v.y, v.z, v.w);
+            }
+        }
         let mut last = (size(&self.normal_map), scale);
         match &self.decal {
             Some(d) => {

@@ -10,7 +10,7 @@
 //! It does not hold the model itself: that is `shading.wgsl` (tested against
 //! `bumpmap_core::shading::shade`).
 
-use bumpmap_core::scene::{Attenuation, NormalSpace};
+use bumpmap_core::scene::{Attenuation, NormalSpace, NormalTexels};
 use bumpmap_core::shading::LitTerms;
 use bumpmap_core::technique::{Gloss, HalfAngle, LitProgram, Normalize, SelfShadow, SpecularShadow};
 
@@ -28,6 +28,7 @@ pub struct LitVariant {
     spot_pattern: bool,
     /// The shininess's bits (a constant, so whole exponents become a fixed product).
     shininess: u32,
+    offset_map: bool,
 }
 
 impl LitVariant {
@@ -61,11 +62,12 @@ impl LitVariant {
             spot: p.light.spot.is_some(),
             spot_pattern: p.light.spot.as_ref().is_some_and(|s| s.pattern.is_some()),
             shininess: p.terms.shininess.to_bits(),
+            offset_map: matches!(p.normal_texels, NormalTexels::Offset { .. }),
         }
     }
 
     /// The override constants, by their names in `lit.wgsl`.
-    pub fn constants(&self) -> [(&'static str, f64); 10] {
+    pub fn constants(&self) -> [(&'static str, f64); 11] {
         let flag = |b: bool| b as u32 as f64;
         [
             ("SELF_SHADOW", self.self_shadow as f64),
@@ -78,6 +80,7 @@ impl LitVariant {
             ("SPOTLIGHT", flag(self.spot)),
             ("SPOT_PATTERN", flag(self.spot_pattern)),
             ("SHININESS", f32::from_bits(self.shininess) as f64),
+            ("OFFSET_MAP", flag(self.offset_map)),
         ]
     }
 }
@@ -98,13 +101,17 @@ pub fn uniforms(p: &LitProgram) -> Vec<u8> {
         NormalSpace::Tangent => [1.0, 1.0],
         NormalSpace::Object { scale } => [scale.x, scale.y],
     };
+    let range = match p.normal_texels {
+        NormalTexels::UnitVector => 0.0,
+        NormalTexels::Offset { range } => range,
+    };
     let block: [[f32; 4]; 6] = [
         ambient.extend(0.0).to_array(),
         diffuse.extend(0.0).to_array(),
         specular.extend(0.0).to_array(),
         attenuation,
         spot,
-        [scale[0], scale[1], 0.0, 0.0],
+        [scale[0], scale[1], range, 0.0],
     ];
     block.iter().flatten().flat_map(|x| x.to_le_bytes()).collect()
 }

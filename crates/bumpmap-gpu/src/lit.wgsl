@@ -12,7 +12,7 @@ struct Lit {
     attenuation: vec4<f32>,
     // x: cos(cutoff); y: exponent.
     spot: vec4<f32>,
-    // xy: the object-space map's coordinate scale (1, 1 in tangent space).
+    // xy: the object-space map's coordinate scale (1, 1 in tangent space); z: an offset map's range.
     normal_scale: vec4<f32>,
 };
 
@@ -34,6 +34,8 @@ override ATTENUATION: u32 = 0u;
 override SPOTLIGHT: u32 = 0u;
 override SPOT_PATTERN: u32 = 0u;
 override SHININESS: f32 = 8.0;
+// The normal map is an offset map (1), range in normal_scale.z, or unit normals (0).
+override OFFSET_MAP: u32 = 0u;
 
 @group(0) @binding(0) var<uniform> u: Lit;
 @group(0) @binding(1) var normal_map: texture_2d<f32>;
@@ -109,10 +111,21 @@ fn spot_factor(f: Varyings) -> f32 {
     return k;
 }
 
+// An offset-map texel (Kilgard Eq. 6-7) as a normal-map texel: N' = normalize((0, 0, 1) + D)
+// with D = range (2 rg - 1), range-compressed, A = 1 (bumpmap_core::shading::offset_to_normal).
+fn offset_to_normal(t: vec4<f32>, range: f32) -> vec4<f32> {
+    let d = (t.xy * 2.0 - 1.0) * range;
+    let inv = 1.0 / sqrt(d.x * d.x + d.y * d.y + 1.0);
+    return vec4<f32>(d.x * inv * 0.5 + 0.5, d.y * inv * 0.5 + 0.5, inv * 0.5 + 0.5, 1.0);
+}
+
 @fragment
 fn fs_lit(f: Varyings) -> @location(0) vec4<f32> {
     let st = vec2<f32>(vary(f, S), vary(f, S + 1u));
-    let normal = textureSample(normal_map, material_sampler, st * u.normal_scale.xy);
+    var normal = textureSample(normal_map, material_sampler, st * u.normal_scale.xy);
+    if OFFSET_MAP == 1u {
+        normal = offset_to_normal(normal, u.normal_scale.z);
+    }
     let decal = textureSample(decal_map, material_sampler, st);
     var gloss = 1.0;
     if GLOSS == 1u {

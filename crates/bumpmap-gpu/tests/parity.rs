@@ -210,6 +210,14 @@ fn embossing_matches_the_cpu_forced_and_unforced() {
 }
 
 #[test]
+fn an_offset_map_matches_the_cpu() {
+    // Kilgard Eq. 7 per fragment after filtering: lit.wgsl's offset_to_normal against the core's.
+    let Some(mut gpu) = common::renderer() else { return };
+    let params = SceneParams { offset_map: true, ..Default::default() };
+    check(&mut gpu, "gpu_offset_map", SceneKind::Torus, params, single(SinglePassOptions::default()));
+}
+
+#[test]
 fn pass_snapshots_are_the_figure_12_passes() {
     let Some(mut gpu) = common::renderer() else { return };
     let scene = scenes::build(&SceneKind::Torus, &SceneParams::default()).unwrap();

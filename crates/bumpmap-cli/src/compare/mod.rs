@@ -33,7 +33,7 @@ pub use metrics::Scores;
 
 /// The techniques `compare` knows, in the report's order: name and what it is, in the papers'
 /// words.
-pub const TECHNIQUES: [(&str, &str); 10] = [
+pub const TECHNIQUES: [(&str, &str); 11] = [
     (
         "kilgard",
         "Kilgard's three passes on the emulated GeForce 256: normalization cube map, register combiners, 8-bit framebuffer (§5)",
@@ -59,6 +59,10 @@ pub const TECHNIQUES: [(&str, &str); 10] = [
         "embossing (Kilgard §3.1, Eq. 29–30): the height field fetched twice, shifted toward the light by a texel, subtracted, plus L_z; L_x, L_y forced to 0 where L_z ≤ 0; diffuse only",
     ),
     ("emboss-unforced", "embossing without forcing the shift to 0 where the light is behind the surface"),
+    (
+        "offset-map",
+        "an offset map (Kilgard §2.2, Eq. 6–7): the slopes' offset D stored in RG, filtered, and N + D renormalized per pixel, lit by the single pass",
+    ),
 ];
 
 /// One technique's outcome.
@@ -267,6 +271,10 @@ fn render_technique(
             params.normal_map.kernel = bumpmap_math::Kernel::Gaussian7;
             params.object_space = true;
             params.object_map = bumpmap_core::scenes::ObjectMap::Blinn;
+            Technique::SinglePass(single)
+        }
+        "offset-map" => {
+            params.offset_map = true;
             Technique::SinglePass(single)
         }
         "emboss" => Technique::Emboss(EmbossOptions::default()),

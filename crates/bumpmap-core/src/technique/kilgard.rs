@@ -80,6 +80,9 @@ pub fn validate(scene: &Scene) -> Result<(), CoreError> {
         if m.normal_space != NormalSpace::Tangent {
             return unsupported(Feature::ObjectSpace);
         }
+        if m.normal_texels != crate::scene::NormalTexels::UnitVector {
+            return unsupported(Feature::OffsetMap);
+        }
         if m.shininess != 8.0 {
             return unsupported(Feature::Shininess(m.shininess));
         }

@@ -154,6 +154,8 @@ pub struct LitProgram {
     pub normal_map: Arc<Rgba8Mips>,
     /// Tangent or object space, and the object-space map's coordinate scale.
     pub normal_space: NormalSpace,
+    /// Unit normals, or an offset map.
+    pub normal_texels: crate::scene::NormalTexels,
     /// The decal; white where `None`.
     pub decal: Option<Arc<Rgba8Mips>>,
     /// Where the gloss comes from.

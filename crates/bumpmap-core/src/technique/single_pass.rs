@@ -167,6 +167,7 @@ pub fn passes(scene: &Scene, options: &SinglePassOptions) -> Result<Vec<Pass>, C
             let program = LitProgram {
                 normal_map: m.normal_map.clone(),
                 normal_space: m.normal_space,
+                normal_texels: m.normal_texels,
                 decal: m.decal.clone(),
                 gloss: options.gloss.clone(),
                 sampler: options.sampler,
