@@ -71,7 +71,7 @@ pub struct CompareArgs {
     /// What draws the techniques (the reference always runs on the CPU)
     #[arg(long, value_enum, default_value = "cpu")]
     pub backend: crate::render_args::BackendArg,
-    /// Comma-separated techniques to run (default: all of kilgard, single-pass, single-pass-cube, object-space, mip-renormalized, no-bump, peercy-independent, peercy-dependent, emboss, emboss-unforced, offset-map)
+    /// Comma-separated techniques to run (default: all of kilgard, single-pass, single-pass-cube, object-space, mip-renormalized, no-bump, peercy-independent, peercy-dependent, emboss, emboss-unforced, offset-map, peercy-blinn)
     #[arg(long, value_delimiter = ',')]
     pub techniques: Vec<String>,
     /// Output folder

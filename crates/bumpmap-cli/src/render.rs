@@ -212,6 +212,7 @@ pub fn build_scene(setup: &SceneSetup) -> Result<(Scene, Vec<PathBuf>), CliError
         object_space: s.space == SpaceArg::Object,
         object_map: scenes::ObjectMap::RotatedTangent,
         offset_map: false,
+        per_pixel_blinn: false,
         mip_mode: bumpmap_math::MipMode::LengthInAlpha,
     };
     if params.eye.is_some() && params.eye == params.target {

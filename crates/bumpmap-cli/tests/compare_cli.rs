@@ -175,7 +175,7 @@ fn peercys_surface_dependent_map_beats_the_independent_one_where_the_surface_str
 }
 
 /// Every technique `compare` runs by default.
-fn bumpmap_names() -> [&'static str; 11] {
+fn bumpmap_names() -> [&'static str; 12] {
     [
         "kilgard",
         "single-pass",
@@ -188,6 +188,7 @@ fn bumpmap_names() -> [&'static str; 11] {
         "emboss",
         "emboss-unforced",
         "offset-map",
+        "peercy-blinn",
     ]
 }
 

@@ -161,6 +161,16 @@ pub enum NormalTexels {
         /// The largest offset component the map stores, > 0.
         range: f32,
     },
+    /// Peercy Figure 2's hardware: the same texels read as the height derivatives, and Blinn's
+    /// normal made per pixel from them and the interpolated ∂P/∂u, ∂P/∂v of the surface
+    /// (`var::PARAM_FRAME`).
+    Derivatives {
+        /// The largest offset component the map stores, > 0.
+        range: f32,
+        /// ∂d/∂u and ∂d/∂v of the displacement per unit of the stored slope
+        /// (`bumpmap_math::blinn`: ℓ · repeat · size).
+        scale: glam::Vec2,
+    },
 }
 
 /// Surface appearance: a normal map with its mip chain, an optional decal and the lighting

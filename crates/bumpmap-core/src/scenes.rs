@@ -91,6 +91,9 @@ pub struct SceneParams {
     pub object_map: ObjectMap,
     /// An offset map (Kilgard §2.2) instead of a normal map, tangent space.
     pub offset_map: bool,
+    /// The offset map read as height derivatives, Blinn's normal per pixel from the
+    /// interpolated surface derivatives (Peercy Figure 2); implies the offset map.
+    pub per_pixel_blinn: bool,
     /// What the normal map's smaller levels store: the length factor (Kilgard §5.3) or
     /// renormalized normals.
     pub mip_mode: MipMode,
@@ -119,6 +122,7 @@ impl Default for SceneParams {
             object_space: false,
             object_map: ObjectMap::RotatedTangent,
             offset_map: false,
+            per_pixel_blinn: false,
             mip_mode: MipMode::LengthInAlpha,
         }
     }
@@ -267,7 +271,7 @@ pub fn build(kind: &SceneKind, params: &SceneParams) -> Result<Scene, CoreError>
         bump_scale: params.normal_map.scale,
     };
     let mut material = material;
-    if params.offset_map {
+    if params.offset_map || params.per_pixel_blinn {
         let (map, range) = offset_map(&params.height_field, &params.normal_map)?;
         material.normal_map = Arc::new(map);
         material.normal_texels = NormalTexels::Offset { range };
@@ -276,6 +280,12 @@ pub fn build(kind: &SceneKind, params: &SceneParams) -> Result<Scene, CoreError>
     let object = |surface: Surface, tess: (usize, usize), repeat: Vec2, world_from_object: Mat4| {
         let repeat = params.repeat.unwrap_or(repeat);
         let mut material = material.clone();
+        if let (true, NormalTexels::Offset { range }) = (params.per_pixel_blinn, material.normal_texels) {
+            let (w, h) = (params.height_field.width(), params.height_field.height());
+            let texel_side = bumpmap_math::blinn::displacement_per_unit_height(&surface, repeat, (w, h), 1.0);
+            let scale = Vec2::new(texel_side * repeat.x * w as f32, texel_side * repeat.y * h as f32);
+            material.normal_texels = NormalTexels::Derivatives { range, scale };
+        }
         if params.object_space {
             material.normal_texels = NormalTexels::UnitVector;
             let map = match params.object_map {

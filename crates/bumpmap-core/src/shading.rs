@@ -178,6 +178,22 @@ pub fn offset_to_normal(texel: Vec4, range: f32) -> Vec4 {
     Vec4::new(dx * inv * 0.5 + 0.5, dy * inv * 0.5 + 0.5, inv * 0.5 + 0.5, 1.0)
 }
 
+/// Peercy Figure 2 per pixel: Blinn's normal (`bumpmap_math::blinn::perturbed_normal`) in the
+/// tangent frame from an offset-map texel read as the slopes (`d_u = −scale.x · D_x`,
+/// `d_v = −scale.y · D_y`, `D = range · (2·rg − 1)`) and the interpolated surface derivatives
+/// `param_frame = (|∂P/∂u|, ∂P/∂v · T, ∂P/∂v · B)`. With `T = ∂P/∂u / |∂P/∂u|` and n̂ = +z,
+/// `N' = |P_u × P_v| n̂ + σ·(d_u (n̂ × P_v) − d_v (n̂ × P_u))`, σ the sign of `P_v · B`.
+/// Range-compressed, A = 1.
+#[inline(always)]
+pub fn blinn_from_derivatives(texel: Vec4, range: f32, scale: glam::Vec2, param_frame: Vec3) -> Vec4 {
+    let d_u = -scale.x * (texel.x * 2.0 - 1.0) * range;
+    let d_v = -scale.y * (texel.y * 2.0 - 1.0) * range;
+    let (pu, pvt, pvb) = (param_frame.x, param_frame.y, param_frame.z);
+    let sigma = if pvb >= 0.0 { 1.0 } else { -1.0 };
+    let n = Vec3::new(sigma * (-d_u * pvb), sigma * (d_u * pvt - d_v * pu), (pu * pvb).abs()).normalize_or(Vec3::Z);
+    Vec4::new(n.x * 0.5 + 0.5, n.y * 0.5 + 0.5, n.z * 0.5 + 0.5, 1.0)
+}
+
 /// A spotlight's cone factor: GL's `max(0, cos)^exponent` inside the cutoff, 0 outside, where
 /// `to_light` is the (unnormalized) vector from the fragment to the light and `axis` the spot
 /// direction, both in the lighting space. The pattern, if any, multiplies this.
@@ -244,6 +260,21 @@ mod tests {
         let n = offset_to_normal(Vec4::new(1.0, 0.5, 0.0, 0.0), 1.0);
         let h = 0.5f32.sqrt();
         assert!((n - Vec4::new(h * 0.5 + 0.5, 0.5, h * 0.5 + 0.5, 1.0)).length() < 1e-6, "{n}");
+    }
+
+    #[test]
+    fn per_pixel_blinn_agrees_with_the_math_crates_blinn() {
+        // The patch's frame at one point, a slope, and the same normal two ways.
+        use bumpmap_math::surface::{BicubicPatch, Surface};
+        let p = Surface::Patch(BicubicPatch::stretched()).eval(0.3, 0.6);
+        let (t, b, n) = p.frame();
+        let (range, scale, texel) = (2.0, glam::Vec2::new(3.0, 5.0), Vec4::new(0.7, 0.35, 0.0, 0.0));
+        let got =
+            blinn_from_derivatives(texel, range, scale, Vec3::new(p.dp_du.length(), p.dp_dv.dot(t), p.dp_dv.dot(b)));
+        let (d_u, d_v) = (-scale.x * 0.4 * range, -scale.y * -0.3 * range);
+        let want = bumpmap_math::blinn::perturbed_normal(&p, d_u, d_v);
+        let want = Vec3::new(want.dot(t), want.dot(b), want.dot(n)) * 0.5 + Vec3::splat(0.5);
+        assert!((got.truncate() - want).length() < 1e-5, "{got} vs {want}");
     }
 
     #[test]

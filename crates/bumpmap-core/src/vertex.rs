@@ -38,8 +38,11 @@ pub mod var {
     pub const EMBOSS: usize = 21;
     /// The same shift never forced to 0: what embossing does when nobody tests `L_z`.
     pub const EMBOSS_UNFORCED: usize = 23;
+    /// The surface's derivatives in the tangent frame (3 slots): `|∂P/∂u|`, `∂P/∂v · T`,
+    /// `∂P/∂v · B`, for Peercy Figure 2's per-pixel Blinn (objects with an exact surface only).
+    pub const PARAM_FRAME: usize = 25;
     /// Slots in use.
-    pub const COUNT: usize = 25;
+    pub const COUNT: usize = 28;
 }
 
 /// Varyings per vertex (texture coordinates, light and half-angle vectors, …): seven vec4s.
@@ -94,6 +97,12 @@ impl Scene {
                 varyings[var::H..var::H + 3].copy_from_slice(&h.to_array());
                 varyings[var::V..var::V + 3].copy_from_slice(&v.to_array());
                 varyings[var::N..var::N + 3].copy_from_slice(&geometric.to_array());
+                if let (Some(source), NormalSpace::Tangent) = (&object.source, object.material.normal_space) {
+                    let st = mesh.texcoords[i];
+                    let sp = source.surface.eval(st.x / source.repeat.x, st.y / source.repeat.y);
+                    let frame = [sp.dp_du.length(), sp.dp_dv.dot(frame.t), sp.dp_dv.dot(frame.b)];
+                    varyings[var::PARAM_FRAME..var::PARAM_FRAME + 3].copy_from_slice(&frame);
+                }
                 if let Some(heights) = &object.material.height_map {
                     // One texel of the height map's level 0 per unit of L_x, L_y.
                     let shift = glam::Vec2::new(l.x / heights.width() as f32, l.y / heights.height() as f32);

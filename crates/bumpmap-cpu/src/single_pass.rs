@@ -12,7 +12,7 @@ use glam::Vec3;
 
 use bumpmap_core::lane_math::{clamp_lo, max_lo, min_hi};
 use bumpmap_core::scene::{Attenuation, NormalSpace, NormalTexels};
-use bumpmap_core::shading::{LitTerms, offset_to_normal, shininess_is_whole, spot_cone};
+use bumpmap_core::shading::{LitTerms, blinn_from_derivatives, offset_to_normal, shininess_is_whole, spot_cone};
 use bumpmap_core::technique::{Gloss, HalfAngle, LitProgram, SelfShadow, SpecularShadow};
 use bumpmap_core::vertex::var;
 
@@ -238,12 +238,27 @@ impl FragmentShader for SinglePass<'_> {
         };
         let size = |t: &Texture2d| (t.width(), t.height());
         self.sample(&self.normal_map, batch, scale, sc, live_n, Tex::Normal, false);
-        if let NormalTexels::Offset { range } = o.normal_texels {
-            // Kilgard Eq. 7 per fragment, after filtering the offsets.
-            let nm = &mut sc.normal;
-            for j in 0..n {
-                let v = offset_to_normal(glam::Vec4::new(nm[0][j], nm[1][j], nm[2][j], nm[3][j]), range);
-                (nm[0][j], nm[1][j], nm[2][j], nm[3][j]) = (v.x, v.y, v.z, v.w);
+        match o.normal_texels {
+            NormalTexels::UnitVector => {}
+            NormalTexels::Offset { range } => {
+                // Kilgard Eq. 7 per fragment, after filtering the offsets.
+                let nm = &mut sc.normal;
+                for j in 0..n {
+                    let v = offset_to_normal(glam::Vec4::new(nm[0][j], nm[1][j], nm[2][j], nm[3][j]), range);
+                    (nm[0][j], nm[1][j], nm[2][j], nm[3][j]) = (v.x, v.y, v.z, v.w);
+                }
+            }
+            NormalTexels::Derivatives { range, scale } => {
+                // Peercy Figure 2: Blinn per fragment from the interpolated surface derivatives.
+                for k in 0..3 {
+                    batch.pack(var::PARAM_FRAME + k, &mut sc.v[k]);
+                }
+                let (nm, f) = (&mut sc.normal, &sc.v);
+                for j in 0..n {
+                    let texel = glam::Vec4::new(nm[0][j], nm[1][j], nm[2][j], nm[3][j]);
+                    let v = blinn_from_derivatives(texel, range, scale, glam::Vec3::new(f[0][j], f[1][j], f[2][j]));
+                    (nm[0][j], nm[1][j], nm[2][j], nm[3][j]) = (v.x, v.y, v.z, v.w);
+                }
             }
         }
         let mut last = (size(&self.normal_map), scale);

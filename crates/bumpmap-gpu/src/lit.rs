@@ -28,7 +28,7 @@ pub struct LitVariant {
     spot_pattern: bool,
     /// The shininess's bits (a constant, so whole exponents become a fixed product).
     shininess: u32,
-    offset_map: bool,
+    normal_texels: u32,
 }
 
 impl LitVariant {
@@ -62,7 +62,11 @@ impl LitVariant {
             spot: p.light.spot.is_some(),
             spot_pattern: p.light.spot.as_ref().is_some_and(|s| s.pattern.is_some()),
             shininess: p.terms.shininess.to_bits(),
-            offset_map: matches!(p.normal_texels, NormalTexels::Offset { .. }),
+            normal_texels: match p.normal_texels {
+                NormalTexels::UnitVector => 0,
+                NormalTexels::Offset { .. } => 1,
+                NormalTexels::Derivatives { .. } => 2,
+            },
         }
     }
 
@@ -80,7 +84,7 @@ impl LitVariant {
             ("SPOTLIGHT", flag(self.spot)),
             ("SPOT_PATTERN", flag(self.spot_pattern)),
             ("SHININESS", f32::from_bits(self.shininess) as f64),
-            ("OFFSET_MAP", flag(self.offset_map)),
+            ("NORMAL_TEXELS", self.normal_texels as f64),
         ]
     }
 }
@@ -101,17 +105,19 @@ pub fn uniforms(p: &LitProgram) -> Vec<u8> {
         NormalSpace::Tangent => [1.0, 1.0],
         NormalSpace::Object { scale } => [scale.x, scale.y],
     };
-    let range = match p.normal_texels {
-        NormalTexels::UnitVector => 0.0,
-        NormalTexels::Offset { range } => range,
+    let texels = match p.normal_texels {
+        NormalTexels::UnitVector => [0.0; 4],
+        NormalTexels::Offset { range } => [range, 0.0, 0.0, 0.0],
+        NormalTexels::Derivatives { range, scale } => [range, scale.x, scale.y, 0.0],
     };
-    let block: [[f32; 4]; 6] = [
+    let block: [[f32; 4]; 7] = [
         ambient.extend(0.0).to_array(),
         diffuse.extend(0.0).to_array(),
         specular.extend(0.0).to_array(),
         attenuation,
         spot,
-        [scale[0], scale[1], range, 0.0],
+        [scale[0], scale[1], 0.0, 0.0],
+        texels,
     ];
     block.iter().flatten().flat_map(|x| x.to_le_bytes()).collect()
 }

@@ -12,8 +12,10 @@ struct Lit {
     attenuation: vec4<f32>,
     // x: cos(cutoff); y: exponent.
     spot: vec4<f32>,
-    // xy: the object-space map's coordinate scale (1, 1 in tangent space); z: an offset map's range.
+    // xy: the object-space map's coordinate scale (1, 1 in tangent space).
     normal_scale: vec4<f32>,
+    // x: an offset map's range; yz: the derivatives' scale (NormalTexels::Derivatives).
+    texels: vec4<f32>,
 };
 
 // The model's switches, one pipeline per combination (src/lit.rs, LitVariant).
@@ -34,8 +36,9 @@ override ATTENUATION: u32 = 0u;
 override SPOTLIGHT: u32 = 0u;
 override SPOT_PATTERN: u32 = 0u;
 override SHININESS: f32 = 8.0;
-// The normal map is an offset map (1), range in normal_scale.z, or unit normals (0).
-override OFFSET_MAP: u32 = 0u;
+// The normal map's texels: 0 unit normals, 1 an offset map, 2 height derivatives for a
+// per-pixel Blinn (range and scale in u.texels).
+override NORMAL_TEXELS: u32 = 0u;
 
 @group(0) @binding(0) var<uniform> u: Lit;
 @group(0) @binding(1) var normal_map: texture_2d<f32>;
@@ -54,6 +57,7 @@ const LIGHT_DISTANCE: u32 = 11u;
 const SPOT: u32 = 12u;
 const PROJ: u32 = 15u;
 const N: u32 = 18u;
+const PARAM_FRAME: u32 = 25u;
 
 // normalize(v), or +Z where v has no direction.
 fn normalize_or_z(v: vec3<f32>) -> vec3<f32> {
@@ -119,12 +123,26 @@ fn offset_to_normal(t: vec4<f32>, range: f32) -> vec4<f32> {
     return vec4<f32>(d.x * inv * 0.5 + 0.5, d.y * inv * 0.5 + 0.5, inv * 0.5 + 0.5, 1.0);
 }
 
+// Peercy Figure 2 per pixel (bumpmap_core::shading::blinn_from_derivatives): Blinn's normal in
+// the tangent frame from the texel's slopes and the interpolated (|Pu|, Pv.T, Pv.B).
+fn blinn_from_derivatives(t: vec4<f32>, range: f32, scale: vec2<f32>, pf: vec3<f32>) -> vec4<f32> {
+    let d = -scale * (t.xy * 2.0 - 1.0) * range;
+    var sigma = 1.0;
+    if pf.z < 0.0 {
+        sigma = -1.0;
+    }
+    let n = normalize_or_z(vec3<f32>(sigma * (-d.x * pf.z), sigma * (d.x * pf.y - d.y * pf.x), abs(pf.x * pf.z)));
+    return vec4<f32>(n * 0.5 + 0.5, 1.0);
+}
+
 @fragment
 fn fs_lit(f: Varyings) -> @location(0) vec4<f32> {
     let st = vec2<f32>(vary(f, S), vary(f, S + 1u));
     var normal = textureSample(normal_map, material_sampler, st * u.normal_scale.xy);
-    if OFFSET_MAP == 1u {
-        normal = offset_to_normal(normal, u.normal_scale.z);
+    if NORMAL_TEXELS == 1u {
+        normal = offset_to_normal(normal, u.texels.x);
+    } else if NORMAL_TEXELS == 2u {
+        normal = blinn_from_derivatives(normal, u.texels.x, u.texels.yz, vary3(f, PARAM_FRAME));
     }
     let decal = textureSample(decal_map, material_sampler, st);
     var gloss = 1.0;

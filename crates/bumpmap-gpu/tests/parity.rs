@@ -215,6 +215,10 @@ fn an_offset_map_matches_the_cpu() {
     let Some(mut gpu) = common::renderer() else { return };
     let params = SceneParams { offset_map: true, ..Default::default() };
     check(&mut gpu, "gpu_offset_map", SceneKind::Torus, params, single(SinglePassOptions::default()));
+    // Peercy Figure 2: the same texels as slopes, Blinn per fragment from the interpolated
+    // surface derivatives (var::PARAM_FRAME), on the sheared patch.
+    let params = SceneParams { per_pixel_blinn: true, ..Default::default() };
+    check(&mut gpu, "gpu_per_pixel_blinn", SceneKind::Patch, params, single(SinglePassOptions::default()));
 }
 
 #[test]

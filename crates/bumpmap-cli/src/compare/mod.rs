@@ -33,7 +33,7 @@ pub use metrics::Scores;
 
 /// The techniques `compare` knows, in the report's order: name and what it is, in the papers'
 /// words.
-pub const TECHNIQUES: [(&str, &str); 11] = [
+pub const TECHNIQUES: [(&str, &str); 12] = [
     (
         "kilgard",
         "Kilgard's three passes on the emulated GeForce 256: normalization cube map, register combiners, 8-bit framebuffer (§5)",
@@ -62,6 +62,10 @@ pub const TECHNIQUES: [(&str, &str); 11] = [
     (
         "offset-map",
         "an offset map (Kilgard §2.2, Eq. 6–7): the slopes' offset D stored in RG, filtered, and N + D renormalized per pixel, lit by the single pass",
+    ),
+    (
+        "peercy-blinn",
+        "Peercy's Figure 2 hardware (Figure 5): the height derivatives from the same 7×7 kernel in a texture, Blinn's normal made per pixel from them and the interpolated ∂P/∂u, ∂P/∂v",
     ),
 ];
 
@@ -271,6 +275,11 @@ fn render_technique(
             params.normal_map.kernel = bumpmap_math::Kernel::Gaussian7;
             params.object_space = true;
             params.object_map = bumpmap_core::scenes::ObjectMap::Blinn;
+            Technique::SinglePass(single)
+        }
+        "peercy-blinn" => {
+            params.normal_map.kernel = bumpmap_math::Kernel::Gaussian7;
+            params.per_pixel_blinn = true;
             Technique::SinglePass(single)
         }
         "offset-map" => {

@@ -177,7 +177,9 @@ pub struct LitProgram {
 impl LitProgram {
     /// How many varyings (from slot 0) the program reads.
     pub fn varyings_read(&self) -> usize {
-        if matches!(self.normal_space, NormalSpace::Object { .. }) {
+        if matches!(self.normal_texels, crate::scene::NormalTexels::Derivatives { .. }) {
+            var::PARAM_FRAME + 3
+        } else if matches!(self.normal_space, NormalSpace::Object { .. }) {
             var::N + 3
         } else if self.light.spot.is_some() {
             var::PROJ + 3
