@@ -95,6 +95,15 @@ fn bad_options_are_refused_with_clear_messages() {
     refused(&["--scene", "teapot"], "unknown scene");
     refused(&["--scene", "mesh:/no/such/file.obj"], "cannot read");
     refused(&["--eye", "1,1,1", "--target", "1,1,1"], "must differ");
+    // The reference needs an exact surface and samples no projected pattern; embossing's
+    // combiners scale by 1, 2 or 4 and take one light.
+    let cube = concat!("mesh:", env!("CARGO_MANIFEST_DIR"), "/../bumpmap-io/tests/data/mikktspace/cube.obj");
+    refused(&["--technique", "reference", "--scene", cube], "needs a built-in surface");
+    refused(&["--technique", "reference", "--spot", "0,0,-1", "--spot-pattern", "bricks"], "--spot-pattern");
+    refused(&["--technique", "reference", "--spp", "0"], "0 is not in 1..=4096");
+    refused(&["--technique", "reference", "--passes"], "--passes");
+    refused(&["--technique", "emboss", "--bump-scale", "3"], "--bump-scale 3");
+    refused(&["--technique", "emboss", "--light", "1,1,1", "--light", "-1,1,1"], "more than one --light");
 }
 
 #[test]

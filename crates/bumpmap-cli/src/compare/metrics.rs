@@ -46,16 +46,23 @@ pub fn pixel_errors(reference: &[Vec3], test: &[Vec3]) -> (f64, f64, f64) {
     (rmse, 20.0 * (1.0 / rmse).log10(), signed / n)
 }
 
-/// Every score of `test` against `reference`, and FLIP's error map coloured with magma (the
-/// heat map the report shows), RGB8.
-pub fn score(reference: &LinearImage, test: &Rgba8Image) -> (Scores, Vec<u8>) {
+/// The reference as the 8-bit RGB that FLIP and SSIM compare against, made once per run.
+pub fn reference_rgb8(reference: &LinearImage) -> Vec<u8> {
+    rgb8(&reference.to_rgba8())
+}
+
+fn rgb8(img: &Rgba8Image) -> Vec<u8> {
+    img.texels.iter().flat_map(|t| [t[0], t[1], t[2]]).collect()
+}
+
+/// Every score of `test` against `reference` (`ref_rgb` its [`reference_rgb8`]), and FLIP's
+/// error map coloured with magma (the heat map the report shows), RGB8.
+pub fn score(reference: &LinearImage, ref_rgb: &[u8], test: &Rgba8Image) -> (Scores, Vec<u8>) {
     let (w, h) = (reference.width as u32, reference.height as u32);
     let (rmse, psnr, bias) = pixel_errors(&reference.pixels, &linear(test));
-    let reference8 = reference.to_rgba8();
-    let rgb = |img: &Rgba8Image| img.texels.iter().flat_map(|t| [t[0], t[1], t[2]]).collect::<Vec<u8>>();
-    let (ref_rgb, test_rgb) = (rgb(&reference8), rgb(test));
+    let test_rgb = rgb8(test);
     let error = nv_flip::flip(
-        nv_flip::FlipImageRgb8::with_data(w, h, &ref_rgb),
+        nv_flip::FlipImageRgb8::with_data(w, h, ref_rgb),
         nv_flip::FlipImageRgb8::with_data(w, h, &test_rgb),
         PIXELS_PER_DEGREE,
     );
@@ -68,7 +75,7 @@ pub fn score(reference: &LinearImage, test: &Rgba8Image) -> (Scores, Vec<u8>) {
     };
     let ssim = image_compare::gray_similarity_structure(
         &image_compare::Algorithm::MSSIMSimple,
-        &gray(&ref_rgb),
+        &gray(ref_rgb),
         &gray(&test_rgb),
     )
     .map(|s| s.score)
@@ -88,10 +95,11 @@ mod tests {
     fn identical_images_score_perfectly_and_a_brighter_one_has_positive_bias() {
         let r = reference(0.4);
         let same = r.to_rgba8();
-        let (s, _) = score(&r, &same);
+        let ref_rgb = reference_rgb8(&r);
+        let (s, _) = score(&r, &ref_rgb, &same);
         assert!(s.rmse < 0.002 && s.flip_mean < 1e-3 && (s.ssim - 1.0).abs() < 1e-6, "{s:?}");
         let brighter = Rgba8Image::new(16, 16, vec![[153, 153, 153, 255]; 256]); // 0.6
-        let (s, heat) = score(&r, &brighter);
+        let (s, heat) = score(&r, &ref_rgb, &brighter);
         assert!((s.bias - 0.2).abs() < 0.003 && (s.rmse - 0.2).abs() < 0.003, "{s:?}");
         assert!((s.psnr - 20.0 * 5f64.log10()).abs() < 0.2 && s.flip_mean > 0.05, "{s:?}");
         assert_eq!(heat.len(), 16 * 16 * 3);

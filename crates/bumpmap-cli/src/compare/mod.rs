@@ -189,12 +189,13 @@ pub fn run(args: &CompareArgs) -> Result<(), CliError> {
     let reference_millis = t.elapsed().as_secs_f64() * 1e3;
     bar.inc(1);
 
+    let ref_rgb = metrics::reference_rgb8(&reference);
     let mut outcomes = Vec::new();
     for name in &wanted {
         bar.set_message(name.clone());
         let description = TECHNIQUES.iter().find(|(n, _)| n == name).map_or("", |(_, d)| d).to_string();
         let result = render_technique(name, &kind, &base, &mut backend, size).map(|(image, millis)| {
-            let (scores, heat) = metrics::score(&reference, &image);
+            let (scores, heat) = metrics::score(&reference, &ref_rgb, &image);
             Rendered { image, scores, heat, millis }
         });
         if let Err(reason) = &result {

@@ -87,26 +87,41 @@ fn emboss_plot(r: &Results) -> String {
             .y_desc("RMSE")
             .draw()
             .expect("mesh");
-        for (label, column, color) in [("emboss", 1usize, RED), ("single-pass", 3, BLUE)] {
-            let points: Vec<(f64, f64)> =
-                r.emboss.by_angle.iter().map(|row| (row.0 as f64, if column == 1 { row.1 } else { row.3 })).collect();
-            chart
-                .draw_series(LineSeries::new(points.clone(), color.stroke_width(2)))
-                .expect("series")
-                .label(label)
-                .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], color.stroke_width(2)));
-            chart.draw_series(points.iter().map(|p| Circle::new(*p, 3, color.filled()))).expect("points");
+        for (label, emboss, color) in [("emboss", true, RED), ("single-pass", false, BLUE)] {
+            let points =
+                r.emboss.by_angle.iter().map(|row| (row.0 as f64, if emboss { row.1 } else { row.3 })).collect();
+            labelled_line(&mut chart, label, color, points);
         }
-        chart
-            .configure_series_labels()
-            .position(SeriesLabelPosition::UpperRight)
-            .border_style(BLACK)
-            .background_style(WHITE)
-            .draw()
-            .expect("legend");
+        legend(&mut chart);
         root.present().expect("drawing into a string");
     }
     svg
+}
+
+/// A line through `points` with a dot at each, named `label` in the legend.
+fn labelled_line<DB: DrawingBackend, CT: CoordTranslate<From = (f64, f64)>>(
+    chart: &mut ChartContext<'_, DB, CT>,
+    label: &str,
+    color: RGBColor,
+    points: Vec<(f64, f64)>,
+) {
+    chart.draw_series(points.iter().map(|p| Circle::new(*p, 3, color.filled()))).expect("drawing into a string");
+    chart
+        .draw_series(LineSeries::new(points, color.stroke_width(2)))
+        .expect("drawing into a string")
+        .label(label)
+        .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], color.stroke_width(2)));
+}
+
+/// The legend of the lines [`labelled_line`] drew, in the upper right corner.
+fn legend<'a, DB: DrawingBackend + 'a, CT: CoordTranslate>(chart: &mut ChartContext<'a, DB, CT>) {
+    chart
+        .configure_series_labels()
+        .position(SeriesLabelPosition::UpperRight)
+        .border_style(BLACK)
+        .background_style(WHITE)
+        .draw()
+        .expect("drawing into a string");
 }
 
 fn convergence_plot(r: &Results) -> String {
@@ -164,22 +179,10 @@ fn golf_ball_plot(r: &Results) -> String {
             .expect("mesh");
         let series = [("reference", 1usize, BLACK), ("length factor in alpha", 2, BLUE), ("renormalized mips", 3, RED)];
         for (label, column, color) in series {
-            let points: Vec<(f64, f64)> =
-                r.golf_ball.iter().map(|row| (row.0 as f64, [row.1, row.2, row.3][column - 1])).collect();
-            chart
-                .draw_series(LineSeries::new(points.clone(), color.stroke_width(2)))
-                .expect("series")
-                .label(label)
-                .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], color.stroke_width(2)));
-            chart.draw_series(points.iter().map(|p| Circle::new(*p, 3, color.filled()))).expect("points");
+            let points = r.golf_ball.iter().map(|row| (row.0 as f64, [row.1, row.2, row.3][column - 1])).collect();
+            labelled_line(&mut chart, label, color, points);
         }
-        chart
-            .configure_series_labels()
-            .position(SeriesLabelPosition::UpperRight)
-            .border_style(BLACK)
-            .background_style(WHITE)
-            .draw()
-            .expect("legend");
+        legend(&mut chart);
         root.present().expect("drawing into a string");
     }
     svg
