@@ -51,7 +51,12 @@ bumpmap compare --techniques kilgard,single-pass --backend gpu\n\n\
 Writes OUT/results.json (every score), OUT/report.html (images, FLIP heat maps, the table and \
 plots; relative links only, so the folder can be copied), one PNG per technique and its \
 FLIP heat map, and the plots as SVG. A technique that cannot render the scene is skipped, with \
-its reason on stderr and in the report.")]
+its reason on stderr and in the report.\n\n\
+Whatever the scene, the report also measures three claims the papers make in pictures, each on \
+its own scene: Kilgard §2.4.2's golf ball at a distance (the length factor against renormalized \
+mips), §3.1's embossing (flat head-on, lost at a distance, lit where the light is behind), and \
+Peercy's Figures 5–7 on his stretched patch (per-pixel Blinn, the surface-dependent and the \
+surface-independent map, at bump scales 1, 2 and 4).")]
 pub struct CompareArgs {
     /// Built-in scene: torus, wall, floor, wall-floor, patch, sphere (the reference needs an exact surface)
     #[arg(long, default_value = "torus")]

@@ -4,6 +4,7 @@
 use std::path::Path;
 use std::sync::Arc;
 
+use bumpmap_core::BumpMap;
 use bumpmap_core::scene::{Attenuation, SceneLight, Spot};
 use bumpmap_core::scenes::{self, SceneKind, SceneParams};
 use bumpmap_core::technique::{Gloss, KilgardOptions, SinglePassOptions, Technique};
@@ -139,7 +140,7 @@ const RENDERS: &[DemoRender] = &[
         make: || {
             (
                 SceneKind::Torus,
-                SceneParams { object_space: true, ..Default::default() },
+                SceneParams { bump_map: BumpMap::ObjectSpace, ..Default::default() },
                 single(SinglePassOptions::default()),
             )
         },

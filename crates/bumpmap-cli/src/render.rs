@@ -15,7 +15,7 @@ use bumpmap_core::technique::{
     Gloss, HalfAngle, KilgardOptions, Normalize, SelfShadow, SinglePassOptions, SpecularMode, SpecularShadow,
     Technique, single_pass,
 };
-use bumpmap_core::{CoreError, Feature};
+use bumpmap_core::{BumpMap, CoreError, Feature};
 use bumpmap_io::atomic::{FileSet, ensure_not_input};
 use bumpmap_io::image_file::{PngLayout, save_png_into};
 use bumpmap_io::{Channel, HeightSource};
@@ -86,6 +86,7 @@ pub fn core_err(e: CoreError) -> CliError {
         Feature::BumpScale(s) => format!("--bump-scale {s} (its combiners scale by 1, 2 or 4)"),
         Feature::HeightMap => "a scene without its height field".into(),
         Feature::OffsetMap => "an offset map (its combiners cannot renormalize N + D per pixel)".into(),
+        Feature::SurfaceMap => "a normal map made for one surface (its texture units repeat the map)".into(),
     }
     };
     match e {
@@ -209,10 +210,7 @@ pub fn build_scene(setup: &SceneSetup) -> Result<(Scene, Vec<PathBuf>), CliError
         torus_radii: (major, minor),
         tessellation: s.tessellation,
         repeat: s.repeat.map(|(s, t)| Vec2::new(s, t)),
-        object_space: s.space == SpaceArg::Object,
-        object_map: scenes::ObjectMap::RotatedTangent,
-        offset_map: false,
-        per_pixel_blinn: false,
+        bump_map: if s.space == SpaceArg::Object { BumpMap::ObjectSpace } else { BumpMap::Tangent },
         mip_mode: bumpmap_math::MipMode::LengthInAlpha,
     };
     if params.eye.is_some() && params.eye == params.target {

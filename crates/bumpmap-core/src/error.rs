@@ -34,6 +34,9 @@ pub enum Feature {
     HeightMap,
     /// An offset map, whose normal must be renormalized per pixel.
     OffsetMap,
+    /// A tangent-space map made for one surface, addressed across the whole surface rather
+    /// than with the repeating texture coordinates.
+    SurfaceMap,
 }
 
 impl std::fmt::Display for Feature {
@@ -52,6 +55,7 @@ impl std::fmt::Display for Feature {
             Feature::BumpScale(s) => write!(f, "a bump scale of {s} (its combiners scale by 1, 2 or 4)"),
             Feature::HeightMap => f.write_str("a material without its height field (a loaded normal map)"),
             Feature::OffsetMap => f.write_str("an offset map (its combiners cannot renormalize N + D per pixel)"),
+            Feature::SurfaceMap => f.write_str("a normal map made for one surface (its texture units repeat the map)"),
         }
     }
 }
@@ -62,9 +66,10 @@ pub enum CoreError {
     /// The height field could not become a normal map.
     #[error("height field: {0}")]
     HeightField(#[from] NormalMapError),
-    /// Object-space maps are baked from an analytic surface.
-    #[error("object-space normal maps are made for the built-in surfaces, not for meshes")]
-    ObjectSpaceOnMesh,
+    /// Object-space, surface-dependent and derivative maps are made from, or read with, an
+    /// analytic surface.
+    #[error("{} is made for the built-in surfaces, not for meshes", .0.describe())]
+    MapNeedsSurface(crate::bump_maps::BumpMap),
     /// A register-combiner setup broke a rule of the specification.
     #[error("invalid register-combiner setup: {0}")]
     Combiner(#[from] CombinerError),

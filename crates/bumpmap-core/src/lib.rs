@@ -7,6 +7,8 @@
 //! No module here rasterizes, samples a texture or evaluates a combiner over pixels.
 //!
 //! - [`scene`], [`scenes`]: scene descriptions and the built-in scenes;
+//! - [`bump_maps`]: the bump textures the compared techniques read (object-space,
+//!   surface-dependent, offset and derivative maps);
 //! - [`vertex`]: the vertex stage every technique shares (Kilgard §5.1, Appendix C);
 //! - [`state`]: depth, blend and sampler state as data;
 //! - [`combiners`]: NV_register_combiners setups and their validation; [`setups`]: the
@@ -18,6 +20,7 @@
 
 #![warn(missing_docs)]
 
+pub mod bump_maps;
 pub mod combiners;
 pub mod error;
 pub mod lane_math;
@@ -29,6 +32,7 @@ pub mod state;
 pub mod technique;
 pub mod vertex;
 
+pub use bump_maps::BumpMap;
 pub use error::{CoreError, Feature};
 pub use scene::Scene;
 pub use technique::{Pass, Program, Technique};

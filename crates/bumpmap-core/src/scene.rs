@@ -141,12 +141,35 @@ pub enum NormalSpace {
     /// Tangent space: usable on any surface, lit with tangent-space L and H.
     #[default]
     Tangent,
+    /// Tangent space, made for one surface (Peercy's surface-dependent map, Eq. 3–6): lit with
+    /// tangent-space L and H as [`NormalSpace::Tangent`] is. The map covers the surface once; it
+    /// is addressed with the texture coordinates times `scale`.
+    SurfaceTangent {
+        /// Multiplies the texture coordinates to address the map (1 / the texture's repeat).
+        scale: glam::Vec2,
+    },
     /// Object space, made for one surface: lit with object-space L and H. The map covers the
     /// surface once; it is addressed with the texture coordinates times `scale`.
     Object {
         /// Multiplies the texture coordinates to address the map (1 / the texture's repeat).
         scale: glam::Vec2,
     },
+}
+
+impl NormalSpace {
+    /// What the texture coordinates are multiplied by to address the map: 1 for a map that
+    /// repeats with the texture.
+    pub fn texcoord_scale(self) -> glam::Vec2 {
+        match self {
+            NormalSpace::Tangent => glam::Vec2::ONE,
+            NormalSpace::SurfaceTangent { scale } | NormalSpace::Object { scale } => scale,
+        }
+    }
+
+    /// Whether the map's vectors, and so L and H, are in object space.
+    pub fn is_object(self) -> bool {
+        matches!(self, NormalSpace::Object { .. })
+    }
 }
 
 /// What a normal map's texels hold.

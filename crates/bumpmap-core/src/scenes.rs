@@ -10,6 +10,7 @@ use bumpmap_math::mesh::Mesh;
 use bumpmap_math::surface::{BicubicPatch, Surface};
 use bumpmap_math::{HeightField, MipChain, MipMode, NormalMapOptions, Rgba8Image, Rgba8Mips, bricks_decal};
 
+use crate::bump_maps::{BumpMap, offset_map, surface_material};
 use crate::error::CoreError;
 use crate::scene::{
     Camera, Material, NormalSpace, NormalTexels, Scene, SceneLight, SceneObject, SurfaceSource, ViewerModel,
@@ -83,17 +84,10 @@ pub struct SceneParams {
     pub torus_radii: (f32, f32),
     /// Quads along u and v, both > 0, instead of the scene's own; ignored for a mesh.
     pub tessellation: Option<(usize, usize)>,
-    /// Texture repeats along s and t instead of the scene's own (non-zero with `object_space`); ignored for a mesh.
+    /// Texture repeats along s and t instead of the scene's own (non-zero with a map made for the surface); ignored for a mesh.
     pub repeat: Option<Vec2>,
-    /// Light in object space with an object-space normal map made for the surface.
-    pub object_space: bool,
-    /// How that object-space map is made.
-    pub object_map: ObjectMap,
-    /// An offset map (Kilgard §2.2) instead of a normal map, tangent space.
-    pub offset_map: bool,
-    /// The offset map read as height derivatives, Blinn's normal per pixel from the
-    /// interpolated surface derivatives (Peercy Figure 2); implies the offset map.
-    pub per_pixel_blinn: bool,
+    /// The bump texture and how the surface reads it; the tangent-space normal map by default.
+    pub bump_map: BumpMap,
     /// What the normal map's smaller levels store: the length factor (Kilgard §5.3) or
     /// renormalized normals.
     pub mip_mode: MipMode,
@@ -119,25 +113,10 @@ impl Default for SceneParams {
             torus_radii: (2.0, 0.7),
             tessellation: None,
             repeat: None,
-            object_space: false,
-            object_map: ObjectMap::RotatedTangent,
-            offset_map: false,
-            per_pixel_blinn: false,
+            bump_map: BumpMap::Tangent,
             mip_mode: MipMode::LengthInAlpha,
         }
     }
-}
-
-/// How an object-space normal map is made for a surface.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
-pub enum ObjectMap {
-    /// The tangent-space map's normals rotated by the surface's frame at each texel (Peercy
-    /// §2.1): the surface-independent normal, in object space.
-    #[default]
-    RotatedTangent,
-    /// Blinn's perturbed normal computed per texel from the surface's exact ∂P/∂u and ∂P/∂v
-    /// (Peercy Eq. 3–6, the map of Figure 3): the surface-dependent normal.
-    Blinn,
 }
 
 /// The default light of each scene: the peer's orbit start for the torus, upper left for the
@@ -156,93 +135,8 @@ pub fn default_light(kind: &SceneKind) -> Light {
     }
 }
 
-/// An object-space normal map for `surface` (Peercy §2.1): the tangent-space map's level 0,
-/// repeated `repeat` times as the surface's texture is, with each normal rotated by the
-/// surface's frame at that point. One texel per texel of the repeated tangent-space map (at
-/// most 4096 along each side), with its own mip chain.
-pub fn object_space_normal_map(surface: &Surface, repeat: Vec2, tangent_map: &MipChain) -> MipChain {
-    use rayon::prelude::*;
-    let level = &tangent_map.levels[0];
-    let enc = tangent_map.encoding;
-    let w = ((level.width as f32 * repeat.x.abs()).round() as usize).clamp(1, 4096);
-    let h = ((level.height as f32 * repeat.y.abs()).round() as usize).clamp(1, 4096);
-    let normals: Vec<Vec3> = (0..w * h)
-        .into_par_iter()
-        .map(|i| {
-            let (u, v) = (((i % w) as f32 + 0.5) / w as f32, ((i / w) as f32 + 0.5) / h as f32);
-            let (s, t) = (repeat.x * u, repeat.y * v);
-            let x = ((s - s.floor()) * level.width as f32) as usize % level.width;
-            let y = ((t - t.floor()) * level.height as f32) as usize % level.height;
-            let (n, _) = level.decode(x, y, enc);
-            let (tt, b, nn) = surface.eval(u, v).frame();
-            let w_sign = if repeat.x * repeat.y >= 0.0 { 1.0 } else { -1.0 };
-            let tt = if repeat.x >= 0.0 { tt } else { -tt };
-            (tt * n.x + w_sign * b * n.y + nn * n.z).normalize_or(nn)
-        })
-        .collect();
-    MipChain::from_normals(w, h, &normals, enc, MipMode::LengthInAlpha)
-}
-
-/// Peercy's surface-dependent map (Eq. 3–6): for each texel of the repeated map, Blinn's perturbed
-/// normal (`bumpmap_math::blinn`) from the surface's exact ∂P/∂u, ∂P/∂v at its centre and the
-/// height field's slopes as `options`' kernel measures them, in object space. One texel per
-/// texel of the repeated map (at most 4096 a side), with its own mip chain.
-pub fn surface_dependent_normal_map(
-    surface: &Surface,
-    repeat: Vec2,
-    field: &HeightField,
-    options: &NormalMapOptions,
-) -> Result<MipChain, CoreError> {
-    use bumpmap_math::blinn::{displacement_per_unit_height, perturbed_normal};
-    use rayon::prelude::*;
-    // The slopes at 16 bits, so quantizing them is far below the 8-bit map's own step.
-    let slopes = bumpmap_math::normalmap::normal_map_level0_texels::<[u16; 4]>(field, options)?;
-    let (mw, mh) = (slopes.width, slopes.height);
-    let w = ((mw as f32 * repeat.x.abs()).round() as usize).clamp(1, 4096);
-    let h = ((mh as f32 * repeat.y.abs()).round() as usize).clamp(1, 4096);
-    // d = ℓ·(scale·F), and the map's texel holds n ∝ (−scale·F_x, −scale·F_y, 1).
-    let texel_side = displacement_per_unit_height(surface, repeat, (mw, mh), 1.0);
-    let normals: Vec<Vec3> = (0..w * h)
-        .into_par_iter()
-        .map(|i| {
-            let (u, v) = (((i % w) as f32 + 0.5) / w as f32, ((i / w) as f32 + 0.5) / h as f32);
-            let (s, t) = (repeat.x * u, repeat.y * v);
-            let x = ((s - s.floor()) * mw as f32) as usize % mw;
-            let y = ((t - t.floor()) * mh as f32) as usize % mh;
-            let (n, _) = slopes.decode(x, y, options.encoding);
-            let (a, b) = (-n.x / n.z.max(1e-4), -n.y / n.z.max(1e-4));
-            let d_u = texel_side * repeat.x * mw as f32 * a;
-            let d_v = texel_side * repeat.y * mh as f32 * b;
-            perturbed_normal(&surface.eval(u, v), d_u, d_v)
-        })
-        .collect();
-    Ok(MipChain::from_normals(w, h, &normals, options.encoding, MipMode::LengthInAlpha))
-}
-
-/// An offset map (Kilgard §2.2, Eq. 6–7): each texel's offset `D = (−s·∂F/∂x, −s·∂F/∂y)` (the
-/// normal map's slopes) range-compressed as `D / range` in RG, `range` the largest component
-/// over the map; the smaller levels box-filter the offsets (what the hardware's mipmapping
-/// would do to them). Returns the texture and `range`.
-pub fn offset_map(field: &HeightField, options: &NormalMapOptions) -> Result<(Rgba8Mips, f32), CoreError> {
-    // The slopes at 16 bits, as for the surface-dependent map.
-    let slopes = bumpmap_math::normalmap::normal_map_level0_texels::<[u16; 4]>(field, options)?;
-    let offsets: Vec<Vec2> = (0..slopes.width * slopes.height)
-        .map(|i| {
-            let (n, _) = slopes.decode(i % slopes.width, i / slopes.width, options.encoding);
-            Vec2::new(n.x, n.y) / n.z.max(1e-4)
-        })
-        .collect();
-    let range = offsets.iter().fold(1e-6f32, |m, d| m.max(d.x.abs()).max(d.y.abs()));
-    let texels = offsets
-        .iter()
-        .map(|d| [options.encoding.encode(d.x / range), options.encoding.encode(d.y / range), 128, 255])
-        .collect();
-    let level0 = Rgba8Image::new(slopes.width, slopes.height, texels);
-    Ok((Rgba8Mips::with_box_mipmaps(level0), range))
-}
-
-/// Builds a scene. Fails when the height field cannot become a normal map, or when an
-/// object-space map is asked of a mesh.
+/// Builds a scene. Fails when the height field cannot become a normal map, or when a map made
+/// for a surface is asked of a mesh.
 pub fn build(kind: &SceneKind, params: &SceneParams) -> Result<Scene, CoreError> {
     let chain = MipChain::<[u8; 4]>::from_height(&params.height_field, &params.normal_map, params.mip_mode)?;
     let normal_map = Arc::new(chain.to_mips());
@@ -271,7 +165,7 @@ pub fn build(kind: &SceneKind, params: &SceneParams) -> Result<Scene, CoreError>
         bump_scale: params.normal_map.scale,
     };
     let mut material = material;
-    if params.offset_map || params.per_pixel_blinn {
+    if matches!(params.bump_map, BumpMap::Offset | BumpMap::Derivatives) {
         let (map, range) = offset_map(&params.height_field, &params.normal_map)?;
         material.normal_map = Arc::new(map);
         material.normal_texels = NormalTexels::Offset { range };
@@ -279,26 +173,15 @@ pub fn build(kind: &SceneKind, params: &SceneParams) -> Result<Scene, CoreError>
     let heights = Arc::new(params.height_field.clone());
     let object = |surface: Surface, tess: (usize, usize), repeat: Vec2, world_from_object: Mat4| {
         let repeat = params.repeat.unwrap_or(repeat);
-        let mut material = material.clone();
-        if let (true, NormalTexels::Offset { range }) = (params.per_pixel_blinn, material.normal_texels) {
-            let (w, h) = (params.height_field.width(), params.height_field.height());
-            let texel_side = bumpmap_math::blinn::displacement_per_unit_height(&surface, repeat, (w, h), 1.0);
-            let scale = Vec2::new(texel_side * repeat.x * w as f32, texel_side * repeat.y * h as f32);
-            material.normal_texels = NormalTexels::Derivatives { range, scale };
-        }
-        if params.object_space {
-            material.normal_texels = NormalTexels::UnitVector;
-            let map = match params.object_map {
-                ObjectMap::RotatedTangent => object_space_normal_map(&surface, repeat, &chain),
-                // The same field and options already made `chain`, so they cannot fail here.
-                ObjectMap::Blinn => {
-                    surface_dependent_normal_map(&surface, repeat, &params.height_field, &params.normal_map)
-                        .expect("the field and options made the tangent-space chain")
-                }
-            };
-            material.normal_map = Arc::new(map.to_mips());
-            material.normal_space = NormalSpace::Object { scale: Vec2::ONE / repeat };
-        }
+        let material = surface_material(
+            params.bump_map,
+            &material,
+            &surface,
+            repeat,
+            &chain,
+            &params.height_field,
+            &params.normal_map,
+        );
         SceneObject {
             mesh: Arc::new(surface.tessellate(
                 params.tessellation.unwrap_or(tess).0,
@@ -341,15 +224,18 @@ pub fn build(kind: &SceneKind, params: &SceneParams) -> Result<Scene, CoreError>
             (vec![wall, floor], Vec3::new(0.0, 2.2, 5.0), Vec3::new(0.0, 0.8, -1.0), Vec3::Y)
         }
         SceneKind::Patch => {
-            let patch = object(Surface::Patch(BicubicPatch::stretched()), (8, 8), Vec2::new(4.0, 1.0), Mat4::IDENTITY);
+            // One pinwheel over the whole patch, as in Peercy's Figures 4–7: its texels are
+            // stretched four to one and sheared, which is what the surface-independent map
+            // gets wrong.
+            let patch = object(Surface::Patch(BicubicPatch::stretched()), (8, 8), Vec2::ONE, Mat4::IDENTITY);
             (vec![patch], Vec3::new(0.4, -3.2, 4.0), Vec3::ZERO, Vec3::Z)
         }
         SceneKind::Sphere => {
             let sphere = object(Surface::Sphere { radius: 1.5 }, (64, 32), Vec2::new(4.0, 2.0), Mat4::IDENTITY);
             (vec![sphere], Vec3::new(0.0, -5.0, 1.5), Vec3::ZERO, Vec3::Z)
         }
-        SceneKind::Mesh(_) if params.object_space => {
-            return Err(CoreError::ObjectSpaceOnMesh);
+        SceneKind::Mesh(_) if params.bump_map.needs_surface() => {
+            return Err(CoreError::MapNeedsSurface(params.bump_map));
         }
         SceneKind::Mesh(mesh) => {
             let (lo, hi) = mesh.positions.iter().fold((Vec3::MAX, Vec3::MIN), |(lo, hi), &p| (lo.min(p), hi.max(p)));

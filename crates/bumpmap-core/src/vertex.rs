@@ -82,7 +82,7 @@ impl Scene {
                 let n = mesh.normals[i];
                 let t = mesh.tangents[i];
                 let (frame, geometric) = match object.material.normal_space {
-                    NormalSpace::Tangent => {
+                    NormalSpace::Tangent | NormalSpace::SurfaceTangent { .. } => {
                         (TangentFrame { t: t.truncate(), b: t.w * n.cross(t.truncate()), n }, Vec3::Z)
                     }
                     // Object space: no rotation; the surface normal is what self-shadowing tests.

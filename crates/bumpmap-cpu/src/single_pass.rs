@@ -11,7 +11,7 @@ use std::sync::Arc;
 use glam::Vec3;
 
 use bumpmap_core::lane_math::{clamp_lo, max_lo, min_hi};
-use bumpmap_core::scene::{Attenuation, NormalSpace, NormalTexels};
+use bumpmap_core::scene::{Attenuation, NormalTexels};
 use bumpmap_core::shading::{LitTerms, blinn_from_derivatives, offset_to_normal, shininess_is_whole, spot_cone};
 use bumpmap_core::technique::{Gloss, HalfAngle, LitProgram, SelfShadow, SpecularShadow};
 use bumpmap_core::vertex::var;
@@ -232,10 +232,7 @@ impl FragmentShader for SinglePass<'_> {
         let live_n = batch.live().len();
         // Every loop runs over whole 8-lane vectors; the lanes past live_n are never written out.
         let n = live_n.next_multiple_of(8);
-        let (scale, object_space) = match o.normal_space {
-            NormalSpace::Tangent => ([1.0, 1.0], false),
-            NormalSpace::Object { scale } => ([scale.x, scale.y], true),
-        };
+        let (scale, object_space) = (o.normal_space.texcoord_scale().to_array(), o.normal_space.is_object());
         let size = |t: &Texture2d| (t.width(), t.height());
         self.sample(&self.normal_map, batch, scale, sc, live_n, Tex::Normal, false);
         match o.normal_texels {

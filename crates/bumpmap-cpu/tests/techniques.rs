@@ -3,6 +3,7 @@
 
 use std::path::{Path, PathBuf};
 
+use bumpmap_core::BumpMap;
 use bumpmap_core::scenes::{self, SceneKind, SceneParams};
 use bumpmap_core::technique::{KilgardOptions, Normalize, SinglePassOptions, Technique};
 use bumpmap_cpu::{Framebuffer, render};
@@ -135,7 +136,7 @@ fn object_space_lighting_matches_tangent_space_on_the_torus() {
     let tangent = render_scene(SceneKind::Torus, SceneParams::default(), SinglePassOptions::default(), 160);
     let object = render_scene(
         SceneKind::Torus,
-        SceneParams { object_space: true, ..Default::default() },
+        SceneParams { bump_map: BumpMap::ObjectSpace, ..Default::default() },
         SinglePassOptions::default(),
         160,
     );

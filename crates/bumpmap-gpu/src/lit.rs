@@ -10,7 +10,7 @@
 //! It does not hold the model itself: that is `shading.wgsl` (tested against
 //! `bumpmap_core::shading::shade`).
 
-use bumpmap_core::scene::{Attenuation, NormalSpace, NormalTexels};
+use bumpmap_core::scene::{Attenuation, NormalTexels};
 use bumpmap_core::shading::LitTerms;
 use bumpmap_core::technique::{Gloss, HalfAngle, LitProgram, Normalize, SelfShadow, SpecularShadow};
 
@@ -52,7 +52,7 @@ impl LitVariant {
                 Gloss::DecalAlpha => 1,
                 Gloss::Map(_) => 2,
             },
-            object_space: matches!(p.normal_space, NormalSpace::Object { .. }),
+            object_space: p.normal_space.is_object(),
             attenuation: match p.light.attenuation {
                 Attenuation::None => 0,
                 Attenuation::Polynomial { .. } => 1,
@@ -101,10 +101,7 @@ pub fn uniforms(p: &LitProgram) -> Vec<u8> {
         Some(s) => [s.cutoff_degrees.to_radians().cos(), s.exponent, 0.0, 0.0],
         None => [0.0; 4],
     };
-    let scale = match p.normal_space {
-        NormalSpace::Tangent => [1.0, 1.0],
-        NormalSpace::Object { scale } => [scale.x, scale.y],
-    };
+    let scale = p.normal_space.texcoord_scale().to_array();
     let texels = match p.normal_texels {
         NormalTexels::UnitVector => [0.0; 4],
         NormalTexels::Offset { range } => [range, 0.0, 0.0, 0.0],

@@ -14,6 +14,7 @@ mod common;
 
 use std::sync::Arc;
 
+use bumpmap_core::BumpMap;
 use bumpmap_core::combiners::Precision;
 use bumpmap_core::scene::{Attenuation, SceneLight, Spot};
 use bumpmap_core::scenes::{self, SceneKind, SceneParams};
@@ -129,7 +130,7 @@ fn the_single_pass_model_matches_the_cpu_feature_by_feature() {
             single(SinglePassOptions::default()),
         );
     }
-    let object = SceneParams { object_space: true, ..Default::default() };
+    let object = SceneParams { bump_map: BumpMap::ObjectSpace, ..Default::default() };
     check(&mut gpu, "gpu_sp_object_space", SceneKind::Torus, object, single(SinglePassOptions::default()));
     let variants = [
         ("cube", SinglePassOptions { normalize: Normalize::Cube, ..Default::default() }),
@@ -213,12 +214,20 @@ fn embossing_matches_the_cpu_forced_and_unforced() {
 fn an_offset_map_matches_the_cpu() {
     // Kilgard Eq. 7 per fragment after filtering: lit.wgsl's offset_to_normal against the core's.
     let Some(mut gpu) = common::renderer() else { return };
-    let params = SceneParams { offset_map: true, ..Default::default() };
+    let params = SceneParams { bump_map: BumpMap::Offset, ..Default::default() };
     check(&mut gpu, "gpu_offset_map", SceneKind::Torus, params, single(SinglePassOptions::default()));
     // Peercy Figure 2: the same texels as slopes, Blinn per fragment from the interpolated
     // surface derivatives (var::PARAM_FRAME), on the sheared patch.
-    let params = SceneParams { per_pixel_blinn: true, ..Default::default() };
+    let params = SceneParams { bump_map: BumpMap::Derivatives, ..Default::default() };
     check(&mut gpu, "gpu_per_pixel_blinn", SceneKind::Patch, params, single(SinglePassOptions::default()));
+    // Peercy Figure 6: a tangent-space map made for the patch, addressed across it once
+    // (NormalSpace::SurfaceTangent's coordinate scale), lit in tangent space.
+    let params = SceneParams {
+        bump_map: BumpMap::SurfaceDependent,
+        repeat: Some(glam::Vec2::new(2.0, 1.0)),
+        ..Default::default()
+    };
+    check(&mut gpu, "gpu_surface_dependent", SceneKind::Patch, params, single(SinglePassOptions::default()));
 }
 
 #[test]

@@ -5,6 +5,8 @@
 //! ∂F/∂v uses the same taps transposed. Derivatives point toward increasing texel index (the
 //! next column, the next row: Kilgard Appendix E's "right" and "up").
 
+use crate::HeightField;
+
 /// Which finite difference approximates the partial derivatives of the height field.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default)]
 pub enum Kernel {
@@ -82,7 +84,8 @@ impl Kernel {
             Kernel::Prewitt3 => separable(&[-1.0, 0.0, 1.0], &[1.0, 1.0, 1.0]),
             Kernel::Scharr3 => separable(&[-1.0, 0.0, 1.0], &[3.0, 10.0, 3.0]),
             Kernel::Gaussian7 => {
-                let g: Vec<f32> = (-3..=3).map(|i: i32| (-(i * i) as f32 / 2.0).exp()).collect();
+                let g = gaussian7();
+                // x·g(x) ∝ −g′(x): the derivative of the same Gaussian that smooths across.
                 let d: Vec<f32> = (-3..=3).zip(&g).map(|(i, g)| i as f32 * g).collect();
                 separable(&d, &g)
             }
@@ -93,6 +96,45 @@ impl Kernel {
     pub fn taps_dv(self) -> Vec<Tap> {
         self.taps_du().into_iter().map(|t| Tap { dx: t.dy, dy: t.dx, weight: t.weight }).collect()
     }
+}
+
+/// The seven samples of the Gaussian `exp(−x²/2)` (σ = 1 texel) at x = −3…3, unnormalized:
+/// the smoothing of [`Kernel::Gaussian7`] and of [`gaussian7_smoothed`].
+fn gaussian7() -> [f32; 7] {
+    std::array::from_fn(|i| (-((i as f32 - 3.0).powi(2)) / 2.0).exp())
+}
+
+/// The heights as Peercy's 7×7 derivative of a Gaussian sees them: `field` convolved with the
+/// same Gaussian (σ = 1 texel, seven taps a side, normalized) along both axes, edges as `wrap`
+/// says. Differentiating the result (for instance by a C¹ interpolant, as the reference
+/// renderer does) measures what [`Kernel::Gaussian7`] measures on `field`, up to the sampling of
+/// the two kernels: a ground truth for techniques that share that kernel, free of the
+/// kernel's own smoothing. With `Wrap::Border` the edges clamp.
+pub fn gaussian7_smoothed(field: &HeightField, wrap: Wrap) -> HeightField {
+    let g = gaussian7();
+    let sum: f32 = g.iter().sum();
+    let (w, h) = (field.width(), field.height());
+    let heights = field.to_f32();
+    let pass = |src: &[f32], along_x: bool| -> Vec<f32> {
+        (0..w * h)
+            .map(|i| {
+                let (x, y) = ((i % w) as i64, (i / w) as i64);
+                (-3..=3i64)
+                    .map(|k| {
+                        let at = if along_x {
+                            y as usize * w + wrap.index(x + k, w)
+                        } else {
+                            wrap.index(y + k, h) * w + x as usize
+                        };
+                        g[(k + 3) as usize] * src[at]
+                    })
+                    .sum::<f32>()
+                    / sum
+            })
+            .collect()
+    };
+    let smoothed = pass(&pass(&heights, true), false);
+    HeightField::new(w, h, smoothed).expect("same size as the field")
 }
 
 /// Outer product of a centred derivative row and a centred smoothing column, normalized so a
@@ -162,6 +204,44 @@ mod tests {
             assert!(k.taps_du().iter().all(|t| t.dx.abs() <= k.radius() && t.dy.abs() <= k.radius()));
             assert_eq!(Kernel::parse(k.name()), Some(k));
         }
+    }
+
+    #[test]
+    fn differentiating_the_smoothed_field_measures_what_gaussian7_measures() {
+        // A field with detail at every scale the kernel sees: a soft step (as the pinwheel's
+        // blade edges) plus ripples. Gaussian7 on the field against central differences (what a
+        // Catmull-Rom interpolant's derivative is at texel centres) on the smoothed field.
+        let (w, h) = (64usize, 48usize);
+        let f =
+            |x: f32, y: f32| (0.5 + 0.5 * ((x - 20.0) / 1.5).tanh()) * 0.7 + 0.1 * (x * 0.4).sin() * (y * 0.3).cos();
+        let field = HeightField::from_fn(w, h, |x, y| f(x as f32, y as f32));
+        let smoothed = gaussian7_smoothed(&field, Wrap::Clamp);
+        let (mut worst, mut unsmoothed_worst, mut peak) = (0.0f32, 0.0f32, 0.0f32);
+        for y in 8..h - 8 {
+            for x in 8..w - 8 {
+                let kernel: f32 = Kernel::Gaussian7
+                    .taps_du()
+                    .iter()
+                    .map(|t| t.weight * field.get((x as i32 + t.dx) as usize, (y as i32 + t.dy) as usize))
+                    .sum();
+                let central = (smoothed.get(x + 1, y) - smoothed.get(x - 1, y)) / 2.0;
+                worst = worst.max((kernel - central).abs());
+                let unsmoothed = (field.get(x + 1, y) - field.get(x - 1, y)) / 2.0;
+                unsmoothed_worst = unsmoothed_worst.max((kernel - unsmoothed).abs());
+                peak = peak.max(kernel.abs());
+            }
+        }
+        // The two operators differ only in how they sample the Gaussian's derivative (x·g(x)
+        // against (g(x−1) − g(x+1))/2): 6.6 % of the steepest slope at worst, on the step,
+        // where the unsmoothed field's central difference misses by more than twice as much.
+        assert!(worst < 0.1 * peak, "worst difference {worst} against a peak slope of {peak}");
+        assert!(unsmoothed_worst > 2.0 * worst, "unsmoothed {unsmoothed_worst} against smoothed {worst}");
+        // Smoothing keeps a constant field and the mean of a tiling one.
+        let flat = gaussian7_smoothed(&HeightField::from_fn(9, 5, |_, _| 0.25), Wrap::Repeat);
+        assert!(flat.to_f32().iter().all(|&v| (v - 0.25).abs() < 1e-6));
+        let mean = |f: &HeightField| f.to_f32().iter().sum::<f32>() / (w * h) as f32;
+        let tiled = gaussian7_smoothed(&field, Wrap::Repeat);
+        assert!((mean(&tiled) - mean(&field)).abs() < 1e-5);
     }
 
     #[test]

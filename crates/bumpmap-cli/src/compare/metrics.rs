@@ -61,11 +61,7 @@ pub fn score(reference: &LinearImage, ref_rgb: &[u8], test: &Rgba8Image) -> (Sco
     let (w, h) = (reference.width as u32, reference.height as u32);
     let (rmse, psnr, bias) = pixel_errors(&reference.pixels, &linear(test));
     let test_rgb = rgb8(test);
-    let error = nv_flip::flip(
-        nv_flip::FlipImageRgb8::with_data(w, h, ref_rgb),
-        nv_flip::FlipImageRgb8::with_data(w, h, &test_rgb),
-        PIXELS_PER_DEGREE,
-    );
+    let error = flip_error(w, h, ref_rgb, &test_rgb);
     let flip_mean = nv_flip::FlipPool::from_image(&error).mean() as f64;
     let heat = error.apply_color_lut(&nv_flip::magma_lut()).to_vec();
     let gray = |rgb: &[u8]| {
@@ -81,6 +77,23 @@ pub fn score(reference: &LinearImage, ref_rgb: &[u8], test: &Rgba8Image) -> (Sco
     .map(|s| s.score)
     .unwrap_or(f64::NAN);
     (Scores { rmse, psnr, bias, flip_mean, ssim }, heat)
+}
+
+/// FLIP's per-pixel error of `test` against `reference`, both `w`×`h` RGB8.
+fn flip_error(w: u32, h: u32, reference: &[u8], test: &[u8]) -> nv_flip::FlipImageFloat {
+    nv_flip::flip(
+        nv_flip::FlipImageRgb8::with_data(w, h, reference),
+        nv_flip::FlipImageRgb8::with_data(w, h, test),
+        PIXELS_PER_DEGREE,
+    )
+}
+
+/// Mean FLIP of `test` against `reference`, two 8-bit images of one size: how visible their
+/// difference is.
+pub fn flip_mean(reference: &Rgba8Image, test: &Rgba8Image) -> f64 {
+    assert_eq!((reference.width, reference.height), (test.width, test.height), "images of one size");
+    let error = flip_error(reference.width as u32, reference.height as u32, &rgb8(reference), &rgb8(test));
+    nv_flip::FlipPool::from_image(&error).mean() as f64
 }
 
 #[cfg(test)]
@@ -103,5 +116,8 @@ mod tests {
         assert!((s.bias - 0.2).abs() < 0.003 && (s.rmse - 0.2).abs() < 0.003, "{s:?}");
         assert!((s.psnr - 20.0 * 5f64.log10()).abs() < 0.2 && s.flip_mean > 0.05, "{s:?}");
         assert_eq!(heat.len(), 16 * 16 * 3);
+        // The same FLIP between two 8-bit images.
+        assert!(flip_mean(&same, &same) < 1e-3);
+        assert!((flip_mean(&same, &brighter) - s.flip_mean).abs() < 1e-3, "{}", flip_mean(&same, &brighter));
     }
 }

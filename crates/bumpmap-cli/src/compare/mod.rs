@@ -1,7 +1,8 @@
 //! `bumpmap compare`: every technique that can render a scene, measured against the reference,
 //! with the studies the papers make in pictures made into numbers and plots.
 //!
-//! - this module: the technique catalogue, the renders and the studies, all files or none;
+//! - this module: the technique catalogue and the renders, all files or none;
+//! - [`studies`]: the golf ball (Kilgard §2.4.2), embossing (§3.1) and Peercy's Figures 5–7;
 //! - [`metrics`]: RMSE, PSNR, bias, FLIP and SSIM against the reference;
 //! - [`report`]: `results.json`, the plots (SVG) and `report.html`.
 //!
@@ -10,10 +11,12 @@
 
 mod metrics;
 mod report;
+mod studies;
 
 use std::path::Path;
 use std::time::Instant;
 
+use bumpmap_core::BumpMap;
 use bumpmap_core::scenes::{self, SceneKind, SceneParams};
 use bumpmap_core::technique::{BackFacing, EmbossOptions, KilgardOptions, Normalize, SinglePassOptions, Technique};
 use bumpmap_io::atomic::FileSet;
@@ -21,7 +24,6 @@ use bumpmap_io::image_file::{PngLayout, save_png_into};
 use bumpmap_io::{Channel, HeightSource};
 use bumpmap_math::{HeightField, MipMode, NormalMapOptions, Rgba8Image};
 use bumpmap_reference::{LinearImage, ReferenceOptions};
-use glam::Vec3;
 use indicatif::{ProgressBar, ProgressStyle};
 
 use crate::args::CompareArgs;
@@ -30,6 +32,7 @@ use crate::error::CliError;
 use crate::render::{core_err, reference_err, rgb};
 
 pub use metrics::Scores;
+pub use studies::{EmbossStudy, PEERCY, PeercyStudy};
 
 /// The techniques `compare` knows, in the report's order: name and what it is, in the papers'
 /// words.
@@ -52,7 +55,7 @@ pub const TECHNIQUES: [(&str, &str); 12] = [
     ),
     (
         "peercy-dependent",
-        "Peercy's surface-dependent map (Eq. 3–6, Figures 3 and 6): Blinn's normal per texel from the surface's exact ∂P/∂u, ∂P/∂v and the same 7×7 kernel, in object space",
+        "Peercy's surface-dependent map (Eq. 3–6, Figures 3 and 6): Blinn's normal per texel from the surface's exact ∂P/∂u, ∂P/∂v and the same 7×7 kernel, in each texel's tangent frame, lit exactly as peercy-independent",
     ),
     (
         "emboss",
@@ -116,28 +119,12 @@ pub struct Results {
     pub golf_ball_side: Vec<(f32, f64, f64, f64)>,
     /// Kilgard §3.1's embossing studies.
     pub emboss: EmbossStudy,
+    /// Peercy's Figures 5–7 on his patch.
+    pub peercy: PeercyStudy,
     /// Total milliseconds of the command.
     pub total_millis: f64,
 }
 
-/// Kilgard §3.1 measured, on the brick wall without specular (embossing is diffuse only), 96²,
-/// directional lights.
-pub struct EmbossStudy {
-    /// `(angle of the light from the normal in degrees, emboss RMSE, emboss bias, single-pass
-    /// RMSE, single-pass bias, emboss contrast / reference contrast)`; contrast is the standard
-    /// deviation of the wall's brightness.
-    pub by_angle: Vec<(f32, f64, f64, f64, f64, f64)>,
-    /// `(distance factor, emboss contrast / reference contrast, single-pass contrast / reference
-    /// contrast)` with the light at 45°: embossing's shift is one level-0 texel, so at small mip
-    /// levels the two fetches agree and the bumps vanish.
-    pub by_distance: Vec<(f32, f64, f64)>,
-    /// The sphere lit from the side (half of it turned away from the light): the fraction of the
-    /// image the reference leaves dark (ambient only), and the fraction of those pixels that
-    /// emboss lights with the shift forced to 0 where `L_z ≤ 0`, and without.
-    pub facing_away: (f64, f64, f64),
-}
-
-/// Runs `bumpmap compare`.
 pub fn run(args: &CompareArgs) -> Result<(), CliError> {
     let start = Instant::now();
     let out = &args.output;
@@ -178,7 +165,8 @@ pub fn run(args: &CompareArgs) -> Result<(), CliError> {
         args.techniques.iter().map(|t| t.trim().to_string()).filter(|t| !t.is_empty()).collect()
     };
     let mut backend = Backend::new(args.backend)?;
-    let steps = (wanted.len() + 4) as u64;
+    // The reference, each technique, convergence and the three studies.
+    let steps = (wanted.len() + 5) as u64;
     let bar = ProgressBar::new(steps)
         .with_style(ProgressStyle::with_template("{bar:40} {pos}/{len} {elapsed} {wide_msg}").expect("valid template"));
 
@@ -209,9 +197,14 @@ pub fn run(args: &CompareArgs) -> Result<(), CliError> {
     let convergence = convergence(&scene, size, spp, &reference)?;
     bar.inc(1);
     bar.set_message("golf ball at a distance (Kilgard §2.4.2)");
-    let (golf_ball, golf_ball_side) = (golf_ball_study(&mut backend, true)?, golf_ball_study(&mut backend, false)?);
+    let golf_ball = studies::golf_ball_study(&mut backend, true)?;
+    let golf_ball_side = studies::golf_ball_study(&mut backend, false)?;
+    bar.inc(1);
     bar.set_message("embossing (Kilgard §3.1)");
-    let emboss = emboss_study(&mut backend)?;
+    let emboss = studies::emboss_study(&mut backend)?;
+    bar.inc(1);
+    bar.set_message("Peercy's Figures 5–7 on the stretched patch");
+    let peercy = studies::peercy_study(&mut backend)?;
     bar.inc(1);
     bar.finish_and_clear();
 
@@ -227,6 +220,7 @@ pub fn run(args: &CompareArgs) -> Result<(), CliError> {
         golf_ball,
         golf_ball_side,
         emboss,
+        peercy,
         total_millis: start.elapsed().as_secs_f64() * 1e3,
     };
     let written = write(out, &results, &inputs)?;
@@ -261,7 +255,7 @@ fn render_technique(
         "single-pass" => Technique::SinglePass(single),
         "single-pass-cube" => Technique::SinglePass(SinglePassOptions { normalize: Normalize::Cube, ..single }),
         "object-space" => {
-            params.object_space = true;
+            params.bump_map = BumpMap::ObjectSpace;
             Technique::SinglePass(single)
         }
         "mip-renormalized" => {
@@ -274,17 +268,16 @@ fn render_technique(
         }
         "peercy-dependent" => {
             params.normal_map.kernel = bumpmap_math::Kernel::Gaussian7;
-            params.object_space = true;
-            params.object_map = bumpmap_core::scenes::ObjectMap::Blinn;
+            params.bump_map = BumpMap::SurfaceDependent;
             Technique::SinglePass(single)
         }
         "peercy-blinn" => {
             params.normal_map.kernel = bumpmap_math::Kernel::Gaussian7;
-            params.per_pixel_blinn = true;
+            params.bump_map = BumpMap::Derivatives;
             Technique::SinglePass(single)
         }
         "offset-map" => {
-            params.offset_map = true;
+            params.bump_map = BumpMap::Offset;
             Technique::SinglePass(single)
         }
         "emboss" => Technique::Emboss(EmbossOptions::default()),
@@ -330,138 +323,6 @@ fn convergence(
         .collect())
 }
 
-/// Kilgard §2.4.2: a dimpled sphere (a golf ball) moving away. Averaging the dimples' normals
-/// shortens them; mips that keep the length in alpha dim the ball as the reference does, mips
-/// that renormalize stay too bright. The brightness of the whole frame divided by the number of
-/// pixels the reference's ball touches: a sum, so the reference's antialiased edge pixels and
-/// a rasterizer's all-or-nothing ones count the same area.
-///
-/// `headlight` puts a directional light behind the eye, where Kilgard's argument holds (few of a
-/// footprint's normals face away from the light); otherwise the sphere's own light, from the
-/// side, where clamping N·L at 0 makes the length factor a lower bound (the mean of clamped
-/// dot products is at least the clamped dot product of the mean) and it comes out too dark.
-fn golf_ball_study(backend: &mut Backend, headlight: bool) -> Result<Vec<(f32, f64, f64, f64)>, CliError> {
-    const SIZE: usize = 96;
-    let near = Vec3::new(0.0, -5.0, 1.5);
-    let lights = if headlight {
-        vec![bumpmap_core::scene::SceneLight::white(bumpmap_math::lighting::Light::Directional(near.normalize()))]
-    } else {
-        Vec::new()
-    };
-    let base = SceneParams {
-        lights,
-        height_field: bumpmap_math::HeightPreset::Dimples.render(256, 256),
-        normal_map: NormalMapOptions { scale: 12.0, ..Default::default() },
-        default_decal: false,
-        specular: Vec3::ZERO,
-        ..Default::default()
-    };
-    let mut rows = Vec::new();
-    for factor in [1.0f32, 2.0, 4.0, 8.0] {
-        let params = SceneParams { eye: Some(near * factor), ..base.clone() };
-        let scene = scenes::build(&SceneKind::Sphere, &params).map_err(core_err)?;
-        let reference = reference_image(&scene, SIZE, 64)?;
-        let covered: Vec<bool> = reference.pixels.iter().map(|c| c.max_element() > 0.0).collect();
-        let n = covered.iter().filter(|&&c| c).count().max(1) as f64;
-        let mean = |pixels: &[Vec3]| pixels.iter().map(|p| (p.x + p.y + p.z) as f64 / 3.0).sum::<f64>() / n;
-        let mut technique_mean = |mode| -> Result<f64, CliError> {
-            let scene = scenes::build(&SceneKind::Sphere, &SceneParams { mip_mode: mode, ..params.clone() })
-                .map_err(core_err)?;
-            let frame =
-                backend.render(&scene, &Technique::SinglePass(SinglePassOptions::default()), SIZE, SIZE, false)?;
-            Ok(mean(&metrics::linear(&frame.image)))
-        };
-        let length = technique_mean(MipMode::LengthInAlpha)?;
-        let renormalized = technique_mean(MipMode::Renormalize)?;
-        rows.push((factor, mean(&reference.pixels), length, renormalized));
-    }
-    Ok(rows)
-}
-
-/// The pixels the reference covers whose eight neighbours it covers too: the surface without
-/// its antialiased edge.
-fn interior(reference: &LinearImage) -> Vec<bool> {
-    let (w, h) = (reference.width, reference.height);
-    let covered = |x: usize, y: usize| reference.pixels[y * w + x].max_element() > 0.0;
-    (0..w * h)
-        .map(|i| {
-            let (x, y) = (i % w, i / w);
-            x > 0 && y > 0 && x + 1 < w && y + 1 < h && (0..9).all(|k| covered(x + k % 3 - 1, y + k / 3 - 1))
-        })
-        .collect()
-}
-
-/// Mean and standard deviation of the brightness of `pixels` where `mask` is set.
-fn brightness_stats(pixels: &[Vec3], mask: &[bool]) -> (f64, f64) {
-    let values: Vec<f64> =
-        pixels.iter().zip(mask).filter(|(_, m)| **m).map(|(p, _)| (p.x + p.y + p.z) as f64 / 3.0).collect();
-    let n = values.len().max(1) as f64;
-    let mean = values.iter().sum::<f64>() / n;
-    (mean, (values.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / n).sqrt())
-}
-
-/// [`EmbossStudy`]: the wall at six light angles and four distances, the sphere lit from the side.
-fn emboss_study(backend: &mut Backend) -> Result<EmbossStudy, CliError> {
-    use bumpmap_core::scene::SceneLight;
-    use bumpmap_math::lighting::Light;
-    const SIZE: usize = 96;
-    let directional = |degrees: f32| {
-        let a = degrees.to_radians();
-        vec![SceneLight::white(Light::Directional(Vec3::new(a.sin(), 0.0, a.cos())))]
-    };
-    // No decal, so brightness varies with the bumps alone.
-    let base = SceneParams { specular: Vec3::ZERO, default_decal: false, ..Default::default() };
-    let forced = Technique::Emboss(EmbossOptions::default());
-    let single = Technique::SinglePass(SinglePassOptions::default());
-    // Renders the reference and the techniques of `params` on `kind`: the reference, then each.
-    let mut run = |kind: &SceneKind, params: &SceneParams, techniques: &[&Technique]| {
-        let scene = scenes::build(kind, params).map_err(core_err)?;
-        let reference = reference_image(&scene, SIZE, 16)?;
-        let mut images = Vec::new();
-        for t in techniques {
-            images.push(metrics::linear(&backend.render(&scene, t, SIZE, SIZE, false)?.image));
-        }
-        Ok::<_, CliError>((reference, images))
-    };
-    let mut by_angle = Vec::new();
-    for degrees in [0.0f32, 15.0, 30.0, 45.0, 60.0, 75.0] {
-        let params = SceneParams { lights: directional(degrees), ..base.clone() };
-        let (reference, images) = run(&SceneKind::Wall, &params, &[&forced, &single])?;
-        let mask = interior(&reference);
-        let (emboss_rmse, _, emboss_bias) = metrics::pixel_errors(&reference.pixels, &images[0]);
-        let (single_rmse, _, single_bias) = metrics::pixel_errors(&reference.pixels, &images[1]);
-        let contrast = brightness_stats(&images[0], &mask).1 / brightness_stats(&reference.pixels, &mask).1.max(1e-9);
-        by_angle.push((degrees, emboss_rmse, emboss_bias, single_rmse, single_bias, contrast));
-    }
-    let mut by_distance = Vec::new();
-    for factor in [1.0f32, 2.0, 4.0, 8.0] {
-        let params =
-            SceneParams { lights: directional(45.0), eye: Some(Vec3::new(0.0, 0.0, 6.0 * factor)), ..base.clone() };
-        let (reference, images) = run(&SceneKind::Wall, &params, &[&forced, &single])?;
-        let mask = interior(&reference);
-        let reference_contrast = brightness_stats(&reference.pixels, &mask).1.max(1e-9);
-        by_distance.push((
-            factor,
-            brightness_stats(&images[0], &mask).1 / reference_contrast,
-            brightness_stats(&images[1], &mask).1 / reference_contrast,
-        ));
-    }
-    let unforced = Technique::Emboss(EmbossOptions { back_facing: BackFacing::Unforced, ..Default::default() });
-    let params = SceneParams { lights: directional(90.0), default_decal: false, ..base.clone() };
-    let (reference, images) = run(&SceneKind::Sphere, &params, &[&forced, &unforced])?;
-    // The dark side: pixels the reference leaves at the ambient term (0.2, white surface). A
-    // pixel there is wrongly lit when it is more than 5 steps of 8 bits brighter.
-    let dark: Vec<bool> =
-        reference.pixels.iter().map(|c| c.max_element() > 0.0 && c.max_element() < 0.2 + 1.5 / 255.0).collect();
-    let lit = |image: &[Vec3]| {
-        let n = dark.iter().filter(|&&d| d).count().max(1) as f64;
-        image.iter().zip(&dark).filter(|(c, d)| **d && c.max_element() > 0.2 + 5.0 / 255.0).count() as f64 / n
-    };
-    let facing_away =
-        (dark.iter().filter(|&&d| d).count() as f64 / (SIZE * SIZE) as f64, lit(&images[0]), lit(&images[1]));
-    Ok(EmbossStudy { by_angle, by_distance, facing_away })
-}
-
 /// Writes every image, heat map, plot, `results.json` and `report.html` into `out`, all or none.
 fn write(out: &Path, results: &Results, inputs: &[&Path]) -> Result<Vec<std::path::PathBuf>, CliError> {
     let mut set = FileSet::new(inputs);
@@ -475,6 +336,17 @@ fn write(out: &Path, results: &Results, inputs: &[&Path]) -> Result<Vec<std::pat
             png(&mut set, &format!("{}.png", o.name), &rgb(&r.image))?;
             png(&mut set, &format!("{}.flip.png", o.name), &r.heat)?;
         }
+    }
+    let study_size = results.peercy.size;
+    for (name, _, image) in &results.peercy.images {
+        save_png_into(
+            &mut set,
+            &out.join(format!("{name}.png")),
+            study_size,
+            study_size,
+            PngLayout::Rgb8,
+            &rgb(image),
+        )?;
     }
     for (name, svg) in report::plots(results) {
         set.write(&out.join(name), |w| std::io::Write::write_all(w, svg.as_bytes()))?;

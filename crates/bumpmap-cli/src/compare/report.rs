@@ -5,7 +5,7 @@
 use plotters::prelude::*;
 use serde_json::{Value, json};
 
-use super::{Results, TECHNIQUES};
+use super::{PEERCY, Results, TECHNIQUES};
 
 /// The numbers, machine-readable: `{"techniques": {NAME: {"rmse", "psnr", "bias", "flip_mean",
 /// "ssim", "millis"}}, "skipped": {NAME: reason}, …}`.
@@ -47,6 +47,18 @@ pub fn json(r: &Results) -> String {
             "facing_away": {"dark_fraction": r.emboss.facing_away.0, "forced_lit_fraction": r.emboss.facing_away.1,
                 "unforced_lit_fraction": r.emboss.facing_away.2},
         },
+        "peercy": {
+            "size": r.peercy.size,
+            "shown_bump_scale": r.peercy.shown_scale,
+            "images": r.peercy.images.iter().map(|(n, _, _)| format!("{n}.png")).collect::<Vec<_>>(),
+            "by_bump_scale": r.peercy.rows.iter().map(|row| {
+                let per = |values: &[f64; 3]| -> serde_json::Map<String, Value> {
+                    PEERCY.iter().zip(values).map(|(n, v)| (n.to_string(), json!(v))).collect()
+                };
+                json!({"bump_scale": row.bump_scale, "rmse_same_slopes": per(&row.rmse_same_slopes),
+                       "rmse_raw_heights": per(&row.rmse_raw_heights), "flip_from_dependent": per(&row.flip_from_dependent)})
+            }).collect::<Vec<_>>(),
+        },
         "total_millis": r.total_millis,
     });
     serde_json::to_string_pretty(&value).expect("a JSON value serializes") + "\n"
@@ -64,6 +76,7 @@ pub fn plots(r: &Results) -> Vec<(&'static str, String)> {
         ("convergence.svg", convergence_plot(r)),
         ("golf_ball.svg", golf_ball_plot(r)),
         ("emboss_angle.svg", emboss_plot(r)),
+        ("peercy.svg", peercy_plot(r)),
     ]
 }
 
@@ -92,7 +105,42 @@ fn emboss_plot(r: &Results) -> String {
                 r.emboss.by_angle.iter().map(|row| (row.0 as f64, if emboss { row.1 } else { row.3 })).collect();
             labelled_line(&mut chart, label, color, points);
         }
-        legend(&mut chart);
+        legend(&mut chart, SeriesLabelPosition::UpperRight);
+        root.present().expect("drawing into a string");
+    }
+    svg
+}
+
+fn peercy_plot(r: &Results) -> String {
+    let mut svg = String::new();
+    {
+        let root = SVGBackend::with_string(&mut svg, (560, 360)).into_drawing_area();
+        root.fill(&WHITE).expect("drawing into a string");
+        let rows = &r.peercy.rows;
+        let values = rows.iter().flat_map(|row| row.rmse_same_slopes);
+        let (lo, hi) = values.fold((f64::MAX, 0.0f64), |(lo, hi), v| (lo.min(v), hi.max(v)));
+        let (lo, hi) = (lo.min(hi) * 0.85, hi.max(1e-3) * 1.2);
+        let smax = rows.last().map_or(4.0, |row| row.bump_scale as f64) * 1.15;
+        let mut chart = ChartBuilder::on(&root)
+            .caption("Peercy Figures 5–7: error by bump scale (same f_u, f_v)", ("sans-serif", 16))
+            .margin(12)
+            .x_label_area_size(36)
+            .y_label_area_size(56)
+            .build_cartesian_2d(0.5f64..smax, lo..hi)
+            .expect("valid ranges");
+        chart
+            .configure_mesh()
+            .light_line_style(TRANSPARENT)
+            .x_desc("bump scale (height of a unit step in texels)")
+            .y_desc("RMSE against the reference")
+            .draw()
+            .expect("mesh");
+        let labels = ["independent (Fig. 7)", "dependent (Fig. 6)", "per-pixel Blinn (Fig. 5)"];
+        for (i, (label, color)) in labels.into_iter().zip([RED, BLUE, BLACK]).enumerate() {
+            let points = rows.iter().map(|row| (row.bump_scale as f64, row.rmse_same_slopes[i])).collect();
+            labelled_line(&mut chart, label, color, points);
+        }
+        legend(&mut chart, SeriesLabelPosition::UpperLeft);
         root.present().expect("drawing into a string");
     }
     svg
@@ -113,11 +161,14 @@ fn labelled_line<DB: DrawingBackend, CT: CoordTranslate<From = (f64, f64)>>(
         .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], color.stroke_width(2)));
 }
 
-/// The legend of the lines [`labelled_line`] drew, in the upper right corner.
-fn legend<'a, DB: DrawingBackend + 'a, CT: CoordTranslate>(chart: &mut ChartContext<'a, DB, CT>) {
+/// The legend of the lines [`labelled_line`] drew, at `position`.
+fn legend<'a, DB: DrawingBackend + 'a, CT: CoordTranslate>(
+    chart: &mut ChartContext<'a, DB, CT>,
+    position: SeriesLabelPosition,
+) {
     chart
         .configure_series_labels()
-        .position(SeriesLabelPosition::UpperRight)
+        .position(position)
         .border_style(BLACK)
         .background_style(WHITE)
         .draw()
@@ -182,7 +233,7 @@ fn golf_ball_plot(r: &Results) -> String {
             let points = r.golf_ball.iter().map(|row| (row.0 as f64, [row.1, row.2, row.3][column - 1])).collect();
             labelled_line(&mut chart, label, color, points);
         }
-        legend(&mut chart);
+        legend(&mut chart, SeriesLabelPosition::UpperRight);
         root.present().expect("drawing into a string");
     }
     svg
@@ -252,6 +303,30 @@ pub fn html(r: &Results) -> String {
         .iter()
         .map(|(d, e, s)| format!("<tr><td>{d}×</td><td>{e:.3}</td><td>{s:.3}</td></tr>"))
         .collect();
+    let peercy_rows: String = r
+        .peercy
+        .rows
+        .iter()
+        .map(|row| {
+            let cells = |v: &[f64; 3]| v.iter().map(|x| format!("<td>{x:.4}</td>")).collect::<String>();
+            format!(
+                "<tr><td>{}</td>{}{}<td>{:.4}</td><td>{:.4}</td></tr>",
+                row.bump_scale,
+                cells(&row.rmse_same_slopes),
+                cells(&row.rmse_raw_heights),
+                row.flip_from_dependent[2],
+                row.flip_from_dependent[0]
+            )
+        })
+        .collect();
+    let peercy_images: String = r
+        .peercy
+        .images
+        .iter()
+        .map(|(n, caption, _)| {
+            format!("<figure><img src=\"{n}.png\" alt=\"{caption}\"><figcaption>{caption}</figcaption></figure>\n")
+        })
+        .collect();
     let (away_dark, away_forced, away_unforced) =
         (100.0 * r.emboss.facing_away.0, 100.0 * r.emboss.facing_away.1, 100.0 * r.emboss.facing_away.2);
     format!(
@@ -290,6 +365,16 @@ figcaption {{ font-size: 0.85em; max-width: {size}px; }}
 <p>At a distance (light at 45°): embossing's shift is one texel of level 0, so at the small mip levels a distant wall samples, both fetches land on nearly the same filtered height and the bumps vanish; the single pass keeps them.</p>
 <table><tr><th>distance</th><th>emboss contrast</th><th>single-pass contrast</th></tr>{emboss_distances}</table>
 <p>Faces turned away: a sphere lit from the side, half of it away from the light; the reference leaves {away_dark:.1} % of the image at the ambient term. Of those pixels, embossing lights (more than 5 steps above ambient) {away_forced:.1} % with L_x, L_y forced to 0 where L_z ≤ 0, and {away_unforced:.1} % without forcing: the unforced shift keeps lighting bumps on the dark side.</p>
+<h2>Peercy's Figures 5–7 on his patch</h2>
+<p>Peercy's scene: the highly stretched, sheared bicubic patch in 8×8×2 triangles with the pinwheel over it once, {peercy_size}×{peercy_size} pixels, every map made with the paper's 7×7 derivative of a Gaussian and filtered trilinearly. Figure 7 (<b>peercy-independent</b>) lights the surface-independent map of Eq. 8–11, which assumes square texels; Figure 6 (<b>peercy-dependent</b>) lights, in the same way, the map of Eq. 3–6 made per texel from the patch's exact ∂P/∂u, ∂P/∂v; Figure 5 (<b>peercy-blinn</b>) reads f_u, f_v from a texture and makes Blinn's normal per pixel from the interpolated surface derivatives. The paper compares the three with the same f_u, f_v, so the first error columns use a reference made from the heights as that kernel sees them (smoothed by the same Gaussian): what is left is how each implementation applies the slopes. The next columns use the raw heights, adding the kernel's own smoothing (a blade edge one texel wide spread over seven) to all three alike. The last columns are FLIP between Figure 6 and Figures 5 and 7: how visible the difference is.</p>
+<table><tr><th rowspan="2">bump scale</th><th colspan="3">RMSE, same f_u, f_v</th><th colspan="3">RMSE, raw heights</th><th colspan="2">FLIP from Fig. 6</th></tr>
+<tr><th>Fig. 7 indep.</th><th>Fig. 6 dep.</th><th>Fig. 5 Blinn</th><th>Fig. 7 indep.</th><th>Fig. 6 dep.</th><th>Fig. 5 Blinn</th><th>Fig. 5</th><th>Fig. 7</th></tr>
+{peercy_rows}</table>
+<p>Where the slopes are gentle, Figures 5 and 6 are the same image to within a few per cent of their error and both are clearly closer to the reference than Figure 7, as the paper says. With steep slopes (bump scale 4, up to about 56°) Figure 5 falls behind Figure 6: it filters the slopes and builds the normal from their average, while the normal maps average the normals themselves, and the normal of an average slope is steeper than the average of the normals.</p>
+<div class="grid">
+{peercy_images}</div>
+<p>The images: bump scale {peercy_shown}, the reference with the kernel's heights first.</p>
+<p><img src="peercy.svg" alt="Peercy error by bump scale"></p>
 <h2>Techniques</h2>
 <ul>{known}</ul>
 <pre id="loaded"></pre>
@@ -307,5 +392,7 @@ window.addEventListener('load', () => {{
         spp = r.spp,
         backend = escape(&r.backend),
         total = r.total_millis / 1e3,
+        peercy_size = r.peercy.size,
+        peercy_shown = r.peercy.shown_scale,
     )
 }

@@ -14,7 +14,7 @@ use glam::Vec3;
 
 use crate::combiners::{Precision, Scale};
 use crate::error::{CoreError, Feature};
-use crate::scene::{Attenuation, NormalSpace, Scene};
+use crate::scene::{Attenuation, Scene};
 use crate::setups;
 use crate::state::{Blend, PassState, Sampler};
 use crate::technique::{Binding, CombinerProgram, Pass, Program, TextureUnit};
@@ -73,7 +73,9 @@ pub fn passes(scene: &Scene, options: &EmbossOptions) -> Result<Vec<Pass>, CoreE
     let mut passes = Vec::new();
     for (o, object) in scene.objects.iter().enumerate() {
         let m = &object.material;
-        if m.normal_space != NormalSpace::Tangent {
+        // Embossing reads the height map, which repeats with the texture; only the lighting
+        // space matters.
+        if m.normal_space.is_object() {
             return unsupported(Feature::ObjectSpace);
         }
         let Some(scale) = scale_of(m.bump_scale) else {

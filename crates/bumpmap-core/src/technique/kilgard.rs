@@ -77,8 +77,10 @@ pub fn validate(scene: &Scene) -> Result<(), CoreError> {
     let unsupported = |feature| Err(CoreError::Unsupported { technique: NAME, feature });
     for object in &scene.objects {
         let m = &object.material;
-        if m.normal_space != NormalSpace::Tangent {
-            return unsupported(Feature::ObjectSpace);
+        match m.normal_space {
+            NormalSpace::Tangent => {}
+            NormalSpace::SurfaceTangent { .. } => return unsupported(Feature::SurfaceMap),
+            NormalSpace::Object { .. } => return unsupported(Feature::ObjectSpace),
         }
         if m.normal_texels != crate::scene::NormalTexels::UnitVector {
             return unsupported(Feature::OffsetMap);

@@ -179,7 +179,7 @@ impl LitProgram {
     pub fn varyings_read(&self) -> usize {
         if matches!(self.normal_texels, crate::scene::NormalTexels::Derivatives { .. }) {
             var::PARAM_FRAME + 3
-        } else if matches!(self.normal_space, NormalSpace::Object { .. }) {
+        } else if self.normal_space.is_object() {
             var::N + 3
         } else if self.light.spot.is_some() {
             var::PROJ + 3
