@@ -448,6 +448,15 @@ pub fn parse_pair(s: &str) -> Result<(f32, f32), String> {
     }
 }
 
+/// Texture repeats `S,T`: two finite numbers, neither 0 (a map made for the surface is addressed
+/// with 1/repeat) and neither beyond ±1024 (texture coordinates stay well inside single
+/// precision's whole numbers).
+pub fn parse_repeat(s: &str) -> Result<(f32, f32), String> {
+    let (a, b) = parse_pair(s)?;
+    let ok = |v: f32| v != 0.0 && v.abs() <= 1024.0;
+    if ok(a) && ok(b) { Ok((a, b)) } else { Err(format!("repeats must be non-zero and within ±1024, got '{s}'")) }
+}
+
 /// The largest image side `render` and `bench render` take (the CPU framebuffer's limit on
 /// the pixel count applies as well).
 pub const MAX_SIDE: usize = 16384;

@@ -86,7 +86,7 @@ pub fn core_err(e: CoreError) -> CliError {
         Feature::BumpScale(s) => format!("--bump-scale {s} (its combiners scale by 1, 2 or 4)"),
         Feature::HeightMap => "a scene without its height field".into(),
         Feature::OffsetMap => "an offset map (its combiners cannot renormalize N + D per pixel)".into(),
-        Feature::SurfaceMap => "a normal map made for one surface (its texture units repeat the map)".into(),
+        Feature::SurfaceMap => "a normal map made for one surface (its passes read every texture with the repeating coordinates)".into(),
     }
     };
     match e {
@@ -94,6 +94,9 @@ pub fn core_err(e: CoreError) -> CliError {
             "--technique {technique} cannot do {}: the paper's combiners have no room for it; use --technique single-pass",
             flag(&feature)
         )),
+        CoreError::MapNeedsSurface(BumpMap::ObjectSpace) => CliError::Render(
+            "--space object needs a built-in surface (the map is made from its exact frames), not a mesh".into(),
+        ),
         CoreError::GlossNeedsDecal => CliError::Render(
             "--gloss decal-alpha needs a decal (--decal FILE, or the bricks height field's own)".into(),
         ),

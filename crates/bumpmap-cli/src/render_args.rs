@@ -6,7 +6,7 @@ use std::path::PathBuf;
 
 use clap::{Args, ValueEnum};
 
-use crate::args::{ObjVArg, parse_counts, parse_pair, parse_side, parse_vec3};
+use crate::args::{ObjVArg, parse_counts, parse_pair, parse_repeat, parse_side, parse_vec3};
 
 /// What is drawn: the geometry, the height field and decal, the texture layout.
 #[derive(Args, Debug, Clone)]
@@ -30,8 +30,8 @@ pub struct SceneGroup {
     /// Quads along u and v (default: the scene's; torus 128,64)
     #[arg(long, value_parser = parse_counts)]
     pub tessellation: Option<(usize, usize)>,
-    /// Texture repeats along s and t (default: the scene's; torus 6,2); negative mirrors
-    #[arg(long, value_parser = parse_pair, allow_hyphen_values = true)]
+    /// Texture repeats along s and t (default: the scene's; torus 6,2); negative mirrors; each non-zero, within ±1024
+    #[arg(long, value_parser = parse_repeat, allow_hyphen_values = true)]
     pub repeat: Option<(f32, f32)>,
     /// single-pass: light in tangent space, or in object space with an object-space normal map made for the surface (built-in surfaces only)
     #[arg(long, value_enum, default_value = "tangent")]

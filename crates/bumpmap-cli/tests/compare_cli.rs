@@ -178,6 +178,11 @@ fn peercys_figures_5_and_6_agree_and_both_beat_figure_7_on_his_patch() {
     let r = compare_at(&dir, "96", &[&["--scene", "wall", "--height-field", "pinwheel"][..], &techniques].concat());
     let (dep, ind) = (rmse(&r, "peercy-dependent"), rmse(&r, "peercy-independent"));
     assert!((dep - ind).abs() < 0.01 * ind, "wall: dependent {dep} vs independent {ind}");
+    // …and they are the lit wall, not two equally black images.
+    for name in ["peercy-dependent", "peercy-independent"] {
+        let img = image::open(dir.join("cmp").join(format!("{name}.png"))).unwrap().to_rgb8();
+        assert!(img.pixels().filter(|p| p.0.iter().any(|&c| c > 40)).count() > 2000, "{name} on the wall is black");
+    }
 
     let rows = r["peercy"]["by_bump_scale"].as_array().unwrap();
     assert_eq!(rows.len(), 3);

@@ -99,6 +99,11 @@ fn bad_options_are_refused_with_clear_messages() {
     // combiners scale by 1, 2 or 4 and take one light.
     let cube = concat!("mesh:", env!("CARGO_MANIFEST_DIR"), "/../bumpmap-io/tests/data/mikktspace/cube.obj");
     refused(&["--technique", "reference", "--scene", cube], "needs a built-in surface");
+    refused(
+        &["--technique", "single-pass", "--space", "object", "--scene", cube],
+        "--space object needs a built-in surface",
+    );
+    refused(&["--technique", "single-pass", "--space", "object", "--repeat", "0,1"], "non-zero");
     refused(&["--technique", "reference", "--spot", "0,0,-1", "--spot-pattern", "bricks"], "--spot-pattern");
     refused(&["--technique", "reference", "--spp", "0"], "0 is not in 1..=4096");
     refused(&["--technique", "reference", "--passes"], "--passes");

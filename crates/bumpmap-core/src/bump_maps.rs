@@ -12,11 +12,12 @@ use glam::{Vec2, Vec3};
 use rayon::prelude::*;
 
 use bumpmap_math::blinn::{displacement_per_unit_height, perturbed_normal};
-use bumpmap_math::surface::{Surface, SurfacePoint};
+use bumpmap_math::surface::Surface;
 use bumpmap_math::{HeightField, MipChain, MipMode, NormalMapOptions, Rgba8Image, Rgba8Mips};
 
 use crate::error::CoreError;
 use crate::scene::{Material, NormalSpace, NormalTexels};
+use crate::scenes::SceneParams;
 
 /// What a material's bump texture holds and how the surface reads it. The techniques the papers
 /// compare differ here; the lighting is the same for all.
@@ -60,35 +61,34 @@ impl BumpMap {
     }
 }
 
-/// The material `base` (whose normal map is `chain`, the tangent-space map of `field`) with
-/// the bump texture `map` for `surface` covered `repeat` times. The offset map of
-/// [`BumpMap::Offset`] and [`BumpMap::Derivatives`] is already in `base`, made once per scene
-/// by [`offset_map`].
+/// The material `base` (whose normal map is `chain`, the tangent-space map of `params`' height
+/// field) with the bump texture `params.bump_map` for `surface` covered `repeat` times. The
+/// offset map of [`BumpMap::Offset`] and [`BumpMap::Derivatives`] is already in `base`, made
+/// once per scene by [`offset_map`].
 pub fn surface_material(
-    map: BumpMap,
+    params: &SceneParams,
     base: &Material,
     surface: &Surface,
     repeat: Vec2,
     chain: &MipChain,
-    field: &HeightField,
-    options: &NormalMapOptions,
 ) -> Material {
     let mut material = base.clone();
-    match (map, base.normal_texels) {
+    match (params.bump_map, base.normal_texels) {
         (BumpMap::Derivatives, NormalTexels::Offset { range }) => {
-            let texel_side = displacement_per_unit_height(surface, repeat, (field.width(), field.height()), 1.0);
-            let scale =
-                Vec2::new(texel_side * repeat.x * field.width() as f32, texel_side * repeat.y * field.height() as f32);
+            let size = (base.normal_map.width(), base.normal_map.height());
+            let scale = displacement_per_slope(surface, repeat, size);
             material.normal_texels = NormalTexels::Derivatives { range, scale };
         }
         (BumpMap::ObjectSpace, _) => {
-            material.normal_map = Arc::new(object_space_normal_map(surface, repeat, chain).to_mips());
+            let map = object_space_normal_map(surface, repeat, chain, params.mip_mode);
+            material.normal_map = Arc::new(map.to_mips());
             material.normal_texels = NormalTexels::UnitVector;
             material.normal_space = NormalSpace::Object { scale: Vec2::ONE / repeat };
         }
         (BumpMap::SurfaceDependent, _) => {
             // The same field and options already made `chain`, so they cannot fail here.
-            let dependent = surface_dependent_normal_map(surface, repeat, field, options)
+            let (field, options) = (&params.height_field, &params.normal_map);
+            let dependent = surface_dependent_normal_map(surface, repeat, field, options, params.mip_mode)
                 .expect("the field and options made the tangent-space chain");
             material.normal_map = Arc::new(dependent.to_mips());
             material.normal_texels = NormalTexels::UnitVector;
@@ -97,6 +97,13 @@ pub fn surface_material(
         _ => {}
     }
     material
+}
+
+/// ∂d/∂u and ∂d/∂v of the displacement per unit of a `size` map's slope (per texel), the map
+/// repeated `repeat` times over `surface`: `ℓ · repeat · size` (`bumpmap_math::blinn`).
+fn displacement_per_slope(surface: &Surface, repeat: Vec2, size: (usize, usize)) -> Vec2 {
+    let texel_side = displacement_per_unit_height(surface, repeat, size, 1.0);
+    texel_side * repeat * Vec2::new(size.0 as f32, size.1 as f32)
 }
 
 /// The size of a map that covers `surface` once where the texture repeats `repeat` times: one
@@ -118,19 +125,11 @@ fn covering_texel(i: usize, (w, h): (usize, usize), repeat: Vec2, (mw, mh): (usi
     (Vec2::new(u, v), x, y)
 }
 
-/// The tangent frame the vertex stage gives `p` on a surface textured `repeat` times:
-/// T along increasing s (turned where `repeat.x < 0`), B = w·(N × T), N.
-fn texture_frame(p: &SurfacePoint, repeat: Vec2) -> (Vec3, Vec3, Vec3) {
-    let (t, b, n) = p.frame();
-    let w_sign = if repeat.x * repeat.y >= 0.0 { 1.0 } else { -1.0 };
-    (if repeat.x >= 0.0 { t } else { -t }, w_sign * b, n)
-}
-
 /// An object-space normal map for `surface` (Peercy §2.1): the tangent-space map's level 0,
 /// repeated `repeat` times as the surface's texture is, with each normal rotated by the
 /// surface's frame at that point. One texel per texel of the repeated tangent-space map (at
-/// most 4096 along each side), with its own mip chain.
-pub fn object_space_normal_map(surface: &Surface, repeat: Vec2, tangent_map: &MipChain) -> MipChain {
+/// most 4096 along each side), with its own mip chain made as `mode` says.
+pub fn object_space_normal_map(surface: &Surface, repeat: Vec2, tangent_map: &MipChain, mode: MipMode) -> MipChain {
     let level = &tangent_map.levels[0];
     let enc = tangent_map.encoding;
     let (w, h) = covering_size(level.width, level.height, repeat);
@@ -139,11 +138,11 @@ pub fn object_space_normal_map(surface: &Surface, repeat: Vec2, tangent_map: &Mi
         .map(|i| {
             let (uv, x, y) = covering_texel(i, (w, h), repeat, (level.width, level.height));
             let (n, _) = level.decode(x, y, enc);
-            let (t, b, nn) = texture_frame(&surface.eval(uv.x, uv.y), repeat);
+            let (t, b, nn) = surface.eval(uv.x, uv.y).texture_frame(repeat);
             (t * n.x + b * n.y + nn * n.z).normalize_or(nn)
         })
         .collect();
-    MipChain::from_normals(w, h, &normals, enc, MipMode::LengthInAlpha)
+    MipChain::from_normals(w, h, &normals, enc, mode)
 }
 
 /// Peercy's surface-dependent map (Eq. 3–6): for each texel of a map covering `surface` once,
@@ -151,34 +150,33 @@ pub fn object_space_normal_map(surface: &Surface, repeat: Vec2, tangent_map: &Mi
 /// centre and the height field's slopes as `options`' kernel measures them, in that texel's
 /// tangent frame (T = ∂P/∂u / |∂P/∂u|, B = N × T, as the vertex stage's), so that it is lit
 /// exactly as the surface-independent map is. One texel per texel of the repeated map (at most
-/// 4096 a side), with its own mip chain.
+/// 4096 a side), with its own mip chain made as `mode` says.
 pub fn surface_dependent_normal_map(
     surface: &Surface,
     repeat: Vec2,
     field: &HeightField,
     options: &NormalMapOptions,
+    mode: MipMode,
 ) -> Result<MipChain, CoreError> {
     // The slopes at 16 bits, so quantizing them is far below the 8-bit map's own step.
     let slopes = bumpmap_math::normalmap::normal_map_level0_texels::<[u16; 4]>(field, options)?;
     let (mw, mh) = (slopes.width, slopes.height);
     let (w, h) = covering_size(mw, mh, repeat);
     // d = ℓ·(scale·F), and the map's texel holds n ∝ (−scale·F_x, −scale·F_y, 1).
-    let texel_side = displacement_per_unit_height(surface, repeat, (mw, mh), 1.0);
+    let per_slope = displacement_per_slope(surface, repeat, (mw, mh));
     let normals: Vec<Vec3> = (0..w * h)
         .into_par_iter()
         .map(|i| {
             let (uv, x, y) = covering_texel(i, (w, h), repeat, (mw, mh));
             let (n, _) = slopes.decode(x, y, options.encoding);
             let (a, b) = (-n.x / n.z.max(1e-4), -n.y / n.z.max(1e-4));
-            let d_u = texel_side * repeat.x * mw as f32 * a;
-            let d_v = texel_side * repeat.y * mh as f32 * b;
             let p = surface.eval(uv.x, uv.y);
-            let perturbed = perturbed_normal(&p, d_u, d_v);
-            let (t, b, nn) = texture_frame(&p, repeat);
+            let perturbed = perturbed_normal(&p, per_slope.x * a, per_slope.y * b);
+            let (t, b, nn) = p.texture_frame(repeat);
             Vec3::new(perturbed.dot(t), perturbed.dot(b), perturbed.dot(nn))
         })
         .collect();
-    Ok(MipChain::from_normals(w, h, &normals, options.encoding, MipMode::LengthInAlpha))
+    Ok(MipChain::from_normals(w, h, &normals, options.encoding, mode))
 }
 
 /// An offset map (Kilgard §2.2, Eq. 6–7): each texel's offset `D = (−s·∂F/∂x, −s·∂F/∂y)` (the
@@ -221,7 +219,8 @@ mod tests {
         let wall = Surface::Wall { width: 4.0, height: 4.0 };
         let repeat = Vec2::new(2.0, 2.0);
         let tangent = MipChain::<[u8; 4]>::from_height(&field, &options(), MipMode::LengthInAlpha).unwrap();
-        let dependent = surface_dependent_normal_map(&wall, repeat, &field, &options()).unwrap();
+        let dependent =
+            surface_dependent_normal_map(&wall, repeat, &field, &options(), MipMode::LengthInAlpha).unwrap();
         let (level, t) = (&dependent.levels[0], &tangent.levels[0]);
         assert_eq!((level.width, level.height), (64, 64));
         for y in 0..64 {
@@ -241,7 +240,7 @@ mod tests {
         let tilt = |ramp_along_x: bool| {
             let field = HeightField::from_fn(64, 64, |x, y| 0.01 * if ramp_along_x { x } else { y } as f32);
             let o = NormalMapOptions { wrap: bumpmap_math::Wrap::Clamp, ..options() };
-            let map = surface_dependent_normal_map(&patch, Vec2::ONE, &field, &o).unwrap();
+            let map = surface_dependent_normal_map(&patch, Vec2::ONE, &field, &o, MipMode::LengthInAlpha).unwrap();
             let (n, _) = map.levels[0].decode(32, 32, o.encoding);
             if ramp_along_x { -n.x / n.z } else { -n.y / n.z }
         };

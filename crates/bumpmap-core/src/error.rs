@@ -55,7 +55,9 @@ impl std::fmt::Display for Feature {
             Feature::BumpScale(s) => write!(f, "a bump scale of {s} (its combiners scale by 1, 2 or 4)"),
             Feature::HeightMap => f.write_str("a material without its height field (a loaded normal map)"),
             Feature::OffsetMap => f.write_str("an offset map (its combiners cannot renormalize N + D per pixel)"),
-            Feature::SurfaceMap => f.write_str("a normal map made for one surface (its texture units repeat the map)"),
+            Feature::SurfaceMap => f.write_str(
+                "a normal map made for one surface (its passes read every texture with the repeating coordinates)",
+            ),
         }
     }
 }

@@ -173,15 +173,7 @@ pub fn build(kind: &SceneKind, params: &SceneParams) -> Result<Scene, CoreError>
     let heights = Arc::new(params.height_field.clone());
     let object = |surface: Surface, tess: (usize, usize), repeat: Vec2, world_from_object: Mat4| {
         let repeat = params.repeat.unwrap_or(repeat);
-        let material = surface_material(
-            params.bump_map,
-            &material,
-            &surface,
-            repeat,
-            &chain,
-            &params.height_field,
-            &params.normal_map,
-        );
+        let material = surface_material(params, &material, &surface, repeat, &chain);
         SceneObject {
             mesh: Arc::new(surface.tessellate(
                 params.tessellation.unwrap_or(tess).0,

@@ -147,6 +147,29 @@ fn object_space_lighting_matches_tangent_space_on_the_torus() {
 }
 
 #[test]
+fn maps_made_for_the_wall_match_its_tangent_space_map_however_the_texture_is_mirrored() {
+    // The wall's texels are squares of the mean side, so the object-space map and Peercy's
+    // surface-dependent map hold the tangent-space map's normals in other frames; a negative
+    // repeat mirrors the texture, and every map must turn with it as the vertex stage's frame does.
+    for (rs, rt) in [(2.0, 2.0), (-2.0, 2.0), (2.0, -2.0), (-2.0, -2.0)] {
+        let params = |bump_map| SceneParams { bump_map, repeat: Some(glam::Vec2::new(rs, rt)), ..Default::default() };
+        let tangent = render_scene(SceneKind::Wall, params(BumpMap::Tangent), SinglePassOptions::default(), 96);
+        // The bricks show: not a flat image that any map would match.
+        let grey: Vec<f64> = tangent.iter().map(|p| p[1] as f64).collect();
+        let mean = grey.iter().sum::<f64>() / grey.len() as f64;
+        let spread = (grey.iter().map(|g| (g - mean).powi(2)).sum::<f64>() / grey.len() as f64).sqrt();
+        assert!(spread > 20.0, "repeat ({rs}, {rt}): the wall is nearly flat (σ {spread})");
+        for map in [BumpMap::ObjectSpace, BumpMap::SurfaceDependent] {
+            let other = render_scene(SceneKind::Wall, params(map), SinglePassOptions::default(), 96);
+            let d = rgb_diffs(&tangent, &other);
+            let mean = d.iter().map(|&x| x as f64).sum::<f64>() / d.len() as f64;
+            // Only resampling differs (nearest level-0 texels, new mips): under a step on average.
+            assert!(mean < 1.0, "repeat ({rs}, {rt}), {map:?}: mean difference {mean}/255");
+        }
+    }
+}
+
+#[test]
 fn attenuation_darkens_with_distance() {
     use bumpmap_core::scene::{Attenuation, SceneLight};
     use bumpmap_math::lighting::Light;

@@ -12,7 +12,8 @@ struct Lit {
     attenuation: vec4<f32>,
     // x: cos(cutoff); y: exponent.
     spot: vec4<f32>,
-    // xy: the object-space map's coordinate scale (1, 1 in tangent space).
+    // xy: the texture-coordinate scale of a map made for the surface (NormalSpace::texcoord_scale;
+    // 1, 1 for a map that repeats with the texture).
     normal_scale: vec4<f32>,
     // x: an offset map's range; yz: the derivatives' scale (NormalTexels::Derivatives).
     texels: vec4<f32>,

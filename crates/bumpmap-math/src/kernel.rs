@@ -4,6 +4,10 @@
 //! `--scale` then means the same thing for every kernel. A kernel is a list of taps for ∂F/∂u;
 //! ∂F/∂v uses the same taps transposed. Derivatives point toward increasing texel index (the
 //! next column, the next row: Kilgard Appendix E's "right" and "up").
+//!
+//! [`gaussian7_smoothed`] gives the heights as the 7×7 derivative of a Gaussian sees them, for a
+//! ground truth that differentiates exactly (the reference renderer) but should share that
+//! kernel's smoothing.
 
 use crate::HeightField;
 
@@ -107,8 +111,9 @@ fn gaussian7() -> [f32; 7] {
 /// The heights as Peercy's 7×7 derivative of a Gaussian sees them: `field` convolved with the
 /// same Gaussian (σ = 1 texel, seven taps a side, normalized) along both axes, edges as `wrap`
 /// says. Differentiating the result (for instance by a C¹ interpolant, as the reference
-/// renderer does) measures what [`Kernel::Gaussian7`] measures on `field`, up to the sampling of
-/// the two kernels: a ground truth for techniques that share that kernel, free of the
+/// renderer does) measures nearly what [`Kernel::Gaussian7`] measures on `field`: the two sample
+/// the Gaussian's derivative differently, which on the pinwheel leaves 9.3 % of the slopes' RMS
+/// (measured in this module's tests). A ground truth for techniques that share that kernel, free of most of the
 /// kernel's own smoothing. With `Wrap::Border` the edges clamp.
 pub fn gaussian7_smoothed(field: &HeightField, wrap: Wrap) -> HeightField {
     let g = gaussian7();
@@ -207,41 +212,44 @@ mod tests {
     }
 
     #[test]
-    fn differentiating_the_smoothed_field_measures_what_gaussian7_measures() {
-        // A field with detail at every scale the kernel sees: a soft step (as the pinwheel's
-        // blade edges) plus ripples. Gaussian7 on the field against central differences (what a
-        // Catmull-Rom interpolant's derivative is at texel centres) on the smoothed field.
-        let (w, h) = (64usize, 48usize);
-        let f =
-            |x: f32, y: f32| (0.5 + 0.5 * ((x - 20.0) / 1.5).tanh()) * 0.7 + 0.1 * (x * 0.4).sin() * (y * 0.3).cos();
-        let field = HeightField::from_fn(w, h, |x, y| f(x as f32, y as f32));
-        let smoothed = gaussian7_smoothed(&field, Wrap::Clamp);
-        let (mut worst, mut unsmoothed_worst, mut peak) = (0.0f32, 0.0f32, 0.0f32);
-        for y in 8..h - 8 {
-            for x in 8..w - 8 {
-                let kernel: f32 = Kernel::Gaussian7
-                    .taps_du()
-                    .iter()
-                    .map(|t| t.weight * field.get((x as i32 + t.dx) as usize, (y as i32 + t.dy) as usize))
-                    .sum();
-                let central = (smoothed.get(x + 1, y) - smoothed.get(x - 1, y)) / 2.0;
+    fn differentiating_the_smoothed_field_measures_nearly_what_gaussian7_measures() {
+        // The pinwheel that Peercy's study uses: blade edges a texel or so wide, the hardest case
+        // for the kernel. Gaussian7 on the field against central differences (what a Catmull-Rom
+        // interpolant's derivative is at texel centres) on the smoothed field, along x.
+        let field = crate::HeightPreset::Pinwheel.render(256, 256);
+        let (w, h) = (field.width(), field.height());
+        let smoothed = gaussian7_smoothed(&field, Wrap::Repeat);
+        let at = |f: &HeightField, x: usize, dx: i32, y: usize, dy: i32| {
+            f.get(Wrap::Repeat.index(x as i64 + dx as i64, w), Wrap::Repeat.index(y as i64 + dy as i64, h))
+        };
+        let taps = Kernel::Gaussian7.taps_du();
+        let (mut worst, mut peak) = (0.0f32, 0.0f32);
+        let (mut diff_sq, mut unsmoothed_sq, mut slope_sq) = (0.0f64, 0.0f64, 0.0f64);
+        for y in 0..h {
+            for x in 0..w {
+                let kernel: f32 = taps.iter().map(|t| t.weight * at(&field, x, t.dx, y, t.dy)).sum();
+                let central = (at(&smoothed, x, 1, y, 0) - at(&smoothed, x, -1, y, 0)) / 2.0;
+                let unsmoothed = (at(&field, x, 1, y, 0) - at(&field, x, -1, y, 0)) / 2.0;
                 worst = worst.max((kernel - central).abs());
-                let unsmoothed = (field.get(x + 1, y) - field.get(x - 1, y)) / 2.0;
-                unsmoothed_worst = unsmoothed_worst.max((kernel - unsmoothed).abs());
                 peak = peak.max(kernel.abs());
+                diff_sq += ((kernel - central) as f64).powi(2);
+                unsmoothed_sq += ((kernel - unsmoothed) as f64).powi(2);
+                slope_sq += (kernel as f64).powi(2);
             }
         }
+        let (rms, unsmoothed_rms) = ((diff_sq / slope_sq).sqrt(), (unsmoothed_sq / slope_sq).sqrt());
         // The two operators differ only in how they sample the Gaussian's derivative (x·g(x)
-        // against (g(x−1) − g(x+1))/2): 6.6 % of the steepest slope at worst, on the step,
-        // where the unsmoothed field's central difference misses by more than twice as much.
-        assert!(worst < 0.1 * peak, "worst difference {worst} against a peak slope of {peak}");
-        assert!(unsmoothed_worst > 2.0 * worst, "unsmoothed {unsmoothed_worst} against smoothed {worst}");
+        // against (g(x−1) − g(x+1))/2). Measured (deterministic): 9.3 % of the slopes' RMS,
+        // 14.6 % of the steepest slope at worst (near the centre, where the blades are
+        // narrowest); without smoothing, central differences miss by 49 % RMS.
+        assert!(rms < 0.1, "RMS difference {rms} of the slopes' RMS");
+        assert!(worst < 0.16 * peak, "worst difference {worst} against a peak slope of {peak}");
+        assert!(unsmoothed_rms > 4.0 * rms, "unsmoothed {unsmoothed_rms} against smoothed {rms}");
         // Smoothing keeps a constant field and the mean of a tiling one.
         let flat = gaussian7_smoothed(&HeightField::from_fn(9, 5, |_, _| 0.25), Wrap::Repeat);
         assert!(flat.to_f32().iter().all(|&v| (v - 0.25).abs() < 1e-6));
-        let mean = |f: &HeightField| f.to_f32().iter().sum::<f32>() / (w * h) as f32;
-        let tiled = gaussian7_smoothed(&field, Wrap::Repeat);
-        assert!((mean(&tiled) - mean(&field)).abs() < 1e-5);
+        let mean = |f: &HeightField| f.to_f32().iter().map(|&v| v as f64).sum::<f64>() / (w * h) as f64;
+        assert!((mean(&smoothed) - mean(&field)).abs() < 1e-5);
     }
 
     #[test]

@@ -28,6 +28,24 @@ impl SurfacePoint {
         let t = (self.dp_du - self.normal * self.normal.dot(self.dp_du)).normalize();
         (t, self.normal.cross(t), self.normal)
     }
+
+    /// The tangent of a texture repeated `repeat` times over the surface (texture coordinates
+    /// `repeat ⊙ (u, v)`), as glTF carries it: xyz the unit T along increasing s (turned where
+    /// `repeat.x < 0`), w = ±1 the handedness, −1 where exactly one repeat is negative, so that
+    /// B = w·(N × T) points along increasing t (for a right-handed parameterization).
+    pub fn texture_tangent(&self, repeat: Vec2) -> Vec4 {
+        let (t, _, _) = self.frame();
+        let w = if repeat.x * repeat.y >= 0.0 { 1.0 } else { -1.0 };
+        (if repeat.x >= 0.0 { t } else { -t }).extend(w)
+    }
+
+    /// (T, B, N) of [`SurfacePoint::texture_tangent`]: the frame a tangent-space map on this
+    /// surface is read in.
+    pub fn texture_frame(&self, repeat: Vec2) -> (Vec3, Vec3, Vec3) {
+        let tangent = self.texture_tangent(repeat);
+        let t = tangent.truncate();
+        (t, tangent.w * self.normal.cross(t), self.normal)
+    }
 }
 
 /// The analytic surfaces the scenes are made of.
@@ -107,15 +125,10 @@ impl Surface {
             for i in 0..=nu {
                 let (u, v) = (i as f32 / nu as f32, j as f32 / nv as f32);
                 let p = self.eval(u, v);
-                let (t, _, n) = p.frame();
                 mesh.positions.push(p.position);
-                mesh.normals.push(n);
+                mesh.normals.push(p.normal);
                 mesh.texcoords.push(repeat * Vec2::new(u, v));
-                // B = N × T is the direction of increasing t whenever repeat.t > 0 and the
-                // parameterization is right-handed; a negative repeat mirrors.
-                let w = if repeat.x * repeat.y >= 0.0 { 1.0 } else { -1.0 };
-                let t = if repeat.x >= 0.0 { t } else { -t };
-                mesh.tangents.push(Vec4::new(t.x, t.y, t.z, w));
+                mesh.tangents.push(p.texture_tangent(repeat));
             }
         }
         let row = nu as u32 + 1;

@@ -4,12 +4,14 @@
 //! - this module: the technique catalogue and the renders, all files or none;
 //! - [`studies`]: the golf ball (Kilgard §2.4.2), embossing (§3.1) and Peercy's Figures 5–7;
 //! - [`metrics`]: RMSE, PSNR, bias, FLIP and SSIM against the reference;
-//! - [`report`]: `results.json`, the plots (SVG) and `report.html`.
+//! - [`plots`]: the report's plots (SVG);
+//! - [`report`]: `results.json` and `report.html`.
 //!
 //! What it does not do: decide what a technique is (the core's passes do) or draw (the
 //! backends and the reference do).
 
 mod metrics;
+mod plots;
 mod report;
 mod studies;
 
@@ -348,7 +350,7 @@ fn write(out: &Path, results: &Results, inputs: &[&Path]) -> Result<Vec<std::pat
             &rgb(image),
         )?;
     }
-    for (name, svg) in report::plots(results) {
+    for (name, svg) in plots::plots(results) {
         set.write(&out.join(name), |w| std::io::Write::write_all(w, svg.as_bytes()))?;
     }
     let json = report::json(results);

@@ -1,8 +1,6 @@
-//! What `compare` writes besides images: `results.json`, the plots as SVG (`plotters`), and
-//! `report.html`, which links only files in its own folder so the folder can be copied and
-//! opened anywhere.
+//! What `compare` writes besides images and plots: `results.json`, and `report.html`, which
+//! links only files in its own folder so the folder can be copied and opened anywhere.
 
-use plotters::prelude::*;
 use serde_json::{Value, json};
 
 use super::{PEERCY, Results, TECHNIQUES};
@@ -68,175 +66,6 @@ fn golf_json(rows: &[(f32, f64, f64, f64)]) -> Vec<Value> {
     rows.iter()
         .map(|(d, re, l, n)| json!({"distance": d, "reference": re, "length_factor": l, "renormalized": n}))
         .collect()
-}
-
-/// `(file name, SVG)` of each plot.
-pub fn plots(r: &Results) -> Vec<(&'static str, String)> {
-    vec![
-        ("convergence.svg", convergence_plot(r)),
-        ("golf_ball.svg", golf_ball_plot(r)),
-        ("emboss_angle.svg", emboss_plot(r)),
-        ("peercy.svg", peercy_plot(r)),
-    ]
-}
-
-fn emboss_plot(r: &Results) -> String {
-    let mut svg = String::new();
-    {
-        let root = SVGBackend::with_string(&mut svg, (560, 360)).into_drawing_area();
-        root.fill(&WHITE).expect("drawing into a string");
-        let emax = r.emboss.by_angle.iter().map(|row| row.1.max(row.3)).fold(0.01, f64::max) * 1.2;
-        let mut chart = ChartBuilder::on(&root)
-            .caption("Embossing against the reference by light angle (Kilgard §3.1)", ("sans-serif", 16))
-            .margin(12)
-            .x_label_area_size(36)
-            .y_label_area_size(56)
-            .build_cartesian_2d(-5f64..80.0, 0f64..emax)
-            .expect("valid ranges");
-        chart
-            .configure_mesh()
-            .light_line_style(TRANSPARENT)
-            .x_desc("light angle from the normal (degrees)")
-            .y_desc("RMSE")
-            .draw()
-            .expect("mesh");
-        for (label, emboss, color) in [("emboss", true, RED), ("single-pass", false, BLUE)] {
-            let points =
-                r.emboss.by_angle.iter().map(|row| (row.0 as f64, if emboss { row.1 } else { row.3 })).collect();
-            labelled_line(&mut chart, label, color, points);
-        }
-        legend(&mut chart, SeriesLabelPosition::UpperRight);
-        root.present().expect("drawing into a string");
-    }
-    svg
-}
-
-fn peercy_plot(r: &Results) -> String {
-    let mut svg = String::new();
-    {
-        let root = SVGBackend::with_string(&mut svg, (560, 360)).into_drawing_area();
-        root.fill(&WHITE).expect("drawing into a string");
-        let rows = &r.peercy.rows;
-        let values = rows.iter().flat_map(|row| row.rmse_same_slopes);
-        let (lo, hi) = values.fold((f64::MAX, 0.0f64), |(lo, hi), v| (lo.min(v), hi.max(v)));
-        let (lo, hi) = (lo.min(hi) * 0.85, hi.max(1e-3) * 1.2);
-        let smax = rows.last().map_or(4.0, |row| row.bump_scale as f64) * 1.15;
-        let mut chart = ChartBuilder::on(&root)
-            .caption("Peercy Figures 5–7: error by bump scale (same f_u, f_v)", ("sans-serif", 16))
-            .margin(12)
-            .x_label_area_size(36)
-            .y_label_area_size(56)
-            .build_cartesian_2d(0.5f64..smax, lo..hi)
-            .expect("valid ranges");
-        chart
-            .configure_mesh()
-            .light_line_style(TRANSPARENT)
-            .x_desc("bump scale (height of a unit step in texels)")
-            .y_desc("RMSE against the reference")
-            .draw()
-            .expect("mesh");
-        let labels = ["independent (Fig. 7)", "dependent (Fig. 6)", "per-pixel Blinn (Fig. 5)"];
-        for (i, (label, color)) in labels.into_iter().zip([RED, BLUE, BLACK]).enumerate() {
-            let points = rows.iter().map(|row| (row.bump_scale as f64, row.rmse_same_slopes[i])).collect();
-            labelled_line(&mut chart, label, color, points);
-        }
-        legend(&mut chart, SeriesLabelPosition::UpperLeft);
-        root.present().expect("drawing into a string");
-    }
-    svg
-}
-
-/// A line through `points` with a dot at each, named `label` in the legend.
-fn labelled_line<DB: DrawingBackend, CT: CoordTranslate<From = (f64, f64)>>(
-    chart: &mut ChartContext<'_, DB, CT>,
-    label: &str,
-    color: RGBColor,
-    points: Vec<(f64, f64)>,
-) {
-    chart.draw_series(points.iter().map(|p| Circle::new(*p, 3, color.filled()))).expect("drawing into a string");
-    chart
-        .draw_series(LineSeries::new(points, color.stroke_width(2)))
-        .expect("drawing into a string")
-        .label(label)
-        .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], color.stroke_width(2)));
-}
-
-/// The legend of the lines [`labelled_line`] drew, at `position`.
-fn legend<'a, DB: DrawingBackend + 'a, CT: CoordTranslate>(
-    chart: &mut ChartContext<'a, DB, CT>,
-    position: SeriesLabelPosition,
-) {
-    chart
-        .configure_series_labels()
-        .position(position)
-        .border_style(BLACK)
-        .background_style(WHITE)
-        .draw()
-        .expect("drawing into a string");
-}
-
-fn convergence_plot(r: &Results) -> String {
-    let mut svg = String::new();
-    {
-        let root = SVGBackend::with_string(&mut svg, (560, 360)).into_drawing_area();
-        root.fill(&WHITE).expect("drawing into a string");
-        let kmax = r.convergence.last().map_or(4.0, |(k, _)| *k as f64 * 2.0);
-        let emax = r.convergence.iter().map(|(_, e)| *e).fold(1e-4, f64::max) * 2.0;
-        let emin = r.convergence.iter().map(|(_, e)| *e).fold(emax, f64::min).max(1e-6) / 2.0;
-        let mut chart = ChartBuilder::on(&root)
-            .caption("Reference: RMSE between K and 4K samples per pixel", ("sans-serif", 16))
-            .margin(12)
-            .x_label_area_size(36)
-            .y_label_area_size(56)
-            .build_cartesian_2d((0.5f64..kmax).log_scale(), (emin..emax).log_scale())
-            .expect("valid ranges");
-        chart
-            .configure_mesh()
-            .light_line_style(TRANSPARENT)
-            .x_desc("K (samples per pixel)")
-            .y_desc("RMSE")
-            .draw()
-            .expect("mesh");
-        let points: Vec<(f64, f64)> = r.convergence.iter().map(|(k, e)| (*k as f64, *e)).collect();
-        chart.draw_series(LineSeries::new(points.clone(), BLUE.stroke_width(2))).expect("series");
-        chart.draw_series(points.iter().map(|p| Circle::new(*p, 4, BLUE.filled()))).expect("points");
-        root.present().expect("drawing into a string");
-    }
-    svg
-}
-
-fn golf_ball_plot(r: &Results) -> String {
-    let mut svg = String::new();
-    {
-        let root = SVGBackend::with_string(&mut svg, (560, 360)).into_drawing_area();
-        root.fill(&WHITE).expect("drawing into a string");
-        let values = r.golf_ball.iter().flat_map(|(_, a, b, c)| [*a, *b, *c]);
-        let (lo, hi) = values.fold((f64::MAX, f64::MIN), |(lo, hi), v| (lo.min(v), hi.max(v)));
-        let pad = ((hi - lo) * 0.15).max(0.01);
-        let dmax = r.golf_ball.last().map_or(8.0, |row| row.0 as f64 * 1.3);
-        let mut chart = ChartBuilder::on(&root)
-            .caption("Golf ball at a distance: mean brightness (Kilgard §2.4.2)", ("sans-serif", 16))
-            .margin(12)
-            .x_label_area_size(36)
-            .y_label_area_size(56)
-            .build_cartesian_2d((0.8f64..dmax).log_scale(), (lo - pad)..(hi + pad))
-            .expect("valid ranges");
-        chart
-            .configure_mesh()
-            .light_line_style(TRANSPARENT)
-            .x_desc("distance (× nearest)")
-            .y_desc("mean brightness")
-            .draw()
-            .expect("mesh");
-        let series = [("reference", 1usize, BLACK), ("length factor in alpha", 2, BLUE), ("renormalized mips", 3, RED)];
-        for (label, column, color) in series {
-            let points = r.golf_ball.iter().map(|row| (row.0 as f64, [row.1, row.2, row.3][column - 1])).collect();
-            labelled_line(&mut chart, label, color, points);
-        }
-        legend(&mut chart, SeriesLabelPosition::UpperRight);
-        root.present().expect("drawing into a string");
-    }
-    svg
 }
 
 /// Escapes text for HTML.
@@ -319,6 +148,17 @@ pub fn html(r: &Results) -> String {
             )
         })
         .collect();
+    let peercy_summary = r
+        .peercy
+        .rows
+        .iter()
+        .map(|row| {
+            let [ind, dep, blinn] = row.rmse_same_slopes;
+            let percent = |x: f64| 100.0 * (x - dep) / dep;
+            format!("at {}, Figure 5 {:+.1} % and Figure 7 {:+.1} %", row.bump_scale, percent(blinn), percent(ind))
+        })
+        .collect::<Vec<_>>()
+        .join("; ");
     let peercy_images: String = r
         .peercy
         .images
@@ -370,7 +210,7 @@ figcaption {{ font-size: 0.85em; max-width: {size}px; }}
 <table><tr><th rowspan="2">bump scale</th><th colspan="3">RMSE, same f_u, f_v</th><th colspan="3">RMSE, raw heights</th><th colspan="2">FLIP from Fig. 6</th></tr>
 <tr><th>Fig. 7 indep.</th><th>Fig. 6 dep.</th><th>Fig. 5 Blinn</th><th>Fig. 7 indep.</th><th>Fig. 6 dep.</th><th>Fig. 5 Blinn</th><th>Fig. 5</th><th>Fig. 7</th></tr>
 {peercy_rows}</table>
-<p>Where the slopes are gentle, Figures 5 and 6 are the same image to within a few per cent of their error and both are clearly closer to the reference than Figure 7, as the paper says. With steep slopes (bump scale 4, up to about 56°) Figure 5 falls behind Figure 6: it filters the slopes and builds the normal from their average, while the normal maps average the normals themselves, and the normal of an average slope is steeper than the average of the normals.</p>
+<p>RMSE against the same-slopes reference, relative to Figure 6's, by bump scale: {peercy_summary}. The paper finds Figures 5 and 6 almost indistinguishable and Figure 7 a little off. Where Figure 5 falls behind Figure 6 as the slopes steepen, the cause is filtering (the README gives the control experiment): it averages the slopes and makes the normal from the average, while the normal maps average the normals themselves, and the normal of an average slope is steeper than the average of the normals.</p>
 <div class="grid">
 {peercy_images}</div>
 <p>The images: bump scale {peercy_shown}, the reference with the kernel's heights first.</p>
