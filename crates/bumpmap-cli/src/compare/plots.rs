@@ -3,6 +3,7 @@
 //!
 //! What this module does not do: measure anything (the studies do) or write files.
 
+use plotters::coord::ranged1d::{AsRangedCoord, ValueFormatter};
 use plotters::prelude::*;
 
 use super::Results;
@@ -17,72 +18,87 @@ pub fn plots(r: &Results) -> Vec<(&'static str, String)> {
     ]
 }
 
-/// Kilgard §3.1: embossing's and the single pass's RMSE by light angle.
-fn emboss_plot(r: &Results) -> String {
+/// The captions of one plot, and where its legend goes (none without a position).
+struct Labels<'a> {
+    caption: &'a str,
+    x: &'a str,
+    y: &'a str,
+    legend: Option<SeriesLabelPosition>,
+}
+
+/// A 560×360 SVG plot on white with its caption, axes over `x` and `y` and their descriptions;
+/// `draw` adds the series, then the legend of those [`labelled_line`] drew is placed.
+fn svg_plot<X, Y>(
+    labels: Labels<'_>,
+    x: X,
+    y: Y,
+    draw: impl FnOnce(&mut ChartContext<'_, SVGBackend<'_>, Cartesian2d<X::CoordDescType, Y::CoordDescType>>),
+) -> String
+where
+    X: AsRangedCoord<Value = f64>,
+    Y: AsRangedCoord<Value = f64>,
+    X::CoordDescType: ValueFormatter<f64>,
+    Y::CoordDescType: ValueFormatter<f64>,
+{
     let mut svg = String::new();
     {
         let root = SVGBackend::with_string(&mut svg, (560, 360)).into_drawing_area();
         root.fill(&WHITE).expect("drawing into a string");
-        let emax = r.emboss.by_angle.iter().map(|row| row.1.max(row.3)).fold(0.01, f64::max) * 1.2;
         let mut chart = ChartBuilder::on(&root)
-            .caption("Embossing against the reference by light angle (Kilgard §3.1)", ("sans-serif", 16))
+            .caption(labels.caption, ("sans-serif", 16))
             .margin(12)
             .x_label_area_size(36)
             .y_label_area_size(56)
-            .build_cartesian_2d(-5f64..80.0, 0f64..emax)
+            .build_cartesian_2d(x, y)
             .expect("valid ranges");
-        chart
-            .configure_mesh()
-            .light_line_style(TRANSPARENT)
-            .x_desc("light angle from the normal (degrees)")
-            .y_desc("RMSE")
-            .draw()
-            .expect("mesh");
-        for (label, emboss, color) in [("emboss", true, RED), ("single-pass", false, BLUE)] {
-            let points =
-                r.emboss.by_angle.iter().map(|row| (row.0 as f64, if emboss { row.1 } else { row.3 })).collect();
-            labelled_line(&mut chart, label, color, points);
+        chart.configure_mesh().light_line_style(TRANSPARENT).x_desc(labels.x).y_desc(labels.y).draw().expect("mesh");
+        draw(&mut chart);
+        if let Some(position) = labels.legend {
+            legend(&mut chart, position);
         }
-        legend(&mut chart, SeriesLabelPosition::UpperRight);
         root.present().expect("drawing into a string");
     }
     svg
 }
 
+/// Kilgard §3.1: embossing's and the single pass's RMSE by light angle.
+fn emboss_plot(r: &Results) -> String {
+    let emax = r.emboss.by_angle.iter().map(|row| row.1.max(row.3)).fold(0.01, f64::max) * 1.2;
+    let labels = Labels {
+        caption: "Embossing against the reference by light angle (Kilgard §3.1)",
+        x: "light angle from the normal (degrees)",
+        y: "RMSE",
+        legend: Some(SeriesLabelPosition::UpperRight),
+    };
+    svg_plot(labels, -5f64..80.0, 0f64..emax, |chart| {
+        for (label, emboss, color) in [("emboss", true, RED), ("single-pass", false, BLUE)] {
+            let points =
+                r.emboss.by_angle.iter().map(|row| (row.0 as f64, if emboss { row.1 } else { row.3 })).collect();
+            labelled_line(chart, label, color, points);
+        }
+    })
+}
+
 /// Peercy Figures 5–7: each implementation's RMSE against the same-slopes reference by bump scale.
 fn peercy_plot(r: &Results) -> String {
-    let mut svg = String::new();
-    {
-        let root = SVGBackend::with_string(&mut svg, (560, 360)).into_drawing_area();
-        root.fill(&WHITE).expect("drawing into a string");
-        let rows = &r.peercy.rows;
-        let values = rows.iter().flat_map(|row| row.rmse_same_slopes);
-        let (lo, hi) = values.fold((f64::MAX, 0.0f64), |(lo, hi), v| (lo.min(v), hi.max(v)));
-        let (lo, hi) = (lo.min(hi) * 0.85, hi.max(1e-3) * 1.2);
-        let smax = rows.last().map_or(4.0, |row| row.bump_scale as f64) * 1.15;
-        let mut chart = ChartBuilder::on(&root)
-            .caption("Peercy Figures 5–7: error by bump scale (same f_u, f_v)", ("sans-serif", 16))
-            .margin(12)
-            .x_label_area_size(36)
-            .y_label_area_size(56)
-            .build_cartesian_2d(0.5f64..smax, lo..hi)
-            .expect("valid ranges");
-        chart
-            .configure_mesh()
-            .light_line_style(TRANSPARENT)
-            .x_desc("bump scale (height of a unit step in texels)")
-            .y_desc("RMSE against the reference")
-            .draw()
-            .expect("mesh");
-        let labels = ["independent (Fig. 7)", "dependent (Fig. 6)", "per-pixel Blinn (Fig. 5)"];
-        for (i, (label, color)) in labels.into_iter().zip([RED, BLUE, BLACK]).enumerate() {
+    let rows = &r.peercy.rows;
+    let values = rows.iter().flat_map(|row| row.rmse_same_slopes);
+    let (lo, hi) = values.fold((f64::MAX, 0.0f64), |(lo, hi), v| (lo.min(v), hi.max(v)));
+    let (lo, hi) = (lo.min(hi) * 0.85, hi.max(1e-3) * 1.2);
+    let smax = rows.last().map_or(4.0, |row| row.bump_scale as f64) * 1.15;
+    let labels = Labels {
+        caption: "Peercy Figures 5–7: error by bump scale (same f_u, f_v)",
+        x: "bump scale (height of a unit step in texels)",
+        y: "RMSE against the reference",
+        legend: Some(SeriesLabelPosition::UpperLeft),
+    };
+    svg_plot(labels, 0.5f64..smax, lo..hi, |chart| {
+        let names = ["independent (Fig. 7)", "dependent (Fig. 6)", "per-pixel Blinn (Fig. 5)"];
+        for (i, (label, color)) in names.into_iter().zip([RED, BLUE, BLACK]).enumerate() {
             let points = rows.iter().map(|row| (row.bump_scale as f64, row.rmse_same_slopes[i])).collect();
-            labelled_line(&mut chart, label, color, points);
+            labelled_line(chart, label, color, points);
         }
-        legend(&mut chart, SeriesLabelPosition::UpperLeft);
-        root.present().expect("drawing into a string");
-    }
-    svg
+    })
 }
 
 /// A line through `points` with a dot at each, named `label` in the legend.
@@ -116,66 +132,39 @@ fn legend<'a, DB: DrawingBackend + 'a, CT: CoordTranslate>(
 
 /// The reference's RMSE between K and 4K samples per pixel, log–log.
 fn convergence_plot(r: &Results) -> String {
-    let mut svg = String::new();
-    {
-        let root = SVGBackend::with_string(&mut svg, (560, 360)).into_drawing_area();
-        root.fill(&WHITE).expect("drawing into a string");
-        let kmax = r.convergence.last().map_or(4.0, |(k, _)| *k as f64 * 2.0);
-        let emax = r.convergence.iter().map(|(_, e)| *e).fold(1e-4, f64::max) * 2.0;
-        let emin = r.convergence.iter().map(|(_, e)| *e).fold(emax, f64::min).max(1e-6) / 2.0;
-        let mut chart = ChartBuilder::on(&root)
-            .caption("Reference: RMSE between K and 4K samples per pixel", ("sans-serif", 16))
-            .margin(12)
-            .x_label_area_size(36)
-            .y_label_area_size(56)
-            .build_cartesian_2d((0.5f64..kmax).log_scale(), (emin..emax).log_scale())
-            .expect("valid ranges");
-        chart
-            .configure_mesh()
-            .light_line_style(TRANSPARENT)
-            .x_desc("K (samples per pixel)")
-            .y_desc("RMSE")
-            .draw()
-            .expect("mesh");
+    let kmax = r.convergence.last().map_or(4.0, |(k, _)| *k as f64 * 2.0);
+    let emax = r.convergence.iter().map(|(_, e)| *e).fold(1e-4, f64::max) * 2.0;
+    let emin = r.convergence.iter().map(|(_, e)| *e).fold(emax, f64::min).max(1e-6) / 2.0;
+    let labels = Labels {
+        caption: "Reference: RMSE between K and 4K samples per pixel",
+        x: "K (samples per pixel)",
+        y: "RMSE",
+        legend: None,
+    };
+    svg_plot(labels, (0.5f64..kmax).log_scale(), (emin..emax).log_scale(), |chart| {
         let points: Vec<(f64, f64)> = r.convergence.iter().map(|(k, e)| (*k as f64, *e)).collect();
         chart.draw_series(LineSeries::new(points.clone(), BLUE.stroke_width(2))).expect("series");
         chart.draw_series(points.iter().map(|p| Circle::new(*p, 4, BLUE.filled()))).expect("points");
-        root.present().expect("drawing into a string");
-    }
-    svg
+    })
 }
 
 /// Kilgard §2.4.2: the golf ball's mean brightness by distance.
 fn golf_ball_plot(r: &Results) -> String {
-    let mut svg = String::new();
-    {
-        let root = SVGBackend::with_string(&mut svg, (560, 360)).into_drawing_area();
-        root.fill(&WHITE).expect("drawing into a string");
-        let values = r.golf_ball.iter().flat_map(|(_, a, b, c)| [*a, *b, *c]);
-        let (lo, hi) = values.fold((f64::MAX, f64::MIN), |(lo, hi), v| (lo.min(v), hi.max(v)));
-        let pad = ((hi - lo) * 0.15).max(0.01);
-        let dmax = r.golf_ball.last().map_or(8.0, |row| row.0 as f64 * 1.3);
-        let mut chart = ChartBuilder::on(&root)
-            .caption("Golf ball at a distance: mean brightness (Kilgard §2.4.2)", ("sans-serif", 16))
-            .margin(12)
-            .x_label_area_size(36)
-            .y_label_area_size(56)
-            .build_cartesian_2d((0.8f64..dmax).log_scale(), (lo - pad)..(hi + pad))
-            .expect("valid ranges");
-        chart
-            .configure_mesh()
-            .light_line_style(TRANSPARENT)
-            .x_desc("distance (× nearest)")
-            .y_desc("mean brightness")
-            .draw()
-            .expect("mesh");
+    let values = r.golf_ball.iter().flat_map(|(_, a, b, c)| [*a, *b, *c]);
+    let (lo, hi) = values.fold((f64::MAX, f64::MIN), |(lo, hi), v| (lo.min(v), hi.max(v)));
+    let pad = ((hi - lo) * 0.15).max(0.01);
+    let dmax = r.golf_ball.last().map_or(8.0, |row| row.0 as f64 * 1.3);
+    let labels = Labels {
+        caption: "Golf ball at a distance: mean brightness (Kilgard §2.4.2)",
+        x: "distance (× nearest)",
+        y: "mean brightness",
+        legend: Some(SeriesLabelPosition::UpperRight),
+    };
+    svg_plot(labels, (0.8f64..dmax).log_scale(), (lo - pad)..(hi + pad), |chart| {
         let series = [("reference", 1usize, BLACK), ("length factor in alpha", 2, BLUE), ("renormalized mips", 3, RED)];
         for (label, column, color) in series {
             let points = r.golf_ball.iter().map(|row| (row.0 as f64, [row.1, row.2, row.3][column - 1])).collect();
-            labelled_line(&mut chart, label, color, points);
+            labelled_line(chart, label, color, points);
         }
-        legend(&mut chart, SeriesLabelPosition::UpperRight);
-        root.present().expect("drawing into a string");
-    }
-    svg
+    })
 }
