@@ -7,7 +7,10 @@
 
 use std::path::Path;
 
-use bumpmap_io::{Channel, DecodeLimits, MeshFormat, read_height_field, read_mesh, read_rgba8};
+use bumpmap_io::{
+    Channel, DecodeLimits, MeshFormat, StoredLevels, read_height_field, read_mesh, read_rgba8, read_texture,
+};
+use bumpmap_math::imported::{ImportOptions, import_normal_map};
 use clap::Parser;
 
 /// 1024² at most, so a declared size costs at most 1024² × 8 bytes (RGBA16) per image.
@@ -26,12 +29,24 @@ pub fn image(data: &[u8]) {
     }
 }
 
+/// A normal map as `render --normal-map` reads it: a DDS, KTX2 or image file decoded with the
+/// levels it carries (BC5 and BC7 blocks included), then brought into texture space.
+pub fn texture(data: &[u8]) {
+    let Ok(texture) = read_texture(data, Path::new("fuzz.dds"), &IMAGE_LIMITS) else { return };
+    let options = ImportOptions::default();
+    let _ = match &texture.levels {
+        StoredLevels::Rgba8(levels) => import_normal_map(levels, &options).map(|_| ()),
+        StoredLevels::Rgba16(levels) => import_normal_map(levels, &options).map(|_| ()),
+    };
+}
+
 /// OBJ text to a mesh.
 pub fn obj(data: &[u8]) {
     let _ = read_mesh(data, Path::new("fuzz.obj"), MeshFormat::Obj);
 }
 
-/// glTF JSON or GLB to a mesh, from memory: only data: URIs and the GLB chunk supply buffers.
+/// glTF JSON or GLB to a mesh, from memory: only data: URIs and the GLB chunk supply buffers
+/// and the material's images.
 pub fn gltf(data: &[u8]) {
     let _ = read_mesh(data, Path::new("fuzz.gltf"), MeshFormat::Gltf);
 }

@@ -8,9 +8,8 @@ use std::time::Instant;
 use bumpmap_math::{HeightField, HeightPreset, MipChain, MipMode, NormalMapOptions, mip::next_size};
 use rayon::prelude::*;
 
-use crate::args::{BenchArgs, BenchWhat, FormatArg};
+use crate::args::{BenchArgs, BenchRenderArgs, BenchWhat, FormatArg};
 use crate::error::CliError;
-use crate::render_args::BenchRenderArgs;
 
 /// Median, min and max of a set of durations in milliseconds.
 pub struct Stats {
@@ -51,9 +50,8 @@ pub fn run(args: &BenchArgs) -> Result<(), CliError> {
 /// The reference renderer's time for one image; scene setup is not timed.
 fn bench_reference(scene: &str, size: usize, spp: usize, runs: u32, json: bool) -> Result<(), CliError> {
     use bumpmap_core::scenes::{self, SceneKind, SceneParams};
-    let kind = SceneKind::parse(scene).ok_or_else(|| {
-        CliError::Usage(format!("unknown scene '{scene}': use torus, wall, floor, wall-floor, patch or sphere"))
-    })?;
+    let kind = SceneKind::parse(scene)
+        .ok_or_else(|| CliError::Usage(format!("unknown scene '{scene}': use {}", SceneKind::built_in_names())))?;
     let scene_value = scenes::build(&kind, &SceneParams::default()).map_err(crate::render::core_err)?;
     let options = bumpmap_reference::ReferenceOptions { samples_per_pixel: spp, ..Default::default() };
     let mut failure = None;
@@ -229,23 +227,42 @@ fn bench_tangents(triangles: usize, mode: crate::args::TangentModeArg, runs: u32
     Ok(())
 }
 
-/// Renders `frames` frames per run with the light orbiting the torus axis as the llvmpipe peer
-/// does (`(4 cos a, 4 sin a, 3)`, a from −2.2 around the circle). Scene setup (normal map, decal,
+/// Renders `frames` frames per run with the first light orbiting the point looked at, about the
+/// view's up axis, once per run: on the torus, the llvmpipe peer's orbit (`(4 cos a, 4 sin a,
+/// 3)`, a from −2.2 around the circle). Scene setup (normal map, decal,
 /// tessellation, the GPU's device and pipelines) is not timed; per frame: the vertex stage,
 /// clearing and every pass are, and on the GPU the wait for the frame to finish (as the peer's
 /// `glFinish`; neither reads the frame back).
 fn bench_render(args: &BenchRenderArgs) -> Result<(), CliError> {
+    use crate::render::lib_err;
     let (size, frames, runs) = (args.size, args.frames, args.runs);
-    crate::backend::check_size(size, size)?;
-    let (mut scene, _) = crate::render::build_scene(&args.setup)?;
-    let technique = crate::render::technique(&args.setup)?;
-    let mut backend = crate::backend::Backend::new(args.setup.backend.backend)?;
+    bumpmap::Renderer::check_size(size, size).map_err(lib_err)?;
+    let name = args.setup.technique.technique.0;
+    if name == bumpmap::TechniqueName::Reference {
+        return Err(CliError::Usage(
+            "bench render times frames of the pass-drawing techniques; the reference has its own: bench reference"
+                .into(),
+        ));
+    }
+    let setup = crate::setup::setup(&args.setup)?;
+    for note in &setup.notes {
+        eprintln!("{note}");
+    }
+    let mut prepared = bumpmap::Prepared::new(&setup.spec, name, &setup.options).map_err(lib_err)?;
+    let mut renderer = crate::render::renderer(args.setup.backend.backend)?;
+    let camera = prepared.scene.camera;
+    let (axis, centre) = (camera.view_up().normalize(), camera.target);
+    let start = prepared.scene.lights.first().map(|l| l.light);
     let mut frame = |k: u32| -> Result<(), CliError> {
-        let a = -2.2 + std::f32::consts::TAU * k as f32 / frames as f32;
-        if let Some(light) = scene.lights.first_mut() {
-            light.light = bumpmap_math::lighting::Light::Positional(glam::Vec3::new(4.0 * a.cos(), 4.0 * a.sin(), 3.0));
+        use bumpmap_math::lighting::Light;
+        let turn = glam::Quat::from_axis_angle(axis, std::f32::consts::TAU * k as f32 / frames as f32);
+        if let (Some(light), Some(start)) = (prepared.scene.lights.first_mut(), start) {
+            light.light = match start {
+                Light::Positional(p) => Light::Positional(centre + turn * (p - centre)),
+                Light::Directional(d) => Light::Directional(turn * d),
+            };
         }
-        backend.draw(&scene, &technique, size, size)
+        renderer.draw_unread(&prepared, size, size).map_err(lib_err)
     };
     let mut err = None;
     let stats = time_runs(runs, || {
@@ -260,8 +277,8 @@ fn bench_render(args: &BenchRenderArgs) -> Result<(), CliError> {
     }
     let threads = rayon::current_num_threads();
     let fps = frames as f64 / (stats.median / 1e3);
-    let (scene_name, name) = (&args.setup.scene.scene, technique.name());
-    let (kind, device) = (backend.kind(), backend.name());
+    let scene_name = &args.setup.scene.scene;
+    let (kind, device) = (renderer.backend().name(), renderer.describe());
     if args.json {
         println!(
             "{{\"bench\":\"render\",\"scene\":\"{scene_name}\",\"technique\":\"{name}\",\"backend\":\"{kind}\",\"device\":\"{}\",\"size\":{size},\"threads\":{threads},\"frames\":{frames},\"runs\":{runs},\"fps\":{fps:.2},\"ms_per_frame\":{:.3},\"fps_min\":{:.2},\"fps_max\":{:.2}}}",

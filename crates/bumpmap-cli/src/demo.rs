@@ -4,6 +4,7 @@
 use std::path::Path;
 use std::sync::Arc;
 
+use bumpmap::{BackendChoice, BumpSource, Renderer};
 use bumpmap_core::BumpMap;
 use bumpmap_core::scene::{Attenuation, SceneLight, Spot};
 use bumpmap_core::scenes::{self, SceneKind, SceneParams};
@@ -16,11 +17,9 @@ use bumpmap_math::{
 use glam::Vec3;
 use indicatif::{ProgressBar, ProgressStyle};
 
-use crate::args::{DemoArgs, DemoGpuArg};
-use crate::backend::Backend;
+use crate::args::{BackendArg, DemoArgs, DemoGpuArg};
 use crate::error::CliError;
-use crate::render::{core_err, write_frame};
-use crate::render_args::BackendArg;
+use crate::render::{core_err, draw, lib_err, write_frame};
 
 /// One image of the demo: its file, what it shows, and the scene and technique that make it.
 struct DemoRender {
@@ -151,7 +150,7 @@ const RENDERS: &[DemoRender] = &[
         passes: false,
         make: || {
             let params = SceneParams {
-                height_field: preset(HeightPreset::Pinwheel),
+                bumps: BumpSource::Heights(Arc::new(preset(HeightPreset::Pinwheel))),
                 default_decal: false,
                 ..Default::default()
             };
@@ -164,7 +163,7 @@ const RENDERS: &[DemoRender] = &[
         passes: false,
         make: || {
             let params = SceneParams {
-                height_field: preset(HeightPreset::Dimples),
+                bumps: BumpSource::Heights(Arc::new(preset(HeightPreset::Dimples))),
                 normal_map: NormalMapOptions { scale: 8.0, ..Default::default() },
                 default_decal: false,
                 ..Default::default()
@@ -206,11 +205,14 @@ pub fn run(args: &DemoArgs) -> Result<(), CliError> {
     crate::cubemap::write(&out.join("cubemap"), &NormalizationCubeMap::new(32, Encoding::Unorm))?;
     index += "- `cubemap/px.png` … `nz.png`: a 32² normalization cube map\n";
     bar.inc(1);
-    render_all(&mut Backend::new(BackendArg::Cpu)?, out, &bar, "render")?;
+    let mut cpu = Renderer::new(BackendChoice::Cpu).map_err(lib_err)?;
+    render_all(&mut cpu, out, &bar, "render")?;
     for r in RENDERS {
         index += &format!("- `{}`: {}\n", r.file, r.what);
     }
     index += "- `fig11_torus.decal.png`, `.diffuse.png`, `.specular.png`: Kilgard Figure 12, the framebuffer after each pass\n";
+    bar.set_message("your own assets: a normal map file, a glTF with its material");
+    index += &own_assets(&mut cpu, out)?;
     bar.finish_and_clear();
     index += &gpu_renders(out, args.gpu)?;
     crate::compare::run(&crate::args::CompareArgs {
@@ -231,13 +233,55 @@ pub fn run(args: &DemoArgs) -> Result<(), CliError> {
     Ok(())
 }
 
+/// What a user brings: the dimples normal map the demo wrote (a PNG, green up) drawn on the
+/// sphere as `render --normal-map` reads it, and a GLB made here — a tessellated sphere with
+/// tangents and that map packed as its material's `normalTexture` — drawn as `render --scene
+/// mesh:` reads it, with its own material. Returns the index's lines.
+fn own_assets(renderer: &mut Renderer, out: &Path) -> Result<String, CliError> {
+    use bumpmap::assets::{MeshLoad, load_mesh, load_normal_map};
+    use bumpmap::{ImportOptions, Prepared, SceneSpec, TechniqueName, TechniqueOptions};
+    let normal_png = out.join("dimples_normal.png");
+    let map = load_normal_map(&normal_png, &ImportOptions::default()).map_err(lib_err)?;
+    let mut spec = SceneSpec::new(SceneKind::Sphere);
+    spec.params.bumps = map.bumps();
+    spec.params.default_decal = false;
+    let draw_to = |renderer: &mut Renderer, spec: &SceneSpec, file: &str| -> Result<(), CliError> {
+        let prepared = Prepared::new(spec, TechniqueName::Kilgard, &TechniqueOptions::default()).map_err(lib_err)?;
+        let frame = draw(renderer, &prepared.scene, &prepared.technique, SIZE, SIZE, false)?;
+        write_frame(&frame, &out.join(file), &[])?;
+        Ok(())
+    };
+    draw_to(renderer, &spec, "own_normal_map.png")?;
+
+    // The sphere's poles turned from ±Z to ±Y, up as glTF has it: (x, y, z) → (x, z, −y).
+    let mut sphere =
+        bumpmap_math::surface::Surface::Sphere { radius: 1.0 }.tessellate(64, 32, glam::Vec2::new(4.0, 2.0));
+    let turn = |v: Vec3| Vec3::new(v.x, v.z, -v.y);
+    sphere.positions.iter_mut().chain(&mut sphere.normals).for_each(|v| *v = turn(*v));
+    sphere.tangents.iter_mut().for_each(|t| *t = turn(t.truncate()).extend(t.w));
+    let png =
+        std::fs::read(&normal_png).map_err(|source| bumpmap_io::IoError::Read { path: normal_png.clone(), source })?;
+    let glb = out.join("dimpled_sphere.glb");
+    let mut set = bumpmap_io::atomic::FileSet::new(&[&normal_png]);
+    bumpmap_io::mesh_file::save_gltf_into(&mut set, &glb, &sphere, Some(&png))?;
+    set.commit()?;
+    let asset = load_mesh(&glb, &MeshLoad::default()).map_err(lib_err)?;
+    draw_to(renderer, &asset.spec(), "own_gltf.png")?;
+    Ok(format!(
+        "- `own_normal_map.png`: `dimples_normal.png` read back as `render --normal-map` reads a user's map ({}), on the sphere\n\
+         - `dimpled_sphere.glb`, `own_gltf.png`: a sphere with tangents and that map packed as its material's normalTexture, drawn with its own material as `render --scene mesh:dimpled_sphere.glb` does ({})\n",
+        map.describe(),
+        asset.describe().join("; ")
+    ))
+}
+
 /// Every render of [`RENDERS`] by `backend` into `dir`, one step of `bar` each.
-fn render_all(backend: &mut Backend, dir: &Path, bar: &ProgressBar, label: &str) -> Result<(), CliError> {
+fn render_all(renderer: &mut Renderer, dir: &Path, bar: &ProgressBar, label: &str) -> Result<(), CliError> {
     for r in RENDERS {
         bar.set_message(format!("{label}: {}", r.file));
         let (kind, params, technique) = (r.make)();
         let scene = scenes::build(&kind, &params).map_err(core_err)?;
-        let frame = backend.render(&scene, &technique, SIZE, SIZE, r.passes)?;
+        let frame = draw(renderer, &scene, &technique, SIZE, SIZE, r.passes)?;
         write_frame(&frame, &dir.join(r.file), &[])?;
         bar.inc(1);
     }
@@ -250,7 +294,7 @@ fn gpu_renders(out: &Path, mode: DemoGpuArg) -> Result<String, CliError> {
     if mode == DemoGpuArg::Never {
         return Ok(String::new());
     }
-    let mut gpu = match Backend::new(BackendArg::Gpu) {
+    let mut gpu = match Renderer::new(BackendChoice::Gpu).map_err(lib_err) {
         Ok(g) => g,
         Err(e) if mode == DemoGpuArg::Auto => {
             eprintln!("no GPU images: {e}");
@@ -264,6 +308,6 @@ fn gpu_renders(out: &Path, mode: DemoGpuArg) -> Result<String, CliError> {
         .with_style(ProgressStyle::with_template("{bar:40} {pos}/{len} {wide_msg}").expect("valid template"));
     render_all(&mut gpu, &dir, &bar, "gpu")?;
     bar.finish_and_clear();
-    eprintln!("GPU images drawn by {}", gpu.name());
-    Ok(format!("\n`gpu/`: the same renders by the wgpu backend on {}.\n", gpu.name()))
+    eprintln!("GPU images drawn by {}", gpu.describe());
+    Ok(format!("\n`gpu/`: the same renders by the wgpu backend on {}.\n", gpu.describe()))
 }

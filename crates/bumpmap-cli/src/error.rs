@@ -2,22 +2,43 @@
 
 use std::path::PathBuf;
 
+/// What a command could not do, in the words of the command line.
 #[derive(Debug, thiserror::Error)]
 pub enum CliError {
+    /// A file could not be read or written.
     #[error(transparent)]
     Io(#[from] bumpmap_io::IoError),
+    /// A height field that cannot become a normal map.
     #[error("{path}: {source}")]
-    NormalMap { path: String, source: bumpmap_math::normalmap::NormalMapError },
+    NormalMap {
+        /// The height field (a file or a preset).
+        path: String,
+        /// Why.
+        source: bumpmap_math::normalmap::NormalMapError,
+    },
+    /// A path that cannot be used as given.
     #[error("{}: {reason}", bumpmap_io::error::shown(path))]
-    Path { path: PathBuf, reason: String },
+    Path {
+        /// The path.
+        path: PathBuf,
+        /// Why.
+        reason: String,
+    },
+    /// A scene or technique that cannot be drawn as asked.
     #[error("{0}")]
     Render(String),
     /// A value outside its option's range, found after parsing: a malformed command line, as
     /// clap's own range errors are (exit status 2).
     #[error("{0}")]
     Usage(String),
+    /// Some files of a folder run failed.
     #[error("{failed} of {total} files failed (see the messages above)")]
-    Batch { failed: usize, total: usize },
+    Batch {
+        /// How many failed.
+        failed: usize,
+        /// How many there were.
+        total: usize,
+    },
 }
 
 impl CliError {

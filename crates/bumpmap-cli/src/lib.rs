@@ -2,19 +2,19 @@
 //! targets (`fuzz/`) reach the argument parser through [`args::Cli`]. Each subcommand lives in
 //! its own module.
 //!
-//! - [`args`]: the command line (clap), its value parsers and limits;
-//! - `render_args`: the option groups `render` and `bench render` share;
+//! - [`args`]: the command line (clap), a module per command, its value parsers and limits;
+//! - `setup`: the option groups `render` and `bench render` share, made into the front door's
+//!   scene description, technique and options (the user's own assets loaded);
 //! - `normalmap`, `cubemap`, `mesh` (tangents), `render`, `bench`, `demo`, `compare`: the
-//!   subcommands;
-//! - `backend`: the CPU or GPU renderer a command draws with;
+//!   subcommands, drawing through the `bumpmap` crate's renderer;
 //! - [`error`]: every layer's errors as one type, in the words of the command line.
 
 // The argument structs' doc comments are clap's help texts, written for a terminal: their
 // `[dir:]X,Y,Z` and `[0,1]` are not intra-doc links.
 #![allow(rustdoc::broken_intra_doc_links)]
+#![warn(missing_docs)]
 
 pub mod args;
-mod backend;
 mod bench;
 mod compare;
 mod cubemap;
@@ -23,7 +23,7 @@ pub mod error;
 mod mesh;
 mod normalmap;
 mod render;
-pub mod render_args;
+mod setup;
 
 use crate::args::{Cli, Command};
 

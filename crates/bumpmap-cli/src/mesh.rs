@@ -4,7 +4,6 @@ use std::path::{Path, PathBuf};
 
 use bumpmap_io::MeshOptions;
 use bumpmap_io::atomic::{FileSet, ensure_not_input};
-use bumpmap_math::mesh::Mesh;
 use bumpmap_math::tangent::{TangentMode, TangentOptions, generate_tangents};
 
 use crate::args::{TangentModeArg, TangentsArgs};
@@ -12,17 +11,6 @@ use crate::error::CliError;
 
 fn mesh_err(path: &Path, e: impl std::fmt::Display) -> CliError {
     CliError::Path { path: path.to_path_buf(), reason: e.to_string() }
-}
-
-/// Loads a mesh and makes sure it has tangents (ours, generated, when the file has none).
-/// Returns it with every file read (the mesh and its glTF buffers), which no output may replace.
-pub fn load_for_render(path: &Path, options: &MeshOptions) -> Result<(Mesh, Vec<PathBuf>), CliError> {
-    let loaded = bumpmap_io::load_mesh_with(path, options)?;
-    if loaded.had_tangents {
-        return Ok((loaded.mesh, loaded.sources));
-    }
-    let (mesh, _) = generate_tangents(&loaded.mesh, &TangentOptions::default()).map_err(|e| mesh_err(path, e))?;
-    Ok((mesh, loaded.sources))
 }
 
 /// `bumpmap tangents IN -o OUT`: generate tangents and write glTF with a TANGENT attribute.
@@ -39,7 +27,11 @@ pub fn run(args: &TangentsArgs) -> Result<(), CliError> {
     }
     let loaded = bumpmap_io::load_mesh_with(
         &args.input,
-        &MeshOptions { allow_outside_paths: args.allow_outside_paths, obj_texcoords: args.obj_v.into() },
+        &MeshOptions {
+            allow_outside_paths: args.allow_outside_paths,
+            obj_texcoords: args.obj_v.into(),
+            ..Default::default()
+        },
     )?;
     let options = TangentOptions {
         mode: match args.mode {

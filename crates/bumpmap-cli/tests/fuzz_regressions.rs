@@ -24,6 +24,7 @@ fn replay(target: &str, body: fn(&[u8])) -> usize {
 fn saved_crashers_no_longer_crash() {
     let counts: Vec<(&str, usize)> = [
         ("image", targets::image as fn(&[u8])),
+        ("texture", targets::texture),
         ("obj", targets::obj),
         ("gltf", targets::gltf),
         ("cli_args", targets::cli_args),

@@ -94,21 +94,27 @@ fn bad_options_are_refused_with_clear_messages() {
     );
     refused(&["--scene", "teapot"], "unknown scene");
     refused(&["--scene", "mesh:/no/such/file.obj"], "cannot read");
-    refused(&["--eye", "1,1,1", "--target", "1,1,1"], "must differ");
+    refused(&["--eye", "1,1,1", "--target", "1,1,1"], "is at the point looked at");
+    refused(&["--scene", "wall", "--eye", "0,0,0"], "is at the point looked at");
     // The reference needs an exact surface and samples no projected pattern; embossing's
     // combiners scale by 1, 2 or 4 and take one light.
     let cube = concat!("mesh:", env!("CARGO_MANIFEST_DIR"), "/../bumpmap-io/tests/data/mikktspace/cube.obj");
     refused(&["--technique", "reference", "--scene", cube], "needs a built-in surface");
+    refused(&["--technique", "object-space", "--scene", cube], "--technique object-space needs a built-in surface");
     refused(
-        &["--technique", "single-pass", "--space", "object", "--scene", cube],
-        "--space object needs a built-in surface",
+        &["--technique", "peercy-dependent", "--scene", cube],
+        "--technique peercy-dependent needs a built-in surface",
     );
-    refused(&["--technique", "single-pass", "--space", "object", "--repeat", "0,1"], "non-zero");
+    refused(&["--technique", "object-space", "--repeat", "0,1"], "non-zero");
+    refused(&["--technique", "phong"], "possible values: kilgard, single-pass");
     refused(&["--technique", "reference", "--spot", "0,0,-1", "--spot-pattern", "bricks"], "--spot-pattern");
     refused(&["--technique", "reference", "--spp", "0"], "0 is not in 1..=4096");
     refused(&["--technique", "reference", "--passes"], "--passes");
     refused(&["--technique", "emboss", "--bump-scale", "3"], "--bump-scale 3");
-    refused(&["--technique", "emboss", "--light", "1,1,1", "--light", "-1,1,1"], "more than one --light");
+    refused(
+        &["--technique", "emboss", "--light", "1,1,1", "--light", "-1,1,1"],
+        "--technique emboss needs exactly one light",
+    );
 }
 
 #[test]
@@ -175,7 +181,8 @@ fn options_that_do_not_apply_are_refused() {
     refused(&["--technique", "single-pass", "--passes"], "--passes");
     refused(&["--specular", "0.5"], "kilgard cannot do --specular");
     refused(&["--technique", "single-pass", "--precision", "fixed9"], "--precision belongs to --technique kilgard");
-    refused(&["--space", "object"], "kilgard cannot do --space object");
+    refused(&["--normalize", "math"], "kilgard cannot do --normalize");
+    refused(&["--technique", "single-pass-cube", "--normalize", "math"], "single-pass-cube normalizes by the cube map");
 }
 
 #[test]

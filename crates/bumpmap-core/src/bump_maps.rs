@@ -86,8 +86,12 @@ pub fn surface_material(
             material.normal_space = NormalSpace::Object { scale: Vec2::ONE / repeat };
         }
         (BumpMap::SurfaceDependent, _) => {
-            // The same field and options already made `chain`, so they cannot fail here.
-            let (field, options) = (&params.height_field, &params.normal_map);
+            // The same field and options already made `chain`, so they cannot fail here; `build`
+            // refuses this map for a normal map given without heights.
+            let crate::scenes::BumpSource::Heights(field) = &params.bumps else {
+                unreachable!("a surface-dependent map is made from heights")
+            };
+            let options = &params.normal_map;
             let dependent = surface_dependent_normal_map(surface, repeat, field, options, params.mip_mode)
                 .expect("the field and options made the tangent-space chain");
             material.normal_map = Arc::new(dependent.to_mips());

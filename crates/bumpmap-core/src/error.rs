@@ -53,7 +53,7 @@ impl std::fmt::Display for Feature {
             Feature::SpecularColor => f.write_str("a specular colour other than white or black"),
             Feature::MultipleLights => f.write_str("more than one light"),
             Feature::BumpScale(s) => write!(f, "a bump scale of {s} (its combiners scale by 1, 2 or 4)"),
-            Feature::HeightMap => f.write_str("a material without its height field (a loaded normal map)"),
+            Feature::HeightMap => f.write_str("a material without its height field (a normal map given as it is)"),
             Feature::OffsetMap => f.write_str("an offset map (its combiners cannot renormalize N + D per pixel)"),
             Feature::SurfaceMap => f.write_str(
                 "a normal map made for one surface (its passes read every texture with the repeating coordinates)",
@@ -104,6 +104,33 @@ pub enum CoreError {
     /// Gloss from the decal's alpha without a decal.
     #[error("gloss from the decal's alpha needs a decal")]
     GlossNeedsDecal,
+    /// Offset, derivative and surface-dependent maps are made from heights, which a normal map
+    /// given as it is does not have.
+    #[error("{} is made from a height field, not from a normal map", .0.describe())]
+    MapNeedsHeights(crate::bump_maps::BumpMap),
+    /// The reference is not a list of passes.
+    #[error("the reference is not drawn as passes: it samples the exact surface (bumpmap-reference draws it)")]
+    NotPasses,
+    /// A named technique that cannot draw the scene.
+    #[error("{technique} needs {requirement}")]
+    Needs {
+        /// The technique's catalogue name.
+        technique: &'static str,
+        /// What the scene lacks.
+        requirement: crate::catalogue::Requirement,
+    },
+    /// A name the catalogue does not know.
+    #[error("unknown technique '{name}': use one of {}", crate::catalogue::TechniqueName::names())]
+    UnknownTechnique {
+        /// The name as given.
+        name: String,
+    },
+    /// The eye at the point looked at: the camera has no direction to look in.
+    #[error("the eye {eye} is at the point looked at: the camera needs a direction to look in")]
+    EyeAtTarget {
+        /// Where both are.
+        eye: glam::Vec3,
+    },
 }
 
 impl CoreError {

@@ -6,6 +6,7 @@
 //! pipeline (`bumpmap-cpu`), wgpu (`bumpmap-gpu`), or, for ground truth, a reference renderer.
 //! No module here rasterizes, samples a texture or evaluates a combiner over pixels.
 //!
+//! - [`catalogue`]: every technique by name — what it is, what it needs, its maps and passes;
 //! - [`scene`], [`scenes`]: scene descriptions and the built-in scenes;
 //! - [`bump_maps`]: the bump textures the compared techniques read (object-space,
 //!   surface-dependent, offset and derivative maps);
@@ -21,6 +22,7 @@
 #![warn(missing_docs)]
 
 pub mod bump_maps;
+pub mod catalogue;
 pub mod combiners;
 pub mod error;
 pub mod lane_math;
@@ -33,6 +35,8 @@ pub mod technique;
 pub mod vertex;
 
 pub use bump_maps::BumpMap;
+pub use catalogue::{Requirement, TechniqueName, TechniqueOptions};
 pub use error::{CoreError, Feature};
 pub use scene::Scene;
+pub use scenes::{BumpSource, SceneKind, SceneParams, SceneSpec};
 pub use technique::{Pass, Program, Technique};

@@ -21,7 +21,8 @@ pub struct Camera {
     pub eye: Vec3,
     /// The point looked at, in world space.
     pub target: Vec3,
-    /// The up direction in world space; must not be parallel to `target − eye`.
+    /// The up direction in world space. Where it is parallel to `target − eye` (looking straight
+    /// down on a scene, say), another is taken ([`Camera::view_up`]).
     pub up: Vec3,
     /// The vertical field of view in degrees (`gluPerspective`'s fovy).
     pub fov_y_degrees: f32,
@@ -35,7 +36,19 @@ impl Camera {
     /// `clip_from_world` for an image of the given aspect ratio (width / height).
     pub fn clip_from_world(&self, aspect: f32) -> Mat4 {
         Mat4::perspective_rh_gl(self.fov_y_degrees.to_radians(), aspect, self.near, self.far)
-            * Mat4::look_at_rh(self.eye, self.target, self.up)
+            * Mat4::look_at_rh(self.eye, self.target, self.view_up())
+    }
+
+    /// The up direction the view is built with: [`Camera::up`], or where the view runs along
+    /// it, −Z (+Y when `up` is itself along Z), so that looking straight down on a +Y-up scene
+    /// shows its back at the top of the image, as a top view does.
+    pub fn view_up(&self) -> Vec3 {
+        let forward = (self.target - self.eye).normalize_or_zero();
+        let up = self.up.normalize_or_zero();
+        if forward.cross(up).length_squared() > 1e-8 {
+            return self.up;
+        }
+        if up.z.abs() > 0.9 { Vec3::Y } else { Vec3::NEG_Z }
     }
 }
 
@@ -240,17 +253,25 @@ pub struct SceneObject {
 /// The exact surface and height field behind a built-in object (Peercy §2, Kilgard Eq. 5).
 ///
 /// The mesh is `surface` tessellated with texture coordinates `repeat ⊙ (u, v)`; the normal
-/// map is `height_field` differentiated with `normal_map`'s kernel and scale.
+/// map is [`SurfaceHeights::field`] differentiated with its options' kernel and scale.
 #[derive(Clone, Debug)]
 pub struct SurfaceSource {
     /// The analytic surface, in object space.
     pub surface: Surface,
     /// Texture repeats along s and t.
     pub repeat: glam::Vec2,
-    /// The heights the normal map was made from.
-    pub height_field: Arc<HeightField>,
+    /// The heights the normal map was made from, or `None` for a normal map given as it is
+    /// (a file's), which has no heights to differentiate.
+    pub heights: Option<SurfaceHeights>,
+}
+
+/// A height field and the options that made the normal map from it.
+#[derive(Clone, Debug)]
+pub struct SurfaceHeights {
+    /// The heights.
+    pub field: Arc<HeightField>,
     /// The options the normal map was made with (its scale and wrap matter here).
-    pub normal_map: NormalMapOptions,
+    pub options: NormalMapOptions,
 }
 
 /// Everything a technique renders.

@@ -13,7 +13,8 @@ use bumpmap_math::{HeightField, MipChain, MipMode, NormalMapOptions, Rgba8Image,
 use crate::bump_maps::{BumpMap, offset_map, surface_material};
 use crate::error::CoreError;
 use crate::scene::{
-    Camera, Material, NormalSpace, NormalTexels, Scene, SceneLight, SceneObject, SurfaceSource, ViewerModel,
+    Camera, Material, NormalSpace, NormalTexels, Scene, SceneLight, SceneObject, SurfaceHeights, SurfaceSource,
+    ViewerModel,
 };
 
 /// Which geometry a scene shows.
@@ -31,45 +32,152 @@ pub enum SceneKind {
     Patch,
     /// A sphere of radius 1.5.
     Sphere,
-    /// A loaded mesh (with normals, texture coordinates and tangents), centred and scaled to
-    /// fit a unit-radius ball.
+    /// A loaded mesh (with normals, texture coordinates and tangents), drawn in its own units
+    /// and axes; the default camera frames its bounds.
     Mesh(Arc<Mesh>),
 }
 
 impl SceneKind {
-    /// Parses the built-in names (`mesh:FILE` is the CLI's business).
+    /// The built-in scenes (every kind but a mesh), in the order the help texts list them.
+    pub const BUILT_IN: [SceneKind; 6] = [
+        SceneKind::Torus,
+        SceneKind::Wall,
+        SceneKind::Floor,
+        SceneKind::WallFloor,
+        SceneKind::Patch,
+        SceneKind::Sphere,
+    ];
+
+    /// The scene's name as the command line spells it (`mesh` for a loaded mesh).
+    pub fn name(&self) -> &'static str {
+        match self {
+            SceneKind::Torus => "torus",
+            SceneKind::Wall => "wall",
+            SceneKind::Floor => "floor",
+            SceneKind::WallFloor => "wall-floor",
+            SceneKind::Patch => "patch",
+            SceneKind::Sphere => "sphere",
+            SceneKind::Mesh(_) => "mesh",
+        }
+    }
+
+    /// The built-in scenes' names, comma-separated, for messages.
+    pub fn built_in_names() -> String {
+        Self::BUILT_IN.iter().map(SceneKind::name).collect::<Vec<_>>().join(", ")
+    }
+
+    /// Parses a built-in scene's name (`mesh:FILE` is the caller's business: files are not
+    /// this crate's).
     pub fn parse(name: &str) -> Option<Self> {
-        Some(match name {
-            "torus" => SceneKind::Torus,
-            "wall" => SceneKind::Wall,
-            "floor" => SceneKind::Floor,
-            "wall-floor" => SceneKind::WallFloor,
-            "patch" => SceneKind::Patch,
-            "sphere" => SceneKind::Sphere,
-            _ => return None,
-        })
+        Self::BUILT_IN.into_iter().find(|k| k.name() == name)
+    }
+
+    /// Whether the scene is an analytic surface (every built-in one), which the reference and the
+    /// maps made for a surface need.
+    pub fn is_surface(&self) -> bool {
+        !matches!(self, SceneKind::Mesh(_))
     }
 }
 
-/// Everything adjustable about a built-in scene; `None` picks the scene's own default.
+/// Where a material's bumps come from.
+#[derive(Clone, Debug)]
+pub enum BumpSource {
+    /// A height field, made into a tangent-space normal map and its mip chain with the scene's
+    /// [`SceneParams::normal_map`] options and [`SceneParams::mip_mode`]. Every technique can
+    /// draw it.
+    Heights(Arc<HeightField>),
+    /// A tangent-space normal map given as it is (a file's, a glTF material's): Y along +t, its
+    /// mip chain already made. [`SceneParams::normal_map`]'s kernel and scale do not apply;
+    /// techniques that differentiate heights (embossing, offset maps, Peercy's maps, the
+    /// reference) cannot draw it.
+    NormalMap(Arc<MipChain>),
+}
+
+impl BumpSource {
+    /// The size of level 0 of the normal map it makes.
+    fn size(&self) -> (usize, usize) {
+        match self {
+            BumpSource::Heights(f) => (f.width(), f.height()),
+            BumpSource::NormalMap(c) => (c.levels[0].width, c.levels[0].height),
+        }
+    }
+
+    /// The same source without bumps: a flat field (or map) of the same size.
+    pub fn flat(&self) -> Self {
+        let (w, h) = self.size();
+        match self {
+            BumpSource::Heights(_) => BumpSource::Heights(Arc::new(HeightField::from_fn(w, h, |_, _| 0.5))),
+            BumpSource::NormalMap(_) => BumpSource::flat_map(w, h),
+        }
+    }
+
+    /// A `width`×`height` normal map of unperturbed normals: no bumps.
+    pub fn flat_map(width: usize, height: usize) -> Self {
+        let normals = vec![Vec3::Z; width * height];
+        BumpSource::NormalMap(Arc::new(MipChain::from_normals(
+            width,
+            height,
+            &normals,
+            bumpmap_math::Encoding::Unorm,
+            MipMode::LengthInAlpha,
+        )))
+    }
+}
+
+/// A scene before any technique has made its maps: which geometry, and everything adjustable
+/// about it. The technique catalogue ([`crate::catalogue`]) builds a [`Scene`] from it with the
+/// maps each technique reads.
+#[derive(Clone, Debug, Default)]
+pub struct SceneSpec {
+    /// The geometry.
+    pub kind: SceneKind,
+    /// Camera, lights, material, bumps.
+    pub params: SceneParams,
+}
+
+impl Default for SceneKind {
+    /// The paper's torus.
+    fn default() -> Self {
+        SceneKind::Torus
+    }
+}
+
+impl SceneSpec {
+    /// The scene `kind` with every parameter at its default (the paper's bricks, one light).
+    pub fn new(kind: SceneKind) -> Self {
+        Self { kind, params: SceneParams::default() }
+    }
+
+    /// The scene with the tangent-space normal map (no technique's own maps).
+    pub fn build(&self) -> Result<Scene, CoreError> {
+        build(&self.kind, &self.params)
+    }
+}
+
+/// Everything adjustable about a scene; `None` picks the scene's own default.
 #[derive(Clone, Debug)]
 pub struct SceneParams {
-    /// The eye position in world space, or the scene's default.
+    /// The eye position in world space, or the scene's default (for a mesh: one that frames
+    /// its bounds from the front and above).
     pub eye: Option<Vec3>,
-    /// The point looked at, or the scene's default.
+    /// The point looked at, or the scene's default (for a mesh: the centre of its bounds).
     pub target: Option<Vec3>,
+    /// The world's up direction, or the scene's own (+Z for the torus, patch and sphere, +Y for
+    /// the wall and floor and for meshes, as glTF and OBJ have it). A view along it picks
+    /// another up ([`Camera::view_up`]).
+    pub up: Option<Vec3>,
     /// The vertical field of view in degrees.
     pub fov_y_degrees: f32,
     /// The lights; when empty, [`default_light`] as a white light.
     pub lights: Vec<SceneLight>,
     /// Local or infinite viewer for the half-angle vector.
     pub viewer: ViewerModel,
-    /// The height field the normal map is made from.
-    pub height_field: HeightField,
-    /// How the height field becomes a normal map (kernel, bump scale, wrap, encoding).
+    /// Where the bumps come from: a height field, or a normal map given as it is.
+    pub bumps: BumpSource,
+    /// How a height field becomes a normal map (kernel, bump scale, wrap, encoding).
     pub normal_map: NormalMapOptions,
-    /// A decal image, box-filtered into its mipmaps.
-    pub decal: Option<Rgba8Image>,
+    /// A decal with its mipmaps (`Rgba8Mips::with_box_mipmaps`).
+    pub decal: Option<Arc<Rgba8Mips>>,
     /// Use the brick decal that matches the brick height field when no decal is given.
     pub default_decal: bool,
     /// The material's ambient term.
@@ -89,7 +197,8 @@ pub struct SceneParams {
     /// The bump texture and how the surface reads it; the tangent-space normal map by default.
     pub bump_map: BumpMap,
     /// What the normal map's smaller levels store: the length factor (Kilgard §5.3) or
-    /// renormalized normals.
+    /// renormalized normals. A [`BumpSource::NormalMap`] keeps its own levels, with A = 1 under
+    /// [`MipMode::Renormalize`].
     pub mip_mode: MipMode,
 }
 
@@ -99,10 +208,11 @@ impl Default for SceneParams {
         Self {
             eye: None,
             target: None,
+            up: None,
             fov_y_degrees: 45.0,
             lights: Vec::new(),
             viewer: ViewerModel::Local,
-            height_field: bumpmap_math::HeightPreset::Bricks.render(256, 256),
+            bumps: BumpSource::Heights(Arc::new(bumpmap_math::HeightPreset::Bricks.render(256, 256))),
             normal_map: NormalMapOptions::default(),
             decal: None,
             default_decal: true,
@@ -119,9 +229,47 @@ impl Default for SceneParams {
     }
 }
 
+/// A loaded mesh's frame for its default camera and light: its bounding sphere, and which
+/// way is up, toward the front (glTF's +Z: "the front of a glTF asset faces +Z") and right.
+struct MeshFrame {
+    centre: Vec3,
+    radius: f32,
+    up: Vec3,
+    front: Vec3,
+    right: Vec3,
+}
+
+impl MeshFrame {
+    fn new(mesh: &Mesh, up: Vec3) -> Self {
+        let (lo, hi) = mesh.positions.iter().fold((Vec3::MAX, Vec3::MIN), |(lo, hi), &p| (lo.min(p), hi.max(p)));
+        let (centre, radius) = if lo.cmple(hi).all() {
+            ((lo + hi) * 0.5, ((hi - lo).length() * 0.5).max(1e-6))
+        } else {
+            (Vec3::ZERO, 1.0)
+        };
+        let up = up.normalize_or(Vec3::Y);
+        // +Z made perpendicular to up; with up along ±Z, the front is −Y (Blender's front view).
+        let front = (Vec3::Z - up * up.dot(Vec3::Z)).try_normalize().unwrap_or(Vec3::NEG_Y);
+        Self { centre, radius, up, front, right: up.cross(front) }
+    }
+
+    /// From the front and somewhat above, far enough that the bounding sphere fits a vertical
+    /// field of view of `fov_y_degrees`.
+    fn eye(&self, fov_y_degrees: f32) -> Vec3 {
+        let distance = 1.1 * self.radius / (0.5 * fov_y_degrees.to_radians()).sin();
+        self.centre + distance * (self.front + 0.35 * self.up).normalize()
+    }
+
+    /// Above, to the left and in front, three radii out.
+    fn light(&self) -> Vec3 {
+        self.centre + 3.0 * self.radius * (-0.6 * self.right + self.up + 1.2 * self.front).normalize()
+    }
+}
+
 /// The default light of each scene: the peer's orbit start for the torus, upper left for the
-/// flat scenes.
-pub fn default_light(kind: &SceneKind) -> Light {
+/// flat scenes, and for a mesh above, left and in front of it in its own units and axes
+/// (`params.up` says which way is up).
+pub fn default_light(kind: &SceneKind, params: &SceneParams) -> Light {
     match kind {
         SceneKind::Torus => {
             let a = -2.2f32;
@@ -131,24 +279,36 @@ pub fn default_light(kind: &SceneKind) -> Light {
         SceneKind::WallFloor => Light::Positional(Vec3::new(-2.5, 2.8, 0.5)),
         SceneKind::Patch => Light::Positional(Vec3::new(-3.0, -1.0, 1.2)),
         SceneKind::Floor => Light::Positional(Vec3::new(-1.5, 2.5, 1.0)),
-        _ => Light::Positional(Vec3::new(-3.0, -3.0, 4.0)),
+        SceneKind::Sphere => Light::Positional(Vec3::new(-3.0, -3.0, 4.0)),
+        SceneKind::Mesh(mesh) => Light::Positional(MeshFrame::new(mesh, params.up.unwrap_or(Vec3::Y)).light()),
     }
 }
 
-/// Builds a scene. Fails when the height field cannot become a normal map, or when a map made
-/// for a surface is asked of a mesh.
+/// Builds a scene. Fails when the height field cannot become a normal map, when a map made
+/// for a surface is asked of a mesh or one made from heights of a normal map, and when the eye
+/// is at the point looked at.
 pub fn build(kind: &SceneKind, params: &SceneParams) -> Result<Scene, CoreError> {
-    let chain = MipChain::<[u8; 4]>::from_height(&params.height_field, &params.normal_map, params.mip_mode)?;
+    let needs_heights = matches!(params.bump_map, BumpMap::Offset | BumpMap::Derivatives | BumpMap::SurfaceDependent);
+    let (chain, heights) = match &params.bumps {
+        BumpSource::Heights(field) => {
+            (Arc::new(MipChain::<[u8; 4]>::from_height(field, &params.normal_map, params.mip_mode)?), Some(field))
+        }
+        BumpSource::NormalMap(_) if needs_heights => return Err(CoreError::MapNeedsHeights(params.bump_map)),
+        BumpSource::NormalMap(chain) if params.mip_mode == MipMode::Renormalize => {
+            (Arc::new(chain.with_opaque_alpha()), None)
+        }
+        BumpSource::NormalMap(chain) => (chain.clone(), None),
+    };
     let normal_map = Arc::new(chain.to_mips());
     let decal = match (&params.decal, params.default_decal) {
-        (Some(d), _) => Some(Arc::new(Rgba8Mips::with_box_mipmaps(d.clone()))),
+        (Some(d), _) => Some(d.clone()),
         (None, true) => {
-            let (w, h) = (params.height_field.width(), params.height_field.height());
+            let (w, h) = params.bumps.size();
             Some(Arc::new(Rgba8Mips::with_box_mipmaps(Rgba8Image::new(w, h, bricks_decal(w, h)))))
         }
         (None, false) => None,
     };
-    let material = Material {
+    let mut material = Material {
         normal_map,
         normal_space: NormalSpace::Tangent,
         normal_texels: NormalTexels::UnitVector,
@@ -157,20 +317,16 @@ pub fn build(kind: &SceneKind, params: &SceneParams) -> Result<Scene, CoreError>
         diffuse: params.diffuse,
         specular: params.specular,
         shininess: params.shininess,
-        height_map: Some(Arc::new(Rgba8Mips::with_box_mipmaps(Rgba8Image::from_gray(
-            params.height_field.width(),
-            params.height_field.height(),
-            &params.height_field.to_u8(),
-        )))),
+        height_map: heights.map(|field| {
+            Arc::new(Rgba8Mips::with_box_mipmaps(Rgba8Image::from_gray(field.width(), field.height(), &field.to_u8())))
+        }),
         bump_scale: params.normal_map.scale,
     };
-    let mut material = material;
-    if matches!(params.bump_map, BumpMap::Offset | BumpMap::Derivatives) {
-        let (map, range) = offset_map(&params.height_field, &params.normal_map)?;
+    if let (BumpMap::Offset | BumpMap::Derivatives, Some(field)) = (params.bump_map, heights) {
+        let (map, range) = offset_map(field, &params.normal_map)?;
         material.normal_map = Arc::new(map);
         material.normal_texels = NormalTexels::Offset { range };
     }
-    let heights = Arc::new(params.height_field.clone());
     let object = |surface: Surface, tess: (usize, usize), repeat: Vec2, world_from_object: Mat4| {
         let repeat = params.repeat.unwrap_or(repeat);
         let material = surface_material(params, &material, &surface, repeat, &chain);
@@ -185,8 +341,7 @@ pub fn build(kind: &SceneKind, params: &SceneParams) -> Result<Scene, CoreError>
             source: Some(SurfaceSource {
                 surface,
                 repeat,
-                height_field: heights.clone(),
-                normal_map: params.normal_map,
+                heights: heights.map(|field| SurfaceHeights { field: field.clone(), options: params.normal_map }),
             }),
         }
     };
@@ -230,28 +385,52 @@ pub fn build(kind: &SceneKind, params: &SceneParams) -> Result<Scene, CoreError>
             return Err(CoreError::MapNeedsSurface(params.bump_map));
         }
         SceneKind::Mesh(mesh) => {
-            let (lo, hi) = mesh.positions.iter().fold((Vec3::MAX, Vec3::MIN), |(lo, hi), &p| (lo.min(p), hi.max(p)));
-            let centre = (lo + hi) * 0.5;
-            let radius = ((hi - lo).length() * 0.5).max(1e-6);
-            let world_from_object = Mat4::from_scale(Vec3::splat(1.5 / radius)) * Mat4::from_translation(-centre);
-            let object =
-                SceneObject { mesh: mesh.clone(), world_from_object, material: material.clone(), source: None };
-            (vec![object], Vec3::new(0.0, -2.5, 3.5), Vec3::ZERO, Vec3::Z)
+            // The mesh stays in its own units and axes; the default camera frames its bounds.
+            let frame = MeshFrame::new(mesh, params.up.unwrap_or(Vec3::Y));
+            let object = SceneObject {
+                mesh: mesh.clone(),
+                world_from_object: Mat4::IDENTITY,
+                material: material.clone(),
+                source: None,
+            };
+            (vec![object], frame.eye(params.fov_y_degrees), frame.centre, frame.up)
         }
     };
-    let lights =
-        if params.lights.is_empty() { vec![SceneLight::white(default_light(kind))] } else { params.lights.clone() };
+    let lights = if params.lights.is_empty() {
+        vec![SceneLight::white(default_light(kind, params))]
+    } else {
+        params.lights.clone()
+    };
+    let (eye, target) = (params.eye.unwrap_or(eye), params.target.unwrap_or(target));
+    if eye == target {
+        return Err(CoreError::EyeAtTarget { eye });
+    }
+    let (near, far) = clip_planes(&objects, eye);
     Ok(Scene {
-        camera: Camera {
-            eye: params.eye.unwrap_or(eye),
-            target: params.target.unwrap_or(target),
-            up,
-            fov_y_degrees: params.fov_y_degrees,
-            near: 0.5,
-            far: 50.0,
-        },
+        camera: Camera { eye, target, up: params.up.unwrap_or(up), fov_y_degrees: params.fov_y_degrees, near, far },
         viewer: params.viewer,
         lights,
         objects,
     })
+}
+
+/// The near and far planes for an eye at `eye`: 0.5 and 50 (the built-in scenes' own) where
+/// they hold the objects' bounding sphere, otherwise planes around that sphere — the near one
+/// no closer than a thousandth of its radius, for an eye inside it — so that a mesh in any units
+/// and a distant eye are neither clipped away nor squeezed into a few depth steps.
+fn clip_planes(objects: &[SceneObject], eye: Vec3) -> (f32, f32) {
+    let (lo, hi) = objects
+        .iter()
+        .flat_map(|o| o.mesh.positions.iter().map(|&p| o.world_from_object.transform_point3(p)))
+        .fold((Vec3::MAX, Vec3::MIN), |(lo, hi), p| (lo.min(p), hi.max(p)));
+    if !lo.cmple(hi).all() {
+        return (0.5, 50.0);
+    }
+    let (centre, radius) = ((lo + hi) * 0.5, (hi - lo).length() * 0.5);
+    let distance = eye.distance(centre);
+    let (near, far) = ((distance - radius) * 0.95, (distance + radius) * 1.05);
+    if near >= 0.5 && far <= 50.0 {
+        return (0.5, 50.0);
+    }
+    (near.max(radius * 1e-3).max(1e-6), far.max(near * 2.0).max(1e-5))
 }

@@ -19,6 +19,7 @@ pub type Lanes = [f32; LANES];
 /// The per-batch register set: RGBA lanes for each register, and the combiners' temporaries
 /// (kept here so a batch allocates and clears nothing).
 pub struct RegisterFile {
+    /// Every register's R, G, B and A lanes, indexed by `Register as usize`.
     pub regs: [[Lanes; 4]; REGISTERS],
     tmp: Temporaries,
 }
@@ -32,6 +33,7 @@ struct Temporaries {
 }
 
 impl RegisterFile {
+    /// A zeroed register file, boxed (it is large).
     pub fn new() -> Box<Self> {
         Box::new(Self {
             regs: [[[0.0; LANES]; 4]; REGISTERS],
@@ -43,6 +45,7 @@ impl RegisterFile {
         })
     }
 
+    /// Register `r`'s R, G, B and A lanes.
     pub fn reg_mut(&mut self, r: Register) -> &mut [Lanes; 4] {
         &mut self.regs[r as usize]
     }
@@ -119,6 +122,7 @@ impl Combiners {
         Ok(Self { setup, precision, gray })
     }
 
+    /// The setup being evaluated.
     pub fn setup(&self) -> &CombinerSetup {
         &self.setup
     }

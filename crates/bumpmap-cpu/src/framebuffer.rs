@@ -26,9 +26,13 @@ pub struct Tile {
 /// A tiled RGBA8 + depth framebuffer.
 #[derive(Clone, Debug)]
 pub struct Framebuffer {
+    /// Width in pixels.
     pub width: usize,
+    /// Height in pixels.
     pub height: usize,
+    /// Tiles along a row.
     pub tiles_x: usize,
+    /// The tiles, row by row of tiles.
     pub tiles: Vec<Tile>,
 }
 

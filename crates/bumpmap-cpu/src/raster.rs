@@ -16,7 +16,7 @@
 use glam::Vec4;
 use rayon::prelude::*;
 
-pub use bumpmap_core::state::{Blend, BlendFactor, DepthFunc, PassState};
+pub use bumpmap_core::state::{BlendFactor, DepthFunc, PassState};
 pub use bumpmap_core::vertex::{MAX_VARYINGS, Vertex};
 
 use crate::combiners::{LANES, Lanes};
@@ -36,6 +36,7 @@ pub struct DrawState {
 
 impl DrawState {
     /// Depth LESS with writes, no blending, back faces culled, every varying.
+    #[cfg(test)]
     pub const OPAQUE: DrawState = DrawState { pass: PassState::OPAQUE, varyings: MAX_VARYINGS };
 
     /// `pass` interpolating `varyings` varyings.
@@ -304,6 +305,7 @@ impl Setup {
 /// Draws indexed triangles into `fb` with `state`, shading with `shader`, on a fresh
 /// [`Rasterizer`]. Triangles whose indices are out of range or whose positions are not finite
 /// are skipped.
+#[cfg(test)]
 pub fn draw<S: FragmentShader>(
     fb: &mut Framebuffer,
     vertices: &[Vertex],

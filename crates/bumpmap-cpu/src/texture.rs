@@ -137,11 +137,6 @@ impl Level {
         }
     }
 
-    /// The RGBA8 texels, row-major.
-    pub fn texels(&self) -> &[[u8; 4]] {
-        &self.texels
-    }
-
     #[inline(always)]
     fn value(&self, x: usize, y: usize) -> Vec4 {
         self.value_at(y * self.width + x)
@@ -228,12 +223,13 @@ pub fn sample_2d(tex: &Texture2d, sampler: &Sampler, s: f32, t: f32, lambda: f32
 
 /// λ = log2 ρ for one 2×2 quad, ρ the larger screen-space footprint length in texels (GL 1.2
 /// Eq. 3.14), from the texture coordinates of the quad's pixels (0,0), (1,0) and (0,1).
-#[inline]
+#[cfg(test)]
 pub fn lambda_2d(tex: &Texture2d, s: [f32; 3], t: [f32; 3]) -> f32 {
     lambda_from_rho2(rho2_2d(tex, s, t))
 }
 
-/// ρ² of [`lambda_2d`].
+/// ρ² of one quad's footprint (GL 1.2 Eq. 3.14): the scalar twin of the AVX2 batch path.
+#[cfg(any(test, not(all(target_arch = "x86_64", target_feature = "avx2"))))]
 #[inline(always)]
 pub(crate) fn rho2_2d(tex: &Texture2d, s: [f32; 3], t: [f32; 3]) -> f32 {
     let (w, h) = (tex.width() as f32, tex.height() as f32);
@@ -286,18 +282,13 @@ impl TextureCube {
             let n = faces[0].width();
             let uniform = faces.iter().all(|f| f.levels.len() == 1 && f.width() == n && f.height() == n);
             uniform
-                .then(|| faces.iter().flat_map(|f| pad_rows(f.levels[0].texels(), n, WrapMode::ClampToEdge)).collect())
+                .then(|| faces.iter().flat_map(|f| pad_rows(&f.levels[0].texels, n, WrapMode::ClampToEdge)).collect())
         };
         Self {
             faces,
             #[cfg(all(target_arch = "x86_64", target_feature = "avx2", target_feature = "fma"))]
             packed,
         }
-    }
-
-    /// The faces in GL order.
-    pub fn faces(&self) -> &[Texture2d; 6] {
-        &self.faces
     }
 
     /// The normalization cube map as a texture (A = 255: an RGB texture).

@@ -83,7 +83,7 @@ fn nv_q9v(v: vec3<f32>) -> vec3<f32> {
 }
 ";
 
-/// WGSL for `setup` under `precision`: [`REGISTERS_WGSL`], the Fixed9 helpers if needed, and
+/// WGSL for `setup` under `precision`: the `Registers` struct, the Fixed9 helpers if needed, and
 /// `fn combiners(regs: Registers) -> vec4<f32>`. `setup` must be valid (`setup.validate()`).
 pub fn combiners_wgsl(setup: &CombinerSetup, precision: Precision) -> String {
     let clamp01 = |c: [f32; 4]| c.map(|x| x.clamp(0.0, 1.0));
@@ -397,7 +397,7 @@ pub fn fragment_shader(p: &bumpmap_core::technique::CombinerProgram) -> String {
     s
 }
 
-/// Varying slot `k` (`bumpmap_core::vertex::var`) as a field of `vertex.wgsl`'s `Varyings`,
+/// Varying slot `k` (`bumpmap_core::vertex::var`) as a field of the prelude's `Varyings`,
 /// e.g. `f.v1.z`: a static access, where `vary(f, k)` builds an array and indexes it.
 fn slot(k: usize) -> String {
     format!("f.v{}.{}", k / 4, ['x', 'y', 'z', 'w'][k % 4])

@@ -1,24 +1,35 @@
 //! The GPU backend: `bumpmap_core`'s techniques drawn with wgpu, headless (render to texture,
 //! read back).
 //!
-//! - [`renderer`]: [`GpuRenderer`], a technique's passes as render passes into an RGBA8 target;
-//! - [`pipelines`]: GL state (depth, blend, colour mask, culling) as pipeline state;
-//! - [`textures`]: mip chains, normalization cube maps and samplers on the device;
-//! - [`combiner_wgsl`]: register-combiner setups turned into WGSL by a generator;
-//! - [`context`]: the adapter and device, and the faults wgpu reports out of band;
-//! - `lit.rs` (private) with `lit.wgsl`: the single pass's fragment program, its uniforms and
-//!   its override constants; `vertex.wgsl`: the shared vertex stage.
+//! - `renderer`: [`GpuRenderer`], a technique's passes as render passes into an RGBA8 target;
+//! - `pipelines`: GL state (depth, blend, colour mask, culling) as pipeline state;
+//! - `textures`: mip chains, normalization cube maps and samplers on the device;
+//! - `combiner_wgsl`: register-combiner setups turned into WGSL by a generator
+//!   ([`combiners_wgsl`]);
+//! - `prelude`: the WGSL generated from the Rust constants it must agree with — the vertex
+//!   stage and its varying slots, the lit program's switches ([`shading_wgsl`]);
+//! - `lit` with `lit.wgsl` and `shading.wgsl`: the single pass's fragment program, its uniforms
+//!   and its override constants;
+//! - `context`: the adapter and device, and the faults wgpu reports out of band ([`Context`]).
 //!
 //! Not here: a window or surface (the viewer's), and any CPU rasterization — this crate depends
-//! on the core and math crates only.
+//! on the core and math crates only. Most users reach it through the `bumpmap` crate's
+//! renderer, which picks this backend or the CPU's.
 
-pub mod combiner_wgsl;
-pub mod context;
-pub mod error;
+#![warn(missing_docs)]
+
+mod combiner_wgsl;
+mod context;
+mod error;
 mod lit;
-pub mod pipelines;
-pub mod renderer;
-pub mod textures;
+mod pipelines;
+mod prelude;
+mod renderer;
+mod textures;
 
+pub use combiner_wgsl::combiners_wgsl;
+pub use context::Context;
 pub use error::GpuError;
+pub use lit::{self_shadow_name, specular_shadow_name};
+pub use prelude::shading_wgsl;
 pub use renderer::GpuRenderer;

@@ -14,6 +14,90 @@ use bumpmap_core::scene::{Attenuation, NormalTexels};
 use bumpmap_core::shading::LitTerms;
 use bumpmap_core::technique::{Gloss, HalfAngle, LitProgram, Normalize, SelfShadow, SpecularShadow};
 
+/// One switch of the lit program: its override constant and the WGSL names of its values, in
+/// code order (a value's code is its index here).
+struct Switch {
+    name: &'static str,
+    values: &'static [&'static str],
+}
+
+impl Switch {
+    /// The code of the value named `value`. Panics when the value is not listed: a new variant
+    /// of a switch's enum must be named here (every parity test would fail first).
+    fn code(&self, value: &str) -> u32 {
+        self.values
+            .iter()
+            .position(|&v| v == value)
+            .unwrap_or_else(|| panic!("{value} is not a value of {}", self.name)) as u32
+    }
+}
+
+const SELF_SHADOW: Switch =
+    Switch { name: "SELF_SHADOW", values: &["SELF_SHADOW_RAMP", "SELF_SHADOW_STEP", "SELF_SHADOW_OFF"] };
+const SPECULAR_SHADOW: Switch = Switch {
+    name: "SPECULAR_SHADOW",
+    values: &["SPECULAR_SHADOW_KILGARD", "SPECULAR_SHADOW_CG_TUTORIAL", "SPECULAR_SHADOW_OFF"],
+};
+const GLOSS: Switch = Switch { name: "GLOSS", values: &["GLOSS_NONE", "GLOSS_DECAL_ALPHA", "GLOSS_MAP"] };
+const ATTENUATION: Switch = Switch {
+    name: "ATTENUATION",
+    values: &["ATTENUATION_NONE", "ATTENUATION_POLYNOMIAL", "ATTENUATION_EXP", "ATTENUATION_EXP2"],
+};
+const NORMAL_TEXELS: Switch = Switch {
+    name: "NORMAL_TEXELS",
+    values: &["NORMAL_TEXELS_UNIT_VECTOR", "NORMAL_TEXELS_OFFSET", "NORMAL_TEXELS_DERIVATIVES"],
+};
+
+/// The WGSL name of a self-shadowing mode's constant (`SELF_SHADOW_RAMP`, …).
+pub fn self_shadow_name(mode: SelfShadow) -> &'static str {
+    match mode {
+        SelfShadow::Ramp => "SELF_SHADOW_RAMP",
+        SelfShadow::Step => "SELF_SHADOW_STEP",
+        SelfShadow::Off => "SELF_SHADOW_OFF",
+    }
+}
+
+/// The WGSL name of a specular gate's constant (`SPECULAR_SHADOW_KILGARD`, …).
+pub fn specular_shadow_name(mode: SpecularShadow) -> &'static str {
+    match mode {
+        SpecularShadow::Kilgard => "SPECULAR_SHADOW_KILGARD",
+        SpecularShadow::CgTutorial => "SPECULAR_SHADOW_CG_TUTORIAL",
+        SpecularShadow::Off => "SPECULAR_SHADOW_OFF",
+    }
+}
+
+fn gloss_name(gloss: &Gloss) -> &'static str {
+    match gloss {
+        Gloss::None => "GLOSS_NONE",
+        Gloss::DecalAlpha => "GLOSS_DECAL_ALPHA",
+        Gloss::Map(_) => "GLOSS_MAP",
+    }
+}
+
+fn attenuation_name(a: &Attenuation) -> &'static str {
+    match a {
+        Attenuation::None => "ATTENUATION_NONE",
+        Attenuation::Polynomial { .. } => "ATTENUATION_POLYNOMIAL",
+        Attenuation::Exponential { .. } => "ATTENUATION_EXP",
+        Attenuation::ExponentialSquared { .. } => "ATTENUATION_EXP2",
+    }
+}
+
+fn normal_texels_name(t: &NormalTexels) -> &'static str {
+    match t {
+        NormalTexels::UnitVector => "NORMAL_TEXELS_UNIT_VECTOR",
+        NormalTexels::Offset { .. } => "NORMAL_TEXELS_OFFSET",
+        NormalTexels::Derivatives { .. } => "NORMAL_TEXELS_DERIVATIVES",
+    }
+}
+
+/// Every named value of every switch with its code: the prelude's constants.
+pub(crate) fn named_values() -> impl Iterator<Item = (&'static str, u32)> {
+    [SELF_SHADOW, SPECULAR_SHADOW, GLOSS, ATTENUATION, NORMAL_TEXELS]
+        .into_iter()
+        .flat_map(|s| s.values.iter().enumerate().map(|(i, &v)| (v, i as u32)))
+}
+
 /// The switches of one lit program, as `lit.wgsl`'s override constants.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub struct LitVariant {
@@ -31,62 +115,87 @@ pub struct LitVariant {
     normal_texels: u32,
 }
 
+impl Default for LitVariant {
+    /// Every switch at its first value; shininess 8.
+    fn default() -> Self {
+        Self {
+            self_shadow: 0,
+            specular_shadow: 0,
+            normalize_cube: false,
+            fragment_half_angle: false,
+            gloss: 0,
+            object_space: false,
+            attenuation: 0,
+            spot: false,
+            spot_pattern: false,
+            shininess: 8.0f32.to_bits(),
+            normal_texels: 0,
+        }
+    }
+}
+
 impl LitVariant {
     /// The variant `p` needs.
     pub fn of(p: &LitProgram) -> Self {
         Self {
-            self_shadow: match p.terms.self_shadow {
-                SelfShadow::Ramp => 0,
-                SelfShadow::Step => 1,
-                SelfShadow::Off => 2,
-            },
-            specular_shadow: match p.terms.specular_shadow {
-                SpecularShadow::Kilgard => 0,
-                SpecularShadow::CgTutorial => 1,
-                SpecularShadow::Off => 2,
-            },
+            self_shadow: SELF_SHADOW.code(self_shadow_name(p.terms.self_shadow)),
+            specular_shadow: SPECULAR_SHADOW.code(specular_shadow_name(p.terms.specular_shadow)),
             normalize_cube: p.normalize == Normalize::Cube,
             fragment_half_angle: p.half_angle == HalfAngle::Fragment,
-            gloss: match p.gloss {
-                Gloss::None => 0,
-                Gloss::DecalAlpha => 1,
-                Gloss::Map(_) => 2,
-            },
+            gloss: GLOSS.code(gloss_name(&p.gloss)),
             object_space: p.normal_space.is_object(),
-            attenuation: match p.light.attenuation {
-                Attenuation::None => 0,
-                Attenuation::Polynomial { .. } => 1,
-                Attenuation::Exponential { .. } => 2,
-                Attenuation::ExponentialSquared { .. } => 3,
-            },
+            attenuation: ATTENUATION.code(attenuation_name(&p.light.attenuation)),
             spot: p.light.spot.is_some(),
             spot_pattern: p.light.spot.as_ref().is_some_and(|s| s.pattern.is_some()),
             shininess: p.terms.shininess.to_bits(),
-            normal_texels: match p.normal_texels {
-                NormalTexels::UnitVector => 0,
-                NormalTexels::Offset { .. } => 1,
-                NormalTexels::Derivatives { .. } => 2,
-            },
+            normal_texels: NORMAL_TEXELS.code(normal_texels_name(&p.normal_texels)),
         }
     }
 
-    /// The override constants, by their names in `lit.wgsl`.
-    pub fn constants(&self) -> [(&'static str, f64); 11] {
-        let flag = |b: bool| b as u32 as f64;
+    /// The override constants by their names in `lit.wgsl`, with their values: the one list
+    /// the pipeline's constants and the prelude's declarations are made from.
+    pub(crate) fn overrides(&self) -> [(&'static str, Override); 11] {
+        use Override::{Code, Flag, Float};
         [
-            ("SELF_SHADOW", self.self_shadow as f64),
-            ("SPECULAR_SHADOW", self.specular_shadow as f64),
-            ("NORMALIZE_CUBE", flag(self.normalize_cube)),
-            ("FRAGMENT_HALF_ANGLE", flag(self.fragment_half_angle)),
-            ("GLOSS", self.gloss as f64),
-            ("OBJECT_SPACE", flag(self.object_space)),
-            ("ATTENUATION", self.attenuation as f64),
-            ("SPOTLIGHT", flag(self.spot)),
-            ("SPOT_PATTERN", flag(self.spot_pattern)),
-            ("SHININESS", f32::from_bits(self.shininess) as f64),
-            ("NORMAL_TEXELS", self.normal_texels as f64),
+            (SELF_SHADOW.name, Code(self.self_shadow)),
+            (SPECULAR_SHADOW.name, Code(self.specular_shadow)),
+            ("NORMALIZE_CUBE", Flag(self.normalize_cube)),
+            ("FRAGMENT_HALF_ANGLE", Flag(self.fragment_half_angle)),
+            (GLOSS.name, Code(self.gloss)),
+            ("OBJECT_SPACE", Flag(self.object_space)),
+            (ATTENUATION.name, Code(self.attenuation)),
+            ("SPOTLIGHT", Flag(self.spot)),
+            ("SPOT_PATTERN", Flag(self.spot_pattern)),
+            ("SHININESS", Float(f32::from_bits(self.shininess))),
+            (NORMAL_TEXELS.name, Code(self.normal_texels)),
         ]
     }
+
+    /// The override constants as the pipeline takes them.
+    pub fn constants(&self) -> Vec<(&'static str, f64)> {
+        self.overrides()
+            .into_iter()
+            .map(|(name, value)| {
+                let v = match value {
+                    Override::Flag(b) => b as u32 as f64,
+                    Override::Code(c) => c as f64,
+                    Override::Float(x) => x as f64,
+                };
+                (name, v)
+            })
+            .collect()
+    }
+}
+
+/// An override constant's value, typed as `lit.wgsl` declares it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) enum Override {
+    /// A `bool` switch.
+    Flag(bool),
+    /// A `u32` switch, one of its named values' codes.
+    Code(u32),
+    /// An `f32`.
+    Float(f32),
 }
 
 /// `lit.wgsl`'s `Lit` uniform block for `p`.

@@ -19,27 +19,9 @@ struct Lit {
     texels: vec4<f32>,
 };
 
-// The model's switches, one pipeline per combination (src/lit.rs, LitVariant).
-// Self-shadow: 0 Eq. 12's ramp, 1 step, 2 off. Specular gate: 0 Kilgard, 1 Cg Tutorial, 2 off.
-override SELF_SHADOW: u32 = 0u;
-override SPECULAR_SHADOW: u32 = 0u;
-// Renormalize L and H by the cube map (1) or by math (0).
-override NORMALIZE_CUBE: u32 = 0u;
-// H per fragment from L and V (1) or interpolated from the vertices (0).
-override FRAGMENT_HALF_ANGLE: u32 = 0u;
-// Gloss: 0 none, 1 the decal's alpha, 2 the gloss map's red.
-override GLOSS: u32 = 0u;
-// The normal map is in object space (1) or tangent space (0).
-override OBJECT_SPACE: u32 = 0u;
-// Attenuation: 0 none, 1 polynomial, 2 exp, 3 exp2.
-override ATTENUATION: u32 = 0u;
-// A spotlight (1), and a pattern projected by it (1).
-override SPOTLIGHT: u32 = 0u;
-override SPOT_PATTERN: u32 = 0u;
-override SHININESS: f32 = 8.0;
-// The normal map's texels: 0 unit normals, 1 an offset map, 2 height derivatives for a
-// per-pixel Blinn (range and scale in u.texels).
-override NORMAL_TEXELS: u32 = 0u;
+// The model's switches are override constants, one pipeline per combination, declared with
+// their named values by the generated prelude (src/prelude.rs, from src/lit.rs), as are the
+// varying slots (VAR_*): nothing here restates a number Rust decides.
 
 @group(0) @binding(0) var<uniform> u: Lit;
 @group(0) @binding(1) var normal_map: texture_2d<f32>;
@@ -49,16 +31,6 @@ override NORMAL_TEXELS: u32 = 0u;
 @group(0) @binding(5) var cube_map: texture_cube<f32>;
 @group(0) @binding(6) var material_sampler: sampler;
 @group(0) @binding(7) var clamp_sampler: sampler;
-
-const S: u32 = 0u;
-const L: u32 = 2u;
-const H: u32 = 5u;
-const V: u32 = 8u;
-const LIGHT_DISTANCE: u32 = 11u;
-const SPOT: u32 = 12u;
-const PROJ: u32 = 15u;
-const N: u32 = 18u;
-const PARAM_FRAME: u32 = 25u;
 
 // normalize(v), or +Z where v has no direction.
 fn normalize_or_z(v: vec3<f32>) -> vec3<f32> {
@@ -71,7 +43,7 @@ fn normalize_or_z(v: vec3<f32>) -> vec3<f32> {
 
 // Per-fragment renormalization: by math, or by the cube map expanded as 2c - 1.
 fn unit(v: vec3<f32>) -> vec3<f32> {
-    if NORMALIZE_CUBE == 1u {
+    if NORMALIZE_CUBE {
         return textureSampleLevel(cube_map, clamp_sampler, v, 0.0).rgb * 2.0 - 1.0;
     }
     return normalize_or_z(v);
@@ -80,13 +52,13 @@ fn unit(v: vec3<f32>) -> vec3<f32> {
 fn attenuation(d: f32) -> f32 {
     let a = u.attenuation;
     switch ATTENUATION {
-        case 1u: {
+        case ATTENUATION_POLYNOMIAL: {
             return clamp(1.0 / (a.x + a.y * d + a.z * d * d), 0.0, 1.0);
         }
-        case 2u: {
+        case ATTENUATION_EXP: {
             return exp(-a.x * d);
         }
-        case 3u: {
+        case ATTENUATION_EXP2: {
             let x = a.x * d;
             return exp(-(x * x));
         }
@@ -97,16 +69,16 @@ fn attenuation(d: f32) -> f32 {
 }
 
 fn spot_factor(f: Varyings) -> f32 {
-    if SPOTLIGHT == 0u {
+    if !SPOTLIGHT {
         return 1.0;
     }
-    let c = -dot(normalize_or_z(vary3(f, L)), normalize_or_z(vary3(f, SPOT)));
+    let c = -dot(normalize_or_z(vary3(f, VAR_L)), normalize_or_z(vary3(f, VAR_SPOT)));
     var k = 0.0;
     if c >= u.spot.x {
         k = select(select(pow(c, u.spot.y), 0.0, c <= 0.0), 1.0, u.spot.y == 0.0);
     }
-    if SPOT_PATTERN == 1u {
-        let p = vary3(f, PROJ);
+    if SPOT_PATTERN {
+        let p = vary3(f, VAR_PROJ);
         var pattern = 0.0;
         if p.z > 0.0 {
             pattern = textureSampleLevel(pattern_map, clamp_sampler, p.xy / p.z, 0.0).r;
@@ -138,34 +110,34 @@ fn blinn_from_derivatives(t: vec4<f32>, range: f32, scale: vec2<f32>, pf: vec3<f
 
 @fragment
 fn fs_lit(f: Varyings) -> @location(0) vec4<f32> {
-    let st = vec2<f32>(vary(f, S), vary(f, S + 1u));
+    let st = vec2<f32>(vary(f, VAR_S), vary(f, VAR_T));
     var normal = textureSample(normal_map, material_sampler, st * u.normal_scale.xy);
-    if NORMAL_TEXELS == 1u {
+    if NORMAL_TEXELS == NORMAL_TEXELS_OFFSET {
         normal = offset_to_normal(normal, u.texels.x);
-    } else if NORMAL_TEXELS == 2u {
-        normal = blinn_from_derivatives(normal, u.texels.x, u.texels.yz, vary3(f, PARAM_FRAME));
+    } else if NORMAL_TEXELS == NORMAL_TEXELS_DERIVATIVES {
+        normal = blinn_from_derivatives(normal, u.texels.x, u.texels.yz, vary3(f, VAR_PARAM_FRAME));
     }
     let decal = textureSample(decal_map, material_sampler, st);
     var gloss = 1.0;
-    if GLOSS == 1u {
+    if GLOSS == GLOSS_DECAL_ALPHA {
         gloss = decal.a;
-    } else if GLOSS == 2u {
+    } else if GLOSS == GLOSS_MAP {
         gloss = textureSample(gloss_map, material_sampler, st).r;
     }
-    let l = unit(vary3(f, L));
-    var h_in = vary3(f, H);
-    if FRAGMENT_HALF_ANGLE == 1u {
-        h_in = normalize_or_z(normalize_or_z(vary3(f, L)) + normalize_or_z(vary3(f, V)));
+    let l = unit(vary3(f, VAR_L));
+    var h_in = vary3(f, VAR_H);
+    if FRAGMENT_HALF_ANGLE {
+        h_in = normalize_or_z(normalize_or_z(vary3(f, VAR_L)) + normalize_or_z(vary3(f, VAR_V)));
     }
     let h = unit(h_in);
     var l_n = l.z;
     var h_n = h.z;
-    if OBJECT_SPACE == 1u {
-        let n = normalize_or_z(vary3(f, N));
+    if OBJECT_SPACE {
+        let n = normalize_or_z(vary3(f, VAR_N));
         l_n = dot(l, n);
         h_n = dot(h, n);
     }
-    let light = attenuation(vary(f, LIGHT_DISTANCE)) * spot_factor(f);
+    let light = attenuation(vary(f, VAR_LIGHT_DISTANCE)) * spot_factor(f);
     let t = Terms(u.ambient.rgb, u.diffuse.rgb, u.specular.rgb, SHININESS, SELF_SHADOW, SPECULAR_SHADOW);
     let frag = Fragment(normal, decal.rgb, gloss, l, h, l_n, h_n, light);
     return vec4<f32>(shade(t, frag), 1.0);

@@ -24,10 +24,11 @@ pub const VERTEX_FLOATS: usize = 4 + MAX_VARYINGS;
 /// Texture units of a combiner program.
 pub const UNITS: usize = 4;
 
-const VERTEX_WGSL: &str = include_str!("vertex.wgsl");
-const LIT_WGSL: &str = include_str!("lit.wgsl");
-/// `bumpmap_core::shading::shade` in WGSL (with its `Terms` and `Fragment`).
-pub const SHADING_WGSL: &str = include_str!("shading.wgsl");
+/// The lit program's fragment stage, after the prelude and the model.
+pub(crate) const LIT_WGSL: &str = include_str!("lit.wgsl");
+/// `bumpmap_core::shading::shade` in WGSL (with its `Terms` and `Fragment`); it reads the
+/// prelude's switch constants (`crate::prelude::shading_wgsl`).
+pub(crate) const SHADING_WGSL: &str = include_str!("shading.wgsl");
 
 /// Which fragment program a pipeline runs.
 #[derive(Clone, Debug, PartialEq, Eq, Hash)]
@@ -206,8 +207,8 @@ impl Pipelines {
             .entry(module_key.clone())
             .or_insert_with(|| {
                 let source = match shader {
-                    Shader::Lit(_) => format!("{VERTEX_WGSL}\n{SHADING_WGSL}\n{LIT_WGSL}"),
-                    Shader::Combiners(s) => format!("{VERTEX_WGSL}\n{s}"),
+                    Shader::Lit(_) => crate::prelude::lit_program(),
+                    Shader::Combiners(s) => format!("{}\n{s}", crate::prelude::vertex_stage()),
                 };
                 ctx.device.create_shader_module(wgpu::ShaderModuleDescriptor {
                     label: Some("bumpmap"),
@@ -219,17 +220,21 @@ impl Pipelines {
             Shader::Lit(_) => (&self.lit_pipeline_layout, "fs_lit"),
             Shader::Combiners(_) => (&self.combiner_pipeline_layout, "fs_combiners"),
         };
-        const ATTRIBUTES: [wgpu::VertexAttribute; 8] = wgpu::vertex_attr_array![
-            0 => Float32x4, 1 => Float32x4, 2 => Float32x4, 3 => Float32x4, 4 => Float32x4, 5 => Float32x4, 6 => Float32x4,
-            7 => Float32x4
-        ];
+        // The clip position and the prelude's varying locations, one vec4 each.
+        let attributes: Vec<wgpu::VertexAttribute> = (0..=crate::prelude::LOCATIONS as u32)
+            .map(|i| wgpu::VertexAttribute {
+                format: wgpu::VertexFormat::Float32x4,
+                offset: 16 * i as u64,
+                shader_location: i,
+            })
+            .collect();
         let buffers = [Some(wgpu::VertexBufferLayout {
             array_stride: (VERTEX_FLOATS * 4) as u64,
             step_mode: wgpu::VertexStepMode::Vertex,
-            attributes: &ATTRIBUTES,
+            attributes: &attributes,
         })];
         let constants = match shader {
-            Shader::Lit(v) => v.constants().to_vec(),
+            Shader::Lit(v) => v.constants(),
             Shader::Combiners(_) => Vec::new(),
         };
         let blend = (state.blend.src, state.blend.dst) != (BlendFactor::One, BlendFactor::Zero);

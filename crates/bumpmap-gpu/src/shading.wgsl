@@ -7,9 +7,10 @@ struct Terms {
     diffuse: vec3<f32>,
     specular: vec3<f32>,
     shininess: f32,
-    // 0: Eq. 12's ramp, 1: step, 2: off.
+    // SELF_SHADOW_RAMP (Eq. 12), SELF_SHADOW_STEP or SELF_SHADOW_OFF.
     self_shadow: u32,
-    // 0: Kilgard (s_self, H_z >= 0), 1: Cg Tutorial (N'.L > 0 and L_z > 0), 2: off.
+    // SPECULAR_SHADOW_KILGARD (s_self, H_z >= 0), SPECULAR_SHADOW_CG_TUTORIAL (N'.L > 0 and
+    // L_z > 0) or SPECULAR_SHADOW_OFF.
     specular_shadow: u32,
 };
 
@@ -57,15 +58,15 @@ fn shade(t: Terms, f: Fragment) -> vec3<f32> {
     let n_dot_l = clamp(dot(f.l, nv), -1.0, 1.0);
     let h_dot_n = clamp(dot(f.h, nv), 0.0, 1.0);
     var s_self = 1.0;
-    if t.self_shadow == 0u {
+    if t.self_shadow == SELF_SHADOW_RAMP {
         s_self = clamp(8.0 * f.l_n, 0.0, 1.0);
-    } else if t.self_shadow == 1u {
+    } else if t.self_shadow == SELF_SHADOW_STEP {
         s_self = select(0.0, 1.0, f.l_n > 0.0);
     }
     var gate = 1.0;
-    if t.specular_shadow == 0u {
+    if t.specular_shadow == SPECULAR_SHADOW_KILGARD {
         gate = s_self * select(0.0, 1.0, f.h_n >= 0.0);
-    } else if t.specular_shadow == 1u {
+    } else if t.specular_shadow == SPECULAR_SHADOW_CG_TUTORIAL {
         gate = select(0.0, 1.0, n_dot_l > 0.0 && f.l_n > 0.0);
     }
     let power = specular_power(h_dot_n, t.shininess);

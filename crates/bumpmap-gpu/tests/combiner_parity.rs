@@ -19,8 +19,8 @@ use bumpmap_core::combiners::{
     Outputs, Portion, Precision, Register, Scale,
 };
 use bumpmap_core::{setups, technique::kilgard::decal_times_diffuse};
-use bumpmap_cpu::combiners::{Combiners, LANES, RegisterFile};
-use bumpmap_gpu::combiner_wgsl::combiners_wgsl;
+use bumpmap_cpu::{Combiners, LANES, RegisterFile};
+use bumpmap_gpu::combiners_wgsl;
 use glam::Vec4;
 
 // ---------------------------------------------------------------------------------------------

@@ -11,7 +11,7 @@ mod common;
 
 use bumpmap_core::shading::{Fragment, LitTerms, shade};
 use bumpmap_core::technique::{SelfShadow, SpecularShadow};
-use bumpmap_gpu::pipelines::SHADING_WGSL;
+use bumpmap_gpu::{self_shadow_name, shading_wgsl, specular_shadow_name};
 use glam::{Vec3, Vec4};
 
 struct Rng(u64);
@@ -63,10 +63,11 @@ fn wgsl_shade_is_the_lighting_model() {
         .collect();
     let mut worst = 0f32;
     let mut cases = 0;
-    for (self_shadow, ss) in [(SelfShadow::Ramp, 0), (SelfShadow::Step, 1), (SelfShadow::Off, 2)] {
-        for (specular_shadow, sg) in
-            [(SpecularShadow::Kilgard, 0), (SpecularShadow::CgTutorial, 1), (SpecularShadow::Off, 2)]
-        {
+    let shading = shading_wgsl();
+    for self_shadow in [SelfShadow::Ramp, SelfShadow::Step, SelfShadow::Off] {
+        for specular_shadow in [SpecularShadow::Kilgard, SpecularShadow::CgTutorial, SpecularShadow::Off] {
+            // The modes by the prelude's names, as lit.wgsl passes them.
+            let (ss, sg) = (self_shadow_name(self_shadow), specular_shadow_name(specular_shadow));
             for shininess in [8.0f32, 1.0, 33.0, 7.5, 100.0] {
                 let terms = LitTerms {
                     ambient: Vec3::new(0.2, 0.1, 0.05),
@@ -79,7 +80,7 @@ fn wgsl_shade_is_the_lighting_model() {
                 let v3 =
                     |v: Vec3| format!("vec3<f32>({}, {}, {})", wgsl_literal(v.x), wgsl_literal(v.y), wgsl_literal(v.z));
                 let wgsl = format!(
-                    "{SHADING_WGSL}
+                    "{shading}
 struct In {{ normal: vec4<f32>, decal_gloss: vec4<f32>, l_light: vec4<f32>, h_ln: vec4<f32>, hn: vec4<f32> }};
 @group(0) @binding(0) var<storage, read> inputs: array<In>;
 @group(0) @binding(1) var<storage, read_write> outputs: array<vec4<f32>>;
@@ -87,7 +88,7 @@ struct In {{ normal: vec4<f32>, decal_gloss: vec4<f32>, l_light: vec4<f32>, h_ln
 fn main(@builtin(global_invocation_id) id: vec3<u32>) {{
     if id.x >= arrayLength(&outputs) {{ return; }}
     let i = inputs[id.x];
-    let t = Terms({}, {}, {}, {}, {ss}u, {sg}u);
+    let t = Terms({}, {}, {}, {}, {ss}, {sg});
     let f = Fragment(i.normal, i.decal_gloss.xyz, i.decal_gloss.w, i.l_light.xyz, i.h_ln.xyz, i.h_ln.w, i.hn.x, i.l_light.w);
     outputs[id.x] = vec4<f32>(shade(t, f), 1.0);
 }}",

@@ -14,13 +14,13 @@ mod common;
 
 use std::sync::Arc;
 
-use bumpmap_core::BumpMap;
 use bumpmap_core::combiners::Precision;
 use bumpmap_core::scene::{Attenuation, SceneLight, Spot};
 use bumpmap_core::scenes::{self, SceneKind, SceneParams};
 use bumpmap_core::technique::{
     Gloss, HalfAngle, KilgardOptions, Normalize, SelfShadow, SinglePassOptions, SpecularShadow, Technique,
 };
+use bumpmap_core::{BumpMap, BumpSource};
 use bumpmap_gpu::GpuRenderer;
 use bumpmap_math::lighting::Light;
 use bumpmap_math::{HeightPreset, Rgba8Image, Rgba8Mips};
@@ -65,7 +65,10 @@ fn both_techniques_match_the_cpu_on_every_kind_of_scene() {
     let Some(mut gpu) = common::renderer() else { return };
     let sp = || single(SinglePassOptions::default());
     let flat = || SceneParams { default_decal: true, ..Default::default() };
-    let pinwheel = || SceneParams { height_field: HeightPreset::Pinwheel.render(256, 256), ..Default::default() };
+    let pinwheel = || SceneParams {
+        bumps: BumpSource::Heights(Arc::new(HeightPreset::Pinwheel.render(256, 256))),
+        ..Default::default()
+    };
     let cases: Vec<(&str, SceneKind, SceneParams)> = vec![
         ("torus", SceneKind::Torus, SceneParams::default()),
         ("wall_floor", SceneKind::WallFloor, flat()),

@@ -7,24 +7,93 @@ pub fn shown(path: &Path) -> String {
     if path.as_os_str().is_empty() { "(an empty path)".into() } else { path.display().to_string() }
 }
 
+/// What went wrong with a file, naming it.
 #[derive(Debug, thiserror::Error)]
 pub enum IoError {
+    /// The file could not be opened or read.
     #[error("{}: cannot read: {source}", shown(path))]
-    Read { path: PathBuf, source: std::io::Error },
+    Read {
+        /// The file.
+        path: PathBuf,
+        /// What the system said.
+        source: std::io::Error,
+    },
+    /// The file is not an image the decoder reads.
     #[error("{}: not a readable image: {reason}", shown(path))]
-    Decode { path: PathBuf, reason: String },
+    Decode {
+        /// The file.
+        path: PathBuf,
+        /// What the decoder said.
+        reason: String,
+    },
+    /// An image larger than the limit, found from its header.
     #[error("{}: image is {width}x{height}; the limit is {max}x{max} texels", shown(path))]
-    TooLarge { path: PathBuf, width: u64, height: u64, max: u32 },
+    TooLarge {
+        /// The file.
+        path: PathBuf,
+        /// The width its header declares.
+        width: u64,
+        /// The height its header declares.
+        height: u64,
+        /// The largest side accepted.
+        max: u32,
+    },
+    /// An image of no texels.
     #[error("{}: image has no texels ({width}x{height})", shown(path))]
-    Empty { path: PathBuf, width: u32, height: u32 },
+    Empty {
+        /// The file.
+        path: PathBuf,
+        /// Its width.
+        width: u32,
+        /// Its height.
+        height: u32,
+    },
+    /// A height-field channel the image does not have.
     #[error("{}: image has no {channel} channel (it has {has})", shown(path))]
-    NoSuchChannel { path: PathBuf, channel: &'static str, has: String },
+    NoSuchChannel {
+        /// The file.
+        path: PathBuf,
+        /// The channel asked for.
+        channel: &'static str,
+        /// The channels it has, in words.
+        has: String,
+    },
+    /// The file could not be written (or renamed into place).
     #[error("{}: cannot write: {source}", shown(path))]
-    Write { path: PathBuf, source: std::io::Error },
+    Write {
+        /// The file.
+        path: PathBuf,
+        /// What the system said.
+        source: std::io::Error,
+    },
+    /// An output that is one of the command's inputs.
     #[error("{}: output would overwrite the input file", shown(path))]
-    SameAsInput { path: PathBuf },
+    SameAsInput {
+        /// The output.
+        path: PathBuf,
+    },
+    /// An output whose extension names no format this crate writes there.
     #[error("{}: unsupported output format (use {expected})", shown(path))]
-    UnsupportedOutput { path: PathBuf, expected: &'static str },
+    UnsupportedOutput {
+        /// The output.
+        path: PathBuf,
+        /// The extensions accepted, in words.
+        expected: &'static str,
+    },
+    /// A mesh file that cannot be used.
     #[error("{}: {reason}", shown(path))]
-    Mesh { path: PathBuf, reason: String },
+    Mesh {
+        /// The file.
+        path: PathBuf,
+        /// Why.
+        reason: String,
+    },
+    /// A texture file that cannot be used.
+    #[error("{}: {reason}", shown(path))]
+    Texture {
+        /// The file.
+        path: PathBuf,
+        /// Why.
+        reason: String,
+    },
 }

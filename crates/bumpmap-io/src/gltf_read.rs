@@ -4,8 +4,11 @@
 //! accessor the mesh loader reads checked for its component type, shape and byte range, so the
 //! `gltf` crate's reader never indexes out of bounds.
 //!
-//! Not read: images, sparse accessors (refused), files outside the glTF's folder (refused; a
-//! URI with `..`, an absolute path, a scheme such as `file://`, or a link that leads out).
+//! Images (a material's textures) are read on request ([`GltfFile::image_bytes`]) under the
+//! same rules: a `data:` URI, a buffer view, or a regular file inside the glTF's folder.
+//!
+//! Not read: sparse accessors (refused), files outside the glTF's folder (refused; a URI with
+//! `..`, an absolute path, a scheme such as `file://`, or a link that leads out).
 
 use std::io::Read as _;
 use std::path::{Component, Path, PathBuf};
@@ -22,14 +25,16 @@ fn err(path: &Path, reason: impl std::fmt::Display) -> IoError {
 }
 
 /// A parsed document and its buffers' bytes (each exactly its `byteLength`).
-pub(crate) struct GltfFile {
+pub(crate) struct GltfFile<'a> {
     pub document: gltf::Document,
     pub buffers: Vec<Vec<u8>>,
-    /// The buffer files read besides the glTF itself.
+    /// The buffer (and image) files read besides the glTF itself.
     pub files: Vec<PathBuf>,
+    /// Where its files may come from.
+    files_from: BufferFiles<'a>,
 }
 
-/// Where a glTF's buffer files may come from.
+/// Where a glTF's buffer and image files may come from.
 #[derive(Clone, Copy, Debug)]
 pub(crate) enum BufferFiles<'a> {
     /// Nowhere: the glTF was read from memory; only `data:` URIs and the GLB chunk.
@@ -38,16 +43,59 @@ pub(crate) enum BufferFiles<'a> {
     Folder { dir: &'a Path, allow_outside: bool },
 }
 
+impl GltfFile<'_> {
+    /// The bytes of `image` (`what` names it in messages, e.g. `normalTexture (image 0)`), and
+    /// a name for the file they came from: the image's own file, or the glTF with the image's
+    /// index for a buffer view or a `data:` URI.
+    pub fn image_bytes(&mut self, path: &Path, image: &gltf::Image, what: &str) -> Result<(Vec<u8>, PathBuf), IoError> {
+        let embedded = PathBuf::from(format!("{} ({what})", path.display()));
+        // The JSON, not `Image::source`: that unwraps a mimeType the gltf crate's validation
+        // does not insist on (a buffer-view image without one made it panic).
+        let json = &self.document.as_json().images[image.index()];
+        match (json.buffer_view, json.uri.as_deref()) {
+            (Some(index), _) => {
+                let view = self.document.views().nth(index.value()).ok_or_else(|| {
+                    err(path, format!("{what} names bufferView {}, which the file does not have", index.value()))
+                })?;
+                let buffer = self.buffers.get(view.buffer().index()).map_or(&[][..], Vec::as_slice);
+                let bytes = view
+                    .offset()
+                    .checked_add(view.length())
+                    .and_then(|end| buffer.get(view.offset()..end))
+                    .ok_or_else(|| {
+                        err(
+                            path,
+                            format!(
+                                "{what}: bufferView {} runs past its buffer of {} bytes",
+                                view.index(),
+                                buffer.len()
+                            ),
+                        )
+                    })?;
+                Ok((bytes.to_vec(), embedded))
+            }
+            (None, Some(uri)) => {
+                let uri = uri.to_string();
+                let before = self.files.len();
+                let bytes = read_uri(path, self.files_from, what, &uri, MAX_FILE_BYTES as usize, &mut self.files)?;
+                let name = if self.files.len() > before { self.files[before].clone() } else { embedded };
+                Ok((bytes, name))
+            }
+            (None, None) => Err(err(path, format!("{what} has neither a uri nor a bufferView"))),
+        }
+    }
+}
+
 /// Reads and checks `path` (see the module docs); `allow_outside` lets buffer URIs lead out
 /// of its folder (absolute paths, `..`).
-pub(crate) fn read(path: &Path, allow_outside: bool) -> Result<GltfFile, IoError> {
+pub(crate) fn read(path: &Path, allow_outside: bool) -> Result<GltfFile<'_>, IoError> {
     let bytes = read_file(path, path, MAX_FILE_BYTES)?;
     let dir = path.parent().unwrap_or(Path::new(""));
     parse(path, &bytes, BufferFiles::Folder { dir, allow_outside })
 }
 
 /// Checks and parses a glTF or GLB file's `bytes`; `name` is the file errors name.
-pub(crate) fn parse(name: &Path, bytes: &[u8], files_from: BufferFiles) -> Result<GltfFile, IoError> {
+pub(crate) fn parse<'a>(name: &Path, bytes: &[u8], files_from: BufferFiles<'a>) -> Result<GltfFile<'a>, IoError> {
     let path = name;
     if bytes.len() as u64 > MAX_FILE_BYTES {
         return Err(err(path, format!("{} bytes; the limit is {MAX_FILE_BYTES}", bytes.len())));
@@ -87,7 +135,9 @@ pub(crate) fn parse(name: &Path, bytes: &[u8], files_from: BufferFiles) -> Resul
             gltf::buffer::Source::Bin => gltf.blob.clone().ok_or_else(|| {
                 err(path, format!("buffer {} refers to a GLB chunk the file does not have", buffer.index()))
             })?,
-            gltf::buffer::Source::Uri(uri) => read_uri(path, files_from, buffer.index(), uri, length, &mut files)?,
+            gltf::buffer::Source::Uri(uri) => {
+                read_uri(path, files_from, &format!("buffer {}", buffer.index()), uri, length, &mut files)?
+            }
         };
         if data.len() < length {
             return Err(err(path, format!("buffer {} declares {length} bytes but has {}", buffer.index(), data.len())));
@@ -96,7 +146,7 @@ pub(crate) fn parse(name: &Path, bytes: &[u8], files_from: BufferFiles) -> Resul
         buffers.push(data);
     }
     check_accessors(path, &gltf.document, &buffers)?;
-    Ok(GltfFile { document: gltf.document, buffers, files })
+    Ok(GltfFile { document: gltf.document, buffers, files, files_from })
 }
 
 /// Reads at most `max` bytes of a regular file.
@@ -161,47 +211,40 @@ fn percent_decode(uri: &str) -> Option<String> {
     String::from_utf8(out).ok()
 }
 
-/// A buffer's bytes from its URI: a base64 `data:` URI, or a file `files_from` allows.
+/// A buffer's or image's bytes (`what` names it) from its URI: a base64 `data:` URI, or a file
+/// `files_from` allows; at most `length` bytes.
 fn read_uri(
     path: &Path,
     files_from: BufferFiles,
-    index: usize,
+    what: &str,
     uri: &str,
     length: usize,
     files: &mut Vec<PathBuf>,
 ) -> Result<Vec<u8>, IoError> {
     if let Some(rest) = uri.strip_prefix("data:") {
-        let (_, encoded) = rest
-            .split_once(";base64,")
-            .ok_or_else(|| err(path, format!("buffer {index}: only base64 data: URIs are read")))?;
+        let (_, encoded) =
+            rest.split_once(";base64,").ok_or_else(|| err(path, format!("{what}: only base64 data: URIs are read")))?;
         if encoded.len() / 4 * 3 > length + 3 {
-            return Err(err(path, format!("buffer {index}: its data: URI holds more than its {length} bytes")));
+            return Err(err(path, format!("{what}: its data: URI holds more than its {length} bytes")));
         }
-        return base64::decode(encoded)
-            .map_err(|e| err(path, format!("buffer {index}: bad base64 in its data: URI: {e}")));
+        return base64::decode(encoded).map_err(|e| err(path, format!("{what}: bad base64 in its data: URI: {e}")));
     }
     let BufferFiles::Folder { dir, allow_outside } = files_from else {
-        return Err(err(
-            path,
-            format!("buffer {index} is the file '{uri}', but a glTF read from memory has no folder"),
-        ));
+        return Err(err(path, format!("{what} is the file '{uri}', but a glTF read from memory has no folder")));
     };
     let outside = || {
         err(
             path,
             format!(
-                "buffer {index}'s uri '{uri}' points outside the glTF's folder; only files beside it or below it are read (unless outside paths are allowed)"
+                "{what}'s uri '{uri}' points outside the glTF's folder; only files beside it or below it are read (unless outside paths are allowed)"
             ),
         )
     };
     let has_scheme = uri.split_once(':').is_some_and(|(scheme, _)| !scheme.is_empty() && !scheme.contains('/'));
-    let decoded = percent_decode(uri)
-        .ok_or_else(|| err(path, format!("buffer {index}'s uri '{uri}' has a malformed %-escape")))?;
+    let decoded =
+        percent_decode(uri).ok_or_else(|| err(path, format!("{what}'s uri '{uri}' has a malformed %-escape")))?;
     if has_scheme {
-        return Err(err(
-            path,
-            format!("buffer {index}'s uri '{uri}' has a scheme; only data: URIs and paths are read"),
-        ));
+        return Err(err(path, format!("{what}'s uri '{uri}' has a scheme; only data: URIs and paths are read")));
     }
     if allow_outside {
         let file = dir.join(Path::new(&decoded));
@@ -239,21 +282,21 @@ fn check_accessors(path: &Path, doc: &gltf::Document, buffers: &[Vec<u8>]) -> Re
     use gltf::Semantic;
     for mesh in doc.meshes() {
         for prim in mesh.primitives() {
-            let mut wanted: Vec<(&str, gltf::Accessor, Accepted, Dimensions)> = Vec::new();
+            let mut wanted: Vec<(String, gltf::Accessor, Accepted, Dimensions)> = Vec::new();
             const FLOAT: &[(DataType, bool)] = &[(DataType::F32, false)];
             const UV: &[(DataType, bool)] = &[(DataType::F32, false), (DataType::U8, true), (DataType::U16, true)];
             const INDEX: &[(DataType, bool)] = &[(DataType::U8, false), (DataType::U16, false), (DataType::U32, false)];
             for (semantic, accessor) in prim.attributes() {
                 match semantic {
-                    Semantic::Positions => wanted.push(("POSITION", accessor, FLOAT, Dimensions::Vec3)),
-                    Semantic::Normals => wanted.push(("NORMAL", accessor, FLOAT, Dimensions::Vec3)),
-                    Semantic::Tangents => wanted.push(("TANGENT", accessor, FLOAT, Dimensions::Vec4)),
-                    Semantic::TexCoords(0) => wanted.push(("TEXCOORD_0", accessor, UV, Dimensions::Vec2)),
+                    Semantic::Positions => wanted.push(("POSITION".into(), accessor, FLOAT, Dimensions::Vec3)),
+                    Semantic::Normals => wanted.push(("NORMAL".into(), accessor, FLOAT, Dimensions::Vec3)),
+                    Semantic::Tangents => wanted.push(("TANGENT".into(), accessor, FLOAT, Dimensions::Vec4)),
+                    Semantic::TexCoords(n) => wanted.push((format!("TEXCOORD_{n}"), accessor, UV, Dimensions::Vec2)),
                     _ => {}
                 }
             }
             if let Some(indices) = prim.indices() {
-                wanted.push(("indices", indices, INDEX, Dimensions::Scalar));
+                wanted.push(("indices".into(), indices, INDEX, Dimensions::Scalar));
             }
             for (what, a, types, dims) in wanted {
                 let named = format!("{what} accessor {}", a.index());

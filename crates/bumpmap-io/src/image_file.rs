@@ -21,13 +21,18 @@ pub enum Channel {
     /// The grey value of a greyscale image, Rec. 709 luminance of a colour one.
     #[default]
     Luminance,
+    /// Red.
     Red,
+    /// Green.
     Green,
+    /// Blue.
     Blue,
+    /// Alpha.
     Alpha,
 }
 
 impl Channel {
+    /// The channel's name as the command line spells it.
     pub fn name(self) -> &'static str {
         match self {
             Channel::Luminance => "luminance",
@@ -42,7 +47,14 @@ impl Channel {
 /// Where a height field comes from: a built-in preset or an image file.
 #[derive(Clone, Debug, PartialEq)]
 pub enum HeightSource {
-    Preset { preset: HeightPreset, size: usize },
+    /// A built-in preset, `size`×`size`.
+    Preset {
+        /// Which preset.
+        preset: HeightPreset,
+        /// Its side in texels.
+        size: usize,
+    },
+    /// An image file.
     File(PathBuf),
 }
 
@@ -62,6 +74,8 @@ impl HeightSource {
         }
     }
 
+    /// The heights: the preset rendered, or the file's `channel` read (a missing file that
+    /// looks like a mistyped preset says why it is neither).
     pub fn load(&self, channel: Channel) -> Result<HeightField, IoError> {
         match self {
             HeightSource::Preset { preset, size } => Ok(preset.render(*size, *size)),
@@ -170,6 +184,16 @@ fn decode(source: impl Source, name: &Path, limits: &DecodeLimits) -> Result<Dyn
     image_limits.max_alloc = Some(limits.max_alloc);
     reader.limits(image_limits);
     reader.decode().map_err(bad)
+}
+
+/// Decodes the image file at `path` (see [`DecodeLimits::default`]).
+pub(crate) fn decode_path(path: &Path) -> Result<DynamicImage, IoError> {
+    decode(path, path, &DecodeLimits::default())
+}
+
+/// Decodes an image file's bytes; `name` is the file errors name.
+pub(crate) fn decode_bytes(bytes: &[u8], name: &Path, limits: &DecodeLimits) -> Result<DynamicImage, IoError> {
+    decode(bytes, name, limits)
 }
 
 /// Refuses a PNG whose PLTE chunk is not a whole number of RGB entries (1 to 256): the `png`
@@ -287,8 +311,11 @@ fn rgba8(img: DynamicImage) -> Rgba8Image {
 /// Pixel layouts [`save_png`] writes.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum PngLayout {
+    /// 8-bit grey.
     Gray8,
+    /// 8-bit RGB.
     Rgb8,
+    /// 8-bit RGBA.
     Rgba8,
     /// 16 bits a channel, each in the machine's byte order (as `u16::to_ne_bytes` gives it).
     Rgba16,

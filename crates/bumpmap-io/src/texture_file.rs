@@ -25,6 +25,7 @@ use bumpmap_math::{Rgba8Image, Rgba16Image};
 /// What a texture file holds: `levels[face][level]`, one face for 2D, six (+X, −X, +Y, −Y, +Z,
 /// −Z) for a cube map. Every face has the same number of levels and sizes.
 pub struct TextureLayout<'a> {
+    /// `faces[face][level]`.
     pub faces: Vec<Vec<Level<'a>>>,
 }
 

@@ -15,15 +15,22 @@ use crate::encoding::{Encoding, expand_normal};
 /// The six faces in OpenGL's target order (`GL_TEXTURE_CUBE_MAP_POSITIVE_X` + i).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum CubeFace {
+    /// +X.
     PosX,
+    /// −X.
     NegX,
+    /// +Y.
     PosY,
+    /// −Y.
     NegY,
+    /// +Z.
     PosZ,
+    /// −Z.
     NegZ,
 }
 
 impl CubeFace {
+    /// Every face, in GL order.
     pub const ALL: [CubeFace; 6] =
         [CubeFace::PosX, CubeFace::NegX, CubeFace::PosY, CubeFace::NegY, CubeFace::PosZ, CubeFace::NegZ];
 
@@ -68,7 +75,9 @@ impl CubeFace {
 /// centre.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct NormalizationCubeMap {
+    /// Texels along each face's edge.
     pub size: usize,
+    /// How the unit vectors are stored.
     pub encoding: Encoding,
     /// Faces in [`CubeFace::ALL`] order; each `size·size` texels, row-major, row 0 = t = 0.
     pub faces: [Vec<[u8; 3]>; 6],

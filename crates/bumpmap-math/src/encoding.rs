@@ -105,6 +105,14 @@ pub trait Texel: sealed::Sealed + Copy + Default + PartialEq + std::fmt::Debug +
     fn pack(x: f32, y: f32, z: f32, a: f32, enc: Encoding) -> Self;
     /// A unit direction with A at its largest value (level 0, whose length is 1).
     fn pack_opaque(x: f32, y: f32, z: f32, enc: Encoding) -> Self;
+    /// [`Texel::pack`]'s inverse at its steps: the signed RGB components (not renormalized)
+    /// and the unsigned A.
+    fn unpack(self, enc: Encoding) -> [f32; 4];
+    /// The texel with green mirrored (`max − g`): Y pointing the other way in the unorm
+    /// encoding, which is symmetric about the middle of the range.
+    fn mirror_green(self) -> Self;
+    /// The texel at 8 bits, each channel rounded to the nearest byte.
+    fn to_rgba8(self) -> [u8; 4];
 }
 
 mod sealed {
@@ -123,6 +131,16 @@ impl Texel for [u8; 4] {
     fn pack_opaque(x: f32, y: f32, z: f32, enc: Encoding) -> Self {
         [enc.encode(x), enc.encode(y), enc.encode(z), 255]
     }
+    fn unpack(self, enc: Encoding) -> [f32; 4] {
+        let [r, g, b, a] = self;
+        [enc.decode(r), enc.decode(g), enc.decode(b), a as f32 / 255.0]
+    }
+    fn mirror_green(self) -> Self {
+        [self[0], 255 - self[1], self[2], self[3]]
+    }
+    fn to_rgba8(self) -> [u8; 4] {
+        self
+    }
 }
 
 impl Texel for [u16; 4] {
@@ -134,6 +152,16 @@ impl Texel for [u16; 4] {
     #[inline(always)]
     fn pack_opaque(x: f32, y: f32, z: f32, enc: Encoding) -> Self {
         [enc.encode16(x), enc.encode16(y), enc.encode16(z), u16::MAX]
+    }
+    fn unpack(self, enc: Encoding) -> [f32; 4] {
+        let [r, g, b, a] = self;
+        [enc.decode16(r), enc.decode16(g), enc.decode16(b), a as f32 / 65535.0]
+    }
+    fn mirror_green(self) -> Self {
+        [self[0], u16::MAX - self[1], self[2], self[3]]
+    }
+    fn to_rgba8(self) -> [u8; 4] {
+        self.map(|c| ((c as u32 + 128) / 257) as u8)
     }
 }
 

@@ -65,10 +65,12 @@ impl HeightField {
         Self::checked(width, height, values.len(), Samples::U16(values.to_vec()))
     }
 
+    /// Width in texels.
     pub fn width(&self) -> usize {
         self.width
     }
 
+    /// Height in texels.
     pub fn height(&self) -> usize {
         self.height
     }

@@ -15,8 +15,11 @@ use crate::mip::{footprint, next_size};
 /// `width`×`height` texels of type `T`, row-major, row 0 (t = 0) first.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Image<T> {
+    /// Width in texels.
     pub width: usize,
+    /// Height in texels.
     pub height: usize,
+    /// `width·height` texels, row 0 first.
     pub texels: Vec<T>,
 }
 
@@ -56,7 +59,7 @@ impl Rgba16Image {
 
     /// The image at 8 bits, each channel rounded to the nearest byte (`(v + 128) / 257`).
     pub fn to_rgba8(&self) -> Rgba8Image {
-        let texels = self.texels.iter().map(|t| t.map(|c| ((c as u32 + 128) / 257) as u8)).collect();
+        let texels = self.texels.iter().map(|&t| crate::Texel::to_rgba8(t)).collect();
         Image { width: self.width, height: self.height, texels }
     }
 }

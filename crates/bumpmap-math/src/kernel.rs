@@ -35,12 +35,16 @@ pub enum Kernel {
 /// One tap of a derivative kernel: the height at texel offset (dx, dy) times `weight`.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Tap {
+    /// Column offset.
     pub dx: i32,
+    /// Row offset.
     pub dy: i32,
+    /// Weight of the height there.
     pub weight: f32,
 }
 
 impl Kernel {
+    /// Every kernel.
     pub const ALL: [Kernel; 7] = [
         Kernel::Forward,
         Kernel::Central,
@@ -51,6 +55,7 @@ impl Kernel {
         Kernel::Gaussian7,
     ];
 
+    /// The name the command line uses.
     pub fn name(self) -> &'static str {
         match self {
             Kernel::Forward => "forward",
@@ -63,6 +68,7 @@ impl Kernel {
         }
     }
 
+    /// The kernel called `name` (any case).
     pub fn parse(name: &str) -> Option<Self> {
         Self::ALL.into_iter().find(|k| k.name().eq_ignore_ascii_case(name))
     }
@@ -175,6 +181,7 @@ pub enum Wrap {
 }
 
 impl Wrap {
+    /// The name the command line uses.
     pub fn name(self) -> &'static str {
         match self {
             Wrap::Repeat => "repeat",

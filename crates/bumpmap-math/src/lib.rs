@@ -11,12 +11,15 @@
 //! - normals follow Kilgard Eq. 25, `n ∝ (-∂F/∂u, -∂F/∂v, 1)`;
 //! - tangent frames are `T = normalize(∂P/∂s)`, `B = N × T` (times the handedness `w`).
 
+#![warn(missing_docs)]
+
 pub mod blinn;
 pub mod buffer;
 pub mod cubemap;
 pub mod encoding;
 pub mod height;
 pub mod image;
+pub mod imported;
 pub mod kernel;
 pub mod lighting;
 pub mod mesh;
@@ -29,6 +32,7 @@ pub use cubemap::{CubeFace, NormalizationCubeMap};
 pub use encoding::{Encoding, Texel};
 pub use height::{HeightField, HeightPreset, bricks_decal};
 pub use image::{Image, Rgba8Image, Rgba8Mips, Rgba16Image};
+pub use imported::{ImportOptions, ImportedNormalMap, import_normal_map};
 pub use kernel::{Kernel, Wrap};
 pub use mip::{MipChain, MipMode};
 pub use normalmap::{NormalMapOptions, YConvention};

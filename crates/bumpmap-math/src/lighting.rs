@@ -29,8 +29,11 @@ pub enum Viewer {
 /// An orthonormal tangent frame in object space: T along increasing s, B along increasing t.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct TangentFrame {
+    /// The tangent T.
     pub t: Vec3,
+    /// The binormal B.
     pub b: Vec3,
+    /// The normal N.
     pub n: Vec3,
 }
 

@@ -7,12 +7,16 @@ use glam::{Vec2, Vec3, Vec4};
 /// where noted). Triangles wind counter-clockwise when seen from the side the normal faces.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct Mesh {
+    /// Vertex positions.
     pub positions: Vec<Vec3>,
+    /// Unit vertex normals (empty until computed, for a file without them).
     pub normals: Vec<Vec3>,
+    /// Texture coordinates (s, t), t growing down the image (empty when the file has none).
     pub texcoords: Vec<Vec2>,
     /// `xyz` = unit tangent T (along increasing s), `w` = ±1 handedness: `B = w · (N × T)`.
     /// Empty until generated or loaded.
     pub tangents: Vec<Vec4>,
+    /// Triangles as vertex indices.
     pub indices: Vec<[u32; 3]>,
 }
 
@@ -22,22 +26,58 @@ pub const MAX_ELEMENTS: usize = 50_000_000;
 /// Why a mesh cannot be used.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
 pub enum MeshError {
+    /// No triangles.
     #[error("the mesh has no triangles")]
     Empty,
+    /// A triangle naming a vertex that does not exist.
     #[error("triangle {triangle} uses vertex {index}, but there are only {vertices} vertices")]
-    IndexOutOfRange { triangle: usize, index: u32, vertices: usize },
+    IndexOutOfRange {
+        /// The triangle.
+        triangle: usize,
+        /// The index it holds.
+        index: u32,
+        /// How many vertices there are.
+        vertices: usize,
+    },
+    /// A NaN or infinite value.
     #[error("{what} of vertex {vertex} is not finite ({value})")]
-    NonFinite { what: &'static str, vertex: usize, value: String },
+    NonFinite {
+        /// Which attribute.
+        what: &'static str,
+        /// The vertex.
+        vertex: usize,
+        /// The value, in words.
+        value: String,
+    },
+    /// An attribute with another count than the positions.
     #[error("{what} has {got} entries for {vertices} vertices")]
-    CountMismatch { what: &'static str, got: usize, vertices: usize },
+    CountMismatch {
+        /// Which attribute.
+        what: &'static str,
+        /// Its count.
+        got: usize,
+        /// The vertices.
+        vertices: usize,
+    },
+    /// Tangents asked of a mesh without texture coordinates.
     #[error("the mesh has no texture coordinates: tangent frames follow them, so there are none to make")]
     NoTexcoords,
+    /// Tangents asked of a mesh without normals.
     #[error("the mesh has no normals")]
     NoNormals,
+    /// The MikkTSpace implementation gave up.
     #[error("MikkTSpace failed: {0}")]
     MikkTSpace(String),
+    /// More than [`MAX_ELEMENTS`].
     #[error("{what}: {count} exceeds the limit of {max}")]
-    TooLarge { what: &'static str, count: u64, max: usize },
+    TooLarge {
+        /// What is counted.
+        what: &'static str,
+        /// How many.
+        count: u64,
+        /// The limit.
+        max: usize,
+    },
 }
 
 impl Mesh {
@@ -93,10 +133,12 @@ impl Mesh {
         self.normals = sums.into_iter().map(|n| n.normalize_or(Vec3::Z)).collect();
     }
 
+    /// Vertices.
     pub fn vertex_count(&self) -> usize {
         self.positions.len()
     }
 
+    /// Triangles.
     pub fn triangle_count(&self) -> usize {
         self.indices.len()
     }

@@ -30,10 +30,13 @@ pub enum MipMode {
     Renormalize,
 }
 
-/// Level 0 and every smaller level down to 1×1, 8 bits per channel unless `T` says 16.
+/// Level 0 and every smaller level down to 1×1 (a chain imported with a file's own levels may
+/// stop earlier), 8 bits per channel unless `T` says 16.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct MipChain<T = [u8; 4]> {
+    /// Level 0 first.
     pub levels: Vec<Image<T>>,
+    /// How the directions are stored.
     pub encoding: Encoding,
 }
 
@@ -325,6 +328,7 @@ impl<T: Texel> MipChain<T> {
         self.levels.len()
     }
 
+    /// Whether the chain has no level (never, for one this crate made).
     pub fn is_empty(&self) -> bool {
         self.levels.is_empty()
     }
@@ -334,6 +338,21 @@ impl MipChain {
     /// The levels as a texture (a copy): what a scene's material holds.
     pub fn to_mips(&self) -> Rgba8Mips {
         Rgba8Mips::from_levels(self.levels.clone())
+    }
+
+    /// The chain as [`MipMode::Renormalize`] stores it: the same directions with A = 1 on every
+    /// level (RGB already holds the normalized mean).
+    pub fn with_opaque_alpha(&self) -> MipChain {
+        let levels = self
+            .levels
+            .iter()
+            .map(|l| Image {
+                width: l.width,
+                height: l.height,
+                texels: l.texels.iter().map(|&[r, g, b, _]| [r, g, b, 255]).collect(),
+            })
+            .collect();
+        MipChain { levels, encoding: self.encoding }
     }
 }
 

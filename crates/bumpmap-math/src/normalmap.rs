@@ -45,14 +45,17 @@ impl YConvention {
 /// Everything that decides how a height field becomes a normal map.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct NormalMapOptions {
+    /// The finite-difference kernel for ∂F/∂u and ∂F/∂v.
     pub kernel: Kernel,
     /// Multiplies the derivatives: heights are in [0, 1] and derivatives are per texel, so
     /// `scale` is the height of a unit step measured in texels.
     pub scale: f32,
+    /// What the kernel reads beyond the edges.
     pub wrap: Wrap,
     /// Which way green points; the default is [`YConvention::TEXTURE_SPACE`] (for rendering).
     /// A normal map written for other tools usually wants [`YConvention::YUp`].
     pub y_convention: YConvention,
+    /// How the components become bytes.
     pub encoding: Encoding,
 }
 
@@ -71,8 +74,10 @@ impl Default for NormalMapOptions {
 /// Why a normal map cannot be made.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
 pub enum NormalMapError {
+    /// `Wrap::Border` on an input narrower or shorter than 2.
     #[error("--wrap border needs an input at least 2x2 (one extra column and row), got {0}x{1}")]
     BorderTooSmall(usize, usize),
+    /// A scale that is not finite or beyond `MAX_SCALE`.
     #[error("scale must be a number in [-1e6, 1e6], got {0}")]
     BadScale(f32),
 }

@@ -15,10 +15,13 @@ use crate::mesh::Mesh;
 /// Position, derivatives and unit normal of a surface at one parameter.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct SurfacePoint {
+    /// P.
     pub position: Vec3,
-    /// ∂P/∂u and ∂P/∂v with respect to the parameters in [0, 1].
+    /// ∂P/∂u with respect to the parameter in [0, 1].
     pub dp_du: Vec3,
+    /// ∂P/∂v with respect to the parameter in [0, 1].
     pub dp_dv: Vec3,
+    /// The unit normal.
     pub normal: Vec3,
 }
 
@@ -52,13 +55,31 @@ impl SurfacePoint {
 #[derive(Clone, Debug, PartialEq)]
 pub enum Surface {
     /// The Cg Tutorial's wall: a `width`×`height` rectangle in the x–y plane, N = +z.
-    Wall { width: f32, height: f32 },
+    Wall {
+        /// Along x.
+        width: f32,
+        /// Along y.
+        height: f32,
+    },
     /// The same rectangle lying in the x–z plane, N = +y, s along +x and t along −z.
-    Floor { width: f32, depth: f32 },
+    Floor {
+        /// Along x.
+        width: f32,
+        /// Along z.
+        depth: f32,
+    },
     /// Cg Tutorial Eq. 8-3: major radius `major` (hole centre to tube centre), minor `minor`.
-    Torus { major: f32, minor: f32 },
+    Torus {
+        /// Hole centre to tube centre.
+        major: f32,
+        /// The tube's radius.
+        minor: f32,
+    },
     /// Longitude u from +x toward +y, latitude v from the south pole (−z) to the north pole.
-    Sphere { radius: f32 },
+    Sphere {
+        /// Its radius.
+        radius: f32,
+    },
     /// Peercy Figure 4: a highly stretched bicubic Bézier patch, ∂P/∂u and ∂P/∂v far from
     /// orthogonal and unequal in length.
     Patch(BicubicPatch),
@@ -146,6 +167,7 @@ impl Surface {
 /// A bicubic Bézier patch: 4×4 control points, row j along v, column i along u.
 #[derive(Clone, Debug, PartialEq)]
 pub struct BicubicPatch {
+    /// `control[j][i]`: row j along v, column i along u.
     pub control: [[Vec3; 4]; 4],
 }
 

@@ -23,14 +23,17 @@ use crate::mesh::{Mesh, MeshError};
 /// Which algorithm makes the tangents.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
 pub enum TangentMode {
+    /// Per-triangle ∂P/∂s blended at vertices, split at mirror seams (Cg Tutorial §8.4).
     #[default]
     Ours,
+    /// The reference MikkTSpace algorithm (via `bevy_mikktspace`).
     MikkTSpace,
 }
 
 /// Options of [`generate_tangents`].
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct TangentOptions {
+    /// Which algorithm.
     pub mode: TangentMode,
     /// Tangents further apart than this (degrees) split a vertex (ours only).
     pub split_angle_degrees: f32,

@@ -11,6 +11,14 @@ pub enum ReferenceError {
         /// Index into the scene's objects.
         object: usize,
     },
+    /// An object whose normal map was given as it is, with no heights to differentiate.
+    #[error(
+        "object {object}'s normal map was given as it is: the reference differentiates a height field, and it has none"
+    )]
+    NoHeights {
+        /// Index into the scene's objects.
+        object: usize,
+    },
     /// A spotlight that projects a pattern.
     #[error("light {light} projects a spotlight pattern, which the reference does not sample")]
     SpotPattern {

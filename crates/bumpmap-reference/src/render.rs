@@ -8,39 +8,18 @@ use rayon::prelude::*;
 
 use bumpmap_core::Scene;
 use bumpmap_core::scene::SceneObject;
-use bumpmap_core::shading::{Fragment, LitTerms, SelfShadow, SpecularShadow, shade, spot_cone};
+use bumpmap_core::shading::{Fragment, LitTerms, shade, spot_cone};
 use bumpmap_math::lighting::{Light, ObjectLighting, TangentFrame};
 use bumpmap_math::{Rgba8Image, Rgba8Mips};
 
 use crate::error::ReferenceError;
-use crate::heights;
 use crate::visibility::{Hit, ScreenTriangle, TILE, resolve_tile};
 use bumpmap_math::blinn::{displacement_per_unit_height, perturbed_normal};
 
-/// The most samples per pixel a reference takes.
-pub const MAX_SAMPLES_PER_PIXEL: usize = 4096;
+pub use bumpmap_core::technique::reference::{MAX_SAMPLES_PER_PIXEL, ReferenceOptions};
 
 /// The largest image side.
 pub const MAX_SIDE: usize = 16384;
-
-/// What the reference is asked for; the lighting switches should be the techniques' it is
-/// compared with.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct ReferenceOptions {
-    /// Samples per pixel, in 1..=[`MAX_SAMPLES_PER_PIXEL`].
-    pub samples_per_pixel: usize,
-    /// The self-shadowing factor of Eq. 11.
-    pub self_shadow: SelfShadow,
-    /// The specular term's gating.
-    pub specular_shadow: SpecularShadow,
-}
-
-impl Default for ReferenceOptions {
-    /// 64 samples per pixel; the paper's Eq. 12 ramp and specular gating.
-    fn default() -> Self {
-        Self { samples_per_pixel: 64, self_shadow: SelfShadow::Ramp, specular_shadow: SpecularShadow::Kilgard }
-    }
-}
 
 /// A linear RGB image in [0, 1], row 0 at the top of the picture.
 #[derive(Clone, Debug, PartialEq)]
@@ -95,7 +74,8 @@ pub fn render(
         .enumerate()
         .map(|(i, object)| {
             let source = object.source.as_ref().ok_or(ReferenceError::NoSurface { object: i })?;
-            let field = &source.height_field;
+            let heights = source.heights.as_ref().ok_or(ReferenceError::NoHeights { object: i })?;
+            let field = &heights.field;
             let lighting = scene
                 .lights
                 .iter()
@@ -103,7 +83,7 @@ pub fn render(
                 .collect();
             let size = (field.width(), field.height());
             let displacement =
-                displacement_per_unit_height(&source.surface, source.repeat, size, source.normal_map.scale);
+                displacement_per_unit_height(&source.surface, source.repeat, size, heights.options.scale);
             Ok(Prepared { object, lighting, displacement })
         })
         .collect::<Result<_, ReferenceError>>()?;
@@ -181,6 +161,7 @@ fn shade_sample(
     let tri = &triangles[hit.triangle as usize];
     let Prepared { object, lighting, displacement } = &prepared[tri.object as usize];
     let source = object.source.as_ref().expect("checked when prepared");
+    let heights = source.heights.as_ref().expect("checked when prepared");
     let mesh = &object.mesh;
     let st: Vec2 = (0..3).map(|i| hit.weights[i] * mesh.texcoords[tri.vertices[i] as usize]).sum();
     let (u, v) = (st.x / source.repeat.x, st.y / source.repeat.y);
@@ -188,9 +169,9 @@ fn shade_sample(
 
     // Blinn's normal from the interpolant's derivatives: d = k·F(s, t), s = repeat.x·u, and
     // F's derivatives come per texel, so ∂d/∂u = k · repeat.x · width · ∂F/∂x.
-    let field = &source.height_field;
+    let field = &heights.field;
     let local = st - st.floor();
-    let f = heights::sample(field, source.normal_map.wrap, local.x, local.y);
+    let f = crate::heights::sample(field, heights.options.wrap, local.x, local.y);
     let d_u = displacement * source.repeat.x * field.width() as f32 * f.dx;
     let d_v = displacement * source.repeat.y * field.height() as f32 * f.dy;
     let bumped = perturbed_normal(&point, d_u, d_v);

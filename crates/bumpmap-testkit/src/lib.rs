@@ -5,6 +5,8 @@
 //! Not a perceptual metric: PSNR is what the parity tests state their thresholds in. Files go
 //! to `target/test-output/` (or `$BUMPMAP_TEST_OUTPUT`), never next to the sources.
 
+#![warn(missing_docs)]
+
 use std::path::{Path, PathBuf};
 
 use bumpmap_math::Rgba8Image;

@@ -18,61 +18,28 @@ mod studies;
 use std::path::Path;
 use std::time::Instant;
 
-use bumpmap_core::BumpMap;
-use bumpmap_core::scenes::{self, SceneKind, SceneParams};
-use bumpmap_core::technique::{BackFacing, EmbossOptions, KilgardOptions, Normalize, SinglePassOptions, Technique};
+use std::sync::Arc;
+
+use bumpmap::{BumpSource, Prepared, Renderer, SceneKind, SceneParams, SceneSpec, TechniqueName, TechniqueOptions};
 use bumpmap_io::atomic::FileSet;
 use bumpmap_io::image_file::{PngLayout, save_png_into};
 use bumpmap_io::{Channel, HeightSource};
-use bumpmap_math::{HeightField, MipMode, NormalMapOptions, Rgba8Image};
+use bumpmap_math::{NormalMapOptions, Rgba8Image};
 use bumpmap_reference::{LinearImage, ReferenceOptions};
 use indicatif::{ProgressBar, ProgressStyle};
 
 use crate::args::CompareArgs;
-use crate::backend::Backend;
 use crate::error::CliError;
-use crate::render::{core_err, reference_err, rgb};
+use crate::render::{lib_err, reference_err, rgb};
 
 pub use metrics::Scores;
 pub use studies::{EmbossStudy, PEERCY, PeercyStudy};
 
-/// The techniques `compare` knows, in the report's order: name and what it is, in the papers'
-/// words.
-pub const TECHNIQUES: [(&str, &str); 12] = [
-    (
-        "kilgard",
-        "Kilgard's three passes on the emulated GeForce 256: normalization cube map, register combiners, 8-bit framebuffer (§5)",
-    ),
-    ("single-pass", "one float pass per light with the same model, L and H normalized by math (§6)"),
-    ("single-pass-cube", "the single pass with L and H normalized by the cube map, as the hardware did (§5.4)"),
-    ("object-space", "the single pass with an object-space normal map made for the surface (Peercy §2.1, Kilgard §5)"),
-    (
-        "mip-renormalized",
-        "the single pass with mips that renormalize the averaged normal, dropping its length (§2.4.2)",
-    ),
-    ("no-bump", "the single pass on a flat height field: the surface without bumps"),
-    (
-        "peercy-independent",
-        "Peercy's surface-independent map (Eq. 8–11, Figure 7): tangent-space normals from the 7×7 derivative of a Gaussian, lit per pixel in the interpolated frame",
-    ),
-    (
-        "peercy-dependent",
-        "Peercy's surface-dependent map (Eq. 3–6, Figures 3 and 6): Blinn's normal per texel from the surface's exact ∂P/∂u, ∂P/∂v and the same 7×7 kernel, in each texel's tangent frame, lit exactly as peercy-independent",
-    ),
-    (
-        "emboss",
-        "embossing (Kilgard §3.1, Eq. 29–30): the height field fetched twice, shifted toward the light by a texel, subtracted, plus L_z; L_x, L_y forced to 0 where L_z ≤ 0; diffuse only",
-    ),
-    ("emboss-unforced", "embossing without forcing the shift to 0 where the light is behind the surface"),
-    (
-        "offset-map",
-        "an offset map (Kilgard §2.2, Eq. 6–7): the slopes' offset D stored in RG, filtered, and N + D renormalized per pixel, lit by the single pass",
-    ),
-    (
-        "peercy-blinn",
-        "Peercy's Figure 2 hardware (Figure 5): the height derivatives from the same 7×7 kernel in a texture, Blinn's normal made per pixel from them and the interpolated ∂P/∂u, ∂P/∂v",
-    ),
-];
+/// The techniques `compare` draws by default: the catalogue's, in its order, but the
+/// reference, which is what they are measured against.
+pub fn default_techniques() -> Vec<TechniqueName> {
+    TechniqueName::ALL.into_iter().filter(|&t| t != TechniqueName::Reference).collect()
+}
 
 /// One technique's outcome.
 pub struct Outcome {
@@ -138,9 +105,9 @@ pub fn run(args: &CompareArgs) -> Result<(), CliError> {
     }
     let kind = SceneKind::parse(&args.scene).ok_or_else(|| {
         CliError::Usage(format!(
-            "unknown scene '{}': compare takes a built-in surface (torus, wall, floor, wall-floor, patch, sphere), \
-             because the reference evaluates the exact surface",
-            args.scene
+            "unknown scene '{}': compare takes a built-in surface ({}), because the reference evaluates the exact surface",
+            args.scene,
+            SceneKind::built_in_names()
         ))
     })?;
     if !(args.bump_scale.is_finite() && args.bump_scale >= 0.0) {
@@ -151,29 +118,30 @@ pub fn run(args: &CompareArgs) -> Result<(), CliError> {
     let field = source.load(Channel::Luminance)?;
     let is_bricks = matches!(source, HeightSource::Preset { preset: bumpmap_math::HeightPreset::Bricks, .. });
     let base = SceneParams {
-        height_field: field,
+        bumps: BumpSource::Heights(Arc::new(field)),
         normal_map: NormalMapOptions { scale: args.bump_scale, ..Default::default() },
         default_decal: is_bricks,
         ..Default::default()
     };
+    let spec = SceneSpec { kind, params: base };
     let size = args.size;
     let spp = args.spp as usize;
-    crate::backend::check_size(size, size)?;
+    Renderer::check_size(size, size).map_err(lib_err)?;
 
-    // Unknown names are reported, not fatal; the default is every technique.
+    // Unknown names are reported, not fatal; the default is every technique but the reference.
     let wanted: Vec<String> = if args.techniques.is_empty() {
-        TECHNIQUES.iter().map(|(n, _)| n.to_string()).collect()
+        default_techniques().iter().map(|n| n.name().to_string()).collect()
     } else {
         args.techniques.iter().map(|t| t.trim().to_string()).filter(|t| !t.is_empty()).collect()
     };
-    let mut backend = Backend::new(args.backend)?;
+    let mut backend = crate::render::renderer(args.backend)?;
     // The reference, each technique, convergence and the three studies.
     let steps = (wanted.len() + 5) as u64;
     let bar = ProgressBar::new(steps)
         .with_style(ProgressStyle::with_template("{bar:40} {pos}/{len} {elapsed} {wide_msg}").expect("valid template"));
 
     bar.set_message(format!("reference, {spp} samples per pixel"));
-    let scene = scenes::build(&kind, &base).map_err(core_err)?;
+    let scene = spec.build().map_err(crate::render::core_err)?;
     let t = Instant::now();
     let reference = reference_image(&scene, size, spp)?;
     let reference_millis = t.elapsed().as_secs_f64() * 1e3;
@@ -183,8 +151,12 @@ pub fn run(args: &CompareArgs) -> Result<(), CliError> {
     let mut outcomes = Vec::new();
     for name in &wanted {
         bar.set_message(name.clone());
-        let description = TECHNIQUES.iter().find(|(n, _)| n == name).map_or("", |(_, d)| d).to_string();
-        let result = render_technique(name, &kind, &base, &mut backend, size).map(|(image, millis)| {
+        let technique = TechniqueName::parse(name).map_err(|e| e.to_string()).and_then(|t| match t {
+            TechniqueName::Reference => Err("the reference is what the techniques are measured against".to_string()),
+            t => Ok(t),
+        });
+        let description = technique.as_ref().map_or("", |t| t.description()).to_string();
+        let result = technique.and_then(|t| render_technique(t, &spec, &mut backend, size)).map(|(image, millis)| {
             let (scores, heat) = metrics::score(&reference, &ref_rgb, &image);
             Rendered { image, scores, heat, millis }
         });
@@ -214,7 +186,7 @@ pub fn run(args: &CompareArgs) -> Result<(), CliError> {
         scene: args.scene.clone(),
         size,
         spp,
-        backend: backend.name(),
+        backend: backend.describe(),
         reference,
         reference_millis,
         outcomes,
@@ -242,64 +214,18 @@ fn reference_image(scene: &bumpmap_core::Scene, size: usize, spp: usize) -> Resu
     bumpmap_reference::render(scene, size, size, &options, &|_, _| {}).map_err(|e| CliError::Render(reference_err(e)))
 }
 
-/// Renders technique `name` on the scene `base` describes; `Err` says why it was skipped.
+/// Renders technique `name` on the scene `spec` describes, with its default options; `Err`
+/// says why it was skipped.
 fn render_technique(
-    name: &str,
-    kind: &SceneKind,
-    base: &SceneParams,
-    backend: &mut Backend,
+    name: TechniqueName,
+    spec: &SceneSpec,
+    renderer: &mut Renderer,
     size: usize,
 ) -> Result<(Rgba8Image, f64), String> {
-    let mut params = base.clone();
-    let single = SinglePassOptions::default();
-    let technique = match name {
-        "kilgard" => Technique::Kilgard(KilgardOptions::default()),
-        "single-pass" => Technique::SinglePass(single),
-        "single-pass-cube" => Technique::SinglePass(SinglePassOptions { normalize: Normalize::Cube, ..single }),
-        "object-space" => {
-            params.bump_map = BumpMap::ObjectSpace;
-            Technique::SinglePass(single)
-        }
-        "mip-renormalized" => {
-            params.mip_mode = MipMode::Renormalize;
-            Technique::SinglePass(single)
-        }
-        "peercy-independent" => {
-            params.normal_map.kernel = bumpmap_math::Kernel::Gaussian7;
-            Technique::SinglePass(single)
-        }
-        "peercy-dependent" => {
-            params.normal_map.kernel = bumpmap_math::Kernel::Gaussian7;
-            params.bump_map = BumpMap::SurfaceDependent;
-            Technique::SinglePass(single)
-        }
-        "peercy-blinn" => {
-            params.normal_map.kernel = bumpmap_math::Kernel::Gaussian7;
-            params.bump_map = BumpMap::Derivatives;
-            Technique::SinglePass(single)
-        }
-        "offset-map" => {
-            params.bump_map = BumpMap::Offset;
-            Technique::SinglePass(single)
-        }
-        "emboss" => Technique::Emboss(EmbossOptions::default()),
-        "emboss-unforced" => {
-            Technique::Emboss(EmbossOptions { back_facing: BackFacing::Unforced, ..Default::default() })
-        }
-        "no-bump" => {
-            let f = &base.height_field;
-            params.height_field = HeightField::from_fn(f.width(), f.height(), |_, _| 0.5);
-            Technique::SinglePass(single)
-        }
-        other => {
-            let known: Vec<&str> = TECHNIQUES.iter().map(|(n, _)| *n).collect();
-            return Err(format!("unknown technique '{other}' (known: {})", known.join(", ")));
-        }
-    };
-    let scene = scenes::build(kind, &params).map_err(|e| e.to_string())?;
+    let prepared = Prepared::new(spec, name, &TechniqueOptions::default()).map_err(|e| e.to_string())?;
     let t = Instant::now();
-    let frame = backend.render(&scene, &technique, size, size, false).map_err(|e| e.to_string())?;
-    Ok((frame.image, t.elapsed().as_secs_f64() * 1e3))
+    let image = renderer.draw(&prepared, size, size).map_err(|e| e.to_string())?;
+    Ok((image, t.elapsed().as_secs_f64() * 1e3))
 }
 
 /// RMSE between the reference at K and at 4K samples per pixel, for K = 1, 4, 16, … while

@@ -3,7 +3,7 @@
 
 use serde_json::{Value, json};
 
-use super::{PEERCY, Results, TECHNIQUES};
+use super::{PEERCY, Results, default_techniques};
 
 /// The numbers, machine-readable: `{"techniques": {NAME: {"rmse", "psnr", "bias", "flip_mean",
 /// "ssim", "millis"}}, "skipped": {NAME: reason}, …}`.
@@ -111,7 +111,8 @@ pub fn html(r: &Results) -> String {
         })
         .collect();
     let skipped = if skipped.is_empty() { "<p>None.</p>".to_string() } else { format!("<ul>{skipped}</ul>") };
-    let known: String = TECHNIQUES.iter().map(|(n, d)| format!("<li><b>{n}</b>: {}</li>", escape(d))).collect();
+    let known: String =
+        default_techniques().iter().map(|t| format!("<li><b>{t}</b>: {}</li>", escape(t.description()))).collect();
     let golf_rows = |rows: &[(f32, f64, f64, f64)]| -> String {
         rows.iter()
             .map(|(d, re, l, n)| format!("<tr><td>{d}×</td><td>{re:.4}</td><td>{l:.4}</td><td>{n:.4}</td></tr>"))

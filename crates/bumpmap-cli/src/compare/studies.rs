@@ -4,6 +4,9 @@
 //! What this module does not do: score images (that is [`super::metrics`]) or write files
 //! ([`super::report`]).
 
+use std::sync::Arc;
+
+use bumpmap::{BumpSource, Renderer, SceneSpec, TechniqueName};
 use bumpmap_core::scenes::{self, SceneKind, SceneParams};
 use bumpmap_core::technique::{BackFacing, EmbossOptions, SinglePassOptions, Technique};
 use bumpmap_math::{MipMode, NormalMapOptions, Rgba8Image};
@@ -11,9 +14,8 @@ use bumpmap_reference::LinearImage;
 use glam::Vec3;
 
 use super::{metrics, reference_image, render_technique};
-use crate::backend::Backend;
 use crate::error::CliError;
-use crate::render::core_err;
+use crate::render::{core_err, draw};
 
 /// Kilgard §3.1 measured, on the brick wall without specular (embossing is diffuse only), 96²,
 /// directional lights.
@@ -42,7 +44,7 @@ pub struct EmbossStudy {
 /// footprint's normals face away from the light); otherwise the sphere's own light, from the
 /// side, where clamping N·L at 0 makes the length factor a lower bound (the mean of clamped
 /// dot products is at least the clamped dot product of the mean) and it comes out too dark.
-pub fn golf_ball_study(backend: &mut Backend, headlight: bool) -> Result<Vec<(f32, f64, f64, f64)>, CliError> {
+pub fn golf_ball_study(backend: &mut Renderer, headlight: bool) -> Result<Vec<(f32, f64, f64, f64)>, CliError> {
     const SIZE: usize = 96;
     let near = Vec3::new(0.0, -5.0, 1.5);
     let lights = if headlight {
@@ -52,7 +54,7 @@ pub fn golf_ball_study(backend: &mut Backend, headlight: bool) -> Result<Vec<(f3
     };
     let base = SceneParams {
         lights,
-        height_field: bumpmap_math::HeightPreset::Dimples.render(256, 256),
+        bumps: BumpSource::Heights(Arc::new(bumpmap_math::HeightPreset::Dimples.render(256, 256))),
         normal_map: NormalMapOptions { scale: 12.0, ..Default::default() },
         default_decal: false,
         specular: Vec3::ZERO,
@@ -69,8 +71,7 @@ pub fn golf_ball_study(backend: &mut Backend, headlight: bool) -> Result<Vec<(f3
         let mut technique_mean = |mode| -> Result<f64, CliError> {
             let scene = scenes::build(&SceneKind::Sphere, &SceneParams { mip_mode: mode, ..params.clone() })
                 .map_err(core_err)?;
-            let frame =
-                backend.render(&scene, &Technique::SinglePass(SinglePassOptions::default()), SIZE, SIZE, false)?;
+            let frame = draw(backend, &scene, &Technique::SinglePass(SinglePassOptions::default()), SIZE, SIZE, false)?;
             Ok(mean(&metrics::linear(&frame.image)))
         };
         let length = technique_mean(MipMode::LengthInAlpha)?;
@@ -103,7 +104,7 @@ fn brightness_stats(pixels: &[Vec3], mask: &[bool]) -> (f64, f64) {
 }
 
 /// [`EmbossStudy`]: the wall at six light angles and four distances, the sphere lit from the side.
-pub fn emboss_study(backend: &mut Backend) -> Result<EmbossStudy, CliError> {
+pub fn emboss_study(backend: &mut Renderer) -> Result<EmbossStudy, CliError> {
     use bumpmap_core::scene::SceneLight;
     use bumpmap_math::lighting::Light;
     const SIZE: usize = 96;
@@ -121,7 +122,7 @@ pub fn emboss_study(backend: &mut Backend) -> Result<EmbossStudy, CliError> {
         let reference = reference_image(&scene, SIZE, 16)?;
         let mut images = Vec::new();
         for t in techniques {
-            images.push(metrics::linear(&backend.render(&scene, t, SIZE, SIZE, false)?.image));
+            images.push(metrics::linear(&draw(backend, &scene, t, SIZE, SIZE, false)?.image));
         }
         Ok::<_, CliError>((reference, images))
     };
@@ -166,7 +167,8 @@ pub fn emboss_study(backend: &mut Backend) -> Result<EmbossStudy, CliError> {
 
 /// Peercy's three implementations, in the report's order: Figure 7's surface-independent map,
 /// Figure 6's surface-dependent map, Figure 5's per-pixel Blinn.
-pub const PEERCY: [&str; 3] = ["peercy-independent", "peercy-dependent", "peercy-blinn"];
+pub const PEERCY: [TechniqueName; 3] =
+    [TechniqueName::PeercyIndependent, TechniqueName::PeercyDependent, TechniqueName::PeercyBlinn];
 
 /// Peercy Figures 5–7 measured, on his scene: the stretched bicubic patch with the pinwheel
 /// over it once, the 7×7 derivative of a Gaussian for every map.
@@ -200,7 +202,7 @@ pub struct PeercyRow {
 
 /// [`PeercyStudy`]: the patch at `SIZE`², its references at 16 samples per pixel, bump scales
 /// 1, 2 and 4 (slopes up to about 20°, 36° and 56°), the images of scale 2 kept.
-pub fn peercy_study(backend: &mut Backend) -> Result<PeercyStudy, CliError> {
+pub fn peercy_study(backend: &mut Renderer) -> Result<PeercyStudy, CliError> {
     const SIZE: usize = 256;
     const SHOWN: f32 = 2.0;
     let field = bumpmap_math::HeightPreset::Pinwheel.render(256, 256);
@@ -209,20 +211,23 @@ pub fn peercy_study(backend: &mut Backend) -> Result<PeercyStudy, CliError> {
     let mut images = Vec::new();
     for bump_scale in [1.0f32, 2.0, 4.0] {
         let params = SceneParams {
-            height_field: field.clone(),
+            bumps: BumpSource::Heights(Arc::new(field.clone())),
             normal_map: NormalMapOptions { scale: bump_scale, ..Default::default() },
             default_decal: false,
             ..Default::default()
         };
-        let reference = |height_field| {
-            let scene =
-                scenes::build(&SceneKind::Patch, &SceneParams { height_field, ..params.clone() }).map_err(core_err)?;
+        let reference = |field| {
+            let bumps = BumpSource::Heights(Arc::new(field));
+            let scene = scenes::build(&SceneKind::Patch, &SceneParams { bumps, ..params.clone() }).map_err(core_err)?;
             reference_image(&scene, SIZE, 16)
         };
         let (same_slopes, raw_heights) = (reference(smoothed.clone())?, reference(field.clone())?);
         let rendered: Vec<Rgba8Image> = PEERCY
             .iter()
-            .map(|name| render_technique(name, &SceneKind::Patch, &params, backend, SIZE).map(|(image, _)| image))
+            .map(|&name| {
+                let spec = SceneSpec { kind: SceneKind::Patch, params: params.clone() };
+                render_technique(name, &spec, backend, SIZE).map(|(image, _)| image)
+            })
             .collect::<Result<_, _>>()
             .map_err(|why| CliError::Render(format!("Peercy's figures on the patch: {why}")))?;
         let rmse = |reference: &LinearImage| -> [f64; 3] {

@@ -78,3 +78,27 @@ pub fn fails_cleanly(dir: &Path, args: &[&str], input: &Path, expect: &str) {
     assert!(!err.contains("panicked"), "{err}");
     assert_eq!(listing(dir), before, "no partial or stray output");
 }
+
+/// A PNG file's RGB as an RGBA8 image (alpha 255).
+pub fn read_png(path: &Path) -> bumpmap_math::Rgba8Image {
+    let img = image::open(path).unwrap_or_else(|e| panic!("{}: {e}", path.display())).to_rgb8();
+    let (w, h) = (img.width() as usize, img.height() as usize);
+    bumpmap_math::Rgba8Image::new(w, h, img.pixels().map(|p| [p[0], p[1], p[2], 255]).collect())
+}
+
+/// Runs `bumpmap ARGS…`, expecting success; returns stderr.
+pub fn ok(args: &[&str]) -> String {
+    let o = bumpmap(args);
+    assert!(o.status.success(), "{args:?}: {}", stderr(&o));
+    stderr(&o)
+}
+
+/// Whether a GPU test should run: an adapter answered, or CI (`CI` set) demands one. `o` is the
+/// output of a `--backend gpu` command.
+pub fn gpu_ran(o: &Output) -> bool {
+    if !o.status.success() && stderr(o).contains("no GPU adapter") && std::env::var_os("CI").is_none() {
+        eprintln!("SKIPPED (no GPU adapter): {}", stderr(o));
+        return false;
+    }
+    true
+}

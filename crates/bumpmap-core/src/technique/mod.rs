@@ -3,13 +3,18 @@
 //!
 //! - [`kilgard`]: the paper's three passes, register-combiner programs (Kilgard §5.4–5.6);
 //! - [`single_pass`]: the same lighting model in one float pass per light ([`crate::shading`]);
-//! - [`emboss`]: the technique the paper replaces (§3.1), register-combiner programs.
+//! - [`emboss`]: the technique the paper replaces (§3.1), register-combiner programs;
+//! - [`reference`](mod@reference): ground truth's options (drawn by `bumpmap-reference`, not as passes).
+//!
+//! Which named technique (`peercy-blinn`, `mip-renormalized`, …) becomes which of these, with
+//! which maps, is the catalogue's ([`crate::catalogue`]).
 //!
 //! Capability checks live here: [`Technique::passes`] refuses what a technique cannot do with
 //! a typed [`CoreError`], so every backend refuses the same things.
 
 pub mod emboss;
 pub mod kilgard;
+pub mod reference;
 pub mod single_pass;
 
 use std::sync::Arc;
@@ -24,6 +29,7 @@ use crate::vertex::var;
 
 pub use emboss::{BackFacing, EmbossOptions};
 pub use kilgard::{KilgardOptions, SpecularMode};
+pub use reference::ReferenceOptions;
 pub use single_pass::{Gloss, HalfAngle, Normalize, SelfShadow, SinglePassOptions, SpecularShadow};
 
 /// A technique with its options.
@@ -35,6 +41,9 @@ pub enum Technique {
     SinglePass(SinglePassOptions),
     /// Embossing (Kilgard §3.1): two height fetches subtracted, plus L_z.
     Emboss(EmbossOptions),
+    /// Ground truth: Blinn's normal on the exact surface, many samples per pixel. Not a pass
+    /// list: `bumpmap-reference` draws it.
+    Reference(ReferenceOptions),
 }
 
 impl Technique {
@@ -44,17 +53,19 @@ impl Technique {
             Technique::Kilgard(_) => kilgard::NAME,
             Technique::SinglePass(_) => single_pass::NAME,
             Technique::Emboss(_) => emboss::NAME,
+            Technique::Reference(_) => reference::NAME,
         }
     }
 
     /// The passes that render `scene`, in order; the first clears nothing (backends clear to
     /// black, alpha 0, depth 1 before the first pass). Fails when the technique cannot render
-    /// the scene as asked.
+    /// the scene as asked, and for [`Technique::Reference`], which is not a pass list.
     pub fn passes(&self, scene: &Scene) -> Result<Vec<Pass>, CoreError> {
         match self {
             Technique::Kilgard(o) => kilgard::passes(scene, o),
             Technique::SinglePass(o) => single_pass::passes(scene, o),
             Technique::Emboss(o) => emboss::passes(scene, o),
+            Technique::Reference(_) => Err(CoreError::NotPasses),
         }
     }
 }

@@ -2,6 +2,7 @@
 //! clipping and culling, and robustness to bad vertices.
 
 use super::*;
+use bumpmap_core::state::Blend;
 
 /// Outputs varying 0 in red and a constant elsewhere.
 struct Show(f32);

@@ -3,8 +3,8 @@
 
 #![allow(dead_code)]
 
+use bumpmap_gpu::Context;
 use bumpmap_gpu::GpuRenderer;
-use bumpmap_gpu::context::Context;
 use wgpu::util::DeviceExt as _;
 
 /// Whether a missing adapter must fail the test (CI installs lavapipe, so there it must).

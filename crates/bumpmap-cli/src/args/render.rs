@@ -1,27 +1,35 @@
 //! The scene, camera, light, material, technique and backend options, in groups shared by
-//! `render` and `bench render` (and later `view` and `compare`). Each group's help heading is
-//! what `--help` shows; turning the groups into library values is `render.rs`'s.
+//! `render` and `bench render` (and later `view`). Each group's help heading is what `--help`
+//! shows; turning the groups into library values is `crate::setup`'s.
 
 use std::path::PathBuf;
 
+use bumpmap::TechniqueName;
+use clap::builder::PossibleValue;
 use clap::{Args, ValueEnum};
 
-use crate::args::{ObjVArg, parse_counts, parse_pair, parse_repeat, parse_side, parse_vec3};
+use crate::args::{ObjVArg, YArg, parse_counts, parse_pair, parse_repeat, parse_side, parse_vec3};
 
-/// What is drawn: the geometry, the height field and decal, the texture layout.
+/// What is drawn: the geometry, its bumps and decal, the texture layout.
 #[derive(Args, Debug, Clone)]
 #[command(next_help_heading = "Scene")]
 pub struct SceneGroup {
-    /// torus, wall, floor, wall-floor, patch, sphere, or mesh:FILE (.obj, .gltf, .glb)
+    /// torus, wall, floor, wall-floor, patch, sphere, or mesh:FILE (.obj, .gltf, .glb: drawn in its own units and axes, with a glTF's own normal map and base colour unless the options below replace them)
     #[arg(long, default_value = "torus")]
     pub scene: String,
-    /// Height field: image file or preset (bricks, pinwheel, dimples, noise:SEED[@SIZE])
-    #[arg(long = "height-field", default_value = "bricks")]
-    pub height_field: String,
-    /// Bump height (the normal map's --scale)
-    #[arg(long = "bump-scale", default_value_t = 4.0, allow_negative_numbers = true)]
-    pub bump_scale: f32,
-    /// Decal image, or "none" (default: brick decal for the bricks preset, none otherwise)
+    /// Height field the normal map is made from: image file or preset (bricks, pinwheel, dimples, noise:SEED[@SIZE]) [default: bricks, or a glTF material's normal map]
+    #[arg(long = "height-field", conflicts_with = "normal_map")]
+    pub height_field: Option<String>,
+    /// A normal map to draw as it is (PNG at 8 or 16 bits, other images, DDS or KTX2 with the mip levels it carries, BC5/BC7 included); without stored mips the chain is made with the length in alpha
+    #[arg(long = "normal-map")]
+    pub normal_map: Option<PathBuf>,
+    /// Which way --normal-map's green points as the image is displayed: opengl (alias y-up: glTF, Blender, Unity, and what `bumpmap normalmap` writes) or directx (alias y-down: Unreal, 3ds Max)
+    #[arg(long = "y-convention", value_enum, default_value = "opengl", requires = "normal_map")]
+    pub y_convention: YArg,
+    /// Bump strength: a height field's scale (the height of a unit step, in texels) [default: 4]; for a normal map (--normal-map or a glTF's) it multiplies the slopes as glTF's normalTexture.scale does [default: 1, or the material's]
+    #[arg(long = "bump-scale", allow_negative_numbers = true)]
+    pub bump_scale: Option<f32>,
+    /// Decal image, or "none" [default: a glTF material's base colour; the brick decal for the bricks preset; none otherwise]
     #[arg(long)]
     pub decal: Option<String>,
     /// Torus radii R,r (hole centre to tube centre, tube)
@@ -33,10 +41,7 @@ pub struct SceneGroup {
     /// Texture repeats along s and t (default: the scene's; torus 6,2); negative mirrors; each non-zero, within ±1024
     #[arg(long, value_parser = parse_repeat, allow_hyphen_values = true)]
     pub repeat: Option<(f32, f32)>,
-    /// single-pass: light in tangent space, or in object space with an object-space normal map made for the surface (built-in surfaces only)
-    #[arg(long, value_enum, default_value = "tangent")]
-    pub space: SpaceArg,
-    /// mesh: glTF only: let buffer URIs lead outside the glTF's folder (absolute paths, ..); off by default, so a downloaded glTF cannot make bumpmap read other files
+    /// mesh: glTF only: let buffer and image URIs lead outside the glTF's folder (absolute paths, ..); off by default, so a downloaded glTF cannot make bumpmap read other files
     #[arg(long = "allow-outside-paths")]
     pub allow_outside_paths: bool,
     /// OBJ only: flip (v = 0 at the image's bottom, the OBJ convention) or keep the file's v
@@ -44,16 +49,20 @@ pub struct SceneGroup {
     pub obj_v: ObjVArg,
 }
 
-/// Where the scene is seen from.
+/// Where the scene is seen from. Positions are in world space: for a mesh, the file's own units
+/// and axes.
 #[derive(Args, Debug, Clone)]
 #[command(next_help_heading = "Camera")]
 pub struct CameraGroup {
-    /// Eye position (default: the scene's)
+    /// Eye position [default: the scene's; for a mesh, in front of its bounds (glTF's +Z) and above, far enough to see all of it]
     #[arg(long, value_parser = parse_vec3, allow_hyphen_values = true)]
     pub eye: Option<glam::Vec3>,
-    /// Point looked at (default: the scene's)
+    /// Point looked at [default: the scene's; for a mesh, the centre of its bounds]
     #[arg(long, value_parser = parse_vec3, allow_hyphen_values = true)]
     pub target: Option<glam::Vec3>,
+    /// The world's up direction [default: +Z for torus, patch and sphere; +Y for wall, floor and meshes, as glTF and OBJ have it]; looking straight along it takes another up rather than drawing nothing
+    #[arg(long, value_parser = parse_vec3, allow_hyphen_values = true)]
+    pub up: Option<glam::Vec3>,
     /// Vertical field of view in degrees
     #[arg(long, default_value_t = 45.0, allow_negative_numbers = true)]
     pub fov: f32,
@@ -111,7 +120,7 @@ pub struct MaterialGroup {
 #[derive(Args, Debug, Clone)]
 #[command(next_help_heading = "Technique")]
 pub struct TechniqueGroup {
-    /// kilgard: the paper's three passes; single-pass: one float pass per light; emboss: the technique the paper replaces (§3.1); reference: ground truth (Blinn's perturbed normal on the exact surface, --spp samples per pixel)
+    /// Any technique of the catalogue (below); one that cannot draw the scene says why
     #[arg(long, value_enum, default_value = "kilgard")]
     pub technique: TechniqueArg,
     /// reference: samples per pixel (stratified); the image converges as it grows
@@ -132,9 +141,9 @@ pub struct TechniqueGroup {
     /// Face size of the normalization cube map
     #[arg(long = "cube-size", default_value_t = 32, value_parser = clap::value_parser!(u32).range(1..=1024))]
     pub cube_size: u32,
-    /// single-pass: how L and H are renormalized per fragment
-    #[arg(long, value_enum, default_value = "math")]
-    pub normalize: NormalizeArg,
+    /// single-pass and its variants: how L and H are renormalized per fragment [default: math; the cube map for single-pass-cube and kilgard]
+    #[arg(long, value_enum)]
+    pub normalize: Option<NormalizeArg>,
     /// single-pass: the self-shadowing factor (kilgard: see --no-self-shadow)
     #[arg(long = "self-shadow", value_enum, default_value = "ramp")]
     pub self_shadow: SelfShadowArg,
@@ -146,34 +155,71 @@ pub struct TechniqueGroup {
     pub specular_shadow: SpecularShadowArg,
 }
 
+/// A technique of the catalogue (`bumpmap_core::catalogue`), by its name; `--help` lists each
+/// with its description.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct TechniqueArg(pub TechniqueName);
+
+impl ValueEnum for TechniqueArg {
+    fn value_variants<'a>() -> &'a [Self] {
+        const ALL: [TechniqueArg; TechniqueName::ALL.len()] = {
+            let mut all = [TechniqueArg(TechniqueName::Kilgard); TechniqueName::ALL.len()];
+            let mut i = 0;
+            while i < all.len() {
+                all[i] = TechniqueArg(TechniqueName::ALL[i]);
+                i += 1;
+            }
+            all
+        };
+        &ALL
+    }
+
+    fn to_possible_value(&self) -> Option<PossibleValue> {
+        let needs: Vec<&str> = self.0.requirements().iter().map(|r| r.brief()).collect();
+        let help = match needs.as_slice() {
+            [] => self.0.description().to_string(),
+            needs => format!("{} [needs {}]", self.0.description(), needs.join(" and ")),
+        };
+        Some(PossibleValue::new(self.0.name()).help(help))
+    }
+}
+
 /// What draws it.
 #[derive(Args, Debug, Clone)]
 #[command(next_help_heading = "Backend")]
 pub struct BackendGroup {
     /// cpu: the emulated GeForce on all cores; gpu: wgpu (Vulkan, Metal, DX12 or GL; on a
-    /// machine without a GPU, Mesa's lavapipe: Debian's mesa-vulkan-drivers)
+    /// machine without a GPU, Mesa's lavapipe: Debian's mesa-vulkan-drivers); auto: the GPU when
+    /// an adapter exists, else the CPU (and says why). The reference always runs on the CPU
     #[arg(long, value_enum, default_value = "cpu")]
     pub backend: BackendArg,
 }
 
 /// Every option that says what is drawn and how: what `render`, `bench render` (and later
-/// `view` and `compare`) share.
+/// `view`) share.
 #[derive(Args, Debug, Clone)]
 pub struct SceneSetup {
+    /// What is drawn.
     #[command(flatten)]
     pub scene: SceneGroup,
+    /// From where.
     #[command(flatten)]
     pub camera: CameraGroup,
+    /// The lights.
     #[command(flatten)]
     pub lights: LightGroup,
+    /// The material's coefficients.
     #[command(flatten)]
     pub material: MaterialGroup,
+    /// How it is drawn.
     #[command(flatten)]
     pub technique: TechniqueGroup,
+    /// What draws it.
     #[command(flatten)]
     pub backend: BackendGroup,
 }
 
+/// `bumpmap render`.
 #[derive(Args, Debug, Clone)]
 #[command(after_help = "Examples:\n  \
 bumpmap render                                         # the paper's torus, out/render.png\n  \
@@ -181,10 +227,15 @@ bumpmap render --passes -o torus.png                   # also torus.decal.png, .
 bumpmap render --scene wall-floor --light -1,2,3        # the Cg Tutorial's Figure 8-4\n  \
 bumpmap render --height-field dimples --bump-scale 8 --decal none\n  \
 bumpmap render --light 4,0,3@1,0.6,0.4 --light dir:-1,0,1@0.3,0.3,0.6\n  \
-bumpmap render --backend gpu --technique single-pass   # the same on the GPU (wgpu)\n\n\
-Lights are [dir:]X,Y,Z[@R,G,B] in world space: a point light's position, or with dir: the \
-direction toward a light at infinity.")]
+bumpmap render --backend gpu --technique single-pass   # the same on the GPU (wgpu)\n  \
+bumpmap render --technique peercy-blinn --scene patch --height-field pinwheel\n  \
+bumpmap render --normal-map rock.png --scene sphere    # your own normal map (green up)\n  \
+bumpmap render --normal-map rock.dds --y-convention directx   # …one made for Unreal\n  \
+bumpmap render --scene mesh:model.glb                  # a glTF with its own material\n\n\
+Lights are [dir:]X,Y,Z[@R,G,B] in world space (a mesh's own units and axes): a point light's \
+position, or with dir: the direction toward a light at infinity.")]
 pub struct RenderArgs {
+    /// What is drawn and how.
     #[command(flatten)]
     pub setup: SceneSetup,
     /// Output PNG
@@ -204,14 +255,18 @@ pub struct RenderArgs {
     pub passes: bool,
 }
 
+/// `bumpmap bench render`.
 #[derive(Args, Debug, Clone)]
 #[command(after_help = "Examples:\n  \
 bumpmap bench render --technique kilgard --threads 2 --json\n  \
 bumpmap bench render --technique single-pass --normalize cube\n  \
 bumpmap bench render --backend gpu --frames 100            # on the GPU (or lavapipe)\n\n\
-The light orbits the torus axis as in the llvmpipe peer; scene setup is not timed, every \
-frame's vertex stage, clear, passes and (GPU) read-back are.")]
+The first light (the scene's own, or the first --light) orbits the point looked at about the \
+view's up axis once per run — on the torus, the llvmpipe peer's orbit. Scene setup is not \
+timed; every frame's vertex stage, clear, passes and (GPU) wait for the frame are. Every \
+technique but the reference (see `bench reference`).")]
 pub struct BenchRenderArgs {
+    /// What is drawn and how.
     #[command(flatten)]
     pub setup: SceneSetup,
     /// Square framebuffer size
@@ -255,18 +310,7 @@ pub fn parse_light(s: &str) -> Result<bumpmap_core::scene::SceneLight, String> {
     Ok(bumpmap_core::scene::SceneLight { color, ..bumpmap_core::scene::SceneLight::white(light) })
 }
 
-#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
-pub enum TechniqueArg {
-    /// The paper's three passes on the emulated GeForce 256 (register combiners, cube map)
-    Kilgard,
-    /// One float pass per light with the full lighting model (Kilgard §6, Cg Tutorial)
-    SinglePass,
-    /// Embossing (Kilgard §3.1): two height fetches, one shifted toward the light, subtracted, plus L_z; diffuse only, one light, bump scale 1, 2 or 4
-    Emboss,
-    /// Ground truth: Blinn's perturbed normal from the exact surface and a C¹ height interpolant, many samples per pixel, on the CPU
-    Reference,
-}
-
+/// How L and H are renormalized per fragment.
 #[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
 pub enum NormalizeArg {
     /// normalize() in float
@@ -275,6 +319,7 @@ pub enum NormalizeArg {
     Cube,
 }
 
+/// The self-shadowing factor.
 #[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
 pub enum SelfShadowArg {
     /// Eq. 12: clamp(8·L_z, 0, 1)
@@ -285,6 +330,7 @@ pub enum SelfShadowArg {
     Off,
 }
 
+/// Where the half-angle vector comes from.
 #[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
 pub enum HalfAngleArg {
     /// per vertex, interpolated (Appendix C)
@@ -293,6 +339,7 @@ pub enum HalfAngleArg {
     Fragment,
 }
 
+/// The specular term's gating.
 #[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
 pub enum SpecularShadowArg {
     /// times s_self, zero where H_z < 0 (the paper's mux)
@@ -303,6 +350,7 @@ pub enum SpecularShadowArg {
     Off,
 }
 
+/// Texture filtering.
 #[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
 pub enum FilterArg {
     /// GL_NEAREST: blocky, no mipmaps
@@ -313,6 +361,7 @@ pub enum FilterArg {
     Trilinear,
 }
 
+/// The register combiners' arithmetic.
 #[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
 pub enum PrecisionArg {
     /// Single-precision combiners
@@ -321,6 +370,7 @@ pub enum PrecisionArg {
     Fixed9,
 }
 
+/// The specular form of kilgard's third pass.
 #[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
 pub enum SpecularArg {
     /// max(0, H·N')^8 by repeated squaring (Appendix H)
@@ -329,6 +379,7 @@ pub enum SpecularArg {
     Ramp,
 }
 
+/// Local or infinite viewer.
 #[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
 pub enum ViewerArg {
     /// the half-angle from each vertex toward the eye
@@ -337,20 +388,25 @@ pub enum ViewerArg {
     Infinite,
 }
 
+/// What draws.
 #[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
 pub enum BackendArg {
     /// the emulated GeForce pipeline on the CPU (all cores)
     Cpu,
     /// wgpu on whatever adapter exists (Vulkan, Metal, DX12, GL; lavapipe without a GPU)
     Gpu,
+    /// the GPU when an adapter exists, else the CPU
+    Auto,
 }
 
-#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
-pub enum SpaceArg {
-    /// tangent-space normal map, L and H rotated into each vertex's frame
-    Tangent,
-    /// object-space normal map baked for the surface, L and H in object space (Peercy §2.1)
-    Object,
+impl From<BackendArg> for bumpmap::BackendChoice {
+    fn from(b: BackendArg) -> Self {
+        match b {
+            BackendArg::Cpu => bumpmap::BackendChoice::Cpu,
+            BackendArg::Gpu => bumpmap::BackendChoice::Gpu,
+            BackendArg::Auto => bumpmap::BackendChoice::Auto,
+        }
+    }
 }
 
 /// `C,L,Q`, `exp:D` or `exp2:D`.

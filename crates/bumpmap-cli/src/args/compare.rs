@@ -1,0 +1,49 @@
+//! `bumpmap compare`'s options.
+
+use std::path::PathBuf;
+
+use clap::Args;
+
+use crate::args::parse_side;
+
+/// `bumpmap compare`.
+#[derive(Args, Debug)]
+#[command(after_help = "Examples:\n  \
+bumpmap compare                                    # the torus, out/compare/report.html\n  \
+bumpmap compare --scene patch --height-field pinwheel --spp 256\n  \
+bumpmap compare --techniques kilgard,single-pass --backend gpu\n\n\
+Writes OUT/results.json (every score), OUT/report.html (images, FLIP heat maps, the table and \
+plots; relative links only, so the folder can be copied), one PNG per technique and its \
+FLIP heat map, and the plots as SVG. A technique that cannot render the scene is skipped, with \
+its reason on stderr and in the report.\n\n\
+Whatever the scene, the report also measures three claims the papers make in pictures, each on \
+its own scene: Kilgard §2.4.2's golf ball at a distance (the length factor against renormalized \
+mips), §3.1's embossing (flat head-on, lost at a distance, lit where the light is behind), and \
+Peercy's Figures 5–7 on his stretched patch (per-pixel Blinn, the surface-dependent and the \
+surface-independent map, at bump scales 1, 2 and 4).")]
+pub struct CompareArgs {
+    /// Built-in scene: torus, wall, floor, wall-floor, patch, sphere (the reference needs an exact surface)
+    #[arg(long, default_value = "torus")]
+    pub scene: String,
+    /// Height field: image file or preset (bricks, pinwheel, dimples, noise:SEED[@SIZE])
+    #[arg(long = "height-field", default_value = "bricks")]
+    pub height_field: String,
+    /// Bump scale: the height of a unit step, in texels
+    #[arg(long = "bump-scale", default_value_t = 4.0)]
+    pub bump_scale: f32,
+    /// Square image size in pixels
+    #[arg(long, default_value_t = 256, value_parser = parse_side)]
+    pub size: usize,
+    /// The reference's samples per pixel (stratified); the convergence plot uses 1, 4, 16, … up to it
+    #[arg(long, default_value_t = 64, value_parser = clap::value_parser!(u32).range(1..=4096))]
+    pub spp: u32,
+    /// What draws the techniques (the reference always runs on the CPU)
+    #[arg(long, value_enum, default_value = "cpu")]
+    pub backend: crate::args::BackendArg,
+    /// Comma-separated techniques to run (default: all of kilgard, single-pass, single-pass-cube, object-space, mip-renormalized, no-bump, peercy-independent, peercy-dependent, emboss, emboss-unforced, offset-map, peercy-blinn)
+    #[arg(long, value_delimiter = ',')]
+    pub techniques: Vec<String>,
+    /// Output folder
+    #[arg(short, long, default_value = "out/compare")]
+    pub output: PathBuf,
+}

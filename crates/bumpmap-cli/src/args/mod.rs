@@ -1,0 +1,200 @@
+//! Command-line arguments, a module per command; the value parsers and enums more than one
+//! command reads live here. The help texts are the user manual: they say what each option
+//! means in the papers' terms and what the default is.
+
+mod bench;
+mod compare;
+mod cubemap;
+mod demo;
+mod normalmap;
+mod render;
+mod tangents;
+
+pub use bench::*;
+pub use compare::*;
+pub use cubemap::*;
+pub use demo::*;
+pub use normalmap::*;
+pub use render::*;
+pub use tangents::*;
+
+use bumpmap_math::YConvention;
+use clap::{Parser, Subcommand, ValueEnum};
+
+/// `bumpmap` and its subcommand.
+#[derive(Parser, Debug)]
+#[command(
+    name = "bumpmap",
+    version,
+    about = "Bump mapping toolkit and renderer after Kilgard (2000), the Cg Tutorial ch. 8 and Peercy et al. (1997)",
+    long_about = "Bump mapping toolkit and renderer.\n\n\
+Makes tangent-space normal maps from height fields, with mip chains that keep the length of the \
+averaged normal in alpha so bumpy surfaces dim correctly at a distance (Kilgard 2000, §2.4.2); \
+builds normalization cube maps and tangent frames; and renders bump-mapped objects with every \
+technique the papers compare (`bumpmap render --help` lists them), on an emulated GeForce 256 or \
+the GPU, from built-in surfaces or your own meshes, normal maps and glTF materials, measured \
+against a ground-truth reference by `bumpmap compare`.\n\n\
+Start with `bumpmap demo`, which writes example outputs into ./out/demo.\n\n\
+Texture convention: the first row of an image file is texture coordinate t = 0 (OpenGL's \
+glTexImage2D order), so the normal map's +Y (green) points toward the next row."
+)]
+pub struct Cli {
+    /// What to do.
+    #[command(subcommand)]
+    pub command: Command,
+}
+
+/// The subcommands.
+#[derive(Subcommand, Debug)]
+pub enum Command {
+    /// Height field → normal map (and its mip chain)
+    Normalmap(NormalmapArgs),
+    /// Write a normalization cube map, or measure the accuracy of its lookup
+    Cubemap(CubemapArgs),
+    /// Measure speed (median of several runs); --json prints one machine-readable line
+    Bench(BenchArgs),
+    /// Render a bump-mapped scene
+    Render(Box<RenderArgs>),
+    /// Generate tangent frames for a mesh and write glTF with a TANGENT attribute
+    Tangents(TangentsArgs),
+    /// Run everything on built-in defaults and write the results into a folder
+    Demo(DemoArgs),
+    /// Render every technique on one scene, measure each against the reference, write a report
+    Compare(CompareArgs),
+}
+
+/// Three numbers, `X,Y,Z`.
+pub fn parse_vec3(s: &str) -> Result<glam::Vec3, String> {
+    let v: Vec<f32> = s
+        .split(',')
+        .map(|p| p.trim().parse::<f32>().map_err(|_| format!("'{p}' is not a number")))
+        .collect::<Result<_, _>>()?;
+    match v.as_slice() {
+        [x, y, z] if v.iter().all(|c| c.is_finite()) => Ok(glam::Vec3::new(*x, *y, *z)),
+        _ => Err(format!("expected X,Y,Z (three finite numbers), got '{s}'")),
+    }
+}
+
+/// Two numbers, `A,B`.
+pub fn parse_pair(s: &str) -> Result<(f32, f32), String> {
+    let v: Vec<f32> = s
+        .split(',')
+        .map(|p| p.trim().parse::<f32>().map_err(|_| format!("'{p}' is not a number")))
+        .collect::<Result<_, _>>()?;
+    match v.as_slice() {
+        [a, b] if a.is_finite() && b.is_finite() => Ok((*a, *b)),
+        _ => Err(format!("expected A,B (two finite numbers), got '{s}'")),
+    }
+}
+
+/// Texture repeats `S,T`: two finite numbers, neither 0 (a map made for the surface is addressed
+/// with 1/repeat) and neither beyond ±1024 (texture coordinates stay well inside single
+/// precision's whole numbers).
+pub fn parse_repeat(s: &str) -> Result<(f32, f32), String> {
+    let (a, b) = parse_pair(s)?;
+    let ok = |v: f32| v != 0.0 && v.abs() <= 1024.0;
+    if ok(a) && ok(b) { Ok((a, b)) } else { Err(format!("repeats must be non-zero and within ±1024, got '{s}'")) }
+}
+
+/// The largest image side `render` and `bench render` take (the CPU framebuffer's limit on
+/// the pixel count applies as well).
+pub const MAX_SIDE: usize = 16384;
+
+/// An image side in pixels, 1..=[`MAX_SIDE`].
+pub fn parse_side(s: &str) -> Result<usize, String> {
+    s.trim()
+        .parse::<usize>()
+        .ok()
+        .filter(|n| (1..=MAX_SIDE).contains(n))
+        .ok_or_else(|| format!("'{s}' is not a size in 1..={MAX_SIDE} pixels"))
+}
+
+/// Two positive integers, `U,V`.
+pub fn parse_counts(s: &str) -> Result<(usize, usize), String> {
+    let (a, b) = s.split_once(',').ok_or_else(|| format!("expected U,V, got '{s}'"))?;
+    let p = |x: &str| {
+        x.trim()
+            .parse::<usize>()
+            .ok()
+            .filter(|&n| (1..=4096).contains(&n))
+            .ok_or_else(|| format!("'{x}' is not a count in 1..=4096"))
+    };
+    Ok((p(a)?, p(b)?))
+}
+
+/// Which way a normal map's green points.
+#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum YArg {
+    /// Green up: +Y toward the top of the image as displayed (glTF, OpenGL, Blender, Maya, Unity)
+    #[value(alias = "y-up")]
+    Opengl,
+    /// Green down: +Y toward the bottom of the image as displayed (DirectX, Unreal, 3ds Max)
+    #[value(alias = "y-down")]
+    Directx,
+}
+
+impl From<YArg> for YConvention {
+    fn from(y: YArg) -> Self {
+        match y {
+            YArg::Opengl => YConvention::YUp,
+            YArg::Directx => YConvention::YDown,
+        }
+    }
+}
+
+/// Texel formats of DDS and KTX2 outputs.
+#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum FormatArg {
+    /// Uncompressed 8-bit RGBA (16-bit with --bits 16)
+    #[value(alias = "r8g8b8a8_unorm")]
+    Rgba8,
+    /// Uncompressed 16-bit RGBA (the same as --bits 16)
+    #[value(alias = "r16g16b16a16_unorm")]
+    Rgba16,
+    /// BC5: two channels (X, Y), 8 bits per texel
+    #[value(alias = "bc5_unorm")]
+    Bc5,
+    /// BC7: four channels, 8 bits per texel
+    #[value(alias = "bc7_unorm")]
+    Bc7,
+}
+
+impl From<FormatArg> for bumpmap_io::texture_file::TextureFormat {
+    fn from(f: FormatArg) -> Self {
+        use bumpmap_io::texture_file::TextureFormat;
+        match f {
+            FormatArg::Rgba8 => TextureFormat::Rgba8,
+            FormatArg::Rgba16 => TextureFormat::Rgba16,
+            FormatArg::Bc5 => TextureFormat::Bc5,
+            FormatArg::Bc7 => TextureFormat::Bc7,
+        }
+    }
+}
+
+/// How an OBJ's `vt` map to the image.
+#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum ObjVArg {
+    /// v = 0 is the image's bottom row, as Blender, Maya and OBJ exporters write it
+    #[default]
+    Flip,
+    /// v = 0 is the image's top row (OBJ files from tools that write glTF's convention)
+    Keep,
+}
+
+impl From<ObjVArg> for bumpmap_io::ObjTexcoords {
+    fn from(v: ObjVArg) -> Self {
+        match v {
+            ObjVArg::Flip => bumpmap_io::ObjTexcoords::FlipV,
+            ObjVArg::Keep => bumpmap_io::ObjTexcoords::Keep,
+        }
+    }
+}
+
+/// How tangents are made.
+#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum TangentModeArg {
+    /// Per-triangle ∂P/∂s blended at vertices, split at mirror seams (Cg Tutorial §8.4); parallel
+    Ours,
+    /// The reference MikkTSpace algorithm (what Blender, Substance and glTF viewers use)
+    Mikktspace,
+}

@@ -1,0 +1,390 @@
+//! The technique catalogue: every technique the project draws, by the name the command line,
+//! `compare`, the examples and the viewer use, with a line saying what it is, what it needs of a
+//! scene, which maps it reads and how it is drawn.
+//!
+//! A name is more than a [`Technique`]: `peercy-dependent` is the single pass over a map made
+//! for the surface with Peercy's 7×7 kernel, `mip-renormalized` the single pass over mips
+//! without the length factor. [`TechniqueName::prepare`] makes both halves — the [`Scene`] with
+//! the maps the name reads, and the [`Technique`] that draws it — from a [`SceneSpec`] and
+//! [`TechniqueOptions`].
+//!
+//! What this module does not do: draw (the backends and `bumpmap-reference`), or decide which
+//! options a user may combine with a name (the command line refuses its own flags).
+
+use std::fmt;
+
+use bumpmap_math::{Kernel, MipMode};
+
+use crate::bump_maps::BumpMap;
+use crate::error::CoreError;
+use crate::scene::Scene;
+use crate::scenes::{BumpSource, SceneParams, SceneSpec};
+use crate::technique::{
+    BackFacing, EmbossOptions, KilgardOptions, Normalize, ReferenceOptions, SinglePassOptions, Technique,
+};
+
+/// Every named technique, in the order `compare`'s report lists them (the reference, the oracle
+/// the others are measured against, last).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum TechniqueName {
+    /// Kilgard's three passes on the emulated GeForce 256.
+    Kilgard,
+    /// One float pass per light.
+    SinglePass,
+    /// The single pass normalizing L and H by the cube map.
+    SinglePassCube,
+    /// The single pass with an object-space map made for the surface.
+    ObjectSpace,
+    /// The single pass over mips without the length factor.
+    MipRenormalized,
+    /// The single pass without bumps.
+    NoBump,
+    /// Peercy's surface-independent map (Figure 7).
+    PeercyIndependent,
+    /// Peercy's surface-dependent map (Figure 6).
+    PeercyDependent,
+    /// Embossing (Kilgard §3.1).
+    Emboss,
+    /// Embossing without forcing the shift to 0 where the light is behind.
+    EmbossUnforced,
+    /// An offset map (Kilgard §2.2).
+    OffsetMap,
+    /// Peercy's Figure 2 hardware (Figure 5).
+    PeercyBlinn,
+    /// Ground truth.
+    Reference,
+}
+
+/// What a technique needs of a scene.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Requirement {
+    /// An analytic surface (every built-in scene): its map or its shading is made from the
+    /// surface's exact ∂P/∂u and ∂P/∂v, which a loaded mesh does not have.
+    BuiltInSurface,
+    /// A height field: the technique differentiates heights itself, which a normal map given as
+    /// it is does not carry.
+    HeightField,
+    /// One light: its passes have room for one.
+    OneLight,
+}
+
+impl Requirement {
+    /// The requirement in a few words (its `Display` says why).
+    pub fn brief(self) -> &'static str {
+        match self {
+            Requirement::BuiltInSurface => "a built-in surface",
+            Requirement::HeightField => "a height field",
+            Requirement::OneLight => "one light",
+        }
+    }
+}
+
+impl fmt::Display for Requirement {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Requirement::BuiltInSurface => write!(
+                f,
+                "a built-in surface ({}): it uses the surface's exact derivatives, which a mesh does not have",
+                crate::scenes::SceneKind::built_in_names()
+            ),
+            Requirement::HeightField => f.write_str(
+                "a height field: it differentiates the heights itself, and a normal map given as it is has none",
+            ),
+            Requirement::OneLight => f.write_str("exactly one light"),
+        }
+    }
+}
+
+/// The options of every family of technique; a name takes those of its family and fixes what
+/// the name says (`single-pass-cube` normalizes by the cube map whatever
+/// [`SinglePassOptions::normalize`] says).
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct TechniqueOptions {
+    /// For `kilgard`.
+    pub kilgard: KilgardOptions,
+    /// For `single-pass` and every name drawn by it.
+    pub single_pass: SinglePassOptions,
+    /// For `emboss` and `emboss-unforced`.
+    pub emboss: EmbossOptions,
+    /// For `reference`.
+    pub reference: ReferenceOptions,
+}
+
+impl TechniqueName {
+    /// Every name, in catalogue order.
+    pub const ALL: [TechniqueName; 13] = [
+        TechniqueName::Kilgard,
+        TechniqueName::SinglePass,
+        TechniqueName::SinglePassCube,
+        TechniqueName::ObjectSpace,
+        TechniqueName::MipRenormalized,
+        TechniqueName::NoBump,
+        TechniqueName::PeercyIndependent,
+        TechniqueName::PeercyDependent,
+        TechniqueName::Emboss,
+        TechniqueName::EmbossUnforced,
+        TechniqueName::OffsetMap,
+        TechniqueName::PeercyBlinn,
+        TechniqueName::Reference,
+    ];
+
+    /// The name as the papers and the command line spell it.
+    pub fn name(self) -> &'static str {
+        match self {
+            TechniqueName::Kilgard => "kilgard",
+            TechniqueName::SinglePass => "single-pass",
+            TechniqueName::SinglePassCube => "single-pass-cube",
+            TechniqueName::ObjectSpace => "object-space",
+            TechniqueName::MipRenormalized => "mip-renormalized",
+            TechniqueName::NoBump => "no-bump",
+            TechniqueName::PeercyIndependent => "peercy-independent",
+            TechniqueName::PeercyDependent => "peercy-dependent",
+            TechniqueName::Emboss => "emboss",
+            TechniqueName::EmbossUnforced => "emboss-unforced",
+            TechniqueName::OffsetMap => "offset-map",
+            TechniqueName::PeercyBlinn => "peercy-blinn",
+            TechniqueName::Reference => "reference",
+        }
+    }
+
+    /// What the technique is, in one line, in the papers' words.
+    pub fn description(self) -> &'static str {
+        match self {
+            TechniqueName::Kilgard => {
+                "Kilgard's three passes on the emulated GeForce 256: normalization cube map, register combiners, 8-bit framebuffer (§5)"
+            }
+            TechniqueName::SinglePass => {
+                "one float pass per light with the same model, L and H normalized by math (§6)"
+            }
+            TechniqueName::SinglePassCube => {
+                "the single pass with L and H normalized by the cube map, as the hardware did (§5.4)"
+            }
+            TechniqueName::ObjectSpace => {
+                "the single pass with an object-space normal map made for the surface (Peercy §2.1, Kilgard §5)"
+            }
+            TechniqueName::MipRenormalized => {
+                "the single pass with mips that renormalize the averaged normal, dropping its length (§2.4.2)"
+            }
+            TechniqueName::NoBump => "the single pass on a flat height field: the surface without bumps",
+            TechniqueName::PeercyIndependent => {
+                "Peercy's surface-independent map (Eq. 8–11, Figure 7): tangent-space normals from the 7×7 derivative of a Gaussian, lit per pixel in the interpolated frame"
+            }
+            TechniqueName::PeercyDependent => {
+                "Peercy's surface-dependent map (Eq. 3–6, Figures 3 and 6): Blinn's normal per texel from the surface's exact ∂P/∂u, ∂P/∂v and the same 7×7 kernel, in each texel's tangent frame, lit exactly as peercy-independent"
+            }
+            TechniqueName::Emboss => {
+                "embossing (Kilgard §3.1, Eq. 29–30): the height field fetched twice, shifted toward the light by a texel, subtracted, plus L_z; L_x, L_y forced to 0 where L_z ≤ 0; diffuse only"
+            }
+            TechniqueName::EmbossUnforced => {
+                "embossing without forcing the shift to 0 where the light is behind the surface"
+            }
+            TechniqueName::OffsetMap => {
+                "an offset map (Kilgard §2.2, Eq. 6–7): the slopes' offset D stored in RG, filtered, and N + D renormalized per pixel, lit by the single pass"
+            }
+            TechniqueName::PeercyBlinn => {
+                "Peercy's Figure 2 hardware (Figure 5): the height derivatives from the same 7×7 kernel in a texture, Blinn's normal made per pixel from them and the interpolated ∂P/∂u, ∂P/∂v"
+            }
+            TechniqueName::Reference => {
+                "ground truth: Blinn's perturbed normal on the exact surface from a C¹ height interpolant, many samples per pixel, on the CPU"
+            }
+        }
+    }
+
+    /// What the technique needs of a scene; [`TechniqueName::check`] refuses a scene without it.
+    pub fn requirements(self) -> &'static [Requirement] {
+        use Requirement::*;
+        match self {
+            TechniqueName::Kilgard
+            | TechniqueName::SinglePass
+            | TechniqueName::SinglePassCube
+            | TechniqueName::MipRenormalized
+            | TechniqueName::NoBump => &[],
+            TechniqueName::ObjectSpace => &[BuiltInSurface],
+            TechniqueName::PeercyIndependent | TechniqueName::OffsetMap => &[HeightField],
+            TechniqueName::PeercyDependent | TechniqueName::PeercyBlinn | TechniqueName::Reference => {
+                &[BuiltInSurface, HeightField]
+            }
+            TechniqueName::Emboss | TechniqueName::EmbossUnforced => &[HeightField, OneLight],
+        }
+    }
+
+    /// Every name, comma-separated, for messages.
+    pub fn names() -> String {
+        Self::ALL.map(TechniqueName::name).join(", ")
+    }
+
+    /// The technique called `name`, or an error that lists the valid names.
+    pub fn parse(name: &str) -> Result<Self, CoreError> {
+        Self::ALL
+            .into_iter()
+            .find(|t| t.name() == name)
+            .ok_or_else(|| CoreError::UnknownTechnique { name: name.into() })
+    }
+
+    /// Refuses a scene that lacks one of [`TechniqueName::requirements`].
+    pub fn check(self, spec: &SceneSpec) -> Result<(), CoreError> {
+        for &requirement in self.requirements() {
+            let met = match requirement {
+                Requirement::BuiltInSurface => spec.kind.is_surface(),
+                Requirement::HeightField => matches!(spec.params.bumps, BumpSource::Heights(_)),
+                Requirement::OneLight => spec.params.lights.len() <= 1,
+            };
+            if !met {
+                return Err(CoreError::Needs { technique: self.name(), requirement });
+            }
+        }
+        Ok(())
+    }
+
+    /// The scene parameters with the maps this technique reads: its kernel, its bump texture,
+    /// its mip mode, or no bumps at all.
+    pub fn scene_params(self, base: &SceneParams) -> SceneParams {
+        let mut params = base.clone();
+        let peercy = |params: &mut SceneParams, map| {
+            params.normal_map.kernel = Kernel::Gaussian7;
+            params.bump_map = map;
+        };
+        match self {
+            TechniqueName::ObjectSpace => params.bump_map = BumpMap::ObjectSpace,
+            TechniqueName::MipRenormalized => params.mip_mode = MipMode::Renormalize,
+            TechniqueName::NoBump => params.bumps = base.bumps.flat(),
+            TechniqueName::PeercyIndependent => peercy(&mut params, BumpMap::Tangent),
+            TechniqueName::PeercyDependent => peercy(&mut params, BumpMap::SurfaceDependent),
+            TechniqueName::PeercyBlinn => peercy(&mut params, BumpMap::Derivatives),
+            TechniqueName::OffsetMap => params.bump_map = BumpMap::Offset,
+            TechniqueName::Kilgard
+            | TechniqueName::SinglePass
+            | TechniqueName::SinglePassCube
+            | TechniqueName::Emboss
+            | TechniqueName::EmbossUnforced
+            | TechniqueName::Reference => {}
+        }
+        params
+    }
+
+    /// The technique that draws this name, with `options`' settings for its family and the
+    /// name's own fixed on top.
+    pub fn technique(self, options: &TechniqueOptions) -> Technique {
+        let single = options.single_pass.clone();
+        match self {
+            TechniqueName::Kilgard => Technique::Kilgard(options.kilgard.clone()),
+            TechniqueName::SinglePassCube => {
+                Technique::SinglePass(SinglePassOptions { normalize: Normalize::Cube, ..single })
+            }
+            TechniqueName::SinglePass
+            | TechniqueName::ObjectSpace
+            | TechniqueName::MipRenormalized
+            | TechniqueName::NoBump
+            | TechniqueName::PeercyIndependent
+            | TechniqueName::PeercyDependent
+            | TechniqueName::OffsetMap
+            | TechniqueName::PeercyBlinn => Technique::SinglePass(single),
+            TechniqueName::Emboss => {
+                Technique::Emboss(EmbossOptions { back_facing: BackFacing::Forced, ..options.emboss.clone() })
+            }
+            TechniqueName::EmbossUnforced => {
+                Technique::Emboss(EmbossOptions { back_facing: BackFacing::Unforced, ..options.emboss.clone() })
+            }
+            TechniqueName::Reference => Technique::Reference(options.reference),
+        }
+    }
+
+    /// The scene with this technique's maps and the technique that draws it; fails when the
+    /// scene lacks a requirement or cannot be built. The passes themselves may still refuse an
+    /// option (`kilgard` with a gloss map): [`Technique::passes`].
+    pub fn prepare(self, spec: &SceneSpec, options: &TechniqueOptions) -> Result<(Scene, Technique), CoreError> {
+        self.check(spec)?;
+        let scene = crate::scenes::build(&spec.kind, &self.scene_params(&spec.params))?;
+        Ok((scene, self.technique(options)))
+    }
+}
+
+impl fmt::Display for TechniqueName {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.pad(self.name())
+    }
+}
+
+impl std::str::FromStr for TechniqueName {
+    type Err = CoreError;
+
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        Self::parse(s)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use std::sync::Arc;
+
+    use super::*;
+    use crate::scenes::SceneKind;
+
+    #[test]
+    fn every_name_parses_back_and_is_unique() {
+        for t in TechniqueName::ALL {
+            assert_eq!(TechniqueName::parse(t.name()), Ok(t));
+            assert!(!t.description().is_empty());
+        }
+        let mut names: Vec<_> = TechniqueName::ALL.map(TechniqueName::name).to_vec();
+        names.sort_unstable();
+        names.dedup();
+        assert_eq!(names.len(), TechniqueName::ALL.len());
+        let err = TechniqueName::parse("phong").unwrap_err().to_string();
+        assert!(err.contains("'phong'") && err.contains("peercy-blinn") && err.contains("reference"), "{err}");
+    }
+
+    #[test]
+    fn every_name_prepares_the_torus_and_makes_passes_or_is_the_reference() {
+        let spec = SceneSpec::new(SceneKind::Torus);
+        for t in TechniqueName::ALL {
+            let (scene, technique) = t.prepare(&spec, &TechniqueOptions::default()).unwrap();
+            match technique {
+                Technique::Reference(_) => assert_eq!(technique.passes(&scene).unwrap_err(), CoreError::NotPasses),
+                _ => assert!(!technique.passes(&scene).unwrap().is_empty(), "{t}"),
+            }
+        }
+    }
+
+    #[test]
+    fn a_mesh_or_a_normal_map_is_refused_by_name_and_reason() {
+        let mesh = bumpmap_math::surface::Surface::Wall { width: 1.0, height: 1.0 }.tessellate(2, 2, glam::Vec2::ONE);
+        let on_mesh = SceneSpec::new(SceneKind::Mesh(Arc::new(mesh)));
+        let err = TechniqueName::PeercyDependent.prepare(&on_mesh, &TechniqueOptions::default()).unwrap_err();
+        assert_eq!(err, CoreError::Needs { technique: "peercy-dependent", requirement: Requirement::BuiltInSurface });
+        assert!(err.to_string().starts_with("peercy-dependent needs a built-in surface"), "{err}");
+        // Techniques without requirements draw the mesh.
+        assert!(TechniqueName::Kilgard.prepare(&on_mesh, &TechniqueOptions::default()).is_ok());
+
+        let mut given = SceneSpec::new(SceneKind::Wall);
+        let chain = bumpmap_math::MipChain::from_normals(
+            4,
+            4,
+            &[glam::Vec3::Z; 16],
+            bumpmap_math::Encoding::Unorm,
+            MipMode::LengthInAlpha,
+        );
+        given.params.bumps = BumpSource::NormalMap(Arc::new(chain));
+        for t in TechniqueName::ALL {
+            let result = t.prepare(&given, &TechniqueOptions::default());
+            if t.requirements().contains(&Requirement::HeightField) {
+                assert!(matches!(result, Err(CoreError::Needs { requirement: Requirement::HeightField, .. })), "{t}");
+            } else {
+                assert!(result.is_ok(), "{t}: {:?}", result.err());
+            }
+        }
+    }
+
+    #[test]
+    fn names_fix_what_they_say_over_the_options() {
+        let options = TechniqueOptions::default();
+        let Technique::SinglePass(o) = TechniqueName::SinglePassCube.technique(&options) else { panic!() };
+        assert_eq!(o.normalize, Normalize::Cube);
+        let Technique::Emboss(o) = TechniqueName::EmbossUnforced.technique(&options) else { panic!() };
+        assert_eq!(o.back_facing, BackFacing::Unforced);
+        let base = SceneParams::default();
+        assert_eq!(TechniqueName::MipRenormalized.scene_params(&base).mip_mode, MipMode::Renormalize);
+        assert_eq!(TechniqueName::PeercyBlinn.scene_params(&base).normal_map.kernel, Kernel::Gaussian7);
+        assert_eq!(TechniqueName::Kilgard.scene_params(&base).normal_map, base.normal_map);
+    }
+}

@@ -1,0 +1,89 @@
+//! OBJ in (via `tobj`): faces triangulated, vertices unified over (position, texture
+//! coordinate, normal) triples, v flipped into this crate's texture space (t = 1 − v;
+//! [`ObjTexcoords`]). A face of fewer than three vertices, or texture coordinates on only some
+//! faces, is an error naming the line (not dropped); material libraries are never opened.
+
+use std::path::Path;
+
+use bumpmap_math::mesh::{MAX_ELEMENTS, Mesh, MeshError};
+use glam::{Vec2, Vec3};
+
+use crate::error::IoError;
+use crate::mesh_file::{LoadedMesh, ObjTexcoords, mesh_err};
+
+/// What `tobj` would pass over in silence: faces of one or two vertices, and faces without
+/// texture coordinates in a file whose other faces have them. Both are errors, named by line.
+fn check_obj_faces(path: &Path, text: &str) -> Result<(), IoError> {
+    let mut with_uv: Option<usize> = None;
+    let mut without_uv: Option<usize> = None;
+    for (i, line) in text.lines().enumerate() {
+        let mut words = line.split_whitespace();
+        if words.next() != Some("f") {
+            continue;
+        }
+        let refs: Vec<&str> = words.collect();
+        if refs.len() < 3 {
+            return Err(mesh_err(
+                path,
+                format!("line {}: a face needs at least 3 vertices, this one has {}", i + 1, refs.len()),
+            ));
+        }
+        for r in refs {
+            let has_uv = r.split('/').nth(1).is_some_and(|t| !t.is_empty());
+            *(if has_uv { &mut with_uv } else { &mut without_uv }) = Some(i + 1);
+        }
+        if let (Some(a), Some(b)) = (with_uv, without_uv) {
+            return Err(mesh_err(
+                path,
+                format!(
+                    "only some faces have texture coordinates (line {a} has, line {b} has not); give every face a vt, or none"
+                ),
+            ));
+        }
+    }
+    Ok(())
+}
+
+pub(crate) fn parse_obj(path: &Path, bytes: &[u8], texcoords: ObjTexcoords) -> Result<LoadedMesh, IoError> {
+    let text = std::str::from_utf8(bytes).map_err(|e| mesh_err(path, format!("not a text OBJ file: {e}")))?;
+    check_obj_faces(path, text)?;
+    let options = tobj::LoadOptions { single_index: true, triangulate: true, ignore_points: true, ignore_lines: true };
+    // Materials are not read: no file besides the OBJ itself is opened.
+    let (models, _materials) =
+        tobj::load_obj_buf(&mut std::io::Cursor::new(bytes), &options, |_| Err(tobj::LoadError::OpenFileFailed))
+            .map_err(|e| mesh_err(path, format!("not a readable OBJ file: {e}")))?;
+    let mut mesh = Mesh::default();
+    let mut had_normals = true;
+    let mut has_texcoords = true;
+    for model in &models {
+        let m = &model.mesh;
+        let base = mesh.positions.len() as u32;
+        let n = m.positions.len() / 3;
+        if n + mesh.positions.len() > MAX_ELEMENTS || m.indices.len() / 3 + mesh.indices.len() > MAX_ELEMENTS {
+            return Err(mesh_err(
+                path,
+                MeshError::TooLarge {
+                    what: "vertices or triangles",
+                    count: (n + m.indices.len() / 3) as u64,
+                    max: MAX_ELEMENTS,
+                },
+            ));
+        }
+        mesh.positions.extend(m.positions.chunks_exact(3).map(|p| Vec3::new(p[0], p[1], p[2])));
+        had_normals &= m.normals.len() == 3 * n;
+        has_texcoords &= m.texcoords.len() == 2 * n;
+        mesh.normals.extend(m.normals.chunks_exact(3).map(|p| Vec3::new(p[0], p[1], p[2])));
+        mesh.texcoords.extend(m.texcoords.chunks_exact(2).map(|p| match texcoords {
+            ObjTexcoords::FlipV => Vec2::new(p[0], 1.0 - p[1]),
+            ObjTexcoords::Keep => Vec2::new(p[0], p[1]),
+        }));
+        mesh.indices.extend(m.indices.chunks_exact(3).map(|t| [base + t[0], base + t[1], base + t[2]]));
+    }
+    if !had_normals {
+        mesh.normals.clear();
+    }
+    if !has_texcoords {
+        mesh.texcoords.clear();
+    }
+    Ok(LoadedMesh { mesh, had_normals, had_tangents: false, sources: vec![path.to_path_buf()], ..Default::default() })
+}

@@ -1,0 +1,506 @@
+//! Texture files in: a normal map made elsewhere (or by `bumpmap normalmap`) with the levels it
+//! carries — a PNG or other image (one level, 8 or 16 bits), or a DDS or KTX2 container (every
+//! level, uncompressed RGBA8/BGRA8/RGBA16 or BC5/BC7 blocks decoded by `image_dds`'s decoder).
+//!
+//! Headers are checked before anything is decoded: the size against [`MAX_DIMENSION`], one 2D
+//! face (no cube map, array or volume), a linear format (an sRGB normal map is a broken one),
+//! no supercompression, and every level's bytes present as the header declares them. BC5
+//! stores X and Y only; Z is rebuilt here as `√(1 − x² − y²)` and A is 1, as a shader does.
+//!
+//! What this module does not do: interpret the texels (green up or down, unit length, the
+//! smaller levels' alpha): that is `bumpmap_math::imported`.
+
+use std::path::Path;
+
+use bumpmap_math::{Encoding, Image, Rgba8Image, Rgba16Image};
+
+use crate::error::IoError;
+use crate::image_file::{DecodeLimits, MAX_DIMENSION};
+use crate::texture_file::TextureFormat;
+
+/// The largest texture file read, in bytes (a 16384² RGBA16 level with its mips is 2.7 GiB;
+/// such a file is refused before it is read).
+pub const MAX_TEXTURE_FILE_BYTES: u64 = 1 << 31;
+
+/// A texture file's levels as stored: level 0 first, each the next smaller size.
+#[derive(Clone, Debug, PartialEq)]
+pub enum StoredLevels {
+    /// 8 bits a channel (RGBA8, BGRA8 reordered, and decoded BC5 and BC7).
+    Rgba8(Vec<Rgba8Image>),
+    /// 16 bits a channel.
+    Rgba16(Vec<Rgba16Image>),
+}
+
+impl StoredLevels {
+    /// How many levels the file carries.
+    pub fn len(&self) -> usize {
+        match self {
+            StoredLevels::Rgba8(l) => l.len(),
+            StoredLevels::Rgba16(l) => l.len(),
+        }
+    }
+
+    /// Whether there is no level (never, for a texture that loaded).
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+
+    /// Level 0's width and height.
+    pub fn size(&self) -> (usize, usize) {
+        match self {
+            StoredLevels::Rgba8(l) => l.first().map_or((0, 0), |l| (l.width, l.height)),
+            StoredLevels::Rgba16(l) => l.first().map_or((0, 0), |l| (l.width, l.height)),
+        }
+    }
+}
+
+/// A texture read from a file.
+#[derive(Clone, Debug, PartialEq)]
+pub struct StoredTexture {
+    /// The levels, decoded.
+    pub levels: StoredLevels,
+    /// How the file stored them.
+    pub format: TextureFormat,
+}
+
+fn bad(path: &Path, reason: impl std::fmt::Display) -> IoError {
+    IoError::Texture { path: path.to_path_buf(), reason: reason.to_string() }
+}
+
+/// Reads a texture file: `.dds`, `.ktx2`, or any image `image` decodes (by its contents).
+pub fn load_texture(path: &Path) -> Result<StoredTexture, IoError> {
+    let meta = std::fs::metadata(path).map_err(|source| IoError::Read { path: path.to_path_buf(), source })?;
+    if !meta.is_file() {
+        return Err(bad(path, "is not a regular file"));
+    }
+    let mut magic = [0u8; 12];
+    {
+        use std::io::Read as _;
+        let mut f = std::fs::File::open(path).map_err(|source| IoError::Read { path: path.to_path_buf(), source })?;
+        let n = f.read(&mut magic).map_err(|source| IoError::Read { path: path.to_path_buf(), source })?;
+        if n < 4 {
+            return Err(bad(path, format!("{n} bytes is too short for an image")));
+        }
+    }
+    if magic.starts_with(b"DDS ") || magic == KTX2_IDENTIFIER {
+        if meta.len() > MAX_TEXTURE_FILE_BYTES {
+            return Err(bad(path, format!("{} bytes; the limit is {MAX_TEXTURE_FILE_BYTES}", meta.len())));
+        }
+        let bytes = std::fs::read(path).map_err(|source| IoError::Read { path: path.to_path_buf(), source })?;
+        return read_texture(&bytes, path, &DecodeLimits::default());
+    }
+    image_levels(crate::image_file::decode_path(path)?, path)
+}
+
+/// [`load_texture`] for a file's bytes already in memory; `name` is the file errors name and
+/// `limits` bound an image's decoding (a container's levels are bounded by its bytes: every
+/// level must be there before one is decoded).
+pub fn read_texture(bytes: &[u8], name: &Path, limits: &DecodeLimits) -> Result<StoredTexture, IoError> {
+    if bytes.starts_with(b"DDS ") {
+        read_dds(bytes, name)
+    } else if bytes.starts_with(&KTX2_IDENTIFIER) {
+        read_ktx2(bytes, name)
+    } else {
+        image_levels(crate::image_file::decode_bytes(bytes, name, limits)?, name)
+    }
+}
+
+/// One image's texels at the depth they were stored, as one level.
+fn image_levels(img: image::DynamicImage, path: &Path) -> Result<StoredTexture, IoError> {
+    use image::ColorType::*;
+    let (w, h) = (img.width() as usize, img.height() as usize);
+    match img.color() {
+        L8 | La8 | Rgb8 | Rgba8 => {
+            let rgba = img.to_rgba8();
+            let level = Rgba8Image::new(w, h, rgba.pixels().map(|p| p.0).collect());
+            Ok(StoredTexture { levels: StoredLevels::Rgba8(vec![level]), format: TextureFormat::Rgba8 })
+        }
+        L16 | La16 | Rgb16 | Rgba16 => {
+            let rgba = img.to_rgba16();
+            let level = Rgba16Image::new(w, h, rgba.pixels().map(|p| p.0).collect());
+            Ok(StoredTexture { levels: StoredLevels::Rgba16(vec![level]), format: TextureFormat::Rgba16 })
+        }
+        other => Err(bad(
+            path,
+            format!(
+                "{other:?} texels: a normal map is read from 8- or 16-bit unsigned channels (floating-point maps differ in how they store −1..1)"
+            ),
+        )),
+    }
+}
+
+const KTX2_IDENTIFIER: [u8; 12] = [0xAB, 0x4B, 0x54, 0x58, 0x20, 0x32, 0x30, 0xBB, 0x0D, 0x0A, 0x1A, 0x0A];
+
+/// How a container's texels are laid out.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Layout {
+    Rgba8,
+    Bgra8,
+    Rgba16,
+    Bc5,
+    Bc7,
+}
+
+impl Layout {
+    /// The bytes of a `w`×`h` level, or `None` if that overflows.
+    fn level_bytes(self, w: usize, h: usize) -> Option<usize> {
+        match self {
+            Layout::Rgba8 | Layout::Bgra8 => w.checked_mul(h)?.checked_mul(4),
+            Layout::Rgba16 => w.checked_mul(h)?.checked_mul(8),
+            Layout::Bc5 | Layout::Bc7 => w.div_ceil(4).checked_mul(h.div_ceil(4))?.checked_mul(16),
+        }
+    }
+
+    fn format(self) -> TextureFormat {
+        match self {
+            Layout::Rgba8 | Layout::Bgra8 => TextureFormat::Rgba8,
+            Layout::Rgba16 => TextureFormat::Rgba16,
+            Layout::Bc5 => TextureFormat::Bc5,
+            Layout::Bc7 => TextureFormat::Bc7,
+        }
+    }
+}
+
+/// The sizes of `levels` levels from `width`×`height`, checked against the limits.
+fn level_sizes(path: &Path, width: u32, height: u32, levels: u32) -> Result<Vec<(usize, usize)>, IoError> {
+    if width == 0 || height == 0 {
+        return Err(IoError::Empty { path: path.to_path_buf(), width, height });
+    }
+    if width > MAX_DIMENSION || height > MAX_DIMENSION {
+        return Err(IoError::TooLarge {
+            path: path.to_path_buf(),
+            width: width as u64,
+            height: height as u64,
+            max: MAX_DIMENSION,
+        });
+    }
+    let most = 32 - width.max(height).leading_zeros();
+    if levels > most {
+        return Err(bad(
+            path,
+            format!("declares {levels} mip levels, but a {width}x{height} texture has at most {most}"),
+        ));
+    }
+    let (mut w, mut h) = (width as usize, height as usize);
+    let mut sizes = Vec::with_capacity(levels as usize);
+    for _ in 0..levels.max(1) {
+        sizes.push((w, h));
+        (w, h) = (bumpmap_math::mip::next_size(w), bumpmap_math::mip::next_size(h));
+    }
+    Ok(sizes)
+}
+
+/// Decodes one level's bytes (exactly its size) into texels.
+fn decode_level(path: &Path, layout: Layout, (w, h): (usize, usize), data: &[u8]) -> Result<Level, IoError> {
+    Ok(match layout {
+        Layout::Rgba8 => {
+            Level::Rgba8(Rgba8Image::new(w, h, data.chunks_exact(4).map(|p| [p[0], p[1], p[2], p[3]]).collect()))
+        }
+        Layout::Bgra8 => {
+            Level::Rgba8(Rgba8Image::new(w, h, data.chunks_exact(4).map(|p| [p[2], p[1], p[0], p[3]]).collect()))
+        }
+        Layout::Rgba16 => {
+            let c = |b: &[u8]| u16::from_le_bytes([b[0], b[1]]);
+            Level::Rgba16(Rgba16Image::new(
+                w,
+                h,
+                data.chunks_exact(8).map(|p| [c(&p[0..]), c(&p[2..]), c(&p[4..]), c(&p[6..])]).collect(),
+            ))
+        }
+        Layout::Bc5 | Layout::Bc7 => {
+            let image_format = if layout == Layout::Bc5 {
+                image_dds::ImageFormat::BC5RgUnorm
+            } else {
+                image_dds::ImageFormat::BC7RgbaUnorm
+            };
+            let surface = image_dds::Surface {
+                width: w as u32,
+                height: h as u32,
+                depth: 1,
+                layers: 1,
+                mipmaps: 1,
+                image_format,
+                data,
+            };
+            let rgba =
+                surface.decode_rgba8().map_err(|e| bad(path, format!("its {w}x{h} level does not decode: {e}")))?;
+            let texels = rgba.data.chunks_exact(4).map(|p| {
+                if layout == Layout::Bc7 {
+                    return [p[0], p[1], p[2], p[3]];
+                }
+                // BC5 holds X and Y; Z from the unit length, as a shader rebuilds it.
+                let (x, y) = (Encoding::Unorm.decode(p[0]), Encoding::Unorm.decode(p[1]));
+                [p[0], p[1], Encoding::Unorm.encode((1.0 - x * x - y * y).max(0.0).sqrt()), 255]
+            });
+            Level::Rgba8(Rgba8Image::new(w, h, texels.collect()))
+        }
+    })
+}
+
+/// One decoded level.
+enum Level {
+    Rgba8(Rgba8Image),
+    Rgba16(Rgba16Image),
+}
+
+/// Decodes every level of a container, `data(k)` giving level k's bytes (already checked to be
+/// exactly its size).
+fn decode_levels<'a>(
+    path: &Path,
+    layout: Layout,
+    sizes: &[(usize, usize)],
+    data: impl Fn(usize) -> &'a [u8],
+) -> Result<StoredTexture, IoError> {
+    let mut eight = Vec::new();
+    let mut sixteen = Vec::new();
+    for (k, &size) in sizes.iter().enumerate() {
+        match decode_level(path, layout, size, data(k))? {
+            Level::Rgba8(l) => eight.push(l),
+            Level::Rgba16(l) => sixteen.push(l),
+        }
+    }
+    let levels = if layout == Layout::Rgba16 { StoredLevels::Rgba16(sixteen) } else { StoredLevels::Rgba8(eight) };
+    Ok(StoredTexture { levels, format: layout.format() })
+}
+
+fn refuse_srgb(path: &Path, name: impl std::fmt::Debug) -> IoError {
+    bad(path, format!("{name:?} is an sRGB format: a normal map is linear data (store it as a UNORM format)"))
+}
+
+fn read_dds(bytes: &[u8], path: &Path) -> Result<StoredTexture, IoError> {
+    use ddsfile::{Caps2, DxgiFormat as F, FourCC};
+    let dds = ddsfile::Dds::read(bytes).map_err(|e| bad(path, format!("not a readable DDS file: {e}")))?;
+    let h = &dds.header;
+    if h.caps2.contains(Caps2::CUBEMAP) {
+        return Err(bad(path, "is a cube map; a normal map is one 2D texture"));
+    }
+    if h.depth.is_some_and(|d| d > 1) || h.caps2.contains(Caps2::VOLUME) {
+        return Err(bad(path, "is a volume texture; a normal map is one 2D texture"));
+    }
+    if let Some(h10) = &dds.header10
+        && h10.array_size > 1
+    {
+        return Err(bad(path, format!("is an array of {} textures; a normal map is one", h10.array_size)));
+    }
+    if let Some(h10) = &dds.header10
+        && h10.misc_flag.contains(ddsfile::MiscFlag::TEXTURECUBE)
+    {
+        return Err(bad(path, "is a cube map; a normal map is one 2D texture"));
+    }
+    // A legacy header's RGB masks without ALPHA_PIXELS (X8R8G8B8, X8B8G8R8): the fourth byte is
+    // padding, not alpha.
+    let padded = dds.header10.is_none()
+        && h.spf.fourcc.is_none()
+        && !h.spf.flags.contains(ddsfile::PixelFormatFlags::ALPHA_PIXELS);
+    let layout = match dds.get_dxgi_format() {
+        Some(F::R8G8B8A8_UNorm) => Layout::Rgba8,
+        Some(F::B8G8R8A8_UNorm) => Layout::Bgra8,
+        Some(F::R16G16B16A16_UNorm) => Layout::Rgba16,
+        Some(F::BC5_UNorm) => Layout::Bc5,
+        Some(F::BC7_UNorm) => Layout::Bc7,
+        Some(f @ (F::R8G8B8A8_UNorm_sRGB | F::B8G8R8A8_UNorm_sRGB | F::BC7_UNorm_sRGB)) if dds.header10.is_some() => {
+            return Err(refuse_srgb(path, f));
+        }
+        _ if h.spf.fourcc == Some(FourCC(u32::from_le_bytes(*b"BC5U"))) => Layout::Bc5,
+        _ if h.spf.fourcc.as_ref().is_some_and(|f| f.0 == FourCC::DXT5) => {
+            return Err(bad(
+                path,
+                "is DXT5/BC3, whose normal maps swizzle X and Y into alpha and green in ways tools disagree on: convert it to BC5, BC7 or RGBA8",
+            ));
+        }
+        _ => match (h.spf.rgb_bit_count, h.spf.r_bit_mask, h.spf.g_bit_mask, h.spf.b_bit_mask) {
+            (Some(32), Some(0xff), Some(0xff00), Some(0xff_0000)) => Layout::Rgba8,
+            (Some(32), Some(0xff_0000), Some(0xff00), Some(0xff)) => Layout::Bgra8,
+            _ => {
+                let named = dds
+                    .header10
+                    .as_ref()
+                    .map(|h10| format!("{:?}", h10.dxgi_format))
+                    .or_else(|| {
+                        h.spf.fourcc.as_ref().map(|f| format!("FourCC {:?}", f.0.to_le_bytes().map(char::from)))
+                    })
+                    .unwrap_or_else(|| format!("{:?}-bit masks", h.spf.rgb_bit_count));
+                return Err(bad(
+                    path,
+                    format!(
+                        "stores {named}; normal maps are read as R8G8B8A8, B8G8R8A8, R16G16B16A16, BC5 or BC7 (UNORM)"
+                    ),
+                ));
+            }
+        },
+    };
+    let sizes = level_sizes(path, h.width, h.height, dds.get_num_mipmap_levels())?;
+    let mut offsets = Vec::with_capacity(sizes.len() + 1);
+    let mut total = 0usize;
+    for &(w, hh) in &sizes {
+        offsets.push(total);
+        total = layout.level_bytes(w, hh).and_then(|n| total.checked_add(n)).ok_or_else(|| {
+            bad(path, format!("{} levels from {}x{} overflow the addressable size", sizes.len(), h.width, h.height))
+        })?;
+    }
+    offsets.push(total);
+    if dds.data.len() < total {
+        return Err(bad(
+            path,
+            format!(
+                "holds {} bytes of texels, but its header declares {} level(s) from {}x{} in {}, which take {total}",
+                dds.data.len(),
+                sizes.len(),
+                h.width,
+                h.height,
+                layout.format().name()
+            ),
+        ));
+    }
+    let mut texture = decode_levels(path, layout, &sizes, |k| &dds.data[offsets[k]..offsets[k + 1]])?;
+    if padded && let StoredLevels::Rgba8(levels) = &mut texture.levels {
+        levels.iter_mut().flat_map(|l| l.texels.iter_mut()).for_each(|t| t[3] = 255);
+    }
+    Ok(texture)
+}
+
+fn read_ktx2(bytes: &[u8], path: &Path) -> Result<StoredTexture, IoError> {
+    use ktx2::Format as F;
+    let reader = ktx2::Reader::new(bytes).map_err(|e| bad(path, format!("not a readable KTX2 file: {e:?}")))?;
+    let h = reader.header();
+    if let Some(scheme) = h.supercompression_scheme {
+        return Err(bad(path, format!("is supercompressed ({scheme:?}), which is not read")));
+    }
+    if h.face_count != 1 {
+        return Err(bad(path, format!("has {} faces; a normal map is one 2D texture", h.face_count)));
+    }
+    if h.layer_count > 1 || h.pixel_depth > 1 {
+        return Err(bad(path, "is an array or volume texture; a normal map is one 2D texture"));
+    }
+    let layout = match h.format {
+        Some(F::R8G8B8A8_UNORM) => Layout::Rgba8,
+        Some(F::B8G8R8A8_UNORM) => Layout::Bgra8,
+        Some(F::R16G16B16A16_UNORM) => Layout::Rgba16,
+        Some(F::BC5_UNORM_BLOCK) => Layout::Bc5,
+        Some(F::BC7_UNORM_BLOCK) => Layout::Bc7,
+        Some(f @ (F::R8G8B8A8_SRGB | F::B8G8R8A8_SRGB | F::BC7_SRGB_BLOCK)) => return Err(refuse_srgb(path, f)),
+        other => {
+            return Err(bad(
+                path,
+                format!(
+                    "stores {other:?}; normal maps are read as R8G8B8A8, B8G8R8A8, R16G16B16A16, BC5 or BC7 (UNORM)"
+                ),
+            ));
+        }
+    };
+    let sizes = level_sizes(path, h.pixel_width, h.pixel_height, h.level_count.max(1))?;
+    // The reader indexes `level_count.max(1)` levels: as many as `sizes` holds.
+    let levels: Vec<&[u8]> = reader.levels().map(|l| l.data).collect();
+    for (k, (&(w, hh), data)) in sizes.iter().zip(&levels).enumerate() {
+        let want = layout
+            .level_bytes(w, hh)
+            .ok_or_else(|| bad(path, format!("level {k}, {w}x{hh}, overflows the addressable size")))?;
+        if data.len() != want {
+            return Err(bad(
+                path,
+                format!(
+                    "level {k} holds {} bytes, but a {w}x{hh} level of {:?} takes {want}",
+                    data.len(),
+                    layout.format()
+                ),
+            ));
+        }
+    }
+    decode_levels(path, layout, &sizes, |k| levels[k])
+}
+
+impl From<&StoredLevels> for Vec<Image<[u8; 4]>> {
+    /// Every level at 8 bits (16-bit levels rounded).
+    fn from(levels: &StoredLevels) -> Self {
+        match levels {
+            StoredLevels::Rgba8(l) => l.clone(),
+            StoredLevels::Rgba16(l) => l.iter().map(Rgba16Image::to_rgba8).collect(),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::texture_file::{Level as WriteLevel, TextureLayout, write_dds, write_ktx2};
+
+    fn chain() -> Vec<Rgba8Image> {
+        let texel = |x: usize, y: usize| [(x * 40) as u8, (y * 60) as u8, 200, 255 - x as u8];
+        vec![
+            Rgba8Image::new(6, 4, (0..24).map(|i| texel(i % 6, i / 6)).collect()),
+            Rgba8Image::new(3, 2, (0..6).map(|i| texel(i % 3, i / 3)).collect()),
+            Rgba8Image::new(1, 1, vec![[1, 2, 3, 4]]),
+        ]
+    }
+
+    fn tmp(name: &str) -> std::path::PathBuf {
+        std::env::temp_dir().join(format!("bumpmap-read-{}-{name}", std::process::id()))
+    }
+
+    #[test]
+    fn our_dds_and_ktx2_read_back_level_for_level() {
+        let data = chain();
+        let layout = TextureLayout { faces: vec![data.iter().map(WriteLevel::from).collect()] };
+        for (ext, write) in [
+            ("dds", write_dds as fn(&Path, &TextureLayout, TextureFormat) -> Result<(), IoError>),
+            ("ktx2", write_ktx2),
+        ] {
+            for format in [TextureFormat::Rgba8, TextureFormat::Rgba16] {
+                let path = tmp(&format!("t.{ext}"));
+                write(&path, &layout, format).unwrap();
+                let got = load_texture(&path).unwrap();
+                assert_eq!(got.format, format, "{ext}");
+                let levels: Vec<Rgba8Image> = (&got.levels).into();
+                assert_eq!(levels, data, "{ext} {format:?}");
+                std::fs::remove_file(&path).unwrap();
+            }
+        }
+    }
+
+    #[test]
+    fn a_legacy_dds_without_alpha_pixels_reads_its_padding_as_opaque() {
+        // X8B8G8R8: RGB masks, 32 bits, no ALPHA_PIXELS flag; the padding byte is 0.
+        let mut bytes = b"DDS ".to_vec();
+        let mut put = |v: u32| bytes.extend_from_slice(&v.to_le_bytes());
+        for v in [124, 0x1 | 0x2 | 0x4 | 0x1000, 1, 2, 8, 0, 1] {
+            put(v);
+        }
+        (0..11).for_each(|_| put(0));
+        for v in [32, 0x40, 0, 32, 0xff, 0xff00, 0xff_0000, 0] {
+            put(v);
+        }
+        for v in [0x1000, 0, 0, 0, 0] {
+            put(v);
+        }
+        bytes.extend_from_slice(&[10, 20, 30, 0, 40, 50, 60, 0]);
+        let got = read_texture(&bytes, Path::new("x8.dds"), &DecodeLimits::default()).unwrap();
+        assert_eq!(
+            got.levels,
+            StoredLevels::Rgba8(vec![Rgba8Image::new(2, 1, vec![[10, 20, 30, 255], [40, 50, 60, 255]])])
+        );
+    }
+
+    #[test]
+    fn a_chain_shorter_than_its_header_says_is_refused() {
+        let data = chain();
+        let layout = TextureLayout { faces: vec![data.iter().map(WriteLevel::from).collect()] };
+        let path = tmp("short.dds");
+        write_dds(&path, &layout, TextureFormat::Rgba8).unwrap();
+        let bytes = std::fs::read(&path).unwrap();
+        std::fs::remove_file(&path).unwrap();
+        let limits = DecodeLimits::default();
+        let err = read_texture(&bytes[..bytes.len() - 4], Path::new("short.dds"), &limits).unwrap_err().to_string();
+        assert!(
+            err.contains("short.dds")
+                && err.contains("holds 120 bytes")
+                && err.contains("3 level(s) from 6x4")
+                && err.contains("take 124"),
+            "{err}"
+        );
+        // A mip count the size cannot have.
+        let mut more = bytes.clone();
+        more[28..32].copy_from_slice(&9u32.to_le_bytes());
+        let err = read_texture(&more, Path::new("m.dds"), &limits).unwrap_err().to_string();
+        assert!(err.contains("declares 9 mip levels, but a 6x4 texture has at most 3"), "{err}");
+    }
+}

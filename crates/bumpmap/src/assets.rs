@@ -1,0 +1,341 @@
+//! A user's own assets, ready for a [`SceneSpec`]: a normal map file brought into texture
+//! space, and a mesh file with its glTF material (normal texture with its scale, base colour as
+//! the decal) and tangents (the file's, or made here).
+//!
+//! What this module does not do: decide between an asset and an explicit option (the caller
+//! does: an explicit height field or decal replaces the material's), or parse formats (that is
+//! `bumpmap-io`; texel meaning is `bumpmap_math::imported`).
+
+use std::fmt;
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+
+use bumpmap_core::{BumpSource, SceneKind, SceneSpec};
+use bumpmap_io::texture_file::TextureFormat;
+use bumpmap_io::{MeshOptions, StoredLevels, StoredTexture};
+use bumpmap_math::imported::{ImportOptions, UNIT_TOLERANCE, import_normal_map};
+use bumpmap_math::mesh::Mesh;
+use bumpmap_math::tangent::{TangentOptions, generate_tangents};
+use bumpmap_math::{MipChain, MipMode, Rgba8Image, Rgba8Mips, YConvention};
+
+use crate::error::Error;
+
+/// The fraction of texels off unit length above which a normal map gets a
+/// [`Warning::NotUnitLength`]: a baked map's empty background can be a few percent; a photograph
+/// is most of it.
+pub const OFF_UNIT_WARNING: f32 = 0.1;
+
+/// Something an asset loaded with, that its user should hear about.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Warning {
+    /// Many texels of a normal map are not unit vectors: perhaps not a normal map at all.
+    NotUnitLength {
+        /// The file (or the glTF texture).
+        path: PathBuf,
+        /// The fraction of level 0's texels more than `UNIT_TOLERANCE` from unit length.
+        fraction: f32,
+    },
+    /// A normal map whose alpha held something else than the normal's length (a height or a
+    /// gloss packed there): it is drawn with the length instead.
+    ForeignAlpha {
+        /// The file (or the glTF texture).
+        path: PathBuf,
+    },
+    /// Something the mesh file asked for that is not drawn.
+    Ignored {
+        /// The file.
+        path: PathBuf,
+        /// What, in words.
+        what: String,
+    },
+}
+
+impl fmt::Display for Warning {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Warning::NotUnitLength { path, fraction } => write!(
+                f,
+                "{}: {:.0} % of its texels are not unit vectors (their length is off by more than {UNIT_TOLERANCE}): \
+                 is it a normal map? It is drawn renormalized",
+                path.display(),
+                100.0 * fraction
+            ),
+            Warning::ForeignAlpha { path } => write!(
+                f,
+                "{}: its alpha is not the length of the normal (it is below 1 at level 0: a height or gloss packed there?); \
+                 it is drawn with the length in alpha instead",
+                path.display()
+            ),
+            Warning::Ignored { path, what } => write!(f, "{}: {what}", path.display()),
+        }
+    }
+}
+
+/// A normal map read from a file, in texture space with its mip chain.
+#[derive(Clone, Debug)]
+pub struct LoadedNormalMap {
+    /// Level 0 and the smaller levels (the file's own, or made with the chosen mip mode).
+    pub chain: Arc<MipChain>,
+    /// How the file stored its texels.
+    pub format: TextureFormat,
+    /// How many levels the file carried (1: the smaller ones were made here).
+    pub stored_levels: usize,
+    /// The fraction of level 0's texels off unit length.
+    pub off_unit: f32,
+    /// Whether the file's alpha held something else than the normal's length.
+    pub foreign_alpha: bool,
+    /// How the smaller levels were made when the file had none.
+    pub mip_mode: MipMode,
+    /// Where it came from.
+    pub source: PathBuf,
+}
+
+impl LoadedNormalMap {
+    /// What the map is, in words: size, format, and where its mips came from.
+    pub fn describe(&self) -> String {
+        let level = &self.chain.levels[0];
+        let mips = match (self.stored_levels, self.mip_mode) {
+            (1, MipMode::LengthInAlpha) => "mips made with the length in alpha".to_string(),
+            (1, MipMode::Renormalize) => "mips made renormalized".to_string(),
+            (n, _) => format!("its own {n} levels"),
+        };
+        format!("{}x{} {}, {mips}", level.width, level.height, self.format.name())
+    }
+
+    /// Warnings when the map looks like no normal map, or packs something else in alpha.
+    pub fn warnings(&self) -> Vec<Warning> {
+        let mut w = Vec::new();
+        if self.off_unit > OFF_UNIT_WARNING {
+            w.push(Warning::NotUnitLength { path: self.source.clone(), fraction: self.off_unit });
+        }
+        if self.foreign_alpha {
+            w.push(Warning::ForeignAlpha { path: self.source.clone() });
+        }
+        w
+    }
+
+    /// The map as a scene's bumps.
+    pub fn bumps(&self) -> BumpSource {
+        BumpSource::NormalMap(self.chain.clone())
+    }
+}
+
+fn import(texture: &StoredTexture, source: &Path, options: &ImportOptions) -> Result<LoadedNormalMap, Error> {
+    let imported = match &texture.levels {
+        StoredLevels::Rgba8(levels) => import_normal_map(levels, options),
+        StoredLevels::Rgba16(levels) => import_normal_map(levels, options),
+    }
+    .map_err(|source_err| Error::NormalMap { path: source.to_path_buf(), source: source_err })?;
+    Ok(LoadedNormalMap {
+        chain: Arc::new(imported.chain),
+        format: texture.format,
+        stored_levels: texture.levels.len(),
+        off_unit: imported.off_unit,
+        foreign_alpha: imported.foreign_alpha,
+        mip_mode: options.mip_mode,
+        source: source.to_path_buf(),
+    })
+}
+
+/// Reads a normal map: a PNG (8 or 16 bits) or another image, or a DDS or KTX2 file with the
+/// levels it carries (RGBA8, BGRA8, RGBA16, BC5 with Z rebuilt, BC7). `options` say which way
+/// its green points, how to scale its slopes, and how to make its smaller levels when it has
+/// none.
+pub fn load_normal_map(path: &Path, options: &ImportOptions) -> Result<LoadedNormalMap, Error> {
+    import(&bumpmap_io::load_texture(path)?, path, options)
+}
+
+/// How [`load_mesh`] reads a mesh file.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct MeshLoad {
+    /// How the file itself is read (which material textures among them).
+    pub mesh: MeshOptions,
+    /// Replaces the material's `normalTexture.scale`.
+    pub normal_scale: Option<f32>,
+    /// How the material's normal map gets its smaller levels.
+    pub mip_mode: MipMode,
+}
+
+impl Default for MeshLoad {
+    /// Both material textures read, the file's scale, the length in alpha.
+    fn default() -> Self {
+        Self {
+            mesh: MeshOptions { read_normal_texture: true, read_base_color_texture: true, ..Default::default() },
+            normal_scale: None,
+            mip_mode: MipMode::LengthInAlpha,
+        }
+    }
+}
+
+/// A glTF material, ready to draw.
+#[derive(Clone, Debug)]
+pub struct MaterialAsset {
+    /// Its name, or its index in words.
+    pub name: String,
+    /// `normalTexture` in texture space (glTF's green is up), scaled.
+    pub normal_map: Option<LoadedNormalMap>,
+    /// The scale its X and Y were multiplied by.
+    pub normal_scale: f32,
+    /// `baseColorTexture` times `baseColorFactor`'s RGB (or the factor alone, when it is not
+    /// white), as the decal, with box-filtered mipmaps; sRGB-encoded as the texture is (the
+    /// renderers, like the hardware they emulate, take the decal's bytes as they are). The
+    /// factor's alpha is not used: the surfaces are opaque.
+    pub decal: Option<Arc<Rgba8Mips>>,
+    /// Where the decal came from, in words.
+    pub decal_source: Option<String>,
+    /// The texture-coordinate set the mesh was read with.
+    pub tex_coord: u32,
+}
+
+/// A mesh file, ready to draw.
+#[derive(Clone, Debug)]
+pub struct MeshAsset {
+    /// The mesh, in the file's own units and axes, with tangents.
+    pub mesh: Arc<Mesh>,
+    /// Whether the tangents are the file's (glTF's TANGENT) or were made here.
+    pub tangents_from_file: bool,
+    /// Whether the normals are the file's or were made from the faces.
+    pub normals_from_file: bool,
+    /// The glTF material, when the file has one and its textures were asked for.
+    pub material: Option<MaterialAsset>,
+    /// Every file read (the mesh, its buffers and images): no output may replace one.
+    pub sources: Vec<PathBuf>,
+    /// What the file asked for that is not drawn, and maps that look wrong.
+    pub warnings: Vec<Warning>,
+}
+
+impl MeshAsset {
+    /// The scene as the file describes it: the mesh, its material's normal map (none, no
+    /// bumps: a material without a `normalTexture` is flat) and base colour. A file without a
+    /// material keeps the default bumps (the paper's bricks) so that bump mapping shows.
+    pub fn spec(&self) -> SceneSpec {
+        let mut spec = SceneSpec::new(SceneKind::Mesh(self.mesh.clone()));
+        if let Some(m) = &self.material {
+            spec.params.bumps = match &m.normal_map {
+                Some(map) => map.bumps(),
+                None => BumpSource::flat_map(1, 1),
+            };
+            spec.params.decal = m.decal.clone();
+            spec.params.default_decal = false;
+        }
+        spec
+    }
+
+    /// Which of the file's parts are drawn, a line each, for the user.
+    pub fn describe(&self) -> Vec<String> {
+        let mut lines = vec![format!(
+            "{} triangles; tangents: {}; normals: {}",
+            self.mesh.triangle_count(),
+            if self.tangents_from_file { "the file's TANGENT attribute" } else { "generated (the file has none)" },
+            if self.normals_from_file { "the file's" } else { "computed from the faces (the file has none)" }
+        )];
+        if let Some(m) = &self.material {
+            lines.push(match &m.normal_map {
+                Some(map) => format!(
+                    "material {}: normalTexture {} (scale {}, TEXCOORD_{}) as the normal map",
+                    m.name,
+                    map.describe(),
+                    m.normal_scale,
+                    m.tex_coord
+                ),
+                None => format!(
+                    "material {}: its normalTexture is not used (it has none, or an option replaced it)",
+                    m.name
+                ),
+            });
+            lines.push(match &m.decal_source {
+                Some(d) => format!("material {}: {d} as the decal", m.name),
+                None => format!(
+                    "material {}: its baseColorTexture is not used (it has none, or an option replaced it)",
+                    m.name
+                ),
+            });
+        }
+        lines
+    }
+}
+
+/// An sRGB-encoded byte as linear light in [0, 1].
+fn srgb_decode(b: u8) -> f32 {
+    let c = b as f32 / 255.0;
+    if c <= 0.04045 { c / 12.92 } else { ((c + 0.055) / 1.055).powf(2.4) }
+}
+
+/// Linear light as an sRGB-encoded byte (clamped to [0, 1]).
+fn srgb_encode(l: f32) -> u8 {
+    let l = l.clamp(0.0, 1.0);
+    let c = if l <= 0.0031308 { l * 12.92 } else { 1.055 * l.powf(1.0 / 2.4) - 0.055 };
+    (c * 255.0).round() as u8
+}
+
+/// Loads a mesh file (OBJ, glTF, GLB) with tangents, and a glTF's material as `options` ask.
+pub fn load_mesh(path: &Path, options: &MeshLoad) -> Result<MeshAsset, Error> {
+    let loaded = bumpmap_io::load_mesh_with(path, &options.mesh)?;
+    let mesh = if loaded.had_tangents {
+        loaded.mesh
+    } else {
+        generate_tangents(&loaded.mesh, &TangentOptions::default())
+            .map_err(|e| bumpmap_io::IoError::Mesh { path: path.to_path_buf(), reason: e.to_string() })?
+            .0
+    };
+    let mut warnings: Vec<Warning> =
+        loaded.notes.iter().map(|what| Warning::Ignored { path: path.to_path_buf(), what: what.clone() }).collect();
+    let material = match &loaded.material {
+        None => None,
+        Some(m) => {
+            let normal_scale = options.normal_scale.unwrap_or_else(|| m.normal.as_ref().map_or(1.0, |n| n.scale));
+            let normal_map = match &m.normal {
+                Some(t) => {
+                    // glTF's normal textures are green up ("+Y is up").
+                    let import_options = ImportOptions {
+                        y_convention: YConvention::YUp,
+                        scale: normal_scale,
+                        mip_mode: options.mip_mode,
+                    };
+                    let map = import(&t.texture, &t.source, &import_options)?;
+                    warnings.extend(map.warnings());
+                    Some(map)
+                }
+                None => None,
+            };
+            // glTF: the texture is sRGB-encoded and the factor linear; their product is stored
+            // sRGB-encoded again, so the decal's bytes look as the file's viewer shows them.
+            let factor = m.base_color_factor;
+            let tint = |t: [u8; 4]| {
+                let c = |i: usize| srgb_encode(srgb_decode(t[i]) * factor[i]);
+                [c(0), c(1), c(2), t[3]]
+            };
+            let (decal, decal_source) = match &m.base_color {
+                Some(t) => {
+                    let levels: Vec<Rgba8Image> = (&t.texture.levels).into();
+                    let level0 = &levels[0];
+                    let image =
+                        Rgba8Image::new(level0.width, level0.height, level0.texels.iter().map(|&t| tint(t)).collect());
+                    let what = format!("baseColorTexture {}x{} from {}", image.width, image.height, t.source.display());
+                    (Some(Arc::new(Rgba8Mips::with_box_mipmaps(image))), Some(what))
+                }
+                None if factor[..3] != [1.0; 3] => {
+                    let image = Rgba8Image::new(1, 1, vec![tint([255; 4])]);
+                    (Some(Arc::new(Rgba8Mips::single(image))), Some(format!("baseColorFactor {:?}", &factor[..3])))
+                }
+                None => (None, None),
+            };
+            Some(MaterialAsset {
+                name: m.name.clone(),
+                normal_map,
+                normal_scale,
+                decal,
+                decal_source,
+                tex_coord: m.tex_coord,
+            })
+        }
+    };
+    Ok(MeshAsset {
+        mesh: Arc::new(mesh),
+        tangents_from_file: loaded.had_tangents,
+        normals_from_file: loaded.had_normals,
+        material,
+        sources: loaded.sources,
+        warnings,
+    })
+}

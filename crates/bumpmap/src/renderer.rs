@@ -1,0 +1,239 @@
+//! One renderer over both backends: a scene and a named technique in, an RGBA8 image out, on
+//! the emulated GeForce (CPU) or through wgpu (GPU) — or the reference, which samples the exact
+//! surface on the CPU whichever backend is chosen.
+//!
+//! [`Prepared`] splits the work in two for callers that draw many frames of one scene (a
+//! benchmark, a viewer): the maps are made once, the light or the camera may then move between
+//! frames. What this module does not do: decide what a technique is (the catalogue,
+//! `bumpmap_core::catalogue`) or read files (`crate::assets`).
+
+use std::sync::Arc;
+
+use bumpmap_core::technique::ReferenceOptions;
+use bumpmap_core::{Scene, SceneSpec, Technique, TechniqueName, TechniqueOptions};
+use bumpmap_cpu::{CpuError, CpuRenderer, Framebuffer};
+use bumpmap_gpu::GpuRenderer;
+use bumpmap_math::Rgba8Image;
+
+use crate::error::Error;
+
+/// Which backend a [`Renderer`] should draw with.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum BackendChoice {
+    /// The emulated GeForce 256 pipeline on every core.
+    Cpu,
+    /// wgpu on the first adapter found (Vulkan, Metal, DX12 or GL; Mesa's lavapipe on a machine
+    /// without a GPU); no adapter is an error.
+    Gpu,
+    /// The GPU when an adapter exists, else the CPU, with the reason
+    /// ([`Renderer::fallback_reason`]).
+    #[default]
+    Auto,
+}
+
+/// The backend a [`Renderer`] has.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Backend {
+    /// The emulated GeForce 256 on the CPU.
+    Cpu,
+    /// wgpu.
+    Gpu,
+}
+
+impl Backend {
+    /// `cpu` or `gpu`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Backend::Cpu => "cpu",
+            Backend::Gpu => "gpu",
+        }
+    }
+}
+
+/// The backend's state, kept between frames so buffers, textures and pipelines are reused.
+enum Inner {
+    Cpu { renderer: CpuRenderer, framebuffer: Option<Framebuffer> },
+    Gpu(Box<GpuRenderer>),
+}
+
+/// Reports a reference's progress: tiles done and in all, from any thread.
+pub type Progress = Arc<dyn Fn(usize, usize) + Send + Sync>;
+
+/// A scene with the maps one named technique reads, and the technique that draws it: made once,
+/// drawn as often as wanted. Its scene may change between draws (a light orbiting, a camera
+/// moving); its maps stay.
+#[derive(Clone, Debug)]
+pub struct Prepared {
+    /// The technique's name.
+    pub name: TechniqueName,
+    /// The scene with the technique's maps.
+    pub scene: Scene,
+    /// How it is drawn.
+    pub technique: Technique,
+}
+
+impl Prepared {
+    /// Builds `spec` for `name` with `options`: checks the technique's requirements, makes its
+    /// maps and its technique.
+    pub fn new(spec: &SceneSpec, name: TechniqueName, options: &TechniqueOptions) -> Result<Self, Error> {
+        let (scene, technique) = name.prepare(spec, options)?;
+        Ok(Self { name, scene, technique })
+    }
+}
+
+/// Draws scenes on one backend.
+///
+/// ```
+/// use bumpmap::{BackendChoice, Renderer, SceneSpec, TechniqueName};
+///
+/// let mut renderer = Renderer::new(BackendChoice::Cpu)?;
+/// let image = renderer.render(&SceneSpec::default(), TechniqueName::SinglePass, 64, 48)?;
+/// assert_eq!((image.width, image.height), (64, 48));
+/// # Ok::<(), bumpmap::Error>(())
+/// ```
+pub struct Renderer {
+    inner: Inner,
+    fallback: Option<String>,
+    progress: Option<Progress>,
+}
+
+impl Renderer {
+    /// Opens the backend `choice` names. [`BackendChoice::Gpu`] without an adapter is an error;
+    /// [`BackendChoice::Auto`] falls back to the CPU and keeps the reason.
+    pub fn new(choice: BackendChoice) -> Result<Self, Error> {
+        let cpu = || Inner::Cpu { renderer: CpuRenderer::new(), framebuffer: None };
+        let (inner, fallback) = match choice {
+            BackendChoice::Cpu => (cpu(), None),
+            BackendChoice::Gpu => (Inner::Gpu(Box::new(GpuRenderer::new()?)), None),
+            BackendChoice::Auto => match GpuRenderer::new() {
+                Ok(gpu) => (Inner::Gpu(Box::new(gpu)), None),
+                Err(e) => (cpu(), Some(e.to_string())),
+            },
+        };
+        Ok(Self { inner, fallback, progress: None })
+    }
+
+    /// The backend in use.
+    pub fn backend(&self) -> Backend {
+        match self.inner {
+            Inner::Cpu { .. } => Backend::Cpu,
+            Inner::Gpu(_) => Backend::Gpu,
+        }
+    }
+
+    /// The backend in words: `cpu, 2 threads` or `gpu: llvmpipe (LLVM 15.0.7, 256 bits) (Vulkan)`.
+    pub fn describe(&self) -> String {
+        match &self.inner {
+            Inner::Cpu { .. } => format!("cpu, {} threads", rayon::current_num_threads()),
+            Inner::Gpu(g) => format!("gpu: {}", g.adapter_name()),
+        }
+    }
+
+    /// Why [`BackendChoice::Auto`] drew on the CPU (no adapter, or one that would not open).
+    pub fn fallback_reason(&self) -> Option<&str> {
+        self.fallback.as_deref()
+    }
+
+    /// Calls `progress` as the reference's tiles finish (`None`: no reports).
+    pub fn set_reference_progress(&mut self, progress: Option<Progress>) {
+        self.progress = progress;
+    }
+
+    /// Refuses a framebuffer no backend accepts (empty, or more than [`bumpmap_cpu::MAX_PIXELS`]),
+    /// before any work.
+    pub fn check_size(width: usize, height: usize) -> Result<(), Error> {
+        let max_pixels = bumpmap_cpu::MAX_PIXELS;
+        if width == 0 || height == 0 || width.saturating_mul(height) > max_pixels {
+            return Err(Error::Cpu(CpuError::FramebufferSize { width, height, max_pixels }));
+        }
+        Ok(())
+    }
+
+    /// Renders `spec` with `technique` and its default options at `width`×`height`.
+    pub fn render(
+        &mut self,
+        spec: &SceneSpec,
+        technique: TechniqueName,
+        width: usize,
+        height: usize,
+    ) -> Result<Rgba8Image, Error> {
+        let prepared = Prepared::new(spec, technique, &TechniqueOptions::default())?;
+        self.draw(&prepared, width, height)
+    }
+
+    /// Draws a prepared scene: the image, row 0 the top of the picture (alpha is whatever the
+    /// technique left there: the three-pass technique's s_self, not coverage).
+    pub fn draw(&mut self, prepared: &Prepared, width: usize, height: usize) -> Result<Rgba8Image, Error> {
+        self.draw_scene(&prepared.scene, &prepared.technique, width, height, |_, _| {})
+    }
+
+    /// Draws `technique`'s passes of `scene` (or the reference), calling `on_pass` with the
+    /// framebuffer after each pass that has a name (Kilgard Figure 12: `decal`, `diffuse`,
+    /// `specular`; the reference has no passes). What [`Renderer::draw`] does with a
+    /// [`Prepared`]; for a scene and technique made by hand.
+    pub fn draw_scene(
+        &mut self,
+        scene: &Scene,
+        technique: &Technique,
+        width: usize,
+        height: usize,
+        mut on_pass: impl FnMut(&str, &Rgba8Image),
+    ) -> Result<Rgba8Image, Error> {
+        Self::check_size(width, height)?;
+        if let Technique::Reference(options) = technique {
+            return self.reference(scene, options, width, height);
+        }
+        match &mut self.inner {
+            Inner::Cpu { renderer, framebuffer } => {
+                let fb = framebuffer_of(framebuffer, width, height)?;
+                renderer.render(scene, technique, fb, |name, fb| {
+                    on_pass(name, &Rgba8Image::new(fb.width, fb.height, fb.to_rgba8()));
+                })?;
+                Ok(Rgba8Image::new(width, height, fb.to_rgba8()))
+            }
+            Inner::Gpu(g) => Ok(g.render(scene, technique, width, height, on_pass)?),
+        }
+    }
+
+    /// Draws a frame and waits for it without making an image: what a benchmark times (the
+    /// GPU's `glFinish`; the CPU's framebuffer is left as it is).
+    pub fn draw_unread(&mut self, prepared: &Prepared, width: usize, height: usize) -> Result<(), Error> {
+        Self::check_size(width, height)?;
+        let (scene, technique) = (&prepared.scene, &prepared.technique);
+        if let Technique::Reference(options) = technique {
+            return self.reference(scene, options, width, height).map(|_| ());
+        }
+        match &mut self.inner {
+            Inner::Cpu { renderer, framebuffer } => {
+                let fb = framebuffer_of(framebuffer, width, height)?;
+                Ok(renderer.render(scene, technique, fb, |_, _| {})?)
+            }
+            Inner::Gpu(g) => Ok(g.draw(scene, technique, width, height)?),
+        }
+    }
+
+    /// The reference at 8 bits; `bumpmap_reference::render` gives it in float.
+    fn reference(
+        &self,
+        scene: &Scene,
+        options: &ReferenceOptions,
+        width: usize,
+        height: usize,
+    ) -> Result<Rgba8Image, Error> {
+        let progress = self.progress.clone();
+        let report = move |done: usize, total: usize| {
+            if let Some(p) = &progress {
+                p(done, total);
+            }
+        };
+        Ok(bumpmap_reference::render(scene, width, height, options, &report)?.to_rgba8())
+    }
+}
+
+/// The kept framebuffer, made anew when the size changes.
+fn framebuffer_of(fb: &mut Option<Framebuffer>, width: usize, height: usize) -> Result<&mut Framebuffer, CpuError> {
+    if fb.as_ref().is_none_or(|f| (f.width, f.height) != (width, height)) {
+        *fb = Some(Framebuffer::new(width, height)?);
+    }
+    Ok(fb.as_mut().expect("made above"))
+}
