@@ -19,6 +19,13 @@ echo "== normal map: 4096² 8-bit heights -> normal map + 13 mips" >&2
 quiet; python3 "$work/numpy_normalmap.py" --size 4096 --runs 5 | tail -n 1 > "$OUT/numpy_normalmap.json"
 quiet; $B bench normalmap --size 4096 --runs 9 --json > "$OUT/bumpmap_normalmap.json"
 
+# The Python package (scripts/test_python.sh installs it into target/python-test-venv): the same
+# work called from Python, arrays in and out, against `bench normalmap` in alternating rounds.
+if [ -x target/python-test-venv/bin/python ]; then
+  quiet; target/python-test-venv/bin/python python/bench/normal_map_speed.py --size 4096 --runs 9 --rounds 3 \
+    --cli "$B" | tail -n 1 > "$OUT/python_normalmap.json"
+fi
+
 echo "== tangents: 1,000,000-triangle grid" >&2
 src=$(ls -d "$work"/out/pymikktspace-0.3.0/_external/MikkTSpace 2>/dev/null || true)
 quiet; python3 "$work/mikktspace_bench.py" --tris 1000000 --runs 1 --c-runs 5 ${src:+--c-src "$src"} | tail -n 1 > "$OUT/mikktspace.json"
@@ -49,6 +56,12 @@ j = lambda n: json.loads((out / n).read_text())
 np_, nm = j("numpy_normalmap.json"), j("bumpmap_normalmap.json")
 print(f"normal map 4096²: numpy {np_['s_median']*1e3:.0f} ms, bumpmap {nm['median_ms']:.1f} ms "
       f"-> {np_['s_median']*1e3/nm['median_ms']:.1f}x; floor {nm['floor_median_ms']:.1f} ms -> {nm['ratio_to_floor']:.2f}x the floor")
+if (out / "python_normalmap.json").exists():
+    py = j("python_normalmap.json")
+    per_round = ", ".join("%.2f" % r["ratio"] for r in py["rounds"])
+    print(f"normal map 4096² from Python (bumpmap.mip_chain): median {py['python_median_ms']:.1f} ms, "
+          f"{py['median_ratio']:.2f}x `bench normalmap` (rounds: {per_round}); "
+          f"numpy {np_['s_median']*1e3:.0f} ms -> {np_['s_median']*1e3/py['python_median_ms']:.1f}x")
 mk, ours, mikk = j("mikktspace.json"), j("bumpmap_tangents_ours.json"), j("bumpmap_tangents_mikktspace.json")
 c = mk.get("mikktspace_c", {}).get("s_median")
 if c:

@@ -31,6 +31,12 @@ pub enum CliError {
     /// clap's own range errors are (exit status 2).
     #[error("{0}")]
     Usage(String),
+    /// No device to draw with (no GPU adapter for `--backend gpu`).
+    #[error("{0}")]
+    NoDevice(String),
+    /// The caller asked to stop before the files were put in place (none were).
+    #[error("interrupted: nothing was written")]
+    Interrupted,
     /// Some files of a folder run failed.
     #[error("{failed} of {total} files failed (see the messages above)")]
     Batch {

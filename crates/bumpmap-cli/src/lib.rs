@@ -7,6 +7,8 @@
 //!   scene description, technique and options (the user's own assets loaded);
 //! - `normalmap`, `cubemap`, `mesh` (tangents), `render`, `bench`, `demo`, `compare`: the
 //!   subcommands, drawing through the `bumpmap` crate's renderer;
+//! - [`commands`]: the commands as functions over their parsed arguments, returning what they
+//!   would write (the Python package calls these);
 //! - [`error`]: every layer's errors as one type, in the words of the command line.
 
 // The argument structs' doc comments are clap's help texts, written for a terminal: their
@@ -16,6 +18,7 @@
 
 pub mod args;
 mod bench;
+pub mod commands;
 mod compare;
 mod cubemap;
 mod demo;

@@ -15,9 +15,7 @@ fn mesh_err(path: &Path, e: impl std::fmt::Display) -> CliError {
 
 /// `bumpmap tangents IN -o OUT`: generate tangents and write glTF with a TANGENT attribute.
 pub fn run(args: &TangentsArgs) -> Result<(), CliError> {
-    if !(0.0..=180.0).contains(&args.split_angle) {
-        return Err(CliError::Usage(format!("--split-angle must be in [0, 180], got {}", args.split_angle)));
-    }
+    let options = tangent_options(args)?;
     ensure_not_input(&args.output, &[&args.input])?;
     let ext = args.output.extension().map(|e| e.to_string_lossy().to_ascii_lowercase());
     if !matches!(ext.as_deref(), Some("gltf") | Some("glb")) {
@@ -33,13 +31,6 @@ pub fn run(args: &TangentsArgs) -> Result<(), CliError> {
             ..Default::default()
         },
     )?;
-    let options = TangentOptions {
-        mode: match args.mode {
-            TangentModeArg::Ours => TangentMode::Ours,
-            TangentModeArg::Mikktspace => TangentMode::MikkTSpace,
-        },
-        split_angle_degrees: args.split_angle,
-    };
     let (mesh, report) = generate_tangents(&loaded.mesh, &options).map_err(|e| mesh_err(&args.input, e))?;
     // The outputs (a .gltf and its .bin, or a .glb) replace none of the files read, the
     // input's buffer files included, and land together or not at all.
@@ -76,6 +67,20 @@ pub fn run(args: &TangentsArgs) -> Result<(), CliError> {
     }
     println!("wrote {}", args.output.display());
     Ok(())
+}
+
+/// The tangent options `args` give, `--split-angle` checked.
+pub fn tangent_options(args: &TangentsArgs) -> Result<TangentOptions, CliError> {
+    if !(0.0..=180.0).contains(&args.split_angle) {
+        return Err(CliError::Usage(format!("--split-angle must be in [0, 180], got {}", args.split_angle)));
+    }
+    Ok(TangentOptions {
+        mode: match args.mode {
+            TangentModeArg::Ours => TangentMode::Ours,
+            TangentModeArg::Mikktspace => TangentMode::MikkTSpace,
+        },
+        split_angle_degrees: args.split_angle,
+    })
 }
 
 /// The bytes of a PNG normal map for a glTF material, after decoding it once to be sure it is

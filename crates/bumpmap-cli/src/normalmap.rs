@@ -55,7 +55,7 @@ fn output_file(output: &Path, source: &HeightSource, spec: &str, format: Texture
 }
 
 /// The texel format `--format` and `--bits` ask for together.
-fn texel_format(args: &NormalmapArgs) -> Result<TextureFormat, CliError> {
+pub fn texel_format(args: &NormalmapArgs) -> Result<TextureFormat, CliError> {
     let format: TextureFormat = args.format.into();
     match (format, args.bits) {
         (TextureFormat::Rgba8, 16) => Ok(TextureFormat::Rgba16),
@@ -77,7 +77,7 @@ pub enum Chain {
 }
 
 /// [`make`] at the depth `format` stores.
-fn make_chain(
+pub fn make_chain(
     field: &HeightField,
     options: &NormalMapOptions,
     mips: bool,
@@ -144,7 +144,7 @@ pub fn write(out: &Path, chain: MipChain) -> Result<(), CliError> {
 }
 
 /// A compressed format needs a container that holds it.
-fn check_format(out: &Path, format: TextureFormat) -> Result<(), CliError> {
+pub fn check_format(out: &Path, format: TextureFormat) -> Result<(), CliError> {
     let ext = out.extension().map(|e| e.to_string_lossy().to_ascii_lowercase()).unwrap_or_default();
     if format.is_compressed() && ext == "png" {
         return Err(CliError::Usage(format!(
@@ -159,6 +159,13 @@ fn check_format(out: &Path, format: TextureFormat) -> Result<(), CliError> {
 /// [`write`], all files or none, none of them replacing one of `inputs`, texels of DDS and
 /// KTX2 files in `format`; returns the paths.
 pub fn write_set(out: &Path, chain: &Chain, inputs: &[&Path], format: TextureFormat) -> Result<Vec<PathBuf>, CliError> {
+    let mut set = FileSet::new(inputs);
+    write_into(&mut set, out, chain, format)?;
+    Ok(set.commit()?)
+}
+
+/// [`write_set`]'s files staged into `set`, to be committed (or dropped) by the caller.
+pub fn write_into(set: &mut FileSet, out: &Path, chain: &Chain, format: TextureFormat) -> Result<(), CliError> {
     let ext = out.extension().map(|e| e.to_string_lossy().to_ascii_lowercase()).unwrap_or_default();
     let images = || TextureLayout {
         faces: vec![match chain {
@@ -166,34 +173,27 @@ pub fn write_set(out: &Path, chain: &Chain, inputs: &[&Path], format: TextureFor
             Chain::Rgba16(c) => c.levels.iter().map(Level::from).collect(),
         }],
     };
-    let mut set = FileSet::new(inputs);
     match ext.as_str() {
         "png" => {
             match chain {
                 Chain::Rgba8(c) => {
                     for (k, level) in c.levels.iter().enumerate() {
                         let path = level_path(out, k);
-                        save_png_into(&mut set, &path, level.width, level.height, PngLayout::Rgba8, level.as_bytes())?;
+                        save_png_into(set, &path, level.width, level.height, PngLayout::Rgba8, level.as_bytes())?;
                     }
                 }
                 Chain::Rgba16(c) => {
                     for (k, level) in c.levels.iter().enumerate() {
                         let bytes: Vec<u8> = level.texels.iter().flatten().flat_map(|v| v.to_ne_bytes()).collect();
                         let path = level_path(out, k);
-                        save_png_into(&mut set, &path, level.width, level.height, PngLayout::Rgba16, &bytes)?;
+                        save_png_into(set, &path, level.width, level.height, PngLayout::Rgba16, &bytes)?;
                     }
                 }
             }
-            Ok(set.commit()?)
+            Ok(())
         }
-        "dds" => {
-            write_dds_into(&mut set, out, &images(), format)?;
-            Ok(set.commit()?)
-        }
-        "ktx2" => {
-            write_ktx2_into(&mut set, out, &images(), format)?;
-            Ok(set.commit()?)
-        }
+        "dds" => Ok(write_dds_into(set, out, &images(), format)?),
+        "ktx2" => Ok(write_ktx2_into(set, out, &images(), format)?),
         _ => {
             Err(bumpmap_io::IoError::UnsupportedOutput { path: out.to_path_buf(), expected: ".png, .dds or .ktx2" }
                 .into())

@@ -26,12 +26,37 @@ pub struct Frame {
 
 /// Runs `bumpmap render`.
 pub fn run(args: &RenderArgs) -> Result<(), CliError> {
+    let named = crate::setup::named_inputs(&args.setup);
+    ensure_not_input(&args.output, &named.iter().map(PathBuf::as_path).collect::<Vec<_>>())?;
+    let drawn = draw_args(args, true)?;
+    let inputs: Vec<&Path> = drawn.inputs.iter().map(PathBuf::as_path).collect();
+    let written = write_frame(&drawn.frame, &args.output, &inputs)?;
+    eprintln!(
+        "wrote {} ({})",
+        written.iter().map(|p| p.display().to_string()).collect::<Vec<_>>().join(", "),
+        drawn.by
+    );
+    Ok(())
+}
+
+/// What `render`'s options drew, before anything is written.
+pub struct Drawn {
+    /// The image, and the passes when `--passes` asked for them.
+    pub frame: Frame,
+    /// How it was drawn, in words: the technique and the backend.
+    pub by: String,
+    /// Every file read: no output may replace one.
+    pub inputs: Vec<PathBuf>,
+}
+
+/// Draws what `args` describe: the scene set up, the technique prepared, the frame drawn on
+/// `--backend` (the reference always on the CPU, with a progress bar on stderr when `progress`).
+/// The notes the assets bring (what a glTF's material gave) go to stderr.
+pub fn draw_args(args: &RenderArgs, progress: bool) -> Result<Drawn, CliError> {
     let (width, height) = match (args.width, args.height) {
         (Some(w), Some(h)) => (w, h),
         _ => (args.size, args.size),
     };
-    let named = crate::setup::named_inputs(&args.setup);
-    ensure_not_input(&args.output, &named.iter().map(PathBuf::as_path).collect::<Vec<_>>())?;
     // Refuse an impossible framebuffer, and --passes without passes, before any work.
     Renderer::check_size(width, height).map_err(lib_err)?;
     let name = args.setup.technique.technique.0;
@@ -49,25 +74,24 @@ pub fn run(args: &RenderArgs) -> Result<(), CliError> {
     for note in &setup.notes {
         eprintln!("{note}");
     }
-    let inputs: Vec<&Path> = setup.inputs.iter().map(PathBuf::as_path).collect();
     let prepared = Prepared::new(&setup.spec, name, &setup.options).map_err(lib_err)?;
     let mut renderer = if name == TechniqueName::Reference {
         // The reference runs on the CPU whatever the backend; no device need open for it.
         let mut r = Renderer::new(BackendChoice::Cpu).map_err(lib_err)?;
-        r.set_reference_progress(Some(reference_bar()));
+        if progress {
+            r.set_reference_progress(Some(reference_bar()));
+        }
         r
     } else {
         renderer(args.setup.backend.backend)?
     };
     let frame = draw(&mut renderer, &prepared.scene, &prepared.technique, width, height, args.passes)?;
-    let written = write_frame(&frame, &args.output, &inputs)?;
     let by = if name == TechniqueName::Reference {
         format!("reference, {} samples per pixel", setup.options.reference.samples_per_pixel)
     } else {
         format!("{name}, {}", renderer.describe())
     };
-    eprintln!("wrote {} ({by})", written.iter().map(|p| p.display().to_string()).collect::<Vec<_>>().join(", "));
-    Ok(())
+    Ok(Drawn { frame, by, inputs: setup.inputs })
 }
 
 /// A progress bar on stderr for the reference's tiles.
@@ -120,7 +144,7 @@ pub fn lib_err(e: bumpmap::Error) -> CliError {
     match e {
         bumpmap::Error::Core(e) => core_err(e),
         bumpmap::Error::Io(e) => CliError::Io(e),
-        bumpmap::Error::Gpu(bumpmap_gpu::GpuError::NoAdapter(reason)) => CliError::Render(format!(
+        bumpmap::Error::Gpu(bumpmap_gpu::GpuError::NoAdapter(reason)) => CliError::NoDevice(format!(
             "no GPU adapter found ({reason}): install a Vulkan driver (on Debian without a GPU, \
              `apt-get install mesa-vulkan-drivers libvulkan1` gives Mesa's lavapipe) or use --backend cpu"
         )),

@@ -46,6 +46,9 @@ impl FileSet {
             });
         }
         let err = |source| IoError::Write { path: path.to_path_buf(), source };
+        if path.is_dir() {
+            return Err(err(std::io::Error::other("is a folder; a file cannot replace it")));
+        }
         let dir = path.parent().filter(|d| !d.as_os_str().is_empty()).unwrap_or(Path::new("."));
         let name = path.file_name().ok_or_else(|| err(std::io::Error::other("not a file name")))?;
         self.create_folders(dir).map_err(err)?;
@@ -86,6 +89,17 @@ impl FileSet {
         let staged = std::mem::take(&mut self.staged);
         // The folders now hold the set's files (or, if a rename fails, what was renamed).
         self.created.clear();
+        // A destination that became a folder since it was staged would fail its rename halfway
+        // through the set: refuse the set before the first rename instead.
+        if let Some((path, _)) = staged.iter().find(|(p, _)| p.is_dir()) {
+            for (_, t) in &staged {
+                let _ = std::fs::remove_file(t);
+            }
+            return Err(IoError::Write {
+                path: path.clone(),
+                source: std::io::Error::other("is a folder; a file cannot replace it"),
+            });
+        }
         let mut done = Vec::with_capacity(staged.len());
         for (i, (path, tmp)) in staged.iter().enumerate() {
             if let Err(source) = std::fs::rename(tmp, path) {
@@ -195,6 +209,28 @@ mod tests {
         set.write(&dir.join("new/deeper/c"), |w| w.write_all(b"c")).unwrap();
         set.commit().unwrap();
         assert_eq!(std::fs::read(dir.join("new/deeper/c")).unwrap(), b"c");
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    #[test]
+    fn a_destination_that_is_a_folder_fails_the_set_before_any_rename() {
+        let dir = std::env::temp_dir().join(format!("bumpmap-fileset-folder-{}", std::process::id()));
+        std::fs::create_dir_all(dir.join("c")).unwrap();
+        // Found when staged…
+        let mut set = FileSet::new(&[]);
+        set.write(&dir.join("a"), |w| w.write_all(b"a")).unwrap();
+        assert!(matches!(set.write(&dir.join("c"), |w| w.write_all(b"c")), Err(IoError::Write { .. })));
+        drop(set);
+        // …and when it became a folder after it was staged: nothing is renamed.
+        let mut set = FileSet::new(&[]);
+        set.write(&dir.join("a"), |w| w.write_all(b"a")).unwrap();
+        set.write(&dir.join("b"), |w| w.write_all(b"b")).unwrap();
+        std::fs::create_dir(dir.join("b")).unwrap();
+        let err = set.commit().unwrap_err();
+        assert!(err.to_string().contains("is a folder"), "{err}");
+        let mut names: Vec<_> = std::fs::read_dir(&dir).unwrap().map(|e| e.unwrap().file_name()).collect();
+        names.sort();
+        assert_eq!(names, ["b", "c"], "neither a nor a temporary file");
         std::fs::remove_dir_all(&dir).unwrap();
     }
 }

@@ -24,8 +24,10 @@ pub struct GltfRepairs {
     pub tangents: usize,
 }
 
-/// The normals and tangents to write: unit length, tangents perpendicular to the normals.
-fn repaired(mesh: &Mesh) -> (Vec<Vec3>, Vec<Vec4>, GltfRepairs) {
+/// The normals and tangents a glTF file gets for `mesh` (what [`save_gltf`] writes): unit
+/// length, tangents perpendicular to the normals, and what had to be rebuilt. Tangents keep
+/// this crate's `w` ([`gltf_handedness`] gives glTF's).
+pub fn gltf_normals_and_tangents(mesh: &Mesh) -> (Vec<Vec3>, Vec<Vec4>, GltfRepairs) {
     // glTF's validator allows a length error of about 5e-4; renormalize everything, and
     // rebuild what cannot be renormalized.
     let unit = |v: Vec3| v.is_finite() && v.length_squared() > 1e-12;
@@ -106,7 +108,7 @@ pub fn save_gltf_into(
     if ext != "gltf" && ext != "glb" {
         return Err(IoError::UnsupportedOutput { path: path.to_path_buf(), expected: ".gltf or .glb" });
     }
-    let (normals, tangents, repairs) = repaired(mesh);
+    let (normals, tangents, repairs) = gltf_normals_and_tangents(mesh);
     let n = mesh.positions.len();
     let mut bin: Vec<u8> = Vec::new();
     let mut views = Vec::new();

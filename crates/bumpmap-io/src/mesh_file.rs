@@ -19,7 +19,7 @@ use bumpmap_math::mesh::Mesh;
 use crate::error::IoError;
 use crate::texture_read::StoredTexture;
 
-pub use crate::gltf_write::{GltfRepairs, save_gltf, save_gltf_into};
+pub use crate::gltf_write::{GltfRepairs, gltf_normals_and_tangents, save_gltf, save_gltf_into};
 
 /// A loaded mesh and what the file itself supplied.
 #[derive(Clone, Debug, Default)]

@@ -24,6 +24,18 @@ enum Samples {
     U16(Vec<u16>),
 }
 
+/// A field's samples as stored, borrowed ([`HeightField::samples`]): what a reader made them,
+/// before any conversion to float.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum HeightSamples<'a> {
+    /// Heights in float, nominally in [0, 1].
+    F32(&'a [f32]),
+    /// 8-bit samples, `h = b/255`.
+    U8(&'a [u8]),
+    /// 16-bit samples, `h = v/65535`.
+    U16(&'a [u16]),
+}
+
 const ONE_OVER_255: f32 = 1.0 / 255.0;
 const ONE_OVER_65535: f32 = 1.0 / 65535.0;
 
@@ -63,6 +75,15 @@ impl HeightField {
     /// 16-bit heights, read as `h = v/65535`.
     pub fn from_u16(width: usize, height: usize, values: &[u16]) -> Option<Self> {
         Self::checked(width, height, values.len(), Samples::U16(values.to_vec()))
+    }
+
+    /// The samples as stored, row-major, row 0 first.
+    pub fn samples(&self) -> HeightSamples<'_> {
+        match &self.samples {
+            Samples::F32(d) => HeightSamples::F32(d),
+            Samples::U8(d) => HeightSamples::U8(d),
+            Samples::U16(d) => HeightSamples::U16(d),
+        }
     }
 
     /// Width in texels.

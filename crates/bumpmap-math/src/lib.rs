@@ -30,7 +30,7 @@ pub mod tangent;
 
 pub use cubemap::{CubeFace, NormalizationCubeMap};
 pub use encoding::{Encoding, Texel};
-pub use height::{HeightField, HeightPreset, bricks_decal};
+pub use height::{HeightField, HeightPreset, HeightSamples, bricks_decal};
 pub use image::{Image, Rgba8Image, Rgba8Mips, Rgba16Image};
 pub use imported::{ImportOptions, ImportedNormalMap, import_normal_map};
 pub use kernel::{Kernel, Wrap};

@@ -15,7 +15,7 @@ mod plots;
 mod report;
 mod studies;
 
-use std::path::Path;
+use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use std::sync::Arc;
@@ -33,6 +33,7 @@ use crate::error::CliError;
 use crate::render::{lib_err, reference_err, rgb};
 
 pub use metrics::Scores;
+pub use report::json;
 pub use studies::{EmbossStudy, PEERCY, PeercyStudy};
 
 /// The techniques `compare` draws by default: the catalogue's, in its order, but the
@@ -94,15 +95,39 @@ pub struct Results {
     pub total_millis: f64,
 }
 
+/// Runs `bumpmap compare`.
 pub fn run(args: &CompareArgs) -> Result<(), CliError> {
-    let start = Instant::now();
     let out = &args.output;
+    check_output(out)?;
+    let (results, inputs) = measure(args, true)?;
+    let inputs: Vec<&Path> = inputs.iter().map(PathBuf::as_path).collect();
+    let written = write(out, &results, &inputs)?;
+    let shown = results.outcomes.iter().filter(|o| o.result.is_ok()).count();
+    eprintln!(
+        "wrote {} files into {} ({shown} techniques against the reference; open {})",
+        written.len(),
+        out.display(),
+        out.join("report.html").display()
+    );
+    Ok(())
+}
+
+/// Refuses an output that is a file: compare writes a folder.
+pub fn check_output(out: &Path) -> Result<(), CliError> {
     if out.exists() && !out.is_dir() {
         return Err(CliError::Path {
-            path: out.clone(),
+            path: out.to_path_buf(),
             reason: "is a file; compare writes a folder of results".into(),
         });
     }
+    Ok(())
+}
+
+/// Everything `compare` measures, before anything is written, and the files it read; with
+/// `progress`, a progress bar on stderr. Techniques that cannot draw the scene are skipped, with
+/// their reason on stderr and in the results.
+pub fn measure(args: &CompareArgs, progress: bool) -> Result<(Results, Vec<PathBuf>), CliError> {
+    let start = Instant::now();
     let kind = SceneKind::parse(&args.scene).ok_or_else(|| {
         CliError::Usage(format!(
             "unknown scene '{}': compare takes a built-in surface ({}), because the reference evaluates the exact surface",
@@ -114,7 +139,7 @@ pub fn run(args: &CompareArgs) -> Result<(), CliError> {
         return Err(CliError::Usage(format!("--bump-scale must be a number ≥ 0, got {}", args.bump_scale)));
     }
     let source = HeightSource::parse(&args.height_field);
-    let inputs: Vec<&Path> = source.path().into_iter().collect();
+    let inputs: Vec<PathBuf> = source.path().into_iter().map(Path::to_path_buf).collect();
     let field = source.load(Channel::Luminance)?;
     let is_bricks = matches!(source, HeightSource::Preset { preset: bumpmap_math::HeightPreset::Bricks, .. });
     let base = SceneParams {
@@ -137,7 +162,7 @@ pub fn run(args: &CompareArgs) -> Result<(), CliError> {
     let mut backend = crate::render::renderer(args.backend)?;
     // The reference, each technique, convergence and the three studies.
     let steps = (wanted.len() + 5) as u64;
-    let bar = ProgressBar::new(steps)
+    let bar = if progress { ProgressBar::new(steps) } else { ProgressBar::hidden() }
         .with_style(ProgressStyle::with_template("{bar:40} {pos}/{len} {elapsed} {wide_msg}").expect("valid template"));
 
     bar.set_message(format!("reference, {spp} samples per pixel"));
@@ -197,15 +222,7 @@ pub fn run(args: &CompareArgs) -> Result<(), CliError> {
         peercy,
         total_millis: start.elapsed().as_secs_f64() * 1e3,
     };
-    let written = write(out, &results, &inputs)?;
-    let shown = results.outcomes.iter().filter(|o| o.result.is_ok()).count();
-    eprintln!(
-        "wrote {} files into {} ({shown} techniques against the reference; open {})",
-        written.len(),
-        out.display(),
-        out.join("report.html").display()
-    );
-    Ok(())
+    Ok((results, inputs))
 }
 
 /// The reference at `spp` samples per pixel, with the CLI's errors.
@@ -252,7 +269,7 @@ fn convergence(
 }
 
 /// Writes every image, heat map, plot, `results.json` and `report.html` into `out`, all or none.
-fn write(out: &Path, results: &Results, inputs: &[&Path]) -> Result<Vec<std::path::PathBuf>, CliError> {
+pub fn write(out: &Path, results: &Results, inputs: &[&Path]) -> Result<Vec<std::path::PathBuf>, CliError> {
     let mut set = FileSet::new(inputs);
     let size = results.size;
     let png = |set: &mut FileSet, name: &str, rgb: &[u8]| {

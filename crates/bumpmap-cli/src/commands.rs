@@ -1,0 +1,90 @@
+//! The commands as functions over their parsed arguments that return what the command would
+//! write instead of writing it: what the Python package (`python/`) calls, so that a script and
+//! the command line make the same bytes from the same options, and read the same defaults
+//! (`args`'s) to do so.
+//!
+//! Each function takes the command's own argument struct, parsed by clap from the same words
+//! the command line takes. What this module does not do: parse, print results, or write a file
+//! anywhere but where [`write_texture`] and [`write_compare`] are told to.
+
+use std::path::{Path, PathBuf};
+
+use bumpmap_io::atomic::FileSet;
+use bumpmap_io::texture_file::TextureFormat;
+use bumpmap_math::HeightField;
+use bumpmap_math::mesh::Mesh;
+use bumpmap_math::tangent::{TangentReport, generate_tangents};
+
+use crate::args::{CompareArgs, NormalmapArgs, RenderArgs, TangentsArgs};
+use crate::error::CliError;
+
+pub use crate::compare::{Outcome, Rendered, Results, Scores};
+pub use crate::normalmap::Chain;
+pub use crate::render::{Drawn, Frame};
+
+/// `normalmap`'s chain for `field`: level 0, or every level with `--mips`, at the depth
+/// `--bits` and `--format` ask for; `name` names the field in errors.
+pub fn normal_map(args: &NormalmapArgs, field: &HeightField, name: &str) -> Result<Chain, CliError> {
+    let format = crate::normalmap::texel_format(args)?;
+    crate::normalmap::make_chain(field, &args.map.options(), args.mips, args.mip_mode.into(), format, name)
+}
+
+/// The texel format `normalmap`'s `--format` and `--bits` ask for together.
+pub fn texel_format(args: &NormalmapArgs) -> Result<TextureFormat, CliError> {
+    crate::normalmap::texel_format(args)
+}
+
+/// Writes `chain` as `normalmap -o OUT` does: by the extension, PNG files (`OUT.mip1.png`, …
+/// beside level 0), or one DDS or KTX2 file with every level in `format`; all files or none, none
+/// of them replacing one of `inputs`. When `cancelled` says so once the files are staged,
+/// nothing is put in place ([`CliError::Interrupted`]). Returns the paths written.
+pub fn write_texture(
+    out: &Path,
+    chain: &Chain,
+    format: TextureFormat,
+    inputs: &[&Path],
+    cancelled: &dyn Fn() -> bool,
+) -> Result<Vec<PathBuf>, CliError> {
+    crate::normalmap::check_format(out, format)?;
+    let mut set = FileSet::new(inputs);
+    crate::normalmap::write_into(&mut set, out, chain, format)?;
+    if cancelled() {
+        return Err(CliError::Interrupted);
+    }
+    Ok(set.commit()?)
+}
+
+/// `render`'s image (and passes, with `--passes`), drawn as the command draws it, without the
+/// output file; with `progress`, the reference shows a progress bar on stderr.
+pub fn render(args: &RenderArgs, progress: bool) -> Result<Drawn, CliError> {
+    crate::render::draw_args(args, progress)
+}
+
+/// `tangents`' mesh for `mesh`: the tangents made by `--mode` (vertices split where `--split-angle`
+/// says), and what was degenerate, mirrored or split.
+pub fn tangents(args: &TangentsArgs, mesh: &Mesh) -> Result<(Mesh, TangentReport), CliError> {
+    let options = crate::mesh::tangent_options(args)?;
+    generate_tangents(mesh, &options).map_err(|e| CliError::Path { path: args.input.clone(), reason: e.to_string() })
+}
+
+/// Everything `compare` measures, and the files it read; with `progress`, a bar on stderr.
+pub fn compare(args: &CompareArgs, progress: bool) -> Result<(Results, Vec<PathBuf>), CliError> {
+    crate::compare::measure(args, progress)
+}
+
+/// `compare`'s `results.json`, as text.
+pub fn compare_json(results: &Results) -> String {
+    crate::compare::json(results)
+}
+
+/// Refuses a `compare` output that cannot be a folder (before the work, not after).
+pub fn check_compare_output(out: &Path) -> Result<(), CliError> {
+    crate::compare::check_output(out)
+}
+
+/// Writes `compare`'s folder (images, heat maps, plots, `results.json`, `report.html`) into
+/// `out`, all or none, none of the files replacing one of `inputs`. Returns the paths written.
+pub fn write_compare(out: &Path, results: &Results, inputs: &[&Path]) -> Result<Vec<PathBuf>, CliError> {
+    crate::compare::check_output(out)?;
+    crate::compare::write(out, results, inputs)
+}

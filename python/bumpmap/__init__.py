@@ -1,0 +1,187 @@
+"""bumpmap: bump mapping as Kilgard (2000), the Cg Tutorial (ch. 8) and Peercy et al. (1997)
+describe it, for Python: normal maps and mip chains from height fields, tangent frames, and
+renders of every technique of the papers, NumPy arrays in and out.
+
+The functions take the options of the ``bumpmap`` command line as keyword arguments, with the
+same names (``-`` becomes ``_``: ``--y-convention`` is ``y_convention=``), values and defaults,
+and they make the same bytes the command writes from the same options:
+
+- ``normal_map(heights, **options)``: an (H, W) height field -> an (H, W, 4) normal map
+  (``bumpmap normalmap``);
+- ``mip_chain(heights, **options)``: the same with every smaller level, the length of the
+  averaged normal in alpha (Kilgard §2.4.2);
+- ``read_height_field(path, **options)``: an image file or a preset (``"bricks@512"``);
+- ``write_texture(path, levels, **options)``: PNG (``.mip1.png``, ... beside level 0), DDS or
+  KTX2, BC5/BC7 included;
+- ``tangents(positions, normals, uvs, indices, **options)``: tangent frames with glTF's ``w``
+  (``bumpmap tangents``);
+- ``render(**options)``: any scene and technique of the catalogue on the CPU or GPU
+  (``bumpmap render``) -> an (H, W, 4) uint8 image;
+- ``compare(output=None, **options)``: every technique against the reference
+  (``bumpmap compare``) -> the results as a dict;
+- ``techniques()``: the catalogue, name by name.
+
+Errors are exceptions carrying the library's message: ``ValueError`` for values, ``TypeError``
+for arrays of the wrong dtype or options that do not exist, ``OSError`` for files
+(``FileNotFoundError`` for a missing one), ``RuntimeError`` for a missing GPU. Long work
+releases the GIL, and Ctrl-C interrupts it (``KeyboardInterrupt``; a file being written is
+then not written at all).
+"""
+
+from __future__ import annotations
+
+import inspect
+
+from . import _bumpmap
+
+__version__ = _bumpmap.__version__
+
+__all__ = [
+    "normal_map",
+    "mip_chain",
+    "read_height_field",
+    "write_texture",
+    "tangents",
+    "render",
+    "compare",
+    "techniques",
+    "__version__",
+]
+
+
+def _is_number(text: str) -> bool:
+    try:
+        float(text)
+        return True
+    except ValueError:
+        return False
+
+
+def _options_doc(function: str) -> str:
+    """The options ``function`` takes, as its docstring lists them, from the command line's own
+    help texts and defaults."""
+    lines = ["", "", "Options (keyword arguments; the command line's, with its defaults):", ""]
+    for name, default, help_text, choices, flag in _bumpmap.options(function):
+        if flag:
+            head = f"{name}: bool = False"
+        elif default is None:
+            head = f"{name} = None"
+        elif _is_number(default):
+            head = f"{name} = {default}"
+        else:
+            head = f"{name} = {default!r}"
+        lines.append(f"    {head}")
+        text = " ".join(help_text.split())
+        if text:
+            lines.append(f"        {text}")
+        if choices:
+            lines.append(f"        One of: {', '.join(choices)}.")
+    return "\n".join(lines) + "\n"
+
+
+def normal_map(heights, **options):
+    """A tangent-space normal map from a height field (Kilgard §2.3), as
+    ``bumpmap normalmap IN -o OUT.png`` makes it.
+
+    heights: an (H, W) numpy array: uint8 (h = b/255), uint16 (h = v/65535) or float32 (h in
+    [0, 1]), row 0 first (texture coordinate t = 0, the image's top as displayed), as
+    ``read_height_field`` returns it. Other dtypes are refused (convert float64 with
+    ``.astype(numpy.float32)``); views that are not contiguous and big-endian arrays are read as
+    they are.
+
+    Returns an (H, W, 4) array: uint8, or uint16 with ``bits=16``; RGB is the unit normal
+    (green up the image with the default ``y_convention``), alpha 255.
+    """
+    return _bumpmap.normal_map(heights, options)
+
+
+def mip_chain(heights, **options):
+    """A normal map and every smaller level down to 1x1, as
+    ``bumpmap normalmap IN -o OUT.png --mips`` makes them.
+
+    heights: as for ``normal_map``. With the default ``mip_mode="length-in-alpha"``, each
+    smaller level stores the normalized mean of the normals it covers in RGB and the mean's
+    length in alpha (Kilgard §2.4.2): what keeps a bumpy surface from looking too bright at a
+    distance. Returns a list of (H, W, 4) arrays, level 0 first.
+    """
+    return _bumpmap.mip_chain(heights, options)
+
+
+def read_height_field(path, **options):
+    """A height field from an image file (PNG, TGA, BMP, JPEG, TIFF, PNM at 8 or 16 bits;
+    OpenEXR in float) or a preset (``"bricks"``, ``"pinwheel"``, ``"dimples"``,
+    ``"noise:SEED"``, each optionally ``@SIZE``), read as the command line reads it.
+
+    Returns an (H, W) array with the samples as stored: uint8, uint16 or float32, row 0 first.
+    """
+    return _bumpmap.read_height_field(path, options)
+
+
+def write_texture(path, levels, **options):
+    """Writes a normal map, or a chain of levels, as ``bumpmap normalmap -o PATH`` writes one.
+
+    path: by its extension: ``.png`` (level 0, and ``NAME.mip1.png``, ... beside it), ``.dds``
+    or ``.ktx2`` (every level in one file). levels: one (H, W, 4) array or a list of them, level
+    0 first, each half the size of the one before; uint8, or uint16 for 16-bit PNG, DDS and
+    KTX2. ``format="bc5"`` or ``"bc7"`` compresses (``.dds``/``.ktx2`` only, uint8 only).
+    All files are written or none. Returns the paths written.
+    """
+    return _bumpmap.write_texture(path, levels, options)
+
+
+def tangents(positions, normals, uvs, indices, **options):
+    """Tangent frames for a mesh, as ``bumpmap tangents`` makes them.
+
+    positions: (N, 3) float32; normals: (N, 3) float32 (normalized on the way in, as a glTF
+    reader does), or None to have them made from the faces; uvs: (N, 2) float32 in glTF's convention (v = 0 at the image's top; from Blender or an
+    OBJ, pass ``1 - v``); indices: (T, 3) or (3T,) uint32, counter-clockwise seen from the front.
+
+    Returns a dict: ``positions``, ``normals``, ``uvs`` and ``tangents`` ((N', 4) float32, xyz the
+    unit tangent along +u, w = +1 or -1 as glTF's TANGENT has it: bitangent = w * cross(N, T)),
+    ``indices`` ((T, 3) uint32) for the mesh out, where a vertex may have been split in two
+    (``mode="ours"`` splits where tangents differ by more than ``split_angle`` degrees), exactly
+    as the command's glTF file holds them (unit normals and tangents, a zero one rebuilt), and
+    ``report``: how many triangles were degenerate or mirrored, how many vertices were split and
+    how many normals and tangents had to be rebuilt.
+    """
+    return _bumpmap.tangents(positions, normals, uvs, indices, options)
+
+
+def render(**options):
+    """Renders a bump-mapped scene, as ``bumpmap render`` does.
+
+    Any technique of the catalogue (``techniques()``) on the emulated GeForce pipeline
+    (``backend="cpu"``, the default), the GPU (``"gpu"``) or whichever exists (``"auto"``).
+    ``size`` is the square side in pixels (or give ``width`` and ``height``). Vectors are
+    tuples: ``eye=(0, -6, 3)``; ``light`` takes one light or a list: ``light=["4,0,3@1,0.6,0.4",
+    "dir:-1,0,1"]``.
+
+    Returns an (H, W, 4) uint8 array, row 0 the image's top; alpha is 255 (the framebuffer's
+    alpha holds a self-shadowing term, not coverage, and the command line's PNG leaves it out).
+    """
+    return _bumpmap.render(options)
+
+
+def compare(output=None, **options):
+    """Renders every technique on one scene and measures each against the ground-truth
+    reference, as ``bumpmap compare`` does (minutes at the default size; try ``size=64,
+    spp=4``).
+
+    Returns the results as a dict (what ``results.json`` holds: each technique's RMSE, PSNR,
+    bias, FLIP and SSIM, the skipped ones with their reason, and the golf-ball, embossing and
+    Peercy studies). With ``output`` (a folder), also writes the report there: images, FLIP heat
+    maps, plots, ``results.json`` and ``report.html``, all files or none.
+    """
+    return _bumpmap.compare(output, options)
+
+
+def techniques():
+    """The catalogue: a list of ``(name, description, needs)``, in the order ``compare`` draws
+    them; ``needs`` lists what a technique requires of the scene (a built-in surface, a height
+    field, one light)."""
+    return _bumpmap.techniques()
+
+
+for _f in (normal_map, mip_chain, read_height_field, write_texture, tangents, render, compare):
+    _f.__doc__ = inspect.cleandoc(_f.__doc__ or "") + _options_doc(_f.__name__)
+del _f

@@ -1,0 +1,214 @@
+//! NumPy arrays in and out. Each input's dtype, shape and byte order is checked and the message
+//! names what was expected; an array in the other byte order is read by value, and one that is
+//! not contiguous (a slice, a transposed view) is read through its strides. No input is
+//! converted from another dtype: a float64 height field is refused, not rounded silently.
+
+use bumpmap_cli::commands::Chain;
+use bumpmap_math::{HeightField, HeightSamples, Image, MipChain};
+use numpy::ndarray::{Array2, Array3};
+use numpy::{
+    Element, IntoPyArray, PyArrayDescrMethods, PyArrayDyn, PyArrayMethods, PyReadonlyArrayDyn, PyUntypedArray,
+    PyUntypedArrayMethods,
+};
+use pyo3::exceptions::{PyTypeError, PyValueError};
+use pyo3::prelude::*;
+
+/// `value` as a NumPy array in native byte order (an array in the other order is converted by
+/// value, the one conversion made), or a `TypeError` naming what `what` should be.
+pub fn native<'py>(value: &Bound<'py, PyAny>, what: &str, expected: &str) -> PyResult<Bound<'py, PyUntypedArray>> {
+    let array = value.cast::<PyUntypedArray>().map_err(|_| {
+        PyTypeError::new_err(format!(
+            "{what} must be a numpy array ({expected}), got {}",
+            value.get_type().name().map(|n| n.to_string()).unwrap_or_default()
+        ))
+    })?;
+    if array.dtype().is_native_byteorder() == Some(false) {
+        let dtype = array.dtype().call_method1("newbyteorder", ("=",))?;
+        let converted = array.call_method1("astype", (dtype,))?;
+        return Ok(converted.cast_into::<PyUntypedArray>()?);
+    }
+    Ok(array.clone())
+}
+
+/// Whether `array`'s dtype is `T`'s.
+pub fn is<T: Element>(array: &Bound<'_, PyUntypedArray>) -> bool {
+    array.dtype().is_equiv_to(&numpy::dtype::<T>(array.py()))
+}
+
+/// The dtype's name, for messages: `float64`, `int32`, …
+pub fn dtype_name(array: &Bound<'_, PyUntypedArray>) -> String {
+    array.dtype().getattr("name").and_then(|n| n.extract::<String>()).unwrap_or_else(|_| "?".into())
+}
+
+/// `array`'s elements in row-major order, whatever its strides.
+pub fn elements<T: Element + Copy>(array: &Bound<'_, PyUntypedArray>) -> PyResult<Vec<T>> {
+    let typed: PyReadonlyArrayDyn<'_, T> = array.cast::<PyArrayDyn<T>>()?.readonly();
+    Ok(match typed.as_slice() {
+        Ok(s) => s.to_vec(),
+        Err(_) => typed.as_array().iter().copied().collect(),
+    })
+}
+
+/// A height field from a 2-D array of uint8 (`h = b/255`), uint16 (`h = v/65535`) or float32
+/// (`h` as it is), as `read_height_field` returns them and the command line reads images.
+pub fn height_field(value: &Bound<'_, PyAny>) -> PyResult<HeightField> {
+    const EXPECTED: &str = "(H, W) of uint8, uint16 or float32";
+    let array = native(value, "heights", EXPECTED)?;
+    let [h, w] = array.shape() else {
+        return Err(PyValueError::new_err(format!(
+            "heights must be a 2-D array {EXPECTED}, got shape {:?}",
+            array.shape()
+        )));
+    };
+    let (h, w) = (*h, *w);
+    let field = if is::<u8>(&array) {
+        HeightField::from_u8_vec(w, h, elements(&array)?)
+    } else if is::<u16>(&array) {
+        HeightField::from_u16(w, h, &elements::<u16>(&array)?)
+    } else if is::<f32>(&array) {
+        HeightField::new(w, h, elements(&array)?)
+    } else {
+        return Err(PyTypeError::new_err(format!(
+            "heights must be uint8, uint16 or float32 (heights in [0, 1]), got {}{}",
+            dtype_name(&array),
+            if is::<f64>(&array) { ": use heights.astype(numpy.float32)" } else { "" }
+        )));
+    };
+    field.ok_or_else(|| PyValueError::new_err(format!("heights of {w}x{h}: both sides must be at least 1")))
+}
+
+/// A height field's samples as stored: (H, W) uint8, uint16 or float32.
+pub fn from_height_field<'py>(py: Python<'py>, field: &HeightField) -> PyResult<Bound<'py, PyAny>> {
+    let shape = (field.height(), field.width());
+    let array = match field.samples() {
+        HeightSamples::U8(s) => Array2::from_shape_vec(shape, s.to_vec()).map(|a| a.into_pyarray(py).into_any()),
+        HeightSamples::U16(s) => Array2::from_shape_vec(shape, s.to_vec()).map(|a| a.into_pyarray(py).into_any()),
+        HeightSamples::F32(s) => Array2::from_shape_vec(shape, s.to_vec()).map(|a| a.into_pyarray(py).into_any()),
+    };
+    array.map_err(|e| PyValueError::new_err(e.to_string()))
+}
+
+/// One level as an (H, W, 4) array.
+fn level_array<'py, T: Element + Copy>(py: Python<'py>, level: Image<[T; 4]>) -> PyResult<Bound<'py, PyAny>> {
+    let shape = (level.height, level.width, 4);
+    let flat: Vec<T> = level.texels.into_flattened();
+    Ok(Array3::from_shape_vec(shape, flat)
+        .map_err(|e| PyValueError::new_err(e.to_string()))?
+        .into_pyarray(py)
+        .into_any())
+}
+
+/// A chain's levels as (H, W, 4) arrays of uint8 or uint16, level 0 first.
+pub fn from_chain(py: Python<'_>, chain: Chain) -> PyResult<Vec<Bound<'_, PyAny>>> {
+    match chain {
+        Chain::Rgba8(c) => c.levels.into_iter().map(|l| level_array(py, l)).collect(),
+        Chain::Rgba16(c) => c.levels.into_iter().map(|l| level_array(py, l)).collect(),
+    }
+}
+
+/// The texels of an (H, W, 4) array.
+fn texels<T: Element + Copy + Default>(array: &Bound<'_, PyUntypedArray>) -> PyResult<Image<[T; 4]>> {
+    let (h, w) = (array.shape()[0], array.shape()[1]);
+    let flat: Vec<T> = elements(array)?;
+    let texels = flat.chunks_exact(4).map(|c| [c[0], c[1], c[2], c[3]]).collect();
+    Ok(Image::new(w, h, texels))
+}
+
+/// A chain from one (H, W, 4) array or a list of them, uint8 or uint16 alike, each level half
+/// the one before (rounded down, at least 1), as a mip chain has them.
+pub fn to_chain(value: &Bound<'_, PyAny>) -> PyResult<Chain> {
+    const EXPECTED: &str = "(H, W, 4) of uint8 or uint16";
+    let items: Vec<Bound<'_, PyAny>> = if value.cast::<PyUntypedArray>().is_ok() {
+        vec![value.clone()]
+    } else if value.is_instance_of::<pyo3::types::PyList>() || value.is_instance_of::<pyo3::types::PyTuple>() {
+        value.try_iter()?.collect::<PyResult<_>>()?
+    } else {
+        return Err(PyTypeError::new_err(format!(
+            "levels must be a numpy array {EXPECTED} or a list of them (level 0 first), got {}",
+            value.get_type().name()?
+        )));
+    };
+    if items.is_empty() {
+        return Err(PyValueError::new_err("levels is empty: give at least level 0"));
+    }
+    let arrays: Vec<Bound<'_, PyUntypedArray>> =
+        items.iter().enumerate().map(|(k, a)| native(a, &format!("level {k}"), EXPECTED)).collect::<PyResult<_>>()?;
+    let sixteen = is::<u16>(&arrays[0]);
+    let (h0, w0) = match arrays[0].shape() {
+        [h, w, 4] => (*h, *w),
+        other => return Err(PyValueError::new_err(format!("level 0 must be {EXPECTED}, got shape {other:?}"))),
+    };
+    for (k, a) in arrays.iter().enumerate() {
+        let expected = ((h0 >> k).max(1), (w0 >> k).max(1));
+        match a.shape() {
+            [h, w, 4] if (*h, *w) == expected => {}
+            other => {
+                return Err(PyValueError::new_err(format!(
+                    "level {k} must have shape ({}, {}, 4) (half of the level before, rounded down), got {other:?}",
+                    expected.0, expected.1
+                )));
+            }
+        }
+        if !(is::<u8>(a) || is::<u16>(a)) || is::<u16>(a) != sixteen {
+            return Err(PyTypeError::new_err(format!(
+                "level {k} is {}: every level must be uint8, or every level uint16 (level 0 is {})",
+                dtype_name(a),
+                dtype_name(&arrays[0])
+            )));
+        }
+    }
+    let encoding = bumpmap_math::Encoding::Unorm;
+    Ok(if sixteen {
+        Chain::Rgba16(MipChain { levels: arrays.iter().map(texels).collect::<PyResult<_>>()?, encoding })
+    } else {
+        Chain::Rgba8(MipChain { levels: arrays.iter().map(texels).collect::<PyResult<_>>()?, encoding })
+    })
+}
+
+/// A float32 array of shape (N, `columns`), as rows.
+pub fn rows<const C: usize>(value: &Bound<'_, PyAny>, what: &str) -> PyResult<Vec<[f32; C]>> {
+    let expected = format!("(N, {C}) of float32");
+    let array = native(value, what, &expected)?;
+    match array.shape() {
+        [_, c] if *c == C => {}
+        other => return Err(PyValueError::new_err(format!("{what} must have shape {expected}, got {other:?}"))),
+    }
+    if !is::<f32>(&array) {
+        return Err(PyTypeError::new_err(format!(
+            "{what} must be float32, got {}: use {what}.astype(numpy.float32)",
+            dtype_name(&array)
+        )));
+    }
+    let flat: Vec<f32> = elements(&array)?;
+    Ok(flat.chunks_exact(C).map(|c| std::array::from_fn(|i| c[i])).collect())
+}
+
+/// Triangle indices: uint32 of shape (T, 3) or (3T,).
+pub fn triangles(value: &Bound<'_, PyAny>) -> PyResult<Vec<[u32; 3]>> {
+    const EXPECTED: &str = "(T, 3) or (3T,) of uint32";
+    let array = native(value, "indices", EXPECTED)?;
+    let ok_shape = match array.shape() {
+        [_, 3] => true,
+        [n] => n % 3 == 0,
+        _ => false,
+    };
+    if !ok_shape {
+        return Err(PyValueError::new_err(format!("indices must have shape {EXPECTED}, got {:?}", array.shape())));
+    }
+    if !is::<u32>(&array) {
+        return Err(PyTypeError::new_err(format!(
+            "indices must be uint32, got {}: use indices.astype(numpy.uint32)",
+            dtype_name(&array)
+        )));
+    }
+    let flat: Vec<u32> = elements(&array)?;
+    Ok(flat.chunks_exact(3).map(|c| [c[0], c[1], c[2]]).collect())
+}
+
+/// Rows as an (N, C) float32 array.
+pub fn from_rows<const C: usize>(py: Python<'_>, rows: Vec<[f32; C]>) -> PyResult<Bound<'_, PyAny>> {
+    let n = rows.len();
+    let array =
+        Array2::from_shape_vec((n, C), rows.into_flattened()).map_err(|e| PyValueError::new_err(e.to_string()))?;
+    Ok(array.into_pyarray(py).into_any())
+}

@@ -1,0 +1,307 @@
+//! `bumpmap._bumpmap`: the native half of the `bumpmap` Python package.
+//!
+//! Each function takes its options as a dict of the command line's options, parsed by the
+//! command's own definition (`options`), and calls the same code the command runs
+//! (`bumpmap_cli::commands`), so a script and `bumpmap` make the same bytes from the same
+//! options. The package's `__init__.py` wraps each one with keyword arguments and a docstring
+//! made from the options' help texts.
+//!
+//! - `options`: keyword arguments → command-line options → the command's parsed arguments;
+//! - `arrays`: NumPy arrays in and out, their dtype, shape and byte order checked;
+//! - `interrupt`: long work with the GIL released, Ctrl-C honoured;
+//! - `errors`: the command line's errors as Python exceptions.
+//!
+//! What it does not do: any image, mesh or rendering work of its own.
+
+mod arrays;
+mod errors;
+mod interrupt;
+mod options;
+
+use std::path::PathBuf;
+
+use bumpmap_cli::args::Command;
+use bumpmap_cli::commands;
+use bumpmap_cli::error::CliError;
+use bumpmap_io::texture_file::TextureFormat;
+use bumpmap_io::{Channel, HeightSource};
+use bumpmap_math::mesh::Mesh;
+use glam::{Vec2, Vec3};
+use pyo3::exceptions::{PyTypeError, PyValueError};
+use pyo3::prelude::*;
+use pyo3::types::{PyDict, PyList};
+
+use crate::errors::to_py;
+use crate::options::Function;
+
+/// The keyword arguments, parsed as `function`'s command would parse them.
+fn parse(function: &Function, fixed: &[String], options: Option<&Bound<'_, PyDict>>) -> PyResult<Command> {
+    function.parse(fixed, options)
+}
+
+/// `normalmap`'s arguments for an array input.
+fn normalmap_args(
+    function: &Function,
+    mips: bool,
+    options: Option<&Bound<'_, PyDict>>,
+) -> PyResult<bumpmap_cli::args::NormalmapArgs> {
+    let mut fixed = vec!["heights".to_string(), "--output=heights.png".to_string()];
+    if mips {
+        fixed.push("--mips".into());
+    }
+    match parse(function, &fixed, options)? {
+        Command::Normalmap(a) => Ok(a),
+        _ => unreachable!("normalmap's options parse as normalmap"),
+    }
+}
+
+/// `normalmap`'s chain for an array of heights: level 0, or every level with `mips`.
+fn chain_of<'py>(
+    py: Python<'py>,
+    function: &Function,
+    mips: bool,
+    heights: &Bound<'py, PyAny>,
+    options: Option<&Bound<'py, PyDict>>,
+) -> PyResult<Vec<Bound<'py, PyAny>>> {
+    let args = normalmap_args(function, mips, options)?;
+    let field = arrays::height_field(heights)?;
+    let chain = interrupt::run(py, move |_| commands::normal_map(&args, &field, "heights"))?
+        .map_err(|e| to_py(function.name, e))?;
+    arrays::from_chain(py, chain)
+}
+
+/// Heights → normal map: level 0 as an (H, W, 4) array (uint8, or uint16 with bits=16).
+#[pyfunction]
+#[pyo3(signature = (heights, options = None))]
+fn normal_map<'py>(
+    py: Python<'py>,
+    heights: &Bound<'py, PyAny>,
+    options: Option<&Bound<'py, PyDict>>,
+) -> PyResult<Bound<'py, PyAny>> {
+    Ok(chain_of(py, &options::NORMAL_MAP, false, heights, options)?.swap_remove(0))
+}
+
+/// Heights → normal map and every smaller level down to 1×1, level 0 first.
+#[pyfunction]
+#[pyo3(signature = (heights, options = None))]
+fn mip_chain<'py>(
+    py: Python<'py>,
+    heights: &Bound<'py, PyAny>,
+    options: Option<&Bound<'py, PyDict>>,
+) -> PyResult<Bound<'py, PyList>> {
+    PyList::new(py, chain_of(py, &options::MIP_CHAIN, true, heights, options)?)
+}
+
+/// A height field from an image file or a preset (`bricks@512`), as the command line reads it.
+#[pyfunction]
+#[pyo3(signature = (path, options = None))]
+fn read_height_field<'py>(
+    py: Python<'py>,
+    path: PathBuf,
+    options: Option<&Bound<'py, PyDict>>,
+) -> PyResult<Bound<'py, PyAny>> {
+    let spec = path
+        .to_str()
+        .ok_or_else(|| PyValueError::new_err(format!("read_height_field(): {} is not UTF-8", path.display())))?
+        .to_string();
+    let args = match parse(&options::READ_HEIGHT_FIELD, &[spec.clone(), "--output=heights.png".into()], options)? {
+        Command::Normalmap(a) => a,
+        _ => unreachable!("normalmap's options parse as normalmap"),
+    };
+    let channel: Channel = args.map.channel.into();
+    let field = interrupt::run(py, move |_| HeightSource::parse(&spec).load(channel).map_err(CliError::from))?
+        .map_err(|e| to_py("read_height_field", e))?;
+    arrays::from_height_field(py, &field)
+}
+
+/// Writes levels (one (H, W, 4) array or a list, level 0 first) as `normalmap -o PATH` writes a
+/// chain; returns the paths written.
+#[pyfunction]
+#[pyo3(signature = (path, levels, options = None))]
+fn write_texture(
+    py: Python<'_>,
+    path: PathBuf,
+    levels: &Bound<'_, PyAny>,
+    options: Option<&Bound<'_, PyDict>>,
+) -> PyResult<Vec<PathBuf>> {
+    let args = match parse(&options::WRITE_TEXTURE, &["levels".into(), "--output=levels.png".into()], options)? {
+        Command::Normalmap(a) => a,
+        _ => unreachable!("normalmap's options parse as normalmap"),
+    };
+    let chain = arrays::to_chain(levels)?;
+    let sixteen = matches!(chain, commands::Chain::Rgba16(_));
+    let asked: TextureFormat = args.format.into();
+    let format = match (asked, sixteen) {
+        (TextureFormat::Rgba8 | TextureFormat::Rgba16, true) => TextureFormat::Rgba16,
+        (TextureFormat::Rgba16, false) => {
+            return Err(PyTypeError::new_err(
+                "write_texture(): format rgba16 needs uint16 levels (these are uint8: give format rgba8, or levels.astype(numpy.uint16) * 257)",
+            ));
+        }
+        (f, true) => {
+            return Err(PyValueError::new_err(format!(
+                "write_texture(): uint16 levels cannot be stored as format {}: BC5 and BC7 hold 8 bits a channel (give uint8 levels)",
+                f.name()
+            )));
+        }
+        (f, false) => f,
+    };
+    let written =
+        interrupt::run(py, move |cancel| commands::write_texture(&path, &chain, format, &[], &|| cancel.is_set()))?
+            .map_err(|e| to_py("write_texture", e))?;
+    Ok(written)
+}
+
+/// Tangents for a mesh given as arrays, made as `bumpmap tangents` makes them; returns the mesh
+/// out (vertices may be split) as its glTF file has it: normals and tangents unit length (rebuilt
+/// where they cannot be), tangents perpendicular to the normals, glTF's `w`.
+#[pyfunction]
+#[pyo3(signature = (positions, normals, uvs, indices, options = None))]
+fn tangents<'py>(
+    py: Python<'py>,
+    positions: &Bound<'py, PyAny>,
+    normals: &Bound<'py, PyAny>,
+    uvs: &Bound<'py, PyAny>,
+    indices: &Bound<'py, PyAny>,
+    options: Option<&Bound<'py, PyDict>>,
+) -> PyResult<Bound<'py, PyDict>> {
+    let args = match parse(&options::TANGENTS, &["arrays.gltf".into(), "--output=arrays.glb".into()], options)? {
+        Command::Tangents(a) => a,
+        _ => unreachable!("tangents' options parse as tangents"),
+    };
+    let positions: Vec<Vec3> = arrays::rows::<3>(positions, "positions")?.into_iter().map(Vec3::from).collect();
+    let n = positions.len();
+    // Normalized as a glTF reader normalizes them (`bumpmap tangents` reads a file).
+    let normals: Vec<Vec3> = if normals.is_none() {
+        Vec::new()
+    } else {
+        arrays::rows::<3>(normals, "normals")?.into_iter().map(|n| Vec3::from(n).normalize_or_zero()).collect()
+    };
+    let texcoords: Vec<Vec2> = arrays::rows::<2>(uvs, "uvs")?.into_iter().map(Vec2::from).collect();
+    for (what, len) in [("normals", if normals.is_empty() { n } else { normals.len() }), ("uvs", texcoords.len())] {
+        if len != n {
+            return Err(PyValueError::new_err(format!(
+                "tangents(): {what} has {len} rows, positions {n}: one per vertex"
+            )));
+        }
+    }
+    let computed = normals.is_empty();
+    let mut mesh = Mesh { positions, normals, texcoords, tangents: Vec::new(), indices: arrays::triangles(indices)? };
+    mesh.validate().map_err(|e| PyValueError::new_err(format!("tangents(): {e}")))?;
+    if computed {
+        mesh.compute_normals();
+    }
+    let (out, report) =
+        interrupt::run(py, move |_| commands::tangents(&args, &mesh))?.map_err(|e| to_py("tangents", e))?;
+    // What the command writes into its glTF: unit vectors, tangents perpendicular to the normals.
+    let (normals, tangents, repairs) = bumpmap_io::mesh_file::gltf_normals_and_tangents(&out);
+    let dict = PyDict::new(py);
+    dict.set_item("positions", arrays::from_rows(py, out.positions.iter().map(|v| v.to_array()).collect())?)?;
+    dict.set_item("normals", arrays::from_rows(py, normals.iter().map(|v| v.to_array()).collect())?)?;
+    dict.set_item("uvs", arrays::from_rows(py, out.texcoords.iter().map(|v| v.to_array()).collect())?)?;
+    let gltf = |t: &glam::Vec4| [t.x, t.y, t.z, bumpmap_io::mesh_file::gltf_handedness(t.w)];
+    dict.set_item("tangents", arrays::from_rows(py, tangents.iter().map(gltf).collect())?)?;
+    let flat: Vec<u32> = out.indices.iter().flatten().copied().collect();
+    let indices = numpy::ndarray::Array2::from_shape_vec((out.indices.len(), 3), flat)
+        .map_err(|e| PyValueError::new_err(e.to_string()))?;
+    dict.set_item("indices", numpy::IntoPyArray::into_pyarray(indices, py))?;
+    let r = PyDict::new(py);
+    r.set_item("degenerate_uv", report.degenerate_uv)?;
+    r.set_item("degenerate_geometry", report.degenerate_geometry)?;
+    r.set_item("mirrored", report.mirrored)?;
+    r.set_item("vertices_split", report.vertices_split)?;
+    r.set_item("normals_computed", computed)?;
+    r.set_item("normals_repaired", repairs.normals)?;
+    r.set_item("tangents_repaired", repairs.tangents)?;
+    dict.set_item("report", r)?;
+    Ok(dict)
+}
+
+/// Renders a scene as `bumpmap render` does; returns an (H, W, 4) uint8 array, alpha 255.
+#[pyfunction]
+#[pyo3(signature = (options = None))]
+fn render<'py>(py: Python<'py>, options: Option<&Bound<'py, PyDict>>) -> PyResult<Bound<'py, PyAny>> {
+    let args = match parse(&options::RENDER, &[], options)? {
+        Command::Render(a) => a,
+        _ => unreachable!("render's options parse as render"),
+    };
+    let drawn = interrupt::run(py, move |_| commands::render(&args, true))?.map_err(|e| to_py("render", e))?;
+    let mut image = drawn.frame.image;
+    // The framebuffer's alpha holds s_self, not coverage; the command line's PNG leaves it out.
+    for t in &mut image.texels {
+        t[3] = 255;
+    }
+    let level = bumpmap_math::Image::new(image.width, image.height, image.texels);
+    let chain = commands::Chain::Rgba8(bumpmap_math::MipChain { levels: vec![level], encoding: Default::default() });
+    Ok(arrays::from_chain(py, chain)?.swap_remove(0))
+}
+
+/// Every technique measured against the reference, as `bumpmap compare` does; returns
+/// `results.json`'s content as a dict, and writes the report folder when `output` is given.
+#[pyfunction]
+#[pyo3(signature = (output = None, options = None))]
+fn compare<'py>(
+    py: Python<'py>,
+    output: Option<PathBuf>,
+    options: Option<&Bound<'py, PyDict>>,
+) -> PyResult<Bound<'py, PyAny>> {
+    let fixed: Vec<String> = output.iter().map(|o| format!("--output={}", o.to_string_lossy())).collect();
+    let args = match parse(&options::COMPARE, &fixed, options)? {
+        Command::Compare(a) => a,
+        _ => unreachable!("compare's options parse as compare"),
+    };
+    if let Some(out) = &output {
+        // Before minutes of work: an output that cannot be a folder.
+        commands::check_compare_output(out).map_err(|e| to_py("compare", e))?;
+    }
+    let (results, inputs) =
+        interrupt::run(py, move |_| commands::compare(&args, true))?.map_err(|e| to_py("compare", e))?;
+    if let Some(out) = &output {
+        let inputs: Vec<&std::path::Path> = inputs.iter().map(PathBuf::as_path).collect();
+        commands::write_compare(out, &results, &inputs).map_err(|e| to_py("compare", e))?;
+    }
+    let json = commands::compare_json(&results);
+    py.import("json")?.call_method1("loads", (json,))
+}
+
+/// Each option `function` takes: `(keyword, default as the command line writes it or None,
+/// help, choices, is a flag)`. The wrappers' docstrings and the tests read it.
+#[pyfunction(name = "options")]
+fn option_table(function: &str) -> PyResult<Vec<options::OptionRow>> {
+    options::FUNCTIONS
+        .iter()
+        .find(|f| f.name == function)
+        .map(|f| f.describe())
+        .ok_or_else(|| PyValueError::new_err(format!("no function {function} takes options")))
+}
+
+/// The techniques of the catalogue: `(name, description, what it needs)`.
+#[pyfunction]
+fn techniques() -> Vec<(String, String, Vec<String>)> {
+    bumpmap::TechniqueName::ALL
+        .iter()
+        .map(|t| {
+            (
+                t.name().to_string(),
+                t.description().to_string(),
+                t.requirements().iter().map(|r| r.brief().to_string()).collect(),
+            )
+        })
+        .collect()
+}
+
+/// The native module.
+#[pymodule]
+fn _bumpmap(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add("__version__", env!("CARGO_PKG_VERSION"))?;
+    m.add_function(wrap_pyfunction!(normal_map, m)?)?;
+    m.add_function(wrap_pyfunction!(mip_chain, m)?)?;
+    m.add_function(wrap_pyfunction!(read_height_field, m)?)?;
+    m.add_function(wrap_pyfunction!(write_texture, m)?)?;
+    m.add_function(wrap_pyfunction!(tangents, m)?)?;
+    m.add_function(wrap_pyfunction!(render, m)?)?;
+    m.add_function(wrap_pyfunction!(compare, m)?)?;
+    m.add_function(wrap_pyfunction!(option_table, m)?)?;
+    m.add_function(wrap_pyfunction!(techniques, m)?)?;
+    Ok(())
+}

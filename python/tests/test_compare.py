@@ -1,0 +1,62 @@
+"""compare against `bumpmap compare`: the same results, and the same report folder."""
+
+import json
+
+import pytest
+
+import bumpmap
+
+OPTIONS = {"size": 32, "spp": 4, "techniques": ["kilgard", "no-bump", "emboss"]}
+FLAGS = ["--size", "32", "--spp", "4", "--techniques", "kilgard,no-bump,emboss"]
+
+
+def without_times(value):
+    """The results but their wall-clock times, which differ from run to run."""
+    if isinstance(value, dict):
+        return {k: without_times(v) for k, v in value.items() if k not in ("millis", "total_millis")}
+    if isinstance(value, list):
+        return [without_times(v) for v in value]
+    return value
+
+
+@pytest.fixture(scope="module")
+def both(tmp_path_factory, cli):
+    folder = tmp_path_factory.mktemp("compare")
+    cli("compare", "-o", folder / "cli", *FLAGS)
+    ours = bumpmap.compare(folder / "ours", **OPTIONS)
+    return folder, ours
+
+
+def test_results_equal_the_cli(both):
+    folder, ours = both
+    theirs = json.loads((folder / "cli" / "results.json").read_text())
+    assert without_times(ours) == without_times(theirs)
+    assert set(ours["techniques"]) == {"kilgard", "no-bump", "emboss"}
+    assert all(15 < t["psnr"] < 60 for t in ours["techniques"].values())
+
+
+def test_the_report_folder_is_the_cli_s(both):
+    folder, _ = both
+    names = lambda d: sorted(p.name for p in d.iterdir())  # noqa: E731
+    assert names(folder / "ours") == names(folder / "cli")
+    for name in ["kilgard.png", "reference.png", "no-bump.flip.png"]:
+        assert (folder / "ours" / name).read_bytes() == (folder / "cli" / name).read_bytes()
+    assert "kilgard" in (folder / "ours" / "report.html").read_text()
+
+
+def test_without_output_nothing_is_written(tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    results = bumpmap.compare(size=16, spp=1, techniques=["single-pass", "nonsense"])
+    assert "single-pass" in results["techniques"]
+    assert "nonsense" in results["skipped"]
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_an_output_that_is_a_file_is_refused_before_the_work(tmp_path):
+    path = tmp_path / "report"
+    path.write_text("mine")
+    with pytest.raises(OSError, match="is a file"):
+        bumpmap.compare(path, size=16, spp=1)
+    assert path.read_text() == "mine"
+    with pytest.raises(ValueError, match=r"unknown scene 'mesh:x.obj'"):
+        bumpmap.compare(scene="mesh:x.obj")
