@@ -12,6 +12,10 @@ use crate::options::python_words;
 /// `e` as the exception `function` raises.
 pub fn to_py(function: &str, e: CliError) -> PyErr {
     let message = format!("{function}(): {}", python_words(&e.to_string()));
+    if e.exit_code() == 2 {
+        // A value out of range, however it was noticed (the command line's exit status 2).
+        return PyValueError::new_err(message);
+    }
     match &e {
         CliError::Io(IoError::Read { source, .. }) if source.kind() == std::io::ErrorKind::NotFound => {
             PyFileNotFoundError::new_err(message)

@@ -176,9 +176,19 @@ const RENDERS: &[DemoRender] = &[
 /// The demo's image size.
 const SIZE: usize = 512;
 
+/// Runs `bumpmap demo`: every file is written into a staging folder beside the output, which
+/// replaces the output folder whole once everything is written; a demo that fails (no GPU with
+/// `--gpu always`, a failed step, Ctrl-C) leaves nothing behind and an earlier demo as it was.
 pub fn run(args: &DemoArgs) -> Result<(), CliError> {
-    let out = &args.output;
-    std::fs::create_dir_all(out).map_err(|e| CliError::Path { path: out.clone(), reason: e.to_string() })?;
+    let staged = bumpmap_io::atomic::StagedFolder::new(&args.output)?;
+    write_demo(staged.path(), args)?;
+    let out = staged.commit()?;
+    eprintln!("wrote the demo into {} (see its README.md)", out.display());
+    Ok(())
+}
+
+/// Everything the demo writes, into `out`.
+fn write_demo(out: &Path, args: &DemoArgs) -> Result<(), CliError> {
     let presets = [
         ("bricks", HeightPreset::Bricks),
         ("pinwheel", HeightPreset::Pinwheel),
@@ -215,7 +225,7 @@ pub fn run(args: &DemoArgs) -> Result<(), CliError> {
     index += &own_assets(&mut cpu, out)?;
     bar.finish_and_clear();
     index += &gpu_renders(out, args.gpu)?;
-    crate::compare::run(&crate::args::CompareArgs {
+    let compare = crate::args::CompareArgs {
         scene: "torus".into(),
         height_field: "bricks".into(),
         bump_scale: 4.0,
@@ -224,12 +234,13 @@ pub fn run(args: &DemoArgs) -> Result<(), CliError> {
         backend: BackendArg::Cpu,
         techniques: Vec::new(),
         output: out.join("compare"),
-    })?;
+    };
+    let (results, _) = crate::compare::measure(&compare, true)?;
+    crate::compare::write(&compare.output, &results, &[])?;
     index += "
 `compare/report.html`: every technique on the torus measured against the reference renderer                (RMSE, PSNR, bias, FLIP, SSIM), with FLIP heat maps, the reference's convergence and the golf                ball at a distance (Kilgard §2.4.2); the numbers are in `compare/results.json`.
 ";
     crate::normalmap::write_text(&out.join("README.md"), &index)?;
-    eprintln!("wrote the demo into {} (see its README.md)", out.display());
     Ok(())
 }
 

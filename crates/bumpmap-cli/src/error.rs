@@ -48,10 +48,16 @@ pub enum CliError {
 }
 
 impl CliError {
-    /// The exit status: 2 for a malformed command line (as clap uses), 1 for everything else.
+    /// The exit status, the one rule every command follows: 2 for a malformed command line (as
+    /// clap uses), which includes a value out of its range however it was noticed (by the
+    /// argument parser, the command or a library); 1 for everything else (files, devices, inputs
+    /// that cannot be used).
     pub fn exit_code(&self) -> i32 {
+        use bumpmap_math::normalmap::NormalMapError;
         match self {
             CliError::Usage(_) => 2,
+            CliError::NormalMap { source: NormalMapError::BadScale(_), .. } => 2,
+            CliError::Io(bumpmap_io::IoError::NotAPreset { out_of_range: true, .. }) => 2,
             _ => 1,
         }
     }

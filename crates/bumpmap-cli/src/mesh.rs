@@ -86,10 +86,26 @@ pub fn tangent_options(args: &TangentsArgs) -> Result<TangentOptions, CliError> 
 /// The bytes of a PNG normal map for a glTF material, after decoding it once to be sure it is
 /// one (glTF carries PNG or JPEG; a normal map must not be JPEG's lossy colour).
 fn read_normal_texture(path: &Path) -> Result<Vec<u8>, CliError> {
-    let bytes = std::fs::read(path).map_err(|source| bumpmap_io::IoError::Read { path: path.to_path_buf(), source })?;
-    if !bytes.starts_with(b"\x89PNG\r\n\x1a\n") {
+    use std::io::Read as _;
+    // The glTF buffer it travels in holds at most 1 GiB; the signature is read before the rest.
+    const MAX_BYTES: u64 = 1 << 30;
+    let read_err = |source| bumpmap_io::IoError::Read { path: path.to_path_buf(), source };
+    let meta = std::fs::metadata(path).map_err(read_err)?;
+    if !meta.is_file() {
+        return Err(mesh_err(path, "not a regular file (a folder, a FIFO or a device)"));
+    }
+    if meta.len() > MAX_BYTES {
+        return Err(mesh_err(
+            path,
+            format!("{} bytes; a normal map packed into a glTF may have {MAX_BYTES}", meta.len()),
+        ));
+    }
+    let mut file = std::fs::File::open(path).map_err(read_err)?;
+    let mut bytes = vec![0u8; 8];
+    if file.read_exact(&mut bytes).is_err() || bytes != b"\x89PNG\r\n\x1a\n" {
         return Err(mesh_err(path, "--normal-map must be a PNG file (glTF carries PNG or JPEG, and JPEG is lossy)"));
     }
+    file.take(MAX_BYTES).read_to_end(&mut bytes).map_err(read_err)?;
     bumpmap_io::read_rgba8(&bytes, path, &bumpmap_io::DecodeLimits::default())?;
     Ok(bytes)
 }

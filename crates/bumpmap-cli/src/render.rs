@@ -149,6 +149,10 @@ pub fn lib_err(e: bumpmap::Error) -> CliError {
              `apt-get install mesa-vulkan-drivers libvulkan1` gives Mesa's lavapipe) or use --backend cpu"
         )),
         bumpmap::Error::Reference(e) => CliError::Render(reference_err(e)),
+        // A size out of range is a value out of range, like any other.
+        bumpmap::Error::Cpu(e @ bumpmap_cpu::CpuError::FramebufferSize { .. }) => {
+            CliError::Usage(format!("{e} (--size, or --width and --height)"))
+        }
         other => CliError::Render(other.to_string()),
     }
 }

@@ -23,6 +23,129 @@ pub struct FileSet {
     created: Vec<PathBuf>,
 }
 
+/// Every live set's temporary files and the folders it created, for [`abandon_all`]: what a
+/// signal handler removes before the process ends. A set's commit holds the lock while it
+/// renames, so a signal finds each set either wholly in place or wholly staged.
+static LIVE: std::sync::Mutex<Vec<PathBuf>> = std::sync::Mutex::new(Vec::new());
+
+fn live() -> std::sync::MutexGuard<'static, Vec<PathBuf>> {
+    LIVE.lock().unwrap_or_else(std::sync::PoisonError::into_inner)
+}
+
+fn forget(paths: &[&Path]) {
+    live().retain(|p| !paths.contains(&p.as_path()));
+}
+
+/// Folders a command fills before putting them in place whole ([`StagedFolder`]): removed with
+/// everything in them by [`abandon_all`].
+static SCRATCH: std::sync::Mutex<Vec<PathBuf>> = std::sync::Mutex::new(Vec::new());
+
+fn scratch() -> std::sync::MutexGuard<'static, Vec<PathBuf>> {
+    SCRATCH.lock().unwrap_or_else(std::sync::PoisonError::into_inner)
+}
+
+/// A folder of outputs written all or nothing: filled under a hidden name beside its
+/// destination, then put in place by [`StagedFolder::commit`] (an existing destination folder
+/// is replaced whole); dropped uncommitted (an error, or [`abandon_all`] on a signal), it is
+/// removed with everything in it, and so are the folders made to hold it.
+pub struct StagedFolder {
+    staging: PathBuf,
+    destination: PathBuf,
+    /// Ancestors of the destination this made, outermost first.
+    created: Vec<PathBuf>,
+}
+
+impl StagedFolder {
+    /// A fresh staging folder for `destination`, which must not be a file.
+    pub fn new(destination: &Path) -> Result<Self, IoError> {
+        let err = |source| IoError::Write { path: destination.to_path_buf(), source };
+        if destination.exists() && !destination.is_dir() {
+            return Err(err(std::io::Error::other("is a file; a folder of outputs cannot replace it")));
+        }
+        let parent = destination.parent().filter(|d| !d.as_os_str().is_empty()).unwrap_or(Path::new("."));
+        let name = destination.file_name().ok_or_else(|| err(std::io::Error::other("not a folder name")))?;
+        let mut created: Vec<PathBuf> = parent
+            .ancestors()
+            .take_while(|d| !d.as_os_str().is_empty() && !d.exists())
+            .map(Path::to_path_buf)
+            .collect();
+        created.reverse();
+        let staging = parent.join(format!(".{}.{}.staging", name.to_string_lossy(), std::process::id()));
+        let _ = std::fs::remove_dir_all(&staging);
+        scratch().push(staging.clone());
+        live().extend(created.iter().cloned());
+        std::fs::create_dir_all(&staging).map_err(err)?;
+        Ok(Self { staging, destination: destination.to_path_buf(), created })
+    }
+
+    /// Where to write the outputs.
+    pub fn path(&self) -> &Path {
+        &self.staging
+    }
+
+    /// Puts the folder in place: the destination's old folder, if any, is replaced whole.
+    pub fn commit(mut self) -> Result<PathBuf, IoError> {
+        // Locks in the order abandon_all takes them: the sets', then the folders'.
+        let mut live = live();
+        let err = |source| IoError::Write { path: self.destination.clone(), source };
+        let old = self.staging.with_extension("old");
+        let had_old = self.destination.exists();
+        if had_old {
+            std::fs::rename(&self.destination, &old).map_err(err)?;
+        }
+        if let Err(e) = std::fs::rename(&self.staging, &self.destination) {
+            if had_old {
+                let _ = std::fs::rename(&old, &self.destination);
+            }
+            return Err(err(e));
+        }
+        if had_old {
+            let _ = std::fs::remove_dir_all(&old);
+        }
+        scratch().retain(|p| *p != self.staging);
+        let created = std::mem::take(&mut self.created);
+        live.retain(|p| !created.contains(p));
+        Ok(self.destination.clone())
+    }
+}
+
+impl Drop for StagedFolder {
+    fn drop(&mut self) {
+        let mut live = live();
+        let mut scratch = scratch();
+        if let Some(i) = scratch.iter().position(|p| *p == self.staging) {
+            let _ = std::fs::remove_dir_all(&self.staging);
+            scratch.remove(i);
+        }
+        for dir in self.created.iter().rev() {
+            let _ = std::fs::remove_dir(dir);
+        }
+        live.retain(|p| !self.created.contains(p));
+    }
+}
+
+/// Removes every uncommitted set's temporary files, and the folders those sets created when
+/// they are empty, and every [`StagedFolder`] not yet in place: for a signal handler (Ctrl-C,
+/// SIGTERM) to call before exiting, so an interrupted command leaves nothing behind. Waits for
+/// a commit in progress to finish. Sets staged afterwards are not affected; the caller is
+/// expected to exit.
+pub fn abandon_all() {
+    let mut paths = live();
+    for dir in scratch().drain(..) {
+        let _ = std::fs::remove_dir_all(dir);
+    }
+    // Files first, then folders innermost first (they were registered outermost first).
+    for p in paths.iter().filter(|p| !p.is_dir()) {
+        let _ = std::fs::remove_file(p);
+    }
+    for p in paths.iter().rev().filter(|p| p.is_dir()) {
+        let _ = std::fs::remove_dir(p);
+    }
+    paths.clear();
+    // Held until the process exits: no commit may start after the abandonment.
+    std::mem::forget(paths);
+}
+
 impl FileSet {
     /// A set whose files must not replace any of `inputs`.
     pub fn new(inputs: &[&Path]) -> Self {
@@ -53,6 +176,7 @@ impl FileSet {
         let name = path.file_name().ok_or_else(|| err(std::io::Error::other("not a file name")))?;
         self.create_folders(dir).map_err(err)?;
         let tmp = dir.join(format!(".{}.{}.{}.tmp", name.to_string_lossy(), std::process::id(), self.staged.len()));
+        live().push(tmp.clone());
         let result = (|| {
             let mut w = BufWriter::new(File::create(&tmp)?);
             fill(&mut w)?;
@@ -66,6 +190,7 @@ impl FileSet {
             }
             Err(e) => {
                 let _ = std::fs::remove_file(&tmp);
+                forget(&[&tmp]);
                 Err(err(e))
             }
         }
@@ -80,26 +205,42 @@ impl FileSet {
         }
         std::fs::create_dir_all(dir)?;
         missing.reverse();
+        live().extend(missing.iter().cloned());
         self.created.extend(missing);
         Ok(())
     }
 
     /// Renames every file into place; returns their paths in the order they were written.
     pub fn commit(mut self) -> Result<Vec<PathBuf>, IoError> {
-        let staged = std::mem::take(&mut self.staged);
-        // The folders now hold the set's files (or, if a rename fails, what was renamed).
-        self.created.clear();
+        // No signal handler removes anything while the set is renamed into place.
+        let mut live = live();
+        let mine: Vec<PathBuf> =
+            self.staged.iter().map(|(_, t)| t.clone()).chain(self.created.iter().cloned()).collect();
+        live.retain(|p| !mine.contains(p));
         // A destination that became a folder since it was staged would fail its rename halfway
-        // through the set: refuse the set before the first rename instead.
-        if let Some((path, _)) = staged.iter().find(|(p, _)| p.is_dir()) {
-            for (_, t) in &staged {
-                let _ = std::fs::remove_file(t);
-            }
+        // through the set: refuse the set before the first rename instead (dropping it removes
+        // its temporary files and the folders it made).
+        if let Some((path, _)) = self.staged.iter().find(|(p, _)| p.is_dir()) {
             return Err(IoError::Write {
                 path: path.clone(),
                 source: std::io::Error::other("is a folder; a file cannot replace it"),
             });
         }
+        // Two runs writing the same set at once: their renames must not interleave (a chain
+        // mixing levels of both). Each destination folder is locked while this set renames into
+        // it, in one order, so one run's set lands whole after the other's.
+        let mut folders: Vec<PathBuf> = self
+            .staged
+            .iter()
+            .map(|(p, _)| p.parent().filter(|d| !d.as_os_str().is_empty()).unwrap_or(Path::new(".")).to_path_buf())
+            .collect();
+        folders.sort();
+        folders.dedup();
+        let _locks: Vec<File> =
+            folders.iter().filter_map(|d| File::open(d).ok()).filter(|f| f.lock().is_ok()).collect();
+        let staged = std::mem::take(&mut self.staged);
+        // The folders now hold the set's files (or, if a rename fails, what was renamed).
+        self.created.clear();
         let mut done = Vec::with_capacity(staged.len());
         for (i, (path, tmp)) in staged.iter().enumerate() {
             if let Err(source) = std::fs::rename(tmp, path) {
@@ -122,6 +263,11 @@ impl Drop for FileSet {
         // Innermost first; a folder something else wrote into meanwhile is not empty and stays.
         for dir in self.created.iter().rev() {
             let _ = std::fs::remove_dir(dir);
+        }
+        let mine: Vec<&Path> =
+            self.staged.iter().map(|(_, t)| t.as_path()).chain(self.created.iter().map(PathBuf::as_path)).collect();
+        if !mine.is_empty() {
+            forget(&mine);
         }
     }
 }

@@ -88,6 +88,18 @@ pub enum IoError {
         /// Why.
         reason: String,
     },
+    /// Neither a file nor a preset: no file has this name, and as a preset it has a value out
+    /// of range (`bricks@16385`, `noise:x`) or a name that is none (`teapot`: perhaps a missing
+    /// file).
+    #[error("{}: cannot read: no such file, and not a preset: {hint}", shown(path))]
+    NotAPreset {
+        /// What was given.
+        path: PathBuf,
+        /// Why it is not a preset: the value out of range, or the names there are.
+        hint: String,
+        /// A preset's name with a size or seed out of range: a malformed argument.
+        out_of_range: bool,
+    },
     /// A texture file that cannot be used.
     #[error("{}: {reason}", shown(path))]
     Texture {

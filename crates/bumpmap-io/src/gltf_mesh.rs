@@ -36,17 +36,18 @@ fn instances(path: &Path, doc: &gltf::Document) -> Result<Vec<(usize, glam::Mat4
         }
     };
     let mut out = Vec::new();
-    // Depth-first, each node visited at most once per path from a root; a node reached twice
-    // on one path (a cycle, which glTF forbids) is an error rather than endless work.
-    let mut stack: Vec<(usize, glam::Mat4, usize)> =
-        roots.iter().rev().map(|&i| (i, glam::Mat4::IDENTITY, 0)).collect();
-    let mut visits = 0usize;
-    while let Some((i, parent, depth)) = stack.pop() {
-        visits += 1;
-        if depth > nodes.len() || visits > MAX_ELEMENTS {
+    // Depth-first, each node visited once: glTF's nodes form disjoint strict trees (glTF 2.0
+    // §3.5.3), so a node reached twice (a cycle, a child listed twice, a child of two parents)
+    // is an error, not work that doubles with every level of a shared graph.
+    let mut stack: Vec<(usize, glam::Mat4)> = roots.iter().rev().map(|&i| (i, glam::Mat4::IDENTITY)).collect();
+    let mut visited = vec![false; nodes.len()];
+    while let Some((i, parent)) = stack.pop() {
+        if std::mem::replace(&mut visited[i], true) {
             return Err(mesh_err(
                 path,
-                format!("the node hierarchy has a cycle (through node {i}); glTF nodes form trees"),
+                format!(
+                    "node {i} is reached twice (a cycle, a child listed twice or a child of two parents); glTF nodes form trees"
+                ),
             ));
         }
         let node = &nodes[i];
@@ -55,7 +56,7 @@ fn instances(path: &Path, doc: &gltf::Document) -> Result<Vec<(usize, glam::Mat4
             out.push((mesh.index(), world));
         }
         for c in node.children().collect::<Vec<_>>().into_iter().rev() {
-            stack.push((c.index(), world, depth + 1));
+            stack.push((c.index(), world));
         }
     }
     Ok(out)
@@ -74,6 +75,20 @@ pub(crate) fn from_gltf(
             return Err(mesh_err(
                 path,
                 MeshError::TooLarge { what: "accessor count", count: accessor.count() as u64, max: MAX_ELEMENTS },
+            ));
+        }
+        // A stride shorter than the element would make elements overlap (glTF 2.0 §3.6.2.4
+        // wants it at least the element's size); the reader is not prepared for that.
+        if let Some(stride) = accessor.view().and_then(|v| v.stride())
+            && stride < accessor.size()
+        {
+            return Err(mesh_err(
+                path,
+                format!(
+                    "accessor {} reads {}-byte elements through a bufferView whose byteStride is {stride}; it must be at least the element's size",
+                    accessor.index(),
+                    accessor.size()
+                ),
             ));
         }
     }

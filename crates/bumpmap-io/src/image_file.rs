@@ -80,13 +80,7 @@ impl HeightSource {
         match self {
             HeightSource::Preset { preset, size } => Ok(preset.render(*size, *size)),
             HeightSource::File(path) if !path.exists() => match preset_hint(&path.to_string_lossy()) {
-                Some(hint) => Err(IoError::Read {
-                    path: path.clone(),
-                    source: std::io::Error::new(
-                        std::io::ErrorKind::NotFound,
-                        format!("no such file, and not a preset: {hint}"),
-                    ),
-                }),
+                Some((hint, out_of_range)) => Err(IoError::NotAPreset { path: path.clone(), hint, out_of_range }),
                 None => load_height_field(path, channel),
             },
             HeightSource::File(path) => load_height_field(path, channel),
@@ -104,21 +98,21 @@ impl HeightSource {
 
 /// Why `spec`, which names no file, is not a preset either — when it looks like an attempt at
 /// one (a preset name with a bad `@SIZE`, `noise:` with a bad seed, or a bare word).
-fn preset_hint(spec: &str) -> Option<String> {
+fn preset_hint(spec: &str) -> Option<(String, bool)> {
     let sizes = format!("1..={MAX_DIMENSION}");
     if let Some((name, size)) = spec.rsplit_once('@') {
         let known = HeightPreset::parse(name).is_some();
         return Some(match size.parse::<usize>() {
-            Ok(n) if known => format!("size {n} is outside {sizes}"),
-            Err(_) if known => format!("'{size}' is not a size ({sizes})"),
-            _ => format!("unknown preset '{name}' (use {}, optionally @SIZE)", HeightPreset::NAMES),
+            Ok(n) if known => (format!("size {n} is outside {sizes}"), true),
+            Err(_) if known => (format!("'{size}' is not a size ({sizes})"), true),
+            _ => (format!("unknown preset '{name}' (use {}, optionally @SIZE)", HeightPreset::NAMES), false),
         });
     }
     if let Some(seed) = spec.strip_prefix("noise:") {
-        return Some(format!("noise:SEED takes a whole number, got '{seed}'"));
+        return Some((format!("noise:SEED takes a whole number, got '{seed}'"), true));
     }
     let bare = !spec.contains(['.', '/', '\\']);
-    bare.then(|| format!("unknown preset '{spec}' (use {}, optionally @SIZE)", HeightPreset::NAMES))
+    bare.then(|| (format!("unknown preset '{spec}' (use {}, optionally @SIZE)", HeightPreset::NAMES), false))
 }
 
 /// How much one image decode may take: the largest width or height, and the largest single
@@ -143,12 +137,21 @@ impl Default for DecodeLimits {
 trait Source {
     type Reader: std::io::BufRead + std::io::Seek;
     fn open(&self) -> std::io::Result<Self::Reader>;
+    /// Its length in bytes.
+    fn len(&self) -> std::io::Result<u64>;
 }
 
 impl Source for &Path {
     type Reader = std::io::BufReader<std::fs::File>;
     fn open(&self) -> std::io::Result<Self::Reader> {
+        // A FIFO or a device would block the open, or never end; a folder is no image.
+        if !std::fs::metadata(self)?.is_file() {
+            return Err(std::io::Error::other("not a regular file (a folder, a FIFO or a device)"));
+        }
         std::fs::File::open(self).map(std::io::BufReader::new)
+    }
+    fn len(&self) -> std::io::Result<u64> {
+        std::fs::metadata(self).map(|m| m.len())
     }
 }
 
@@ -157,6 +160,45 @@ impl<'a> Source for &'a [u8] {
     fn open(&self) -> std::io::Result<Self::Reader> {
         Ok(std::io::Cursor::new(self))
     }
+    fn len(&self) -> std::io::Result<u64> {
+        Ok(<[u8]>::len(self) as u64)
+    }
+}
+
+/// OpenEXR's magic number.
+const EXR_MAGIC: [u8; 4] = [0x76, 0x2f, 0x31, 0x01];
+
+/// Checks an OpenEXR file's every layer against the limits and against the file's length
+/// before the decoder allocates for it. The decoder sizes its buffers by each layer's data
+/// window, which may be far larger than the display window it reports as the image's size (a
+/// 341-byte file declared a 700,000,000×1 data window in a 1×1 display window); and every
+/// chunk of pixels costs at least 16 bytes in the file (its offset-table entry and its own
+/// header), so a file shorter than that declares pixels it does not have.
+fn check_exr(mut reader: impl std::io::BufRead, file_len: u64, name: &Path, max: u32) -> Result<(), IoError> {
+    let mut magic = [0u8; 4];
+    if reader.read_exact(&mut magic).is_err() || magic != EXR_MAGIC {
+        return Ok(());
+    }
+    let bad = |reason: String| IoError::Decode { path: name.to_path_buf(), reason };
+    let meta = exr::meta::MetaData::read_from_buffered(std::io::Read::chain(&magic[..], reader), false)
+        .map_err(|e| bad(format!("OpenEXR header: {e}")))?;
+    let mut chunks = 0u64;
+    for (i, header) in meta.headers.iter().enumerate() {
+        let (w, h) = (header.layer_size.0 as u64, header.layer_size.1 as u64);
+        if w > max as u64 || h > max as u64 {
+            return Err(bad(format!(
+                "layer {i}'s data window is {w}x{h} texels; the limit is {max}x{max} (whatever the display window says)"
+            )));
+        }
+        chunks = chunks.saturating_add(header.chunk_count as u64);
+    }
+    if chunks.saturating_mul(16) > file_len {
+        return Err(bad(format!(
+            "declares {chunks} chunks of pixels, at least {} bytes, but the file has {file_len}: it is cut short or its header lies",
+            chunks.saturating_mul(16)
+        )));
+    }
+    Ok(())
 }
 
 /// Decodes the image from `source`; `name` is the file the errors name.
@@ -177,6 +219,7 @@ fn decode(source: impl Source, name: &Path, limits: &DecodeLimits) -> Result<Dyn
         return Err(IoError::TooLarge { path: name.to_path_buf(), width: width as u64, height: height as u64, max });
     }
     check_png_palette(source.open().map_err(read_err)?, name)?;
+    check_exr(source.open().map_err(read_err)?, source.len().map_err(read_err)?, name, max)?;
     let mut reader = open()?;
     let mut image_limits = Limits::default();
     image_limits.max_image_width = Some(max);

@@ -11,14 +11,31 @@ use glam::{Vec2, Vec3};
 use crate::error::IoError;
 use crate::mesh_file::{LoadedMesh, ObjTexcoords, mesh_err};
 
-/// What `tobj` would pass over in silence: faces of one or two vertices, and faces without
-/// texture coordinates in a file whose other faces have them. Both are errors, named by line.
+/// What `tobj` would pass over in silence: faces of one or two vertices, faces without texture
+/// coordinates in a file whose other faces have them, and indices that name no element (tobj
+/// wraps them around, so −6148914691236517207 became an index of some other vertex). Each is an
+/// error, named by line.
 fn check_obj_faces(path: &Path, text: &str) -> Result<(), IoError> {
     let mut with_uv: Option<usize> = None;
     let mut without_uv: Option<usize> = None;
+    // [v, vt, vn]: how many the file has, and how many are defined so far (a negative index
+    // counts back from the last one defined before the face).
+    let kinds = ["v", "vt", "vn"];
+    let mut total = [0i64; 3];
+    for line in text.lines() {
+        if let Some(k) = line.split_whitespace().next().and_then(|w| kinds.iter().position(|&x| x == w)) {
+            total[k] += 1;
+        }
+    }
+    let mut so_far = [0i64; 3];
     for (i, line) in text.lines().enumerate() {
         let mut words = line.split_whitespace();
-        if words.next() != Some("f") {
+        let first = words.next();
+        if let Some(k) = first.and_then(|w| kinds.iter().position(|&x| x == w)) {
+            so_far[k] += 1;
+            continue;
+        }
+        if first != Some("f") {
             continue;
         }
         let refs: Vec<&str> = words.collect();
@@ -28,7 +45,7 @@ fn check_obj_faces(path: &Path, text: &str) -> Result<(), IoError> {
                 format!("line {}: a face needs at least 3 vertices, this one has {}", i + 1, refs.len()),
             ));
         }
-        for r in refs {
+        for r in &refs {
             let has_uv = r.split('/').nth(1).is_some_and(|t| !t.is_empty());
             *(if has_uv { &mut with_uv } else { &mut without_uv }) = Some(i + 1);
         }
@@ -39,6 +56,28 @@ fn check_obj_faces(path: &Path, text: &str) -> Result<(), IoError> {
                     "only some faces have texture coordinates (line {a} has, line {b} has not); give every face a vt, or none"
                 ),
             ));
+        }
+        for r in &refs {
+            for (k, index) in r.split('/').enumerate().take(3).filter(|(_, t)| !t.is_empty()) {
+                let what = ["position", "texture coordinate", "normal"][k];
+                let n: i64 = index.parse().map_err(|_| {
+                    mesh_err(path, format!("line {}: {what} index '{index}' is not a whole number", i + 1))
+                })?;
+                let ok = (1..=total[k]).contains(&n) || (-so_far[k]..=-1).contains(&n);
+                if !ok {
+                    return Err(mesh_err(
+                        path,
+                        format!(
+                            "line {}: {what} index {n} names none of the file's {} {}s (1..={}, or -1..=-{} counting back)",
+                            i + 1,
+                            total[k],
+                            kinds[k],
+                            total[k],
+                            so_far[k]
+                        ),
+                    ));
+                }
+            }
         }
     }
     Ok(())

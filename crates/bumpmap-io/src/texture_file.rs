@@ -143,6 +143,17 @@ fn encode_level(path: &Path, level: Level, format: TextureFormat) -> Result<Vec<
         TextureFormat::Bc5 => image_dds::ImageFormat::BC5RgUnorm,
         TextureFormat::Bc7 => image_dds::ImageFormat::BC7RgbaUnorm,
     };
+    // A level whose sides are not multiples of the 4×4 block gets its partial edge blocks filled
+    // by repeating the last column and row (as texconv and NVTT do): the encoder would pad
+    // them with zeros, a direction far from the texels beside it that pulls the block's
+    // endpoints away from them.
+    let padded;
+    let level = if level.width % 4 != 0 || level.height % 4 != 0 {
+        padded = clamp_to_blocks(level);
+        &padded
+    } else {
+        level
+    };
     let row_bytes = 4 * level.width;
     let bands: Vec<Vec<u8>> = level
         .as_bytes()
@@ -163,6 +174,18 @@ fn encode_level(path: &Path, level: Level, format: TextureFormat) -> Result<Vec<
         })
         .collect::<Result<_, _>>()?;
     Ok(bands.concat())
+}
+
+/// `level` grown to whole 4×4 blocks, the new texels copies of the nearest edge texel.
+fn clamp_to_blocks(level: &Rgba8Image) -> Rgba8Image {
+    let (w, h) = (level.width.next_multiple_of(4), level.height.next_multiple_of(4));
+    let texels = (0..h)
+        .flat_map(|y| {
+            let row = y.min(level.height - 1) * level.width;
+            (0..w).map(move |x| level.texels[row + x.min(level.width - 1)])
+        })
+        .collect();
+    Rgba8Image::new(w, h, texels)
 }
 
 /// Every level of every face in `format`, `[face][level]`, the levels in parallel: what the

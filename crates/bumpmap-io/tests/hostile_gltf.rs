@@ -236,3 +236,39 @@ fn a_gltf_in_memory_reads_no_files() {
     let e = bumpmap_io::read_mesh(json.as_bytes(), &name, bumpmap_io::MeshFormat::Gltf).unwrap_err().to_string();
     assert!(e.contains("has no folder"), "{e}");
 }
+
+#[test]
+fn a_byte_stride_shorter_than_its_element_is_refused() {
+    // Positions (12-byte VEC3) read through a view whose byteStride is 4: the gltf crate's
+    // reader panicked on it; the accessor checks refuse it first.
+    let dir = scratch("stride");
+    std::fs::write(dir.join("t.bin"), triangle_bin()).unwrap();
+    for (view, accessor) in [(0, 0), (1, 1)] {
+        let json = gltf_json("t.bin", 5123, 5126, false).replacen(
+            &format!(r#"{{"buffer":0,"byteOffset":{},"byteLength""#, [0, 36][view]),
+            &format!(r#"{{"buffer":0,"byteStride":4,"byteOffset":{},"byteLength""#, [0, 36][view]),
+            1,
+        );
+        let path = dir.join(format!("stride{view}.gltf"));
+        std::fs::write(&path, json).unwrap();
+        refused(&path, &format!("accessor {accessor} reads"));
+    }
+}
+
+#[test]
+fn a_node_graph_that_is_not_a_tree_is_refused_at_once() {
+    // 40 nodes, each listing the next one twice: 2⁴⁰ paths, a 2 KB file that took 5 GiB.
+    let dir = scratch("dag");
+    std::fs::write(dir.join("t.bin"), triangle_bin()).unwrap();
+    let nodes: Vec<String> = (0..40)
+        .map(|i| if i == 39 { r#"{"mesh":0}"#.to_string() } else { format!(r#"{{"children":[{0},{0}]}}"#, i + 1) })
+        .collect();
+    let json = gltf_json("t.bin", 5123, 5126, false).replacen(
+        r#""meshes""#,
+        &format!(r#""scene":0,"scenes":[{{"nodes":[0]}}],"nodes":[{}],"meshes""#, nodes.join(",")),
+        1,
+    );
+    let path = dir.join("dag.gltf");
+    std::fs::write(&path, json).unwrap();
+    refused(&path, "is reached twice");
+}

@@ -41,3 +41,25 @@ fn a_whole_obj_loads_and_its_material_library_is_not_opened() {
     let m = read_mesh(obj.as_bytes(), Path::new("ok.obj"), MeshFormat::Obj).unwrap().mesh;
     assert!(m.texcoords.is_empty());
 }
+
+#[test]
+fn indices_that_name_no_element_are_errors_checked_in_64_bits() {
+    let n = "vn 0 0 1\n";
+    // tobj wrapped this one around to an index in range: vertex 0 got a normal not in the file.
+    refused(
+        &format!("{QUAD}{n}f 1/1/-6148914691236517207 2/2/1 3/3/1\n"),
+        "line 10: normal index -6148914691236517207 names none",
+    );
+    refused(&format!("{QUAD}f 1/1 2/2 5/3\n"), "line 9: position index 5 names none of the file's 4 vs (1..=4");
+    refused(&format!("{QUAD}f 1/1 2/0 3/3\n"), "texture coordinate index 0 names none");
+    refused(&format!("{QUAD}f -5/1 2/2 3/3\n"), "position index -5 names none");
+    refused(
+        &format!("{QUAD}f 1/1 2/2 99999999999999999999/3\n"),
+        "position index '99999999999999999999' is not a whole number",
+    );
+    // Counting back reaches only what was defined before the face; forward indices, any of the file's.
+    refused(&format!("v 0 0 0\nf -1 -2 -3\n{QUAD}"), "position index -2 names none");
+    let obj = format!("{QUAD}f -4/-4 -3/-3 -2/-2\nv 5 5 5\nf 1/1 2/2 5/3\n");
+    let m = read_mesh(obj.as_bytes(), Path::new("ok.obj"), MeshFormat::Obj).unwrap().mesh;
+    assert_eq!(m.indices.len(), 2);
+}

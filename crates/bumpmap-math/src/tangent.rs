@@ -143,9 +143,13 @@ fn ours(mesh: &Mesh, options: &TangentOptions) -> (Mesh, TangentReport) {
     }
     let mut fill = start.clone();
     let mut corners = vec![0u32; 3 * mesh.indices.len()];
+    // And back: corner → its place in its vertex's row (a search of the row instead made a
+    // vertex shared by k triangles cost k², minutes for one OBJ face of 10⁶ vertices).
+    let mut slot_of = vec![0u32; 3 * mesh.indices.len()];
     for (ti, t) in mesh.indices.iter().enumerate() {
         for (k, &v) in t.iter().enumerate() {
             corners[fill[v as usize] as usize] = (3 * ti + k) as u32;
+            slot_of[3 * ti + k] = fill[v as usize];
             fill[v as usize] += 1;
         }
     }
@@ -243,12 +247,8 @@ fn ours(mesh: &Mesh, options: &TangentOptions) -> (Mesh, TangentReport) {
     }
     for (ti, t) in out.indices.iter_mut().enumerate() {
         for (k, idx) in t.iter_mut().enumerate() {
-            let corner = (3 * ti + k) as u32;
             let v = *idx as usize;
-            // Find this corner's row position to read its cluster id.
-            let row = &corners[start[v] as usize..start[v + 1] as usize];
-            let pos = row.iter().position(|&c| c == corner).expect("corner listed at its vertex");
-            let cluster = cluster_of[start[v] as usize + pos] as u32;
+            let cluster = cluster_of[slot_of[3 * ti + k] as usize] as u32;
             if cluster > 0 {
                 *idx = first_new[v] + cluster - 1;
             }
@@ -301,10 +301,46 @@ impl bevy_mikktspace::Geometry for MikkGeometry<'_> {
     }
 }
 
+/// The most triangle corners at one position MikkTSpace is given. Its time grows with the
+/// square of that count (a fan of 10,000 triangles around one vertex takes 3 s on two cores,
+/// 20,000 take 12 s, 60,000 over a minute) and its sort recurses about once per such corner (a
+/// fan of 60,000 overflowed an 8 MiB stack): past this count the mesh is refused, and below it
+/// MikkTSpace runs on a stack sized for it. Real meshes have tens, a sphere's pole hundreds.
+pub const MAX_CORNERS_AT_ONE_POSITION: usize = 10_000;
+
+/// Stack MikkTSpace needs per corner at one position (measured: ~300 bytes a level; doubled).
+const MIKK_STACK_PER_CORNER: usize = 768;
+
 fn run_mikktspace(mesh: &Mesh, faces: &[u32]) -> Result<Vec<Vec4>, MeshError> {
-    let mut geometry = MikkGeometry { mesh, faces, corner_tangents: vec![Vec4::ZERO; 3 * faces.len()] };
-    bevy_mikktspace::generate_tangents(&mut geometry).map_err(|e| MeshError::MikkTSpace(e.to_string()))?;
-    Ok(geometry.corner_tangents)
+    // The most corners that share one position in these faces.
+    let mut at: std::collections::HashMap<[u32; 3], usize> = std::collections::HashMap::new();
+    let mut most = 0;
+    for &f in faces {
+        for &v in &mesh.indices[f as usize] {
+            let n = at.entry(mesh.positions[v as usize].to_array().map(f32::to_bits)).or_default();
+            *n += 1;
+            most = most.max(*n);
+        }
+    }
+    if most > MAX_CORNERS_AT_ONE_POSITION {
+        return Err(MeshError::MikkTSpace(format!(
+            "{most} triangle corners share one position; MikkTSpace's time grows with the square of that and it takes at most {MAX_CORNERS_AT_ONE_POSITION} (the other mode, ours, has no such limit)"
+        )));
+    }
+    let stack = (16 << 20) + most * MIKK_STACK_PER_CORNER;
+    std::thread::scope(|scope| {
+        std::thread::Builder::new()
+            .name("mikktspace".into())
+            .stack_size(stack)
+            .spawn_scoped(scope, || {
+                let mut geometry = MikkGeometry { mesh, faces, corner_tangents: vec![Vec4::ZERO; 3 * faces.len()] };
+                bevy_mikktspace::generate_tangents(&mut geometry).map_err(|e| MeshError::MikkTSpace(e.to_string()))?;
+                Ok(geometry.corner_tangents)
+            })
+            .map_err(|e| MeshError::MikkTSpace(format!("cannot start a thread with a {stack}-byte stack: {e}")))?
+            .join()
+            .unwrap_or_else(|panic| std::panic::resume_unwind(panic))
+    })
 }
 
 /// Rings of neighbouring faces each piece carries beyond its own.
@@ -575,5 +611,39 @@ mod tests {
         let mut m = mirrored_pair();
         m.texcoords.clear();
         assert_eq!(generate_tangents(&m, &TangentOptions::default()).unwrap_err(), MeshError::NoTexcoords);
+    }
+
+    /// A disc of `n` triangles around one vertex, texture mapped flat.
+    fn fan(n: usize) -> Mesh {
+        let mut m = Mesh::default();
+        m.positions.push(Vec3::ZERO);
+        m.texcoords.push(glam::Vec2::splat(0.5));
+        for i in 0..=n {
+            let a = std::f32::consts::TAU * i as f32 / n as f32;
+            m.positions.push(Vec3::new(a.cos(), a.sin(), 0.0));
+            m.texcoords.push(glam::Vec2::new(0.5 + 0.5 * a.cos(), 0.5 - 0.5 * a.sin()));
+        }
+        m.indices = (0..n as u32).map(|i| [0, i + 1, i + 2]).collect();
+        m.normals = vec![Vec3::Z; m.positions.len()];
+        m
+    }
+
+    #[test]
+    fn fans_around_one_vertex_are_framed_or_refused_not_overflowed() {
+        // Ours: every corner at the centre in one cluster, found without searching its row.
+        let (out, report) = generate_tangents(&fan(50_000), &TangentOptions::default()).unwrap();
+        assert_eq!(report.vertices_split, 0);
+        // Each sliver spans 6e-5 of the texture: single precision frames it to about 1e-3.
+        let worst = out.tangents.iter().map(|t| t.truncate().distance(Vec3::X)).fold(0.0f32, f32::max);
+        assert!(worst < 1e-2, "the flat map's +s is +x: off by {worst}");
+        // MikkTSpace: a fan it can take runs on a stack sized for it (8,000 corners at the centre
+        // recurse deeper than a rayon worker's 2 MiB allow)…
+        let mikk = TangentOptions { mode: TangentMode::MikkTSpace, ..Default::default() };
+        let (out, _) = generate_tangents(&fan(8_000), &mikk).unwrap();
+        let worst = out.tangents.iter().map(|t| t.truncate().distance(Vec3::X)).fold(0.0f32, f32::max);
+        assert!(worst < 1e-2, "MikkTSpace off by {worst}");
+        // …and past its limit the mesh is refused, saying why.
+        let e = generate_tangents(&fan(MAX_CORNERS_AT_ONE_POSITION + 1), &mikk).unwrap_err().to_string();
+        assert!(e.contains("10001 triangle corners share one position"), "{e}");
     }
 }

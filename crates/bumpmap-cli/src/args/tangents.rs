@@ -18,7 +18,8 @@ TEXCOORD_0, TANGENT (VEC4, glTF's w = ±1 handedness) and indices, repairs norma
 glTF would call invalid, and reports degenerate, mirrored, split and repaired geometry.\n\n\
 Limits: files and glTF buffers up to 1 GiB each, buffers read only from data: URIs, the GLB \
 chunk or files inside the glTF's folder (see --allow-outside-paths), at most byteLength bytes; \
-50,000,000 vertices, triangles or accessor elements.")]
+50,000,000 vertices, triangles or accessor elements; --mode mikktspace takes at most 10,000 \
+triangle corners at one position (its time grows with their square).")]
 pub struct TangentsArgs {
     /// Mesh file: .obj, .gltf or .glb
     pub input: PathBuf,

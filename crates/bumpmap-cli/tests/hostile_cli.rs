@@ -1,0 +1,185 @@
+//! Hostile input, round two (issue #23): each class of fault found by probing the command line
+//! as an adversarial user would, with the inputs made here (small files, not stored ones).
+
+mod common;
+
+use common::{bumpmap, listing, scratch, stderr};
+
+/// `ARGS… -o OUT` in a fresh folder: the exit status, and that nothing was written.
+fn status(name: &str, args: &[&str]) -> (Option<i32>, String) {
+    let dir = scratch(name);
+    let out = dir.join("out.png");
+    let mut all: Vec<&str> = args.to_vec();
+    all.extend(["-o", out.to_str().unwrap()]);
+    let o = bumpmap(&all);
+    let err = stderr(&o);
+    assert!(!err.contains("panicked"), "{args:?}: {err}");
+    assert!(listing(&dir).is_empty(), "{args:?}: nothing may be written: {:?}", listing(&dir));
+    (o.status.code(), err)
+}
+
+#[test]
+fn a_value_out_of_range_exits_2_however_it_is_noticed() {
+    // By the normal-map library, by the preset parser, by the renderer's framebuffer check, by
+    // the command: one rule.
+    for (i, (args, expect)) in [
+        (&["normalmap", "bricks@64", "--scale", "1e30"][..], "scale must be a number in [-1e6, 1e6]"),
+        (&["normalmap", "bricks@64", "--scale", "NaN"], "got NaN"),
+        (&["normalmap", "bricks@64", "--scale", "inf"], "got inf"),
+        (&["normalmap", "bricks@16385"], "size 16385 is outside 1..=16384"),
+        (&["render", "--size", "16384"], "framebuffer 16384x16384 refused"),
+        (&["render", "--size", "32", "--bump-scale", "1e30"], "--bump-scale"),
+        (&["render", "--size", "32", "--scene", "blah"], "unknown scene 'blah'"),
+        (&["render", "--size", "32", "--height-field", "bricks@16385"], "size 16385 is outside"),
+    ]
+    .into_iter()
+    .enumerate()
+    {
+        let (code, err) = status(&format!("exit_two_{i}"), args);
+        assert_eq!(code, Some(2), "{args:?}: {err}");
+        assert!(err.contains(expect), "{args:?}: message must say '{expect}': {err}");
+    }
+}
+
+/// Every file under `dir`, recursively, as paths relative to it.
+fn everything(dir: &std::path::Path) -> Vec<String> {
+    let mut out = Vec::new();
+    for e in std::fs::read_dir(dir).unwrap() {
+        let p = e.unwrap().path();
+        let name = p.strip_prefix(dir).unwrap().display().to_string();
+        if p.is_dir() {
+            out.extend(everything(&p).into_iter().map(|n| format!("{name}/{n}")));
+            out.push(format!("{name}/"));
+        } else {
+            out.push(name);
+        }
+    }
+    out
+}
+
+#[test]
+fn a_signal_during_a_write_leaves_nothing_behind() {
+    // A 4096² chain of PNGs into folders the set creates: level 0 alone takes a while to
+    // encode, so the signal arrives while temporary files exist.
+    for signal in ["INT", "TERM"] {
+        let dir = scratch(&format!("signal_{signal}"));
+        let out = dir.join("new/deeper/n.png");
+        let mut child = std::process::Command::new(env!("CARGO_BIN_EXE_bumpmap"))
+            .args(["normalmap", "noise:5@4096", "--mips", "-o", out.to_str().unwrap()])
+            .stderr(std::process::Stdio::piped())
+            .spawn()
+            .unwrap();
+        let start = std::time::Instant::now();
+        while !everything(&dir).iter().any(|n| n.ends_with(".tmp")) {
+            assert!(start.elapsed().as_secs() < 60, "no temporary file appeared");
+            if child.try_wait().unwrap().is_some() {
+                panic!("the command finished before it could be interrupted");
+            }
+            std::thread::sleep(std::time::Duration::from_millis(5));
+        }
+        let kill = std::process::Command::new("kill").args([&format!("-{signal}"), &child.id().to_string()]).status();
+        assert!(kill.unwrap().success());
+        let o = child.wait_with_output().unwrap();
+        assert_eq!(o.status.code(), Some(130), "SIG{signal}: {}", stderr(&o));
+        assert!(stderr(&o).contains("interrupted"), "{}", stderr(&o));
+        assert!(everything(&dir).is_empty(), "SIG{signal}: left {:?}", everything(&dir));
+    }
+}
+
+/// `bumpmap ARGS…` under an address-space limit of `limit_mib` and a 20 s timeout.
+fn limited(limit_mib: u64, args: &[&str]) -> std::process::Output {
+    let script = format!("ulimit -v {}; exec timeout 20 \"$0\" \"$@\"", limit_mib * 1024);
+    std::process::Command::new("sh")
+        .arg("-c")
+        .arg(script)
+        .arg(env!("CARGO_BIN_EXE_bumpmap"))
+        .args(args)
+        .output()
+        .unwrap()
+}
+
+#[test]
+fn inputs_that_are_not_regular_files_or_are_huge_are_refused_without_reading_them() {
+    let dir = scratch("not_regular");
+    // A FIFO with no writer: opening it would block for ever.
+    let fifo = dir.join("heights.png");
+    assert!(std::process::Command::new("mkfifo").arg(&fifo).status().unwrap().success());
+    let o = limited(4096, &["normalmap", fifo.to_str().unwrap(), "-o", dir.join("n.png").to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    assert!(stderr(&o).contains("not a regular file"), "{}", stderr(&o));
+    // A 3 GB normal map (sparse; PNG's signature, then nothing) for `tangents --normal-map`:
+    // refused by its size, not read into memory (which a 1 GiB address space would not hold).
+    let big = dir.join("big.png");
+    {
+        use std::io::Write;
+        let mut f = std::fs::File::create(&big).unwrap();
+        f.write_all(b"\x89PNG\r\n\x1a\n").unwrap();
+        f.set_len(3 << 30).unwrap();
+    }
+    let obj = dir.join("t.obj");
+    std::fs::write(&obj, "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 0 1\nf 1/1 2/2 3/3\n").unwrap();
+    let glb = dir.join("t.glb");
+    let args = ["tangents", obj.to_str().unwrap(), "--normal-map", big.to_str().unwrap(), "-o", glb.to_str().unwrap()];
+    let o = limited(1024, &args);
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    assert!(stderr(&o).contains("3221225472 bytes"), "{}", stderr(&o));
+    assert!(!glb.exists());
+    std::fs::remove_file(&big).unwrap();
+}
+
+#[test]
+fn a_demo_that_fails_leaves_nothing_and_keeps_the_last_one() {
+    // No adapter (a backend this platform has not) with --gpu always: the demo fails at its GPU
+    // step, after dozens of files were written into its staging folder.
+    let dir = scratch("demo_fails");
+    let out = dir.join("new/demo");
+    let demo = |out: &std::path::Path| {
+        std::process::Command::new(env!("CARGO_BIN_EXE_bumpmap"))
+            .args(["demo", "-o", out.to_str().unwrap(), "--gpu", "always"])
+            .env("WGPU_BACKEND", "metal")
+            .output()
+            .unwrap()
+    };
+    let o = demo(&out);
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    assert!(everything(&dir).is_empty(), "left {:?}", everything(&dir));
+    // An earlier demo's folder stays as it was.
+    let earlier = dir.join("demo");
+    std::fs::create_dir_all(&earlier).unwrap();
+    std::fs::write(earlier.join("README.md"), "the last demo").unwrap();
+    let o = demo(&earlier);
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    assert_eq!(everything(&dir), ["demo/README.md", "demo/"]);
+    assert_eq!(std::fs::read_to_string(earlier.join("README.md")).unwrap(), "the last demo");
+}
+
+#[test]
+fn two_runs_writing_one_chain_at_once_leave_one_run_s_chain() {
+    // Different scales, the same output: whichever lands last, the chain is all of one run.
+    let dir = scratch("concurrent");
+    let one = |scale: &str, out: &std::path::Path| {
+        std::process::Command::new(env!("CARGO_BIN_EXE_bumpmap"))
+            .args(["normalmap", "bricks@256", "--mips", "--scale", scale, "-o", out.to_str().unwrap()])
+            .spawn()
+            .unwrap()
+    };
+    let levels = |stem: &str| -> Vec<Vec<u8>> {
+        (0..9)
+            .map(|k| {
+                let name = if k == 0 { format!("{stem}.png") } else { format!("{stem}.mip{k}.png") };
+                std::fs::read(dir.join(name)).unwrap()
+            })
+            .collect()
+    };
+    assert!(one("2", &dir.join("a.png")).wait().unwrap().success());
+    assert!(one("8", &dir.join("b.png")).wait().unwrap().success());
+    let (a, b) = (levels("a"), levels("b"));
+    for round in 0..6 {
+        let mut first = one("2", &dir.join("n.png"));
+        let mut second = one("8", &dir.join("n.png"));
+        assert!(first.wait().unwrap().success() && second.wait().unwrap().success());
+        let n = levels("n");
+        assert!(n == a || n == b, "round {round}: the chain mixes both runs' levels");
+    }
+    assert!(!everything(&dir).iter().any(|n| n.ends_with(".tmp")));
+}

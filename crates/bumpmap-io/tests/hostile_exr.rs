@@ -1,0 +1,50 @@
+//! OpenEXR files whose headers declare more than they hold: refused from the header, before the
+//! decoder allocates for them (issue #23: 8.4 GB asked for by a 341-byte file).
+
+use std::path::Path;
+
+use bumpmap_io::{Channel, DecodeLimits, read_height_field};
+
+/// A small valid EXR (`w`×`h`, float RGB) written by `image`.
+fn small_exr(w: u32, h: u32) -> Vec<u8> {
+    let img = image::Rgb32FImage::from_fn(w, h, |x, y| image::Rgb([x as f32 / 8.0, y as f32 / 8.0, 0.5]));
+    let mut bytes = std::io::Cursor::new(Vec::new());
+    image::DynamicImage::ImageRgb32F(img).write_to(&mut bytes, image::ImageFormat::OpenExr).unwrap();
+    bytes.into_inner()
+}
+
+/// `bytes` with the box2i attribute `name` set to (0, 0)–(w − 1, h − 1), and the optional
+/// `chunkCount` attribute (which `image` checks against the window) renamed out of the way, as
+/// a hand-made file would not have it.
+fn with_window(mut bytes: Vec<u8>, name: &str, w: i32, h: i32) -> Vec<u8> {
+    let count = b"chunkCount\0int\0";
+    if let Some(at) = bytes.windows(count.len()).position(|k| k == count) {
+        bytes[at + 9] = b'X';
+    }
+    let key = [name.as_bytes(), b"\0box2i\0", &16u32.to_le_bytes()].concat();
+    let at = bytes.windows(key.len()).position(|k| k == key).expect("the attribute") + key.len();
+    for (i, v) in [0, 0, w - 1, h - 1].into_iter().enumerate() {
+        bytes[at + 4 * i..at + 4 * i + 4].copy_from_slice(&v.to_le_bytes());
+    }
+    bytes
+}
+
+fn refused(bytes: &[u8], expect: &str) {
+    let name = Path::new("hostile.exr");
+    let e = read_height_field(bytes, name, Channel::Red, &DecodeLimits::default()).unwrap_err().to_string();
+    assert!(e.contains("hostile.exr") && e.contains(expect), "must say '{expect}': {e}");
+}
+
+#[test]
+fn a_header_that_declares_more_than_the_file_holds_is_refused_before_decoding() {
+    let ok = small_exr(8, 8);
+    let field = read_height_field(&ok, Path::new("ok.exr"), Channel::Red, &DecodeLimits::default()).unwrap();
+    assert_eq!((field.width(), field.height()), (8, 8));
+    // A 700,000,000×1 data window behind a 1×1 display window (one row: the chunk count holds).
+    let wide = with_window(with_window(small_exr(8, 1), "dataWindow", 700_000_000, 1), "displayWindow", 1, 1);
+    refused(&wide, "layer 0's data window is 700000000x1 texels; the limit is 16384x16384");
+    // A legal 16384² window in a file of a few hundred bytes: thousands of chunks it has not.
+    let tall = with_window(with_window(ok, "dataWindow", 16384, 16384), "displayWindow", 16384, 16384);
+    assert!(tall.len() < 2000);
+    refused(&tall, "chunks of pixels, at least");
+}
