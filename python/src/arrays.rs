@@ -74,7 +74,15 @@ pub fn height_field(value: &Bound<'_, PyAny>) -> PyResult<HeightField> {
             if is::<f64>(&array) { ": use heights.astype(numpy.float32)" } else { "" }
         )));
     };
-    field.ok_or_else(|| PyValueError::new_err(format!("heights of {w}x{h}: both sides must be at least 1")))
+    let field =
+        field.ok_or_else(|| PyValueError::new_err(format!("heights of {w}x{h}: both sides must be at least 1")))?;
+    if let Some((x, y, v)) = field.first_unusable() {
+        return Err(PyValueError::new_err(format!(
+            "heights[{y}, {x}] is {v}: heights must be finite and within ±{:e}",
+            bumpmap_math::height::MAX_FLOAT_HEIGHT
+        )));
+    }
+    Ok(field)
 }
 
 /// A height field's samples as stored: (H, W) uint8, uint16 or float32.

@@ -155,3 +155,11 @@ def test_missing_files_are_os_errors(tmp_path):
     bad.write_bytes(b"hello")
     with pytest.raises(OSError, match="not-an-image.png"):
         bumpmap.read_height_field(bad)
+
+
+def test_heights_that_cannot_be_differentiated_are_refused():
+    for bad in [1e20, -1e20, float("nan"), float("inf")]:
+        h = np.full((4, 5), 0.5, dtype=np.float32)
+        h[2, 3] = bad
+        with pytest.raises(ValueError, match=r"heights\[2, 3\] is .*finite and within ±1e9"):
+            bumpmap.normal_map(h)

@@ -273,7 +273,76 @@ fn check_png_palette(mut f: impl std::io::Read + std::io::Seek, name: &Path) -> 
 /// are often in scene units — `--scale` then says how many texels one unit is. A NaN or
 /// infinite height is an error naming the texel.
 pub fn load_height_field(path: &Path, channel: Channel) -> Result<HeightField, IoError> {
+    if let Some(field) = float_tiff(path, path, channel, &DecodeLimits::default())? {
+        return Ok(field);
+    }
     height_field(decode(path, path, &DecodeLimits::default())?, path, channel)
+}
+
+/// A one-channel floating-point TIFF (what GIS and terrain tools write heights as), which
+/// `image` does not decode, read with the `tiff` crate; `None` for any other file. Its one
+/// channel answers to luminance and red; the sizes are checked before any pixel is read.
+fn float_tiff(
+    source: impl Source,
+    name: &Path,
+    channel: Channel,
+    limits: &DecodeLimits,
+) -> Result<Option<HeightField>, IoError> {
+    use tiff::decoder::{Decoder, DecodingResult, Limits};
+    let read_err = |source| IoError::Read { path: name.to_path_buf(), source };
+    let mut reader = source.open().map_err(read_err)?;
+    let mut magic = [0u8; 4];
+    if std::io::Read::read_exact(&mut reader, &mut magic).is_err() || !(magic == *b"II*\0" || magic == *b"MM\0*") {
+        return Ok(None);
+    }
+    let bad = |e: tiff::TiffError| IoError::Decode { path: name.to_path_buf(), reason: format!("TIFF: {e}") };
+    let mut tiff_limits = Limits::default();
+    tiff_limits.decoding_buffer_size = usize::try_from(limits.max_alloc).unwrap_or(usize::MAX);
+    let Ok(decoder) = Decoder::new(source.open().map_err(read_err)?) else { return Ok(None) };
+    let mut decoder = decoder.with_limits(tiff_limits);
+    if !matches!(decoder.colortype(), Ok(tiff::ColorType::Gray(32 | 64))) {
+        return Ok(None);
+    }
+    let (w, h) = decoder.dimensions().map_err(bad)?;
+    let max = limits.max_dimension.min(MAX_DIMENSION);
+    if w == 0 || h == 0 {
+        return Err(IoError::Empty { path: name.to_path_buf(), width: w, height: h });
+    }
+    if w > max || h > max {
+        return Err(IoError::TooLarge { path: name.to_path_buf(), width: w as u64, height: h as u64, max });
+    }
+    if !matches!(channel, Channel::Luminance | Channel::Red) {
+        return Err(IoError::NoSuchChannel {
+            path: name.to_path_buf(),
+            channel: channel.name(),
+            has: "one float channel".into(),
+        });
+    }
+    let heights: Vec<f32> = match decoder.read_image().map_err(bad)? {
+        DecodingResult::F32(v) => v,
+        DecodingResult::F64(v) => v.into_iter().map(|x| x as f32).collect(),
+        // 32-bit integer grey: not heights in float; `image` says what it makes of it.
+        _ => return Ok(None),
+    };
+    let field = HeightField::new(w as usize, h as usize, heights).ok_or_else(|| IoError::Decode {
+        path: name.to_path_buf(),
+        reason: "TIFF: pixel count does not match its size".into(),
+    })?;
+    usable(field, name).map(Some)
+}
+
+/// `field`, or an error naming its first sample that cannot be differentiated.
+fn usable(field: HeightField, path: &Path) -> Result<HeightField, IoError> {
+    if let Some((x, y, v)) = field.first_unusable() {
+        return Err(IoError::Decode {
+            path: path.to_path_buf(),
+            reason: format!(
+                "the height at texel ({x}, {y}) is {v}; heights must be finite and within ±{:e}",
+                bumpmap_math::height::MAX_FLOAT_HEIGHT
+            ),
+        });
+    }
+    Ok(field)
 }
 
 /// [`load_height_field`] for an image file's bytes already in memory; `name` is the file
@@ -284,6 +353,9 @@ pub fn read_height_field(
     channel: Channel,
     limits: &DecodeLimits,
 ) -> Result<HeightField, IoError> {
+    if let Some(field) = float_tiff(bytes, name, channel, limits)? {
+        return Ok(field);
+    }
     height_field(decode(bytes, name, limits)?, name, channel)
 }
 
@@ -311,13 +383,7 @@ fn height_field(img: DynamicImage, path: &Path, channel: Channel) -> Result<Heig
     let field = if float {
         let rgba = img.to_rgba32f();
         let heights: Vec<f32> = rgba.pixels().map(|p| pick(p.0)).collect();
-        if let Some(i) = heights.iter().position(|h| !h.is_finite()) {
-            return Err(IoError::Decode {
-                path: path.to_path_buf(),
-                reason: format!("the height at texel ({}, {}) is {}; heights must be finite", i % w, i / w, heights[i]),
-            });
-        }
-        HeightField::new(w, h, heights)
+        Some(usable(HeightField::new(w, h, heights).expect("decoded image has consistent dimensions"), path)?)
     } else if sixteen {
         if !has_color && channel == Channel::Luminance {
             HeightField::from_u16(w, h, img.to_luma16().as_raw())

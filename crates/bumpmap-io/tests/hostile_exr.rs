@@ -48,3 +48,42 @@ fn a_header_that_declares_more_than_the_file_holds_is_refused_before_decoding() 
     assert!(tall.len() < 2000);
     refused(&tall, "chunks of pixels, at least");
 }
+
+#[test]
+fn heights_too_large_to_differentiate_are_refused_not_flattened() {
+    // ±1e20 made every slope's square overflow: each normal came out zero, (128, 128, 128).
+    for v in [1e20f32, -1e20, f32::NAN] {
+        let img = image::Rgb32FImage::from_fn(4, 4, |x, _| image::Rgb([if x == 2 { v } else { 0.5 }, 0.0, 0.0]));
+        let mut bytes = std::io::Cursor::new(Vec::new());
+        image::DynamicImage::ImageRgb32F(img).write_to(&mut bytes, image::ImageFormat::OpenExr).unwrap();
+        refused(bytes.get_ref(), "the height at texel (2, 0) is");
+        refused(bytes.get_ref(), "heights must be finite and within ±1e9");
+    }
+}
+
+#[test]
+fn one_channel_float_tiff_heights_are_read() {
+    // What GIS and terrain tools write; `image` refuses it ("color type Unknown(32)").
+    let heights: Vec<f32> = (0..6 * 5).map(|i| (i as f32 * 0.37).sin() * 3.0).collect();
+    let mut bytes = std::io::Cursor::new(Vec::new());
+    tiff::encoder::TiffEncoder::new(&mut bytes)
+        .unwrap()
+        .write_image::<tiff::encoder::colortype::Gray32Float>(6, 5, &heights)
+        .unwrap();
+    let name = Path::new("terrain.tif");
+    let field = read_height_field(bytes.get_ref(), name, Channel::Luminance, &DecodeLimits::default()).unwrap();
+    assert_eq!((field.width(), field.height()), (6, 5));
+    assert_eq!(field.to_f32(), heights, "the floats as stored, scene units kept");
+    let e = read_height_field(bytes.get_ref(), name, Channel::Green, &DecodeLimits::default()).unwrap_err();
+    assert!(e.to_string().contains("has no green channel (it has one float channel)"), "{e}");
+    // And a huge value in one is refused like an OpenEXR's.
+    let mut bad = heights.clone();
+    bad[7] = 1e20;
+    let mut bytes = std::io::Cursor::new(Vec::new());
+    tiff::encoder::TiffEncoder::new(&mut bytes)
+        .unwrap()
+        .write_image::<tiff::encoder::colortype::Gray32Float>(6, 5, &bad)
+        .unwrap();
+    let e = read_height_field(bytes.get_ref(), name, Channel::Red, &DecodeLimits::default()).unwrap_err();
+    assert!(e.to_string().contains("the height at texel (1, 1) is 100000000000000000000"), "{e}");
+}

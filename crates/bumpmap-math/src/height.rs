@@ -36,6 +36,12 @@ pub enum HeightSamples<'a> {
     U16(&'a [u16]),
 }
 
+/// The largest |height| a float field may hold. Slopes are differences of heights times the
+/// scale (at most 1e6); beyond about 1e12 their squares overflow single precision and every
+/// normal comes out zero (heights of ±1e20 from an OpenEXR file did), so 1e9 keeps three
+/// orders of magnitude to spare. Heights are in [0, 1] nominally, or in scene units.
+pub const MAX_FLOAT_HEIGHT: f32 = 1e9;
+
 const ONE_OVER_255: f32 = 1.0 / 255.0;
 const ONE_OVER_65535: f32 = 1.0 / 65535.0;
 
@@ -75,6 +81,16 @@ impl HeightField {
     /// 16-bit heights, read as `h = v/65535`.
     pub fn from_u16(width: usize, height: usize, values: &[u16]) -> Option<Self> {
         Self::checked(width, height, values.len(), Samples::U16(values.to_vec()))
+    }
+
+    /// The first float sample that is not finite or beyond ±[`MAX_FLOAT_HEIGHT`], as
+    /// `(x, y, value)`, row by row; `None` when every sample can be differentiated (8- and
+    /// 16-bit fields always can).
+    pub fn first_unusable(&self) -> Option<(usize, usize, f32)> {
+        let Samples::F32(d) = &self.samples else { return None };
+        d.iter()
+            .position(|h| !h.is_finite() || h.abs() > MAX_FLOAT_HEIGHT)
+            .map(|i| (i % self.width, i / self.width, d[i]))
     }
 
     /// The samples as stored, row-major, row 0 first.
