@@ -52,6 +52,8 @@ fn bench_reference(scene: &str, size: usize, spp: usize, runs: u32, json: bool) 
     use bumpmap_core::scenes::{self, SceneKind, SceneParams};
     let kind = SceneKind::parse(scene)
         .ok_or_else(|| CliError::Usage(format!("unknown scene '{scene}': use {}", SceneKind::built_in_names())))?;
+    // The framebuffer limit `render` and `compare` apply, before any work.
+    bumpmap::Renderer::check_size(size, size).map_err(crate::render::lib_err)?;
     let scene_value = scenes::build(&kind, &SceneParams::default()).map_err(crate::render::core_err)?;
     let options = bumpmap_reference::ReferenceOptions { samples_per_pixel: spp, ..Default::default() };
     let mut failure = None;

@@ -5,12 +5,15 @@ mod common;
 
 use common::{bumpmap, listing, scratch, stderr};
 
-/// `ARGS… -o OUT` in a fresh folder: the exit status, and that nothing was written.
+/// `ARGS… -o OUT` (`bench` writes no file) in a fresh folder: the exit status, and that
+/// nothing was written.
 fn status(name: &str, args: &[&str]) -> (Option<i32>, String) {
     let dir = scratch(name);
     let out = dir.join("out.png");
     let mut all: Vec<&str> = args.to_vec();
-    all.extend(["-o", out.to_str().unwrap()]);
+    if args[0] != "bench" {
+        all.extend(["-o", out.to_str().unwrap()]);
+    }
     let o = bumpmap(&all);
     let err = stderr(&o);
     assert!(!err.contains("panicked"), "{args:?}: {err}");
@@ -31,6 +34,7 @@ fn a_value_out_of_range_exits_2_however_it_is_noticed() {
         (&["render", "--size", "32", "--bump-scale", "1e30"], "--bump-scale"),
         (&["render", "--size", "32", "--scene", "blah"], "unknown scene 'blah'"),
         (&["render", "--size", "32", "--height-field", "bricks@16385"], "size 16385 is outside"),
+        (&["bench", "reference", "--size", "16384", "--runs", "1"], "framebuffer 16384x16384 refused"),
     ]
     .into_iter()
     .enumerate()

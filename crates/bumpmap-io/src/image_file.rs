@@ -276,7 +276,58 @@ pub fn load_height_field(path: &Path, channel: Channel) -> Result<HeightField, I
     if let Some(field) = float_tiff(path, path, channel, &DecodeLimits::default())? {
         return Ok(field);
     }
+    if let Some(field) = one_channel_exr(path, path, channel, &DecodeLimits::default())? {
+        return Ok(field);
+    }
     height_field(decode(path, path, &DecodeLimits::default())?, path, channel)
+}
+
+/// A one-channel OpenEXR file (a `Y`, `Z` or lone `R` channel: how height data is often
+/// stored), which `image` does not decode, read with the `exr` crate after its header passed
+/// [`check_exr`]; `None` for any other file. Its one channel answers to luminance and red.
+fn one_channel_exr(
+    source: impl Source,
+    name: &Path,
+    channel: Channel,
+    limits: &DecodeLimits,
+) -> Result<Option<HeightField>, IoError> {
+    use exr::prelude::*;
+    let read_err = |source| IoError::Read { path: name.to_path_buf(), source };
+    let mut reader = source.open().map_err(read_err)?;
+    let mut magic = [0u8; 4];
+    if std::io::Read::read_exact(&mut reader, &mut magic).is_err() || magic != EXR_MAGIC {
+        return Ok(None);
+    }
+    let bad = |e: exr::error::Error| IoError::Decode { path: name.to_path_buf(), reason: format!("OpenEXR: {e}") };
+    let meta = exr::meta::MetaData::read_from_buffered(source.open().map_err(read_err)?, false).map_err(bad)?;
+    if meta.headers.first().is_none_or(|h| h.channels.list.len() != 1) {
+        return Ok(None);
+    }
+    let max = limits.max_dimension.min(MAX_DIMENSION);
+    check_exr(source.open().map_err(read_err)?, source.len().map_err(read_err)?, name, max)?;
+    if !matches!(channel, Channel::Luminance | Channel::Red) {
+        return Err(IoError::NoSuchChannel {
+            path: name.to_path_buf(),
+            channel: channel.name(),
+            has: "one channel".into(),
+        });
+    }
+    let image = read()
+        .no_deep_data()
+        .largest_resolution_level()
+        .all_channels()
+        .first_valid_layer()
+        .all_attributes()
+        .from_buffered(source.open().map_err(read_err)?)
+        .map_err(bad)?;
+    let layer = image.layer_data;
+    let (w, h) = (layer.size.width(), layer.size.height());
+    let heights: Vec<f32> = layer.channel_data.list[0].sample_data.values_as_f32().collect();
+    let field = HeightField::new(w, h, heights).ok_or_else(|| IoError::Decode {
+        path: name.to_path_buf(),
+        reason: "OpenEXR: pixel count does not match its size".into(),
+    })?;
+    usable(field, name).map(Some)
 }
 
 /// A one-channel floating-point TIFF (what GIS and terrain tools write heights as), which
@@ -354,6 +405,9 @@ pub fn read_height_field(
     limits: &DecodeLimits,
 ) -> Result<HeightField, IoError> {
     if let Some(field) = float_tiff(bytes, name, channel, limits)? {
+        return Ok(field);
+    }
+    if let Some(field) = one_channel_exr(bytes, name, channel, limits)? {
         return Ok(field);
     }
     height_field(decode(bytes, name, limits)?, name, channel)

@@ -87,3 +87,20 @@ fn one_channel_float_tiff_heights_are_read() {
     let e = read_height_field(bytes.get_ref(), name, Channel::Red, &DecodeLimits::default()).unwrap_err();
     assert!(e.to_string().contains("the height at texel (1, 1) is 100000000000000000000"), "{e}");
 }
+
+#[test]
+fn one_channel_openexr_heights_are_read() {
+    // A lone `Y` channel, as height data is often stored; `image` refuses it.
+    use exr::prelude::*;
+    let heights: Vec<f32> = (0..6 * 5).map(|i| (i as f32 * 0.29).cos() * 2.0).collect();
+    let channels = AnyChannels::sort(vec![AnyChannel::new("Y", FlatSamples::F32(heights.clone()))].into());
+    let image = Image::from_channels((6, 5), channels);
+    let mut bytes = std::io::Cursor::new(Vec::new());
+    image.write().to_buffered(&mut bytes).unwrap();
+    let name = Path::new("terrain.exr");
+    let field = read_height_field(bytes.get_ref(), name, Channel::Luminance, &DecodeLimits::default()).unwrap();
+    assert_eq!((field.width(), field.height()), (6, 5));
+    assert_eq!(field.to_f32(), heights, "the floats as stored");
+    let e = read_height_field(bytes.get_ref(), name, Channel::Alpha, &DecodeLimits::default()).unwrap_err();
+    assert!(e.to_string().contains("has no alpha channel (it has one channel)"), "{e}");
+}
