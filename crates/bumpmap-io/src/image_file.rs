@@ -282,6 +282,13 @@ pub fn load_height_field(path: &Path, channel: Channel) -> Result<HeightField, I
     height_field(decode(path, path, &DecodeLimits::default())?, path, channel)
 }
 
+/// Whether the file begins with one of `magics`.
+fn starts_with(source: &impl Source, name: &Path, magics: &[[u8; 4]]) -> Result<bool, IoError> {
+    let mut reader = source.open().map_err(|source| IoError::Read { path: name.to_path_buf(), source })?;
+    let mut magic = [0u8; 4];
+    Ok(std::io::Read::read_exact(&mut reader, &mut magic).is_ok() && magics.contains(&magic))
+}
+
 /// A one-channel OpenEXR file (a `Y`, `Z` or lone `R` channel: how height data is often
 /// stored), which `image` does not decode, read with the `exr` crate after its header passed
 /// [`check_exr`]; `None` for any other file. Its one channel answers to luminance and red.
@@ -293,9 +300,7 @@ fn one_channel_exr(
 ) -> Result<Option<HeightField>, IoError> {
     use exr::prelude::*;
     let read_err = |source| IoError::Read { path: name.to_path_buf(), source };
-    let mut reader = source.open().map_err(read_err)?;
-    let mut magic = [0u8; 4];
-    if std::io::Read::read_exact(&mut reader, &mut magic).is_err() || magic != EXR_MAGIC {
+    if !starts_with(&source, name, &[EXR_MAGIC])? {
         return Ok(None);
     }
     let bad = |e: exr::error::Error| IoError::Decode { path: name.to_path_buf(), reason: format!("OpenEXR: {e}") };
@@ -341,9 +346,7 @@ fn float_tiff(
 ) -> Result<Option<HeightField>, IoError> {
     use tiff::decoder::{Decoder, DecodingResult, Limits};
     let read_err = |source| IoError::Read { path: name.to_path_buf(), source };
-    let mut reader = source.open().map_err(read_err)?;
-    let mut magic = [0u8; 4];
-    if std::io::Read::read_exact(&mut reader, &mut magic).is_err() || !(magic == *b"II*\0" || magic == *b"MM\0*") {
+    if !starts_with(&source, name, &[*b"II*\0", *b"MM\0*"])? {
         return Ok(None);
     }
     let bad = |e: tiff::TiffError| IoError::Decode { path: name.to_path_buf(), reason: format!("TIFF: {e}") };
