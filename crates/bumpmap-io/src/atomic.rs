@@ -74,8 +74,10 @@ impl StagedFolder {
         let _ = std::fs::remove_dir_all(&staging);
         scratch().push(staging.clone());
         live().extend(created.iter().cloned());
-        std::fs::create_dir_all(&staging).map_err(err)?;
-        Ok(Self { staging, destination: destination.to_path_buf(), created })
+        // Made before the folders are: a failure drops it, which takes away what was made.
+        let staged = Self { staging, destination: destination.to_path_buf(), created };
+        std::fs::create_dir_all(&staged.staging).map_err(err)?;
+        Ok(staged)
     }
 
     /// Where to write the outputs.
