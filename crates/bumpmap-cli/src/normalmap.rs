@@ -3,7 +3,7 @@
 use std::path::{Path, PathBuf};
 
 use bumpmap_io::atomic::{FileSet, ensure_not_input};
-use bumpmap_io::image_file::{PngLayout, save_png_into};
+use bumpmap_io::image_file::{PngLayout, save_png_into, save_png16_into};
 use bumpmap_io::texture_file::{Level, TextureFormat, TextureLayout, write_dds_into, write_ktx2_into};
 use bumpmap_io::{Channel, HeightSource};
 use bumpmap_math::normalmap::normal_map_level0_texels;
@@ -33,6 +33,8 @@ pub fn run(args: &NormalmapArgs) -> Result<(), CliError> {
     }
     let field = source.load(channel)?;
     let levels = make_chain(&field, &options, args.mips, args.mip_mode.into(), format, &args.input)?;
+    // The heights are not needed to write the chain: a 16384² field is 1 GiB of floats.
+    drop(field);
     let inputs: Vec<&Path> = source.path().into_iter().collect();
     let written = write_set(&output, &levels, &inputs, format)?;
     eprintln!("wrote {}", describe(&written));
@@ -184,9 +186,7 @@ pub fn write_into(set: &mut FileSet, out: &Path, chain: &Chain, format: TextureF
                 }
                 Chain::Rgba16(c) => {
                     for (k, level) in c.levels.iter().enumerate() {
-                        let bytes: Vec<u8> = level.texels.iter().flatten().flat_map(|v| v.to_ne_bytes()).collect();
-                        let path = level_path(out, k);
-                        save_png_into(set, &path, level.width, level.height, PngLayout::Rgba16, &bytes)?;
+                        save_png16_into(set, &level_path(out, k), level)?;
                     }
                 }
             }

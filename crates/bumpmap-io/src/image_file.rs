@@ -483,8 +483,6 @@ pub enum PngLayout {
     Rgb8,
     /// 8-bit RGBA.
     Rgba8,
-    /// 16 bits a channel, each in the machine's byte order (as `u16::to_ne_bytes` gives it).
-    Rgba16,
 }
 
 /// Writes an 8- or 16-bit PNG atomically. `bytes` holds `width·height` pixels, row 0 first.
@@ -508,7 +506,6 @@ pub fn save_png_into(
         PngLayout::Gray8 => image::ExtendedColorType::L8,
         PngLayout::Rgb8 => image::ExtendedColorType::Rgb8,
         PngLayout::Rgba8 => image::ExtendedColorType::Rgba8,
-        PngLayout::Rgba16 => image::ExtendedColorType::Rgba16,
     };
     debug_assert_eq!(bytes.len(), width * height * color.bits_per_pixel() as usize / 8);
     set.write(path, |w| {
@@ -519,6 +516,27 @@ pub fn save_png_into(
         )
         .write_image(bytes, width as u32, height as u32, color)
         .map_err(std::io::Error::other)
+    })
+}
+
+/// Stages a 16-bit RGBA PNG into `set`, a row at a time (PNG stores each channel big-endian),
+/// so no second copy of the image is made.
+pub fn save_png16_into(set: &mut FileSet, path: &Path, image: &bumpmap_math::Rgba16Image) -> Result<(), IoError> {
+    set.write(path, |w| {
+        let mut encoder = png::Encoder::new(w, image.width as u32, image.height as u32);
+        encoder.set_color(png::ColorType::Rgba);
+        encoder.set_depth(png::BitDepth::Sixteen);
+        encoder.set_compression(png::Compression::Fast);
+        encoder.set_filter(png::Filter::Adaptive);
+        let mut writer = encoder.write_header().map_err(std::io::Error::other)?;
+        let mut stream = writer.stream_writer_with_size(1 << 20).map_err(std::io::Error::other)?;
+        let mut row = Vec::with_capacity(image.width * 8);
+        for texels in image.texels.chunks_exact(image.width.max(1)) {
+            row.clear();
+            row.extend(texels.iter().flatten().flat_map(|c| c.to_be_bytes()));
+            std::io::Write::write_all(&mut stream, &row)?;
+        }
+        stream.finish().map_err(std::io::Error::other)
     })
 }
 

@@ -1,4 +1,10 @@
-//! Large output buffers that start cheap.
+//! Large buffers: fallible, and cheap to start.
+//!
+//! Every buffer whose size comes from an input (a height field's side, a tessellation, a
+//! mip chain) is asked for through [`try_zeroed`] or [`try_filled`], so an input too big for the
+//! machine becomes an [`OutOfMemory`] error that says how many bytes it needed, not an abort.
+//! This module does not estimate what a whole command needs; each error names the one buffer
+//! that could not be had.
 //!
 //! A 4096² normal map with its mips is 90 MB written once. Fresh pages from the kernel cost a
 //! fault and a clear each; with 4 KiB pages that is about half the time of making the map. On
@@ -6,22 +12,90 @@
 //! the first write, so the same bytes take 512 times fewer faults. Elsewhere they are plain
 //! zeroed vectors.
 
-/// A zeroed vector of `n` RGBA8 texels, backed by huge pages where the system allows.
+/// A buffer the machine would not give: what it was for and its size.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, thiserror::Error)]
+#[error("not enough memory: {what} needs {}", Bytes(*bytes))]
+pub struct OutOfMemory {
+    /// What the buffer was to hold (`"mip chain level 0"`, `"vertex stage output"`, …).
+    pub what: &'static str,
+    /// Its size in bytes (saturated at `u64::MAX` when even that overflows).
+    pub bytes: u64,
+}
+
+impl OutOfMemory {
+    /// The error for `n` items of `T`.
+    pub fn of<T>(what: &'static str, n: usize) -> Self {
+        let bytes = (n as u64).saturating_mul(std::mem::size_of::<T>() as u64);
+        Self { what, bytes }
+    }
+}
+
+/// A byte count for people: `1.5 GiB`, `12.0 MiB`, `512 bytes`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Bytes(pub u64);
+
+impl std::fmt::Display for Bytes {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        const UNITS: [&str; 4] = ["KiB", "MiB", "GiB", "TiB"];
+        if self.0 < 1024 {
+            return write!(f, "{} bytes", self.0);
+        }
+        let (mut v, mut unit) = (self.0 as f64 / 1024.0, 0);
+        while v >= 1024.0 && unit + 1 < UNITS.len() {
+            v /= 1024.0;
+            unit += 1;
+        }
+        write!(f, "{v:.1} {}", UNITS[unit])
+    }
+}
+
+/// `n` copies of `value`, or [`OutOfMemory`] naming `what` when the allocation fails.
+///
+/// ```
+/// use bumpmap_math::buffer::try_filled;
+/// assert_eq!(try_filled(3, 7u8, "test").unwrap(), vec![7, 7, 7]);
+/// let e = try_filled(usize::MAX / 2, 0u64, "a huge table").unwrap_err();
+/// assert!(e.to_string().starts_with("not enough memory: a huge table needs"));
+/// ```
+pub fn try_filled<T: Clone>(n: usize, value: T, what: &'static str) -> Result<Vec<T>, OutOfMemory> {
+    let mut v = try_with_capacity(n, what)?;
+    v.resize(n, value);
+    Ok(v)
+}
+
+/// An empty vector with room for `n` items, or [`OutOfMemory`] naming `what`.
+pub fn try_with_capacity<T>(n: usize, what: &'static str) -> Result<Vec<T>, OutOfMemory> {
+    let mut v = Vec::new();
+    v.try_reserve_exact(n).map_err(|_| OutOfMemory::of::<T>(what, n))?;
+    Ok(v)
+}
+
+/// A zeroed vector of `n` RGBA8 texels, backed by huge pages where the system allows. Aborts
+/// when memory runs out: for buffers whose size no input chooses (benchmarks).
 pub fn zeroed_rgba8(n: usize) -> Vec<[u8; 4]> {
     zeroed(n)
 }
 
-/// A zeroed vector of `n` texels of 8 or 16 bits, backed by huge pages where the system allows.
-pub fn zeroed<T: crate::Texel>(n: usize) -> Vec<T> {
+/// [`try_zeroed`] that aborts when memory runs out, for buffers already bounded by a smaller
+/// one the caller holds.
+pub(crate) fn zeroed<T: crate::Texel>(n: usize) -> Vec<T> {
+    try_zeroed(n, "texels").unwrap_or_else(|_| {
+        std::alloc::handle_alloc_error(std::alloc::Layout::array::<T>(n).unwrap_or(std::alloc::Layout::new::<T>()))
+    })
+}
+
+/// A zeroed vector of `n` texels of 8 or 16 bits, backed by huge pages where the system
+/// allows; [`OutOfMemory`] naming `what` when the machine will not give it.
+pub fn try_zeroed<T: crate::Texel>(n: usize, what: &'static str) -> Result<Vec<T>, OutOfMemory> {
     const HUGE: usize = 2 << 20;
     if n == 0 {
-        return Vec::new();
+        return Ok(Vec::new());
     }
-    let layout = std::alloc::Layout::array::<T>(n).expect("texel buffer size overflows");
+    let layout = std::alloc::Layout::array::<T>(n).map_err(|_| OutOfMemory::of::<T>(what, n))?;
     // SAFETY: the layout has a non-zero size; a null result is handled below.
     let ptr = unsafe { std::alloc::alloc_zeroed(layout) } as *mut T;
     if ptr.is_null() {
-        std::alloc::handle_alloc_error(layout);
+        return Err(OutOfMemory::of::<T>(what, n));
     }
     #[cfg(target_os = "linux")]
     if layout.size() >= 4 * HUGE {
@@ -36,7 +110,7 @@ pub fn zeroed<T: crate::Texel>(n: usize) -> Vec<T> {
     }
     // SAFETY: allocated by the global allocator with `Layout::array::<T>(n)`, which is the
     // layout `Vec` uses for this capacity; zeroed bytes are valid texels.
-    unsafe { Vec::from_raw_parts(ptr, n, n) }
+    Ok(unsafe { Vec::from_raw_parts(ptr, n, n) })
 }
 
 #[cfg(test)]
@@ -48,5 +122,14 @@ mod tests {
             assert_eq!(v.len(), n);
             assert!(v.iter().all(|t| *t == [0; 4]));
         }
+    }
+
+    #[test]
+    fn a_buffer_too_big_is_an_error_with_its_size() {
+        let e = super::try_zeroed::<[u16; 4]>(usize::MAX / 16, "level 0").unwrap_err();
+        assert_eq!(e.bytes, (usize::MAX / 16) as u64 * 8);
+        assert!(e.to_string().contains("level 0 needs"), "{e}");
+        assert_eq!(super::Bytes(3 << 29).to_string(), "1.5 GiB");
+        assert_eq!(super::Bytes(1000).to_string(), "1000 bytes");
     }
 }

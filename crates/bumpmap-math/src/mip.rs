@@ -204,6 +204,9 @@ fn encode_sums_row_generic<T: Texel>(
     }
 }
 
+/// What an [`OutOfMemory`](crate::buffer::OutOfMemory) error calls level 0 and the others.
+const LEVEL_NAMES: [&str; 2] = ["the mip chain's level 0", "a level of the mip chain"];
+
 /// How many levels are computed while streaming through row bands: level `K` is the deepest
 /// whose rows are bands, so every level above it is written in the same pass as level 0.
 const STREAMED_LEVELS: usize = 5;
@@ -271,8 +274,9 @@ impl<T: Texel> MipChain<T> {
         let (w0, h0) = output_size(field.width(), field.height(), options)?;
         let shape = Shape::new(w0, h0);
         let deepest = STREAMED_LEVELS.min(shape.levels() - 1);
-        let mut bytes: Vec<Vec<T>> =
-            (0..shape.levels()).map(|k| crate::buffer::zeroed::<T>(shape.w[k] * shape.h[k])).collect();
+        let mut bytes: Vec<Vec<T>> = (0..shape.levels())
+            .map(|k| crate::buffer::try_zeroed::<T>(shape.w[k] * shape.h[k], LEVEL_NAMES[k.min(1)]))
+            .collect::<Result<_, _>>()?;
         let streamer =
             Streamer { eval: RowEvaluator::new(field, *options)?, shape: &shape, mode, enc: options.encoding };
 

@@ -80,6 +80,9 @@ pub enum NormalMapError {
     /// A scale that is not finite or beyond `MAX_SCALE`.
     #[error("scale must be a number in [-1e6, 1e6], got {0}")]
     BadScale(f32),
+    /// The map is too big for the machine's memory.
+    #[error(transparent)]
+    OutOfMemory(#[from] crate::buffer::OutOfMemory),
 }
 
 /// The largest |scale| accepted: beyond it the squared slope could overflow single precision.
@@ -269,7 +272,7 @@ pub fn normal_map_level0_texels<T: Texel>(
     use rayon::prelude::*;
     let (w, h) = output_size(field.width(), field.height(), options)?;
     let eval = RowEvaluator::new(field, *options)?;
-    let mut texels = crate::buffer::zeroed::<T>(w * h);
+    let mut texels = crate::buffer::try_zeroed::<T>(w * h, "the normal map")?;
     texels.par_chunks_mut(w).enumerate().for_each_init(RowScratch::default, |scratch, (y, row)| {
         eval.process_row(y, scratch, row);
     });
