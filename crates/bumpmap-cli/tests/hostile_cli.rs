@@ -103,6 +103,19 @@ fn limited(limit_mib: u64, args: &[&str]) -> std::process::Output {
 }
 
 #[test]
+fn a_normal_map_too_big_for_the_memory_is_an_error_with_its_size_and_writes_nothing() {
+    // 8192² heights fit in 600 MiB (256 MiB of floats); the 16-bit level 0 (512 MiB) does not.
+    let dir = scratch("out_of_memory");
+    let out = dir.join("big.png");
+    let o = limited(600, &["normalmap", "bricks@8192", "--bits", "16", "--mips", "-o", out.to_str().unwrap()]);
+    let err = stderr(&o);
+    assert_eq!(o.status.code(), Some(1), "{err}");
+    assert!(err.contains("bricks@8192: not enough memory:") && err.contains("MiB"), "{err}");
+    assert!(!err.contains("panicked") && !err.contains("memory allocation of"), "{err}");
+    assert!(listing(&dir).is_empty(), "nothing may be written: {:?}", listing(&dir));
+}
+
+#[test]
 fn inputs_that_are_not_regular_files_or_are_huge_are_refused_without_reading_them() {
     let dir = scratch("not_regular");
     // A FIFO with no writer: opening it would block for ever.

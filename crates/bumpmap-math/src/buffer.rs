@@ -1,8 +1,8 @@
 //! Large buffers: fallible, and cheap to start.
 //!
-//! Every buffer whose size comes from an input (a height field's side, a tessellation, a
-//! mip chain) is asked for through [`try_zeroed`] or [`try_filled`], so an input too big for the
-//! machine becomes an [`OutOfMemory`] error that says how many bytes it needed, not an abort.
+//! A normal map's texels and its mip levels, sized by the input, are asked for through
+//! [`try_zeroed`], so an input too big for the machine becomes an [`OutOfMemory`] error that
+//! says how many bytes it needed, not an abort.
 //! This module does not estimate what a whole command needs; each error names the one buffer
 //! that could not be had.
 //!
@@ -16,7 +16,7 @@
 #[derive(Clone, Copy, Debug, PartialEq, Eq, thiserror::Error)]
 #[error("not enough memory: {what} needs {}", Bytes(*bytes))]
 pub struct OutOfMemory {
-    /// What the buffer was to hold (`"mip chain level 0"`, `"vertex stage output"`, …).
+    /// What the buffer was to hold (`"the mip chain's level 0"`, `"the normal map"`).
     pub what: &'static str,
     /// Its size in bytes (saturated at `u64::MAX` when even that overflows).
     pub bytes: u64,
@@ -49,27 +49,6 @@ impl std::fmt::Display for Bytes {
     }
 }
 
-/// `n` copies of `value`, or [`OutOfMemory`] naming `what` when the allocation fails.
-///
-/// ```
-/// use bumpmap_math::buffer::try_filled;
-/// assert_eq!(try_filled(3, 7u8, "test").unwrap(), vec![7, 7, 7]);
-/// let e = try_filled(usize::MAX / 2, 0u64, "a huge table").unwrap_err();
-/// assert!(e.to_string().starts_with("not enough memory: a huge table needs"));
-/// ```
-pub fn try_filled<T: Clone>(n: usize, value: T, what: &'static str) -> Result<Vec<T>, OutOfMemory> {
-    let mut v = try_with_capacity(n, what)?;
-    v.resize(n, value);
-    Ok(v)
-}
-
-/// An empty vector with room for `n` items, or [`OutOfMemory`] naming `what`.
-pub fn try_with_capacity<T>(n: usize, what: &'static str) -> Result<Vec<T>, OutOfMemory> {
-    let mut v = Vec::new();
-    v.try_reserve_exact(n).map_err(|_| OutOfMemory::of::<T>(what, n))?;
-    Ok(v)
-}
-
 /// A zeroed vector of `n` RGBA8 texels, backed by huge pages where the system allows. Aborts
 /// when memory runs out: for buffers whose size no input chooses (benchmarks).
 pub fn zeroed_rgba8(n: usize) -> Vec<[u8; 4]> {
@@ -86,6 +65,13 @@ pub(crate) fn zeroed<T: crate::Texel>(n: usize) -> Vec<T> {
 
 /// A zeroed vector of `n` texels of 8 or 16 bits, backed by huge pages where the system
 /// allows; [`OutOfMemory`] naming `what` when the machine will not give it.
+///
+/// ```
+/// use bumpmap_math::buffer::try_zeroed;
+/// assert_eq!(try_zeroed::<[u8; 4]>(2, "test").unwrap(), vec![[0; 4]; 2]);
+/// let e = try_zeroed::<[u16; 4]>(usize::MAX / 16, "a huge map").unwrap_err();
+/// assert!(e.to_string().starts_with("not enough memory: a huge map needs"));
+/// ```
 pub fn try_zeroed<T: crate::Texel>(n: usize, what: &'static str) -> Result<Vec<T>, OutOfMemory> {
     const HUGE: usize = 2 << 20;
     if n == 0 {
