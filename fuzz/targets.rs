@@ -16,11 +16,12 @@ use clap::Parser;
 /// 1024² at most, so a declared size costs at most 1024² × 8 bytes (RGBA16) per image.
 pub const IMAGE_LIMITS: DecodeLimits = DecodeLimits { max_dimension: 1024, max_alloc: 64 << 20 };
 
-/// Image decoding as a height field (the first byte picks the channel) or, with the first
-/// byte's top bit set, as an RGBA8 texture (normal maps, decals, gloss maps).
+/// Image decoding as a height field (the first byte picks the channel; its bit 6 names the
+/// file as a TGA) or, with the first byte's top bit set, as an RGBA8 texture (normal maps, decals, gloss maps).
 pub fn image(data: &[u8]) {
     let Some((&pick, bytes)) = data.split_first() else { return };
-    let name = Path::new("fuzz.img");
+    // A TGA has no magic bytes: only its name makes the reader try it.
+    let name = Path::new(if pick & 0x40 != 0 { "fuzz.tga" } else { "fuzz.img" });
     let channel = [Channel::Luminance, Channel::Red, Channel::Green, Channel::Blue, Channel::Alpha][pick as usize % 5];
     if pick & 0x80 == 0 {
         let _ = read_height_field(bytes, name, channel, &IMAGE_LIMITS);

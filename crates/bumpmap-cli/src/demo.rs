@@ -179,12 +179,57 @@ const SIZE: usize = 512;
 /// Runs `bumpmap demo`: every file is written into a staging folder beside the output, which
 /// replaces the output folder whole once everything is written; a demo that fails (no GPU with
 /// `--gpu always`, a failed step, Ctrl-C) leaves nothing behind and an earlier demo as it was.
+///
+/// Since the folder is replaced whole, it must be new, empty or an earlier demo holding nothing
+/// the demo does not write: any other folder is refused (before any work when it is not a
+/// demo's, after it when an earlier demo's holds files of the user's), and left as it was.
 pub fn run(args: &DemoArgs) -> Result<(), CliError> {
+    let refuse = |reason: String| CliError::Path { path: args.output.clone(), reason };
+    let existing = files_under(&args.output);
+    let is_demo = std::fs::read_to_string(args.output.join("README.md")).is_ok_and(|r| r.starts_with(DEMO_TITLE));
+    if !existing.is_empty() && !is_demo {
+        return Err(refuse(format!(
+            "holds {} file(s) or folder(s) and is not an earlier demo's folder; the demo replaces its folder whole, so give a new or empty one",
+            existing.len()
+        )));
+    }
     let staged = bumpmap_io::atomic::StagedFolder::new(&args.output)?;
     write_demo(staged.path(), args)?;
+    let written = files_under(staged.path());
+    let foreign: Vec<String> = existing.difference(&written).take(3).map(|p| format!("'{}'", p.display())).collect();
+    if !foreign.is_empty() {
+        return Err(refuse(format!(
+            "holds files or folders the demo does not write ({}{}); move them away or give another folder",
+            foreign.join(", "),
+            if existing.difference(&written).count() > 3 { ", …" } else { "" }
+        )));
+    }
     let out = staged.commit()?;
     eprintln!("wrote the demo into {} (see its README.md)", out.display());
     Ok(())
+}
+
+/// The first line of the demo's README: what marks a folder as an earlier demo's.
+const DEMO_TITLE: &str = "# bumpmap demo\n";
+
+/// Every entry under `dir` (none when it does not exist), relative to it: files, links (not
+/// followed) and folders, empty ones included.
+fn files_under(dir: &Path) -> std::collections::BTreeSet<std::path::PathBuf> {
+    let mut out = std::collections::BTreeSet::new();
+    let mut stack = vec![dir.to_path_buf()];
+    while let Some(d) = stack.pop() {
+        let Ok(entries) = std::fs::read_dir(&d) else { continue };
+        for e in entries.flatten() {
+            let p = e.path();
+            if let Ok(rel) = p.strip_prefix(dir) {
+                out.insert(rel.to_path_buf());
+            }
+            if e.file_type().is_ok_and(|t| t.is_dir()) {
+                stack.push(p);
+            }
+        }
+    }
+    out
 }
 
 /// Everything the demo writes, into `out`.
@@ -197,7 +242,7 @@ fn write_demo(out: &Path, args: &DemoArgs) -> Result<(), CliError> {
     ];
     let bar = ProgressBar::new((presets.len() + 1 + RENDERS.len()) as u64)
         .with_style(ProgressStyle::with_template("{bar:40} {pos}/{len} {wide_msg}").expect("valid template"));
-    let mut index = String::from("# bumpmap demo\n\n");
+    let mut index = format!("{DEMO_TITLE}\n");
     for (name, preset) in presets {
         bar.set_message(format!("normal map: {name}"));
         let field = preset.render(256, 256);

@@ -31,6 +31,10 @@ pub enum CliError {
     /// clap's own range errors are (exit status 2).
     #[error("{0}")]
     Usage(String),
+    /// A buffer the inputs ask for is more than the machine gives (exit status 1: the same
+    /// command fits on a bigger machine). The command adds which inputs made it that big.
+    #[error(transparent)]
+    OutOfMemory(bumpmap::bumpmap_math::buffer::OutOfMemory),
     /// No device to draw with (no GPU adapter for `--backend gpu`).
     #[error("{0}")]
     NoDevice(String),

@@ -11,7 +11,7 @@ fn main() {
     // staged is removed (a set being renamed into place is let finish first).
     let _ = ctrlc::set_handler(|| {
         bumpmap_io::atomic::abandon_all();
-        eprintln!("interrupted: no output was written (or it was already complete)");
+        eprintln!("interrupted: no file was left half-written (a folder run keeps the images it had finished)");
         std::process::exit(130);
     });
     if let Err(e) = bumpmap_cli::run(cli) {

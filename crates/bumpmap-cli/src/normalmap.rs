@@ -6,7 +6,7 @@ use bumpmap_io::atomic::{FileSet, ensure_not_input};
 use bumpmap_io::image_file::{PngLayout, save_png_into, save_png16_into};
 use bumpmap_io::texture_file::{Level, TextureFormat, TextureLayout, write_dds_into, write_ktx2_into};
 use bumpmap_io::{Channel, HeightSource};
-use bumpmap_math::normalmap::normal_map_level0_texels;
+use bumpmap_math::normalmap::{MAX_SCALE, NormalMapError, normal_map_level0_texels};
 use bumpmap_math::{HeightField, MipChain, MipMode, NormalMapOptions, Texel};
 use indicatif::{ProgressBar, ProgressStyle};
 use rayon::prelude::*;
@@ -15,7 +15,8 @@ use crate::args::NormalmapArgs;
 use crate::error::CliError;
 
 /// Image extensions a folder walk picks up.
-const IMAGE_EXTENSIONS: [&str; 10] = ["png", "tga", "bmp", "jpg", "jpeg", "tif", "tiff", "pgm", "ppm", "exr"];
+const IMAGE_EXTENSIONS: [&str; 13] =
+    ["png", "tga", "bmp", "jpg", "jpeg", "tif", "tiff", "pgm", "ppm", "pbm", "pam", "pnm", "exr"];
 
 pub fn run(args: &NormalmapArgs) -> Result<(), CliError> {
     let options = args.map.options();
@@ -122,7 +123,13 @@ fn make_texels<T: Texel>(
     mode: MipMode,
     name: &str,
 ) -> Result<MipChain<T>, CliError> {
-    let err = |source| CliError::NormalMap { path: name.to_string(), source };
+    // A scale out of range is the flag's fault, not the input's.
+    let err = |source| match source {
+        NormalMapError::BadScale(s) => CliError::Usage(format!(
+            "--scale must be a number in [-{MAX_SCALE:e}, {MAX_SCALE:e}], got {s} (for {name})"
+        )),
+        source => CliError::NormalMap { path: name.to_string(), source },
+    };
     if mips {
         MipChain::from_height(field, options, mode).map_err(err)
     } else {
@@ -259,14 +266,22 @@ fn run_folder(
             }
         }
     }
-    let created = !out_dir.exists();
-    std::fs::create_dir_all(out_dir).map_err(|e| CliError::Path { path: out_dir.clone(), reason: e.to_string() })?;
-    if std::fs::canonicalize(out_dir).ok() == std::fs::canonicalize(input).ok() {
+    // The folder is made by the first set written into it (and removed with the last one that
+    // fails or is interrupted, when nothing else landed there): see `FileSet`. Compared with the
+    // input as it will resolve (`missing/../in` is the input folder once `missing` is made).
+    let resolved = bumpmap_io::atomic::resolved(out_dir);
+    if resolved.is_some() && resolved == std::fs::canonicalize(input).ok() {
         return Err(CliError::Path {
             path: out_dir.clone(),
             reason: "output folder is the input folder; outputs would mix with inputs".into(),
         });
     }
+    // A `..` after a folder yet to be made would make that folder and leave it empty: write to
+    // the folder the path resolves to instead.
+    let out_dir = &match resolved {
+        Some(r) if out_dir.components().any(|c| c == std::path::Component::ParentDir) => r,
+        _ => out_dir.clone(),
+    };
     let bar = ProgressBar::new(files.len() as u64)
         .with_style(ProgressStyle::with_template("{bar:40} {pos}/{len} {wide_msg}").expect("valid template"));
     let failed: usize = files
@@ -286,10 +301,6 @@ fn run_folder(
         })
         .sum();
     bar.finish_and_clear();
-    if failed == files.len() && created {
-        // Nothing was written: leave no empty folder behind either.
-        let _ = std::fs::remove_dir(out_dir);
-    }
     if failed > 0 {
         return Err(CliError::Batch { failed, total: files.len() });
     }

@@ -74,7 +74,11 @@ pub fn draw_args(args: &RenderArgs, progress: bool) -> Result<Drawn, CliError> {
     for note in &setup.notes {
         eprintln!("{note}");
     }
-    let prepared = Prepared::new(&setup.spec, name, &setup.options).map_err(lib_err)?;
+    let scene = &args.setup.scene;
+    let bumps = scene.height_field.clone().or_else(|| scene.normal_map.as_ref().map(|p| p.display().to_string()));
+    let too_big = |e| too_big(e, &setup.spec, bumps.as_deref());
+    ensure_room(&setup.spec, name).map_err(too_big)?;
+    let prepared = Prepared::new(&setup.spec, name, &setup.options).map_err(|e| too_big(lib_err(e)))?;
     let mut renderer = if name == TechniqueName::Reference {
         // The reference runs on the CPU whatever the backend; no device need open for it.
         let mut r = Renderer::new(BackendChoice::Cpu).map_err(lib_err)?;
@@ -85,13 +89,75 @@ pub fn draw_args(args: &RenderArgs, progress: bool) -> Result<Drawn, CliError> {
     } else {
         renderer(args.setup.backend.backend)?
     };
-    let frame = draw(&mut renderer, &prepared.scene, &prepared.technique, width, height, args.passes)?;
+    let frame =
+        draw(&mut renderer, &prepared.scene, &prepared.technique, width, height, args.passes).map_err(too_big)?;
+    ensure_drawn(frame.image.texels.iter().all(|&[r, g, b, _]| r == 0 && g == 0 && b == 0), &args.output)?;
     let by = if name == TechniqueName::Reference {
         format!("reference, {} samples per pixel", setup.options.reference.samples_per_pixel)
     } else {
         format!("{name}, {}", renderer.describe())
     };
     Ok(Drawn { frame, by, inputs: setup.inputs })
+}
+
+/// Refuses `output` for a frame that came out black (`black`: no pixel has any colour): nothing in view was
+/// drawn or lit, and a black PNG with exit status 0 would pass for a result. Written from the
+/// image, so it holds for every backend and the reference alike; the causes are named, since
+/// the image cannot tell them apart.
+pub fn ensure_drawn(black: bool, output: &Path) -> Result<(), CliError> {
+    if !black {
+        return Ok(());
+    }
+    Err(CliError::Path {
+        path: output.to_path_buf(),
+        reason: "not written: the image is black (no pixel was drawn or lit). The object may be out of \
+                 view (--eye, --target, --up, --fov), too small or too flat to cover a pixel (--tessellation, \
+                 --torus-radii, the mesh), or facing away from the eye or the light (--light, --ambient)"
+            .into(),
+    })
+}
+
+/// Refuses, before any of it is made, a scene whose large buffers will not fit together: the
+/// normal map and its mips made from heights (4/3 of level 0's RGBA8), a texture unit's copy of
+/// it (and of the height map, for embossing), and a tessellation's mesh and vertex-stage output.
+/// Inputs already loaded are not counted. Within about 5% of the peaks measured in
+/// BENCHMARKS.md; each of those buffers is also asked for fallibly, so an estimate too low
+/// still ends in an error rather than an abort.
+fn ensure_room(spec: &bumpmap::SceneSpec, name: TechniqueName) -> Result<(), CliError> {
+    let (w, h) = spec.params.bumps.size();
+    let texels = (w as u64 * h as u64) * 4 / 3;
+    let made = matches!(spec.params.bumps, bumpmap::bumpmap_core::scenes::BumpSource::Heights(_));
+    let embossed = matches!(name, TechniqueName::Emboss | TechniqueName::EmbossUnforced);
+    let mut bytes = if made { texels * 4 } else { 0 };
+    if name != TechniqueName::Reference {
+        bytes += bumpmap_cpu::texture_unit_bytes(texels);
+    }
+    if embossed {
+        bytes += texels * 4 + bumpmap_cpu::texture_unit_bytes(texels);
+    }
+    if let Some((u, v)) = spec.params.tessellation {
+        let vertices = (u as u64 + 1) * (v as u64 + 1);
+        let per_vertex = (std::mem::size_of::<bumpmap::bumpmap_core::vertex::Vertex>() + 48) as u64;
+        bytes += vertices * per_vertex + u as u64 * v as u64 * 24;
+    }
+    bumpmap::bumpmap_math::buffer::ensure_available(bytes, "drawing it").map_err(CliError::OutOfMemory)
+}
+
+/// An out-of-memory error with the sizes that caused it: the bump texture's (and `bumps`, the
+/// file or preset it came from) and the tessellation's: what a user can make smaller.
+fn too_big(e: CliError, spec: &bumpmap::SceneSpec, bumps: Option<&str>) -> CliError {
+    let CliError::OutOfMemory(oom) = e else { return e };
+    let (w, h) = spec.params.bumps.size();
+    let from = bumps.map(|b| format!(" from {b}")).unwrap_or_default();
+    let mesh = match spec.params.tessellation {
+        Some((u, v)) => format!(", tessellation {u}x{v}"),
+        None => String::new(),
+    };
+    CliError::Render(format!(
+        "this scene (bumps {w}x{h}{from}{mesh}) is too big for the memory this process may use: {oom}. \
+         The README's \"Memory\" section gives what the largest inputs need; a smaller --height-field, \
+         --normal-map, --decal, --gloss or --tessellation needs less"
+    ))
 }
 
 /// A progress bar on stderr for the reference's tiles.
@@ -142,7 +208,8 @@ pub fn draw(
 /// A front-door error in the words of the command line.
 pub fn lib_err(e: bumpmap::Error) -> CliError {
     match e {
-        bumpmap::Error::Core(e) => core_err(e),
+        bumpmap::Error::Core(e) | bumpmap::Error::Cpu(bumpmap_cpu::CpuError::Core(e)) => core_err(e),
+        bumpmap::Error::Cpu(bumpmap_cpu::CpuError::OutOfMemory(e)) => CliError::OutOfMemory(e),
         bumpmap::Error::Io(e) => CliError::Io(e),
         bumpmap::Error::Gpu(bumpmap_gpu::GpuError::NoAdapter(reason)) => CliError::NoDevice(format!(
             "no GPU adapter found ({reason}): install a Vulkan driver (on Debian without a GPU, \
@@ -188,6 +255,11 @@ pub fn core_err(e: CoreError) -> CliError {
         CoreError::GlossNeedsDecal => CliError::Render(
             "--gloss decal-alpha needs a decal (--decal FILE, or the bricks height field's own)".into(),
         ),
+        // Too big for the machine is not a usage error: the same command fits elsewhere.
+        CoreError::OutOfMemory(e)
+        | CoreError::HeightField(bumpmap::bumpmap_math::normalmap::NormalMapError::OutOfMemory(e)) => {
+            CliError::OutOfMemory(e)
+        }
         // Values out of their range, however they are noticed, are usage errors.
         e @ (CoreError::OutOfRange { .. } | CoreError::EyeAtTarget { .. } | CoreError::HeightField(_)) => {
             CliError::Usage(e.to_string())

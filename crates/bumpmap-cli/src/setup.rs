@@ -45,6 +45,11 @@ pub struct Setup {
 /// The largest |--bump-scale| a normal map takes (a height field takes up to 1e6).
 const MAX_NORMAL_SCALE: f32 = bumpmap::bumpmap_math::imported::MAX_SCALE;
 
+/// The largest side of a spotlight pattern as it is sampled. The pattern has no mip levels (the
+/// fixed-function projective texture had none either), so texels past what any framebuffer
+/// shows only cost memory: a 16384² pattern took 3.1 GB and 27 s for a 64² render.
+const MAX_SPOT_PATTERN: usize = 2048;
+
 /// Files the options name, before anything is read: an output must replace none of them.
 pub fn named_inputs(s: &SceneSetup) -> Vec<PathBuf> {
     let mut files = Vec::new();
@@ -94,6 +99,14 @@ pub fn setup(s: &SceneSetup) -> Result<Setup, CliError> {
                 mip_mode: MipMode::LengthInAlpha,
             };
             let asset = load_mesh(path, &load).map_err(lib_err)?;
+            // Every vertex at one point: no extent to frame or to see (not a usage error).
+            let p0 = asset.mesh.positions.first().copied().unwrap_or_default();
+            if asset.mesh.positions.iter().all(|p| *p == p0) {
+                return Err(CliError::Path {
+                    path: path.to_path_buf(),
+                    reason: format!("every vertex is at {p0}: the mesh has no extent, so there is nothing to draw"),
+                });
+            }
             inputs.extend(asset.sources.iter().cloned());
             notes.extend(asset.describe().into_iter().map(|line| format!("{}: {line}", path.display())));
             notes.extend(asset.warnings.iter().map(|w| format!("warning: {w}")));
@@ -206,9 +219,12 @@ fn check_ranges(s: &SceneSetup) -> Result<(), CliError> {
         return Err(CliError::Usage(format!("--shininess must be a positive number, got {}", m.shininess)));
     }
     if let Some(up) = camera.up
-        && up.length() == 0.0
+        && up.normalize_or_zero() == Vec3::ZERO
     {
-        return Err(CliError::Usage("--up must be a non-zero direction, got 0,0,0".into()));
+        return Err(CliError::Usage(format!(
+            "--up must be a direction, got {:?},{:?},{:?} (zero, or too short to normalize)",
+            up.x, up.y, up.z
+        )));
     }
     if let Some(b) = s.scene.bump_scale {
         // It scales a normal map's slopes (--normal-map, or a glTF material's) or a height
@@ -233,8 +249,19 @@ fn lights(s: &SceneSetup, spec: &SceneSpec) -> Result<Vec<SceneLight>, CliError>
     let pattern = match l.spot_pattern.as_deref() {
         None => None,
         Some(p) => {
-            let field = HeightSource::parse(p).load(Channel::Luminance)?;
-            let image = Rgba8Image::from_gray(field.width(), field.height(), &field.to_u8());
+            // A preset is rendered no larger than the cap; a file is box-halved down to it.
+            let source = match HeightSource::parse(p) {
+                HeightSource::Preset { preset, size } => {
+                    HeightSource::Preset { preset, size: size.min(MAX_SPOT_PATTERN) }
+                }
+                file => file,
+            };
+            let field = source.load(Channel::Luminance)?;
+            let mut image = Rgba8Image::from_gray(field.width(), field.height(), &field.to_u8());
+            drop(field);
+            while image.width > MAX_SPOT_PATTERN || image.height > MAX_SPOT_PATTERN {
+                image = image.box_halved();
+            }
             Some(Arc::new(Rgba8Mips::single(image)))
         }
     };

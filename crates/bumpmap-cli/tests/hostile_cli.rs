@@ -34,6 +34,8 @@ fn a_value_out_of_range_exits_2_however_it_is_noticed() {
         (&["render", "--size", "32", "--bump-scale", "1e30"], "--bump-scale"),
         (&["render", "--size", "32", "--scene", "blah"], "unknown scene 'blah'"),
         (&["render", "--size", "32", "--height-field", "bricks@16385"], "size 16385 is outside"),
+        (&["render", "--size", "32", "--tessellation", "4096,64"], "'4096' is not a count in 1..=2048"),
+        (&["compare", "--size", "16", "--techniques", "kilgard,kilgard"], "--techniques names kilgard twice"),
         (&["bench", "reference", "--size", "16384", "--runs", "1"], "framebuffer 16384x16384 refused"),
     ]
     .into_iter()
@@ -116,6 +118,36 @@ fn a_normal_map_too_big_for_the_memory_is_an_error_with_its_size_and_writes_noth
 }
 
 #[test]
+fn a_render_too_big_for_the_memory_is_an_error_naming_the_sizes_and_writes_nothing() {
+    // An 8192² field's normal map, its mips and the texture unit's copies pass 700 MiB;
+    // whichever buffer fails first, the message names the scene's sizes, never an abort.
+    let dir = scratch("render_out_of_memory");
+    let out = dir.join("big.png");
+    let o = limited(700, &["render", "--height-field", "bricks@8192", "--size", "64", "-o", out.to_str().unwrap()]);
+    let err = stderr(&o);
+    assert_eq!(o.status.code(), Some(1), "{err}");
+    assert!(err.contains("this scene (bumps 8192x8192 from bricks@8192) is too big for the memory"), "{err}");
+    assert!(err.contains("not enough memory:") && err.contains("MiB"), "{err}");
+    assert!(!err.contains("panicked") && !err.contains("memory allocation of"), "{err}");
+    assert!(listing(&dir).is_empty(), "nothing may be written: {:?}", listing(&dir));
+}
+
+#[test]
+fn an_image_too_big_to_decode_in_the_memory_is_refused_from_its_header() {
+    // A 100-byte PNG declaring a legal 16384² greyscale image: the decoder's 256 MiB buffer (not
+    // asked for fallibly) and the copies made from it would not fit in 600 MiB.
+    let dir = scratch("decode_out_of_memory");
+    let input = dir.join("claims.png");
+    std::fs::write(&input, common::png_header_only(16384, 16384)).unwrap();
+    let o = limited(600, &["normalmap", input.to_str().unwrap(), "-o", dir.join("n.png").to_str().unwrap()]);
+    let err = stderr(&o);
+    assert_eq!(o.status.code(), Some(1), "{err}");
+    assert!(err.contains("claims.png: not enough memory: decoding it needs 1.5 GiB"), "{err}");
+    assert!(!err.contains("panicked") && !err.contains("memory allocation of"), "{err}");
+    assert_eq!(listing(&dir), ["claims.png"]);
+}
+
+#[test]
 fn inputs_that_are_not_regular_files_or_are_huge_are_refused_without_reading_them() {
     let dir = scratch("not_regular");
     // A FIFO with no writer: opening it would block for ever.
@@ -163,11 +195,32 @@ fn a_demo_that_fails_leaves_nothing_and_keeps_the_last_one() {
     // An earlier demo's folder stays as it was.
     let earlier = dir.join("demo");
     std::fs::create_dir_all(&earlier).unwrap();
-    std::fs::write(earlier.join("README.md"), "the last demo").unwrap();
+    std::fs::write(earlier.join("README.md"), "# bumpmap demo\n\nthe last one").unwrap();
     let o = demo(&earlier);
     assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    assert!(stderr(&o).contains("adapter"), "it failed at its GPU step: {}", stderr(&o));
     assert_eq!(everything(&dir), ["demo/README.md", "demo/"]);
-    assert_eq!(std::fs::read_to_string(earlier.join("README.md")).unwrap(), "the last demo");
+    assert_eq!(std::fs::read_to_string(earlier.join("README.md")).unwrap(), "# bumpmap demo\n\nthe last one");
+}
+
+#[test]
+fn the_demo_never_replaces_a_folder_of_the_users() {
+    // The demo replaces its folder whole: a folder that is not an earlier demo's is refused
+    // before any work, and left as it was.
+    let dir = scratch("demo_users_folder");
+    std::fs::write(dir.join("thesis.tex"), "months of work").unwrap();
+    let o = bumpmap(&["demo", "-o", dir.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    assert!(stderr(&o).contains("holds 1 file(s) or folder(s) and is not an earlier demo's folder"), "{}", stderr(&o));
+    assert_eq!(everything(&dir), ["thesis.tex"]);
+    // An empty folder of the user's counts too.
+    std::fs::remove_file(dir.join("thesis.tex")).unwrap();
+    std::fs::create_dir(dir.join("keep")).unwrap();
+    let o = bumpmap(&["demo", "-o", dir.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    assert_eq!(everything(&dir), ["keep/"]);
+    let beside = listing(dir.parent().unwrap());
+    assert!(!beside.iter().any(|n| n.starts_with(".demo_users_folder.")), "no staging folder: {beside:?}");
 }
 
 #[test]
@@ -199,4 +252,68 @@ fn two_runs_writing_one_chain_at_once_leave_one_run_s_chain() {
         assert!(n == a || n == b, "round {round}: the chain mixes both runs' levels");
     }
     assert!(!everything(&dir).iter().any(|n| n.ends_with(".tmp")));
+}
+
+#[test]
+fn a_black_frame_is_an_error_not_a_picture() {
+    // Looking away, a torus of one quad (every triangle degenerate), one too large to see, an
+    // eye so far away the torus covers no pixel centre: each once gave a black PNG and exit 0.
+    for (i, args) in [
+        &["render", "--size", "32", "--target", "0,0,100"][..],
+        &["render", "--size", "32", "--tessellation", "1,1"],
+        &["render", "--size", "32", "--torus-radii", "1e30,1"],
+        &["render", "--size", "32", "--eye", "1e30,0,0"],
+        &["render", "--size", "32", "--technique", "reference", "--spp", "1", "--target", "0,0,100"],
+    ]
+    .into_iter()
+    .enumerate()
+    {
+        let (code, err) = status(&format!("black_{i}"), args);
+        assert_eq!(code, Some(1), "{args:?}: {err}");
+        assert!(err.contains("out.png: not written: the image is black"), "{args:?}: {err}");
+    }
+    // The same scene in view is drawn.
+    let dir = scratch("black_control");
+    let out = dir.join("out.png");
+    let o = bumpmap(&["render", "--size", "32", "-o", out.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", stderr(&o));
+}
+
+#[test]
+fn an_output_reached_through_a_missing_folder_still_cannot_replace_the_input() {
+    let dir = scratch("same_via_missing");
+    let input = dir.join("h.png");
+    common::write_gray_png(&input, 8, 8, |x, y| (x * 30 + y) as u8);
+    let before = std::fs::read(&input).unwrap();
+    let sneaky = dir.join("missing/../h.png");
+    let o = bumpmap(&["normalmap", input.to_str().unwrap(), "-o", sneaky.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    assert!(stderr(&o).contains("input"), "{}", stderr(&o));
+    assert_eq!(std::fs::read(&input).unwrap(), before, "the input is untouched");
+    assert_eq!(listing(&dir), ["h.png"], "no folder made for it either");
+    // A folder run whose output folder is its input folder, reached the same way.
+    let o = bumpmap(&["normalmap", dir.to_str().unwrap(), "-o", dir.join("zz/..").to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    assert!(stderr(&o).contains("output folder is the input folder"), "{}", stderr(&o));
+    assert_eq!(listing(&dir), ["h.png"]);
+    // And a new folder reached through one yet to be made is written without leaving that one.
+    let out = scratch("same_via_missing_out");
+    let o = bumpmap(&["normalmap", dir.to_str().unwrap(), "-o", out.join("zz/../maps").to_str().unwrap()]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert_eq!(listing(&out), ["maps"]);
+}
+
+#[test]
+fn a_folder_run_reads_tga_and_every_netpbm_extension() {
+    // A TGA has no magic bytes (its extension names it); .pbm/.pam/.pnm were skipped by the walk.
+    let dir = scratch("formats_in");
+    let img = image::GrayImage::from_fn(8, 8, |x, y| image::Luma([(x * 25 + y * 3) as u8]));
+    for name in ["a.tga", "b.pam", "c.pnm", "d.pgm"] {
+        let format = image::ImageFormat::from_path(name).unwrap();
+        img.save_with_format(dir.join(name), format).unwrap();
+    }
+    let out = scratch("formats_out");
+    let o = bumpmap(&["normalmap", dir.to_str().unwrap(), "-o", out.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert_eq!(listing(&out), ["a.png", "b.png", "c.png", "d.png"], "{}", stderr(&o));
 }

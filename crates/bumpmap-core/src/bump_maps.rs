@@ -13,7 +13,7 @@ use rayon::prelude::*;
 
 use bumpmap_math::blinn::{displacement_per_unit_height, perturbed_normal};
 use bumpmap_math::surface::Surface;
-use bumpmap_math::{HeightField, MipChain, MipMode, NormalMapOptions, Rgba8Image, Rgba8Mips};
+use bumpmap_math::{Encoding, HeightField, MipChain, MipMode, NormalMapOptions, Rgba8Image, Rgba8Mips};
 
 use crate::error::CoreError;
 use crate::scene::{Material, NormalSpace, NormalTexels};
@@ -61,8 +61,8 @@ impl BumpMap {
     }
 }
 
-/// The material `base` (whose normal map is `chain`, the tangent-space map of `params`' height
-/// field) with the bump texture `params.bump_map` for `surface` covered `repeat` times. The
+/// The material `base` (whose normal map is the tangent-space map of `params`' height field,
+/// its texels encoded as `encoding` says) with the bump texture `params.bump_map` for `surface` covered `repeat` times. The
 /// offset map of [`BumpMap::Offset`] and [`BumpMap::Derivatives`] is already in `base`, made
 /// once per scene by [`offset_map`].
 pub fn surface_material(
@@ -70,7 +70,7 @@ pub fn surface_material(
     base: &Material,
     surface: &Surface,
     repeat: Vec2,
-    chain: &MipChain,
+    encoding: Encoding,
 ) -> Material {
     let mut material = base.clone();
     match (params.bump_map, base.normal_texels) {
@@ -80,8 +80,8 @@ pub fn surface_material(
             material.normal_texels = NormalTexels::Derivatives { range, scale };
         }
         (BumpMap::ObjectSpace, _) => {
-            let map = object_space_normal_map(surface, repeat, chain, params.mip_mode);
-            material.normal_map = Arc::new(map.to_mips());
+            let map = object_space_normal_map(surface, repeat, &base.normal_map.levels()[0], encoding, params.mip_mode);
+            material.normal_map = Arc::new(map.into_mips());
             material.normal_texels = NormalTexels::UnitVector;
             material.normal_space = NormalSpace::Object { scale: Vec2::ONE / repeat };
         }
@@ -94,7 +94,7 @@ pub fn surface_material(
             let options = &params.normal_map;
             let dependent = surface_dependent_normal_map(surface, repeat, field, options, params.mip_mode)
                 .expect("the field and options made the tangent-space chain");
-            material.normal_map = Arc::new(dependent.to_mips());
+            material.normal_map = Arc::new(dependent.into_mips());
             material.normal_texels = NormalTexels::UnitVector;
             material.normal_space = NormalSpace::SurfaceTangent { scale: Vec2::ONE / repeat };
         }
@@ -129,13 +129,18 @@ fn covering_texel(i: usize, (w, h): (usize, usize), repeat: Vec2, (mw, mh): (usi
     (Vec2::new(u, v), x, y)
 }
 
-/// An object-space normal map for `surface` (Peercy §2.1): the tangent-space map's level 0,
-/// repeated `repeat` times as the surface's texture is, with each normal rotated by the
+/// An object-space normal map for `surface` (Peercy §2.1): the tangent-space map's level 0
+/// (texels encoded as `enc` says), repeated `repeat` times as the surface's texture is, with each normal rotated by the
 /// surface's frame at that point. One texel per texel of the repeated tangent-space map (at
 /// most 4096 along each side), with its own mip chain made as `mode` says.
-pub fn object_space_normal_map(surface: &Surface, repeat: Vec2, tangent_map: &MipChain, mode: MipMode) -> MipChain {
-    let level = &tangent_map.levels[0];
-    let enc = tangent_map.encoding;
+pub fn object_space_normal_map(
+    surface: &Surface,
+    repeat: Vec2,
+    tangent_level0: &Rgba8Image,
+    enc: Encoding,
+    mode: MipMode,
+) -> MipChain {
+    let level = tangent_level0;
     let (w, h) = covering_size(level.width, level.height, repeat);
     let normals: Vec<Vec3> = (0..w * h)
         .into_par_iter()

@@ -240,6 +240,7 @@ impl TechniqueName {
     /// its mip mode, or no bumps at all.
     pub fn scene_params(self, base: &SceneParams) -> SceneParams {
         let mut params = base.clone();
+        params.height_map = matches!(self, TechniqueName::Emboss | TechniqueName::EmbossUnforced);
         let peercy = |params: &mut SceneParams, map| {
             params.normal_map.kernel = Kernel::Gaussian7;
             params.bump_map = map;

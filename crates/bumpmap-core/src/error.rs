@@ -68,6 +68,9 @@ pub enum CoreError {
     /// The height field could not become a normal map.
     #[error("height field: {0}")]
     HeightField(#[from] NormalMapError),
+    /// A buffer sized by the scene (the vertex stage's outputs) is more than the machine gives.
+    #[error(transparent)]
+    OutOfMemory(#[from] bumpmap_math::buffer::OutOfMemory),
     /// Object-space, surface-dependent and derivative maps are made from, or read with, an
     /// analytic surface.
     #[error("{} is made for the built-in surfaces, not for meshes", .0.describe())]

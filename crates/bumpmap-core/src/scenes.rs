@@ -95,7 +95,7 @@ pub enum BumpSource {
 
 impl BumpSource {
     /// The size of level 0 of the normal map it makes.
-    fn size(&self) -> (usize, usize) {
+    pub fn size(&self) -> (usize, usize) {
         match self {
             BumpSource::Heights(f) => (f.width(), f.height()),
             BumpSource::NormalMap(c) => (c.levels[0].width, c.levels[0].height),
@@ -200,6 +200,10 @@ pub struct SceneParams {
     /// renormalized normals. A [`BumpSource::NormalMap`] keeps its own levels, with A = 1 under
     /// [`MipMode::Renormalize`].
     pub mip_mode: MipMode,
+    /// Whether the material also carries the height field as a texture (RGBA8 with its mips,
+    /// four bytes a texel: 1.3 GiB for a 16384² field), which only embossing reads. On by
+    /// default; the technique catalogue turns it off for every other technique.
+    pub height_map: bool,
 }
 
 impl Default for SceneParams {
@@ -225,6 +229,7 @@ impl Default for SceneParams {
             repeat: None,
             bump_map: BumpMap::Tangent,
             mip_mode: MipMode::LengthInAlpha,
+            height_map: true,
         }
     }
 }
@@ -284,6 +289,10 @@ pub fn default_light(kind: &SceneKind, params: &SceneParams) -> Light {
     }
 }
 
+/// The largest side of the default brick decal: a flat colour texture has nothing to show
+/// past it, and at the bumps' 16384² it took 1.3 GiB (and as much again in a texture unit).
+const MAX_DEFAULT_DECAL: usize = 2048;
+
 /// Builds a scene. Fails when the height field cannot become a normal map, when a map made
 /// for a surface is asked of a mesh or one made from heights of a normal map, and when the eye
 /// is at the point looked at.
@@ -299,11 +308,18 @@ pub fn build(kind: &SceneKind, params: &SceneParams) -> Result<Scene, CoreError>
         }
         BumpSource::NormalMap(chain) => (chain.clone(), None),
     };
-    let normal_map = Arc::new(chain.to_mips());
+    // The chain becomes the material's texture; copied only when the caller still holds it.
+    let encoding = chain.encoding;
+    let normal_map = Arc::new(Arc::try_unwrap(chain).map_or_else(|shared| shared.to_mips(), MipChain::into_mips));
     let decal = match (&params.decal, params.default_decal) {
         (Some(d), _) => Some(d.clone()),
         (None, true) => {
-            let (w, h) = params.bumps.size();
+            // Drawn at the bumps' size, halved while over MAX_DEFAULT_DECAL: the bricks are defined
+            // in texture coordinates, so the mortar still meets the height field's.
+            let (mut w, mut h) = params.bumps.size();
+            while w.max(h) > MAX_DEFAULT_DECAL {
+                (w, h) = (w.div_ceil(2), h.div_ceil(2));
+            }
             Some(Arc::new(Rgba8Mips::with_box_mipmaps(Rgba8Image::new(w, h, bricks_decal(w, h)))))
         }
         (None, false) => None,
@@ -317,7 +333,7 @@ pub fn build(kind: &SceneKind, params: &SceneParams) -> Result<Scene, CoreError>
         diffuse: params.diffuse,
         specular: params.specular,
         shininess: params.shininess,
-        height_map: heights.map(|field| {
+        height_map: heights.filter(|_| params.height_map).map(|field| {
             Arc::new(Rgba8Mips::with_box_mipmaps(Rgba8Image::from_gray(field.width(), field.height(), &field.to_u8())))
         }),
         bump_scale: params.normal_map.scale,
@@ -329,7 +345,7 @@ pub fn build(kind: &SceneKind, params: &SceneParams) -> Result<Scene, CoreError>
     }
     let object = |surface: Surface, tess: (usize, usize), repeat: Vec2, world_from_object: Mat4| {
         let repeat = params.repeat.unwrap_or(repeat);
-        let material = surface_material(params, &material, &surface, repeat, &chain);
+        let material = surface_material(params, &material, &surface, repeat, encoding);
         SceneObject {
             mesh: Arc::new(surface.tessellate(
                 params.tessellation.unwrap_or(tess).0,

@@ -7,8 +7,10 @@
 
 use glam::{Vec3, Vec4};
 
+use bumpmap_math::buffer::OutOfMemory;
 use bumpmap_math::lighting::{Light, ObjectLighting, TangentFrame, Viewer};
 
+use crate::error::CoreError;
 use crate::scene::{NormalSpace, Scene, SceneLight, SceneObject, ViewerModel};
 
 /// Varying slots the vertex stage fills.
@@ -67,63 +69,65 @@ impl Scene {
     }
 
     /// The vertex stage for one object and one light: clip position, texture coordinates and
-    /// the tangent-space L, H and V of every vertex.
-    pub fn vertices(&self, object: &SceneObject, light: &SceneLight, aspect: f32) -> Vec<Vertex> {
+    /// the tangent-space L, H and V of every vertex. Fails, rather than aborting, when the
+    /// machine cannot hold the outputs (128 bytes a vertex).
+    pub fn vertices(&self, object: &SceneObject, light: &SceneLight, aspect: f32) -> Result<Vec<Vertex>, CoreError> {
         use rayon::prelude::*;
         let mesh = &object.mesh;
+        let mut out = Vec::new();
+        out.try_reserve_exact(mesh.positions.len())
+            .map_err(|_| OutOfMemory::of::<Vertex>("the vertex stage's output", mesh.positions.len()))?;
         debug_assert_eq!(mesh.tangents.len(), mesh.positions.len(), "meshes carry tangents");
         let clip_from_object = self.camera.clip_from_world(aspect) * object.world_from_object;
         let lighting = ObjectLighting::new(object.world_from_object, light.light, self.viewer());
         let object_from_world = object.world_from_object.inverse();
-        (0..mesh.positions.len())
-            .into_par_iter()
-            .map(|i| {
-                let p = mesh.positions[i];
-                let n = mesh.normals[i];
-                let t = mesh.tangents[i];
-                let (frame, geometric) = match object.material.normal_space {
-                    NormalSpace::Tangent | NormalSpace::SurfaceTangent { .. } => {
-                        (TangentFrame { t: t.truncate(), b: t.w * n.cross(t.truncate()), n }, Vec3::Z)
-                    }
-                    // Object space: no rotation; the surface normal is what self-shadowing tests.
-                    NormalSpace::Object { .. } => (TangentFrame { t: Vec3::X, b: Vec3::Y, n: Vec3::Z }, n),
-                };
-                let (l, h) = lighting.tangent_space(p, &frame);
-                let v = frame.tangent_from_object(lighting.to_eye(p)).normalize_or(Vec3::Z);
-                let mut varyings = [0.0; MAX_VARYINGS];
-                varyings[var::S] = mesh.texcoords[i].x;
-                varyings[var::T] = mesh.texcoords[i].y;
-                varyings[var::L..var::L + 3].copy_from_slice(&l.to_array());
-                varyings[var::H..var::H + 3].copy_from_slice(&h.to_array());
-                varyings[var::V..var::V + 3].copy_from_slice(&v.to_array());
-                varyings[var::N..var::N + 3].copy_from_slice(&geometric.to_array());
-                if let (Some(source), NormalSpace::Tangent) = (&object.source, object.material.normal_space) {
-                    let st = mesh.texcoords[i];
-                    let sp = source.surface.eval(st.x / source.repeat.x, st.y / source.repeat.y);
-                    let frame = [sp.dp_du.length(), sp.dp_dv.dot(frame.t), sp.dp_dv.dot(frame.b)];
-                    varyings[var::PARAM_FRAME..var::PARAM_FRAME + 3].copy_from_slice(&frame);
+        out.par_extend((0..mesh.positions.len()).into_par_iter().map(|i| {
+            let p = mesh.positions[i];
+            let n = mesh.normals[i];
+            let t = mesh.tangents[i];
+            let (frame, geometric) = match object.material.normal_space {
+                NormalSpace::Tangent | NormalSpace::SurfaceTangent { .. } => {
+                    (TangentFrame { t: t.truncate(), b: t.w * n.cross(t.truncate()), n }, Vec3::Z)
                 }
-                if let Some(heights) = &object.material.height_map {
-                    // One texel of the height map's level 0 per unit of L_x, L_y.
-                    let shift = glam::Vec2::new(l.x / heights.width() as f32, l.y / heights.height() as f32);
-                    let st = mesh.texcoords[i];
-                    let forced = if l.z > 0.0 { st + shift } else { st };
-                    varyings[var::EMBOSS..var::EMBOSS + 2].copy_from_slice(&forced.to_array());
-                    varyings[var::EMBOSS_UNFORCED..var::EMBOSS_UNFORCED + 2].copy_from_slice(&(st + shift).to_array());
-                }
-                varyings[var::LIGHT_DISTANCE] = match light.light {
-                    Light::Positional(_) => (object.world_from_object.transform_vector3(lighting.to_light(p))).length(),
-                    Light::Directional(_) => 0.0,
-                };
-                if let (Some(spot), Light::Positional(at)) = (&light.spot, light.light) {
-                    let axis = object_from_world.transform_vector3(spot.direction);
-                    let axis = frame.tangent_from_object(axis).normalize_or(Vec3::Z);
-                    varyings[var::SPOT..var::SPOT + 3].copy_from_slice(&axis.to_array());
-                    let c = spot.clip_from_world(at) * (object.world_from_object * p.extend(1.0));
-                    varyings[var::PROJ..var::PROJ + 3].copy_from_slice(&[0.5 * (c.x + c.w), 0.5 * (c.y + c.w), c.w]);
-                }
-                Vertex { clip: clip_from_object * p.extend(1.0), varyings }
-            })
-            .collect()
+                // Object space: no rotation; the surface normal is what self-shadowing tests.
+                NormalSpace::Object { .. } => (TangentFrame { t: Vec3::X, b: Vec3::Y, n: Vec3::Z }, n),
+            };
+            let (l, h) = lighting.tangent_space(p, &frame);
+            let v = frame.tangent_from_object(lighting.to_eye(p)).normalize_or(Vec3::Z);
+            let mut varyings = [0.0; MAX_VARYINGS];
+            varyings[var::S] = mesh.texcoords[i].x;
+            varyings[var::T] = mesh.texcoords[i].y;
+            varyings[var::L..var::L + 3].copy_from_slice(&l.to_array());
+            varyings[var::H..var::H + 3].copy_from_slice(&h.to_array());
+            varyings[var::V..var::V + 3].copy_from_slice(&v.to_array());
+            varyings[var::N..var::N + 3].copy_from_slice(&geometric.to_array());
+            if let (Some(source), NormalSpace::Tangent) = (&object.source, object.material.normal_space) {
+                let st = mesh.texcoords[i];
+                let sp = source.surface.eval(st.x / source.repeat.x, st.y / source.repeat.y);
+                let frame = [sp.dp_du.length(), sp.dp_dv.dot(frame.t), sp.dp_dv.dot(frame.b)];
+                varyings[var::PARAM_FRAME..var::PARAM_FRAME + 3].copy_from_slice(&frame);
+            }
+            if let Some(heights) = &object.material.height_map {
+                // One texel of the height map's level 0 per unit of L_x, L_y.
+                let shift = glam::Vec2::new(l.x / heights.width() as f32, l.y / heights.height() as f32);
+                let st = mesh.texcoords[i];
+                let forced = if l.z > 0.0 { st + shift } else { st };
+                varyings[var::EMBOSS..var::EMBOSS + 2].copy_from_slice(&forced.to_array());
+                varyings[var::EMBOSS_UNFORCED..var::EMBOSS_UNFORCED + 2].copy_from_slice(&(st + shift).to_array());
+            }
+            varyings[var::LIGHT_DISTANCE] = match light.light {
+                Light::Positional(_) => (object.world_from_object.transform_vector3(lighting.to_light(p))).length(),
+                Light::Directional(_) => 0.0,
+            };
+            if let (Some(spot), Light::Positional(at)) = (&light.spot, light.light) {
+                let axis = object_from_world.transform_vector3(spot.direction);
+                let axis = frame.tangent_from_object(axis).normalize_or(Vec3::Z);
+                varyings[var::SPOT..var::SPOT + 3].copy_from_slice(&axis.to_array());
+                let c = spot.clip_from_world(at) * (object.world_from_object * p.extend(1.0));
+                varyings[var::PROJ..var::PROJ + 3].copy_from_slice(&[0.5 * (c.x + c.w), 0.5 * (c.y + c.w), c.w]);
+            }
+            Vertex { clip: clip_from_object * p.extend(1.0), varyings }
+        }));
+        Ok(out)
     }
 }

@@ -15,6 +15,9 @@ pub enum CpuError {
         /// The largest framebuffer accepted, in pixels.
         max_pixels: usize,
     },
+    /// A texture unit's copy of a texture is more than the machine gives.
+    #[error(transparent)]
+    OutOfMemory(#[from] bumpmap_math::buffer::OutOfMemory),
     /// The scene or the technique refused (see [`CoreError`]).
     #[error(transparent)]
     Core(#[from] CoreError),

@@ -30,3 +30,4 @@ pub use combiners::{Combiners, LANES, Lanes, RegisterFile};
 pub use error::CpuError;
 pub use framebuffer::{Framebuffer, MAX_PIXELS};
 pub use renderer::{CpuRenderer, render};
+pub use texture::texture_unit_bytes;

@@ -55,7 +55,7 @@ impl CpuRenderer {
         for pass in &passes {
             let key = (pass.object, pass.light);
             if vertices.as_ref().map(|v| v.0) != Some(key) {
-                let v = scene.vertices(&scene.objects[pass.object], &scene.lights[pass.light], aspect);
+                let v = scene.vertices(&scene.objects[pass.object], &scene.lights[pass.light], aspect)?;
                 vertices = Some((key, v));
             }
             let verts = &vertices.as_ref().expect("filled above").1;
@@ -66,8 +66,8 @@ impl CpuRenderer {
                     let units = program
                         .units
                         .iter()
-                        .map(|u| TextureUnit { binding: self.binding(&u.binding), sampler: u.sampler })
-                        .collect();
+                        .map(|u| Ok(TextureUnit { binding: self.binding(&u.binding)?, sampler: u.sampler }))
+                        .collect::<Result<_, CpuError>>()?;
                     let combiners = Combiners::new(program.setup.clone(), program.precision)?;
                     let shader = FixedFunction { units, combiners };
                     self.raster.draw(fb, verts, indices, &state, &shader);
@@ -77,13 +77,19 @@ impl CpuRenderer {
                         program,
                         cube: (program.normalize == Normalize::Cube)
                             .then(|| self.cube(program.cube_size, Encoding::Unorm)),
-                        normal_map: self.texture(&program.normal_map),
-                        decal: program.decal.as_ref().map(|d| self.texture(d)),
+                        normal_map: self.texture(&program.normal_map)?,
+                        decal: program.decal.as_ref().map(|d| self.texture(d)).transpose()?,
                         gloss: match &program.gloss {
-                            Gloss::Map(g) => Some(self.texture(g)),
+                            Gloss::Map(g) => Some(self.texture(g)?),
                             _ => None,
                         },
-                        pattern: program.light.spot.as_ref().and_then(|s| s.pattern.as_ref()).map(|p| self.texture(p)),
+                        pattern: program
+                            .light
+                            .spot
+                            .as_ref()
+                            .and_then(|s| s.pattern.as_ref())
+                            .map(|p| self.texture(p))
+                            .transpose()?,
                     };
                     self.raster.draw(fb, verts, indices, &state, &shader);
                 }
@@ -95,26 +101,26 @@ impl CpuRenderer {
         Ok(())
     }
 
-    fn binding(&mut self, binding: &CoreBinding) -> Binding {
-        match binding {
-            CoreBinding::TwoD { texture, s, t } => Binding::TwoD { texture: self.texture(texture), s: *s, t: *t },
+    fn binding(&mut self, binding: &CoreBinding) -> Result<Binding, CpuError> {
+        Ok(match binding {
+            CoreBinding::TwoD { texture, s, t } => Binding::TwoD { texture: self.texture(texture)?, s: *s, t: *t },
             CoreBinding::NormalizationCube { size, encoding, r } => {
                 Binding::Cube { texture: self.cube(*size, *encoding), r: *r }
             }
-        }
+        })
     }
 
     /// The texture unit's copy of `mips`, made once per `Arc`.
-    fn texture(&mut self, mips: &Arc<Rgba8Mips>) -> Arc<Texture2d> {
+    fn texture(&mut self, mips: &Arc<Rgba8Mips>) -> Result<Arc<Texture2d>, CpuError> {
         if let Some((_, t)) = self.textures.iter().find(|(m, _)| Arc::ptr_eq(m, mips)) {
-            return t.clone();
+            return Ok(t.clone());
         }
         if self.textures.len() >= MAX_CACHED_TEXTURES {
             self.textures.clear();
         }
-        let t = Arc::new(Texture2d::from_mips(mips));
+        let t = Arc::new(Texture2d::try_from_mips(mips)?);
         self.textures.push((mips.clone(), t.clone()));
-        t
+        Ok(t)
     }
 
     /// The normalization cube map of face size `size`, built once.

@@ -8,6 +8,7 @@
 
 use glam::{Vec3, Vec4};
 
+use bumpmap_math::buffer::OutOfMemory;
 use bumpmap_math::{CubeFace, NormalizationCubeMap, Rgba8Image, Rgba8Mips};
 
 pub use bumpmap_core::state::{MagFilter, MinFilter, Sampler, WrapMode};
@@ -32,22 +33,43 @@ pub struct Level {
     repeat_rows: Vec<[u8; 4]>,
 }
 
+/// The bytes a texture unit holds for a texture of `texels` RGBA8 texels (all levels): the
+/// bytes, plus the rows padded for REPEAT in AVX2 builds or the texels as floats in builds
+/// without SSE4.1 (see `texture::Level`). What a command counts before it draws a large map.
+pub fn texture_unit_bytes(texels: u64) -> u64 {
+    let extra = if cfg!(all(target_arch = "x86_64", target_feature = "avx2", target_feature = "fma")) {
+        4
+    } else if cfg!(all(target_arch = "x86_64", target_feature = "sse4.1")) {
+        0
+    } else {
+        16
+    };
+    texels.saturating_mul(4 + extra)
+}
+
 /// `texels` (`width`×`height`, row-major) with one more column per row: the texel a LINEAR
 /// lookup under `wrap` pairs with the row's last one (column 0 for REPEAT, the last column again
 /// for CLAMP_TO_EDGE). Then the two texels of every bilinear row, (i, i + 1) after wrapping, are
 /// adjacent.
 #[cfg_attr(not(all(target_arch = "x86_64", target_feature = "avx2", target_feature = "fma")), allow(dead_code))]
-pub(crate) fn pad_rows(texels: &[[u8; 4]], width: usize, wrap: WrapMode) -> Vec<[u8; 4]> {
-    texels
-        .chunks_exact(width)
-        .flat_map(|row| {
-            let extra = match wrap {
-                WrapMode::Repeat => row[0],
-                WrapMode::ClampToEdge => row[width - 1],
-            };
-            row.iter().copied().chain(std::iter::once(extra))
-        })
-        .collect()
+pub(crate) fn pad_rows(texels: &[[u8; 4]], width: usize, wrap: WrapMode) -> Result<Vec<[u8; 4]>, OutOfMemory> {
+    let n = texels.len() + texels.len() / width;
+    let mut out = try_vec(n, "a texture unit's padded rows")?;
+    out.extend(texels.chunks_exact(width).flat_map(|row| {
+        let extra = match wrap {
+            WrapMode::Repeat => row[0],
+            WrapMode::ClampToEdge => row[width - 1],
+        };
+        row.iter().copied().chain(std::iter::once(extra))
+    }));
+    Ok(out)
+}
+
+/// An empty vector with room for `n` items, or the error naming `what` and its size.
+fn try_vec<T>(n: usize, what: &'static str) -> Result<Vec<T>, OutOfMemory> {
+    let mut v = Vec::new();
+    v.try_reserve_exact(n).map_err(|_| OutOfMemory::of::<T>(what, n))?;
+    Ok(v)
 }
 
 /// A 2D texture: level 0 and optionally every smaller level. RGB textures are stored with
@@ -58,9 +80,24 @@ pub struct Texture2d {
 }
 
 impl Texture2d {
-    /// The texture unit's copy of `mips`: every level, with the sampler's padded rows.
+    /// The texture unit's copy of `mips`: every level, with the sampler's padded rows. Aborts
+    /// when memory runs out: for textures whose size no input chooses ([`Texture2d::try_from_mips`]
+    /// otherwise).
     pub fn from_mips(mips: &Rgba8Mips) -> Self {
-        Self { levels: mips.levels().iter().map(|l| Level::new(l.width, l.height, l.texels.clone())).collect() }
+        Self::try_from_mips(mips).expect("memory for a texture unit's copy")
+    }
+
+    /// [`Texture2d::from_mips`], or the error saying how much memory a copy needs (a texture
+    /// unit holds two or more copies of each level: the bytes, and rows padded or floats
+    /// depending on the build).
+    pub fn try_from_mips(mips: &Rgba8Mips) -> Result<Self, OutOfMemory> {
+        let mut levels = Vec::with_capacity(mips.levels().len());
+        for l in mips.levels() {
+            let mut texels = try_vec(l.texels.len(), "a texture unit's copy of a level")?;
+            texels.extend_from_slice(&l.texels);
+            levels.push(Level::try_new(l.width, l.height, texels)?);
+        }
+        Ok(Self { levels })
     }
 
     /// A single-level texture. Panics if the sizes disagree.
@@ -123,18 +160,25 @@ fn bilinear_weights(a: f32, b: f32) -> [f32; 4] {
 }
 
 impl Level {
-    /// A level from its texels. Panics if the count is not `width·height`.
-    pub fn new(width: usize, height: usize, texels: Vec<[u8; 4]>) -> Self {
+    /// A level from its texels, or the error saying how much memory its float or padded copy
+    /// needs. Panics if the count is not `width·height`.
+    pub fn try_new(width: usize, height: usize, texels: Vec<[u8; 4]>) -> Result<Self, OutOfMemory> {
         assert_eq!(texels.len(), width * height, "texel count of a {width}x{height} level");
-        Self {
+        #[cfg(not(all(target_arch = "x86_64", target_feature = "sse4.1")))]
+        let values = {
+            let mut v = try_vec(texels.len(), "a texture unit's texels as floats")?;
+            v.extend(texels.iter().map(|t| Vec4::new(t[0] as f32, t[1] as f32, t[2] as f32, t[3] as f32)));
+            v
+        };
+        Ok(Self {
             width,
             height,
             #[cfg(not(all(target_arch = "x86_64", target_feature = "sse4.1")))]
-            values: texels.iter().map(|t| Vec4::new(t[0] as f32, t[1] as f32, t[2] as f32, t[3] as f32)).collect(),
+            values,
             #[cfg(all(target_arch = "x86_64", target_feature = "avx2", target_feature = "fma"))]
-            repeat_rows: pad_rows(&texels, width, WrapMode::Repeat),
+            repeat_rows: pad_rows(&texels, width, WrapMode::Repeat)?,
             texels,
-        }
+        })
     }
 
     #[inline(always)]
@@ -281,8 +325,15 @@ impl TextureCube {
         let packed = {
             let n = faces[0].width();
             let uniform = faces.iter().all(|f| f.levels.len() == 1 && f.width() == n && f.height() == n);
-            uniform
-                .then(|| faces.iter().flat_map(|f| pad_rows(&f.levels[0].texels, n, WrapMode::ClampToEdge)).collect())
+            uniform.then(|| {
+                faces
+                    .iter()
+                    .flat_map(|f| {
+                        pad_rows(&f.levels[0].texels, n, WrapMode::ClampToEdge)
+                            .expect("memory for a cube map's padded faces (six of a cube face's size)")
+                    })
+                    .collect()
+            })
         };
         Self {
             faces,
@@ -366,7 +417,7 @@ mod tests {
     #[test]
     fn trilinear_blends_levels_by_frac_lambda() {
         let mut tex = Texture2d::from_rgba8(2, 2, vec![[200, 0, 0, 255]; 4]);
-        tex.levels.push(Level::new(1, 1, vec![[100, 0, 0, 255]]));
+        tex.levels.push(Level::try_new(1, 1, vec![[100, 0, 0, 255]]).unwrap());
         let s = Sampler::TRILINEAR_REPEAT;
         let at = |l| (sample_2d(&tex, &s, 0.3, 0.3, l).x * 255.0).round();
         assert_eq!(at(-1.0), 200.0, "magnification uses level 0");

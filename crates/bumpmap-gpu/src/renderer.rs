@@ -118,7 +118,7 @@ impl GpuRenderer {
         for pass in &passes {
             let key = (pass.object, pass.light);
             if vertices.as_ref().map(|v| v.0) != Some(key) {
-                let v = scene.vertices(&scene.objects[pass.object], &scene.lights[pass.light], aspect);
+                let v = scene.vertices(&scene.objects[pass.object], &scene.lights[pass.light], aspect)?;
                 let floats: Vec<f32> = v.iter().flat_map(|v| v.clip.to_array().into_iter().chain(v.varyings)).collect();
                 debug_assert_eq!(floats.len(), v.len() * VERTEX_FLOATS);
                 let buffer = self.ctx.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {

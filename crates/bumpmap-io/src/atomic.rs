@@ -13,9 +13,10 @@ use crate::error::IoError;
 /// against the set's other files before its bytes are written. Missing destination folders
 /// are created, and removed again if the set is dropped uncommitted (when still empty).
 ///
-/// What it cannot promise: if a rename fails after others succeeded (the folder vanished, a
-/// disk error), the files renamed so far stay. Renames within one folder do not fail in
-/// practice once the temporary file exists.
+/// If a rename still fails after others succeeded (the folder vanished, a disk error), the
+/// files renamed so far are put back as they were: each existing destination is kept under a
+/// second name (a hard link, or a copy where links are not possible) until the whole set is in
+/// place. What it cannot promise is the same after a power cut or a `kill -9` mid-commit.
 pub struct FileSet {
     inputs: Vec<PathBuf>,
     staged: Vec<(PathBuf, PathBuf)>,
@@ -176,11 +177,18 @@ impl FileSet {
         }
         let dir = path.parent().filter(|d| !d.as_os_str().is_empty()).unwrap_or(Path::new("."));
         let name = path.file_name().ok_or_else(|| err(std::io::Error::other("not a file name")))?;
-        self.create_folders(dir).map_err(err)?;
         let tmp = dir.join(format!(".{}.{}.{}.tmp", name.to_string_lossy(), std::process::id(), self.staged.len()));
-        live().push(tmp.clone());
+        // Folders made and the temporary file created under one lock, which a set dropped on
+        // another thread also takes to remove the folders it made: it cannot take away a
+        // folder between another set's making sure of it and its first file there.
+        let file = {
+            let mut live = live();
+            self.create_folders(dir, &mut live).map_err(err)?;
+            live.push(tmp.clone());
+            File::create(&tmp)
+        };
         let result = (|| {
-            let mut w = BufWriter::new(File::create(&tmp)?);
+            let mut w = BufWriter::new(file?);
             fill(&mut w)?;
             w.flush()?;
             w.into_inner().map_err(|e| e.into_error())?.sync_all()
@@ -198,8 +206,8 @@ impl FileSet {
         }
     }
 
-    /// Creates `dir` and its missing ancestors, remembering which were new.
-    fn create_folders(&mut self, dir: &Path) -> std::io::Result<()> {
+    /// Creates `dir` and its missing ancestors, remembering which were new (in `live` too).
+    fn create_folders(&mut self, dir: &Path, live: &mut Vec<PathBuf>) -> std::io::Result<()> {
         let mut missing: Vec<PathBuf> =
             dir.ancestors().take_while(|d| !d.as_os_str().is_empty() && !d.exists()).map(Path::to_path_buf).collect();
         if missing.is_empty() {
@@ -207,7 +215,7 @@ impl FileSet {
         }
         std::fs::create_dir_all(dir)?;
         missing.reverse();
-        live().extend(missing.iter().cloned());
+        live.extend(missing.iter().cloned());
         self.created.extend(missing);
         Ok(())
     }
@@ -240,25 +248,61 @@ impl FileSet {
         folders.dedup();
         let _locks: Vec<File> =
             folders.iter().filter_map(|d| File::open(d).ok()).filter(|f| f.lock().is_ok()).collect();
+        // What each destination held before, to put back if a later rename fails.
+        let mut backups: Vec<Option<PathBuf>> = Vec::with_capacity(self.staged.len());
+        for (path, tmp) in &self.staged {
+            if !path.exists() {
+                backups.push(None);
+                continue;
+            }
+            let backup = tmp.with_extension("old");
+            let _ = std::fs::remove_file(&backup);
+            let kept = std::fs::hard_link(path, &backup).or_else(|_| std::fs::copy(path, &backup).map(|_| ()));
+            if let Err(source) = kept {
+                remove_backups(&backups);
+                return Err(IoError::Write { path: path.clone(), source });
+            }
+            backups.push(Some(backup));
+        }
         let staged = std::mem::take(&mut self.staged);
-        // The folders now hold the set's files (or, if a rename fails, what was renamed).
-        self.created.clear();
         let mut done = Vec::with_capacity(staged.len());
         for (i, (path, tmp)) in staged.iter().enumerate() {
             if let Err(source) = std::fs::rename(tmp, path) {
                 for (_, t) in &staged[i..] {
                     let _ = std::fs::remove_file(t);
                 }
+                // Back as it was: old files restored, new ones removed, made folders emptied.
+                for (p, backup) in done.iter().zip(&backups) {
+                    match backup {
+                        Some(b) => {
+                            let _ = std::fs::rename(b, p);
+                        }
+                        None => {
+                            let _ = std::fs::remove_file(p);
+                        }
+                    }
+                }
+                remove_backups(&backups);
                 return Err(IoError::Write { path: path.clone(), source });
             }
             done.push(path.clone());
         }
+        remove_backups(&backups);
+        // The folders now hold the set's files.
+        self.created.clear();
         Ok(done)
+    }
+}
+
+fn remove_backups(backups: &[Option<PathBuf>]) {
+    for b in backups.iter().flatten() {
+        let _ = std::fs::remove_file(b);
     }
 }
 
 impl Drop for FileSet {
     fn drop(&mut self) {
+        let mut live = live();
         for (_, tmp) in &self.staged {
             let _ = std::fs::remove_file(tmp);
         }
@@ -268,9 +312,7 @@ impl Drop for FileSet {
         }
         let mine: Vec<&Path> =
             self.staged.iter().map(|(_, t)| t.as_path()).chain(self.created.iter().map(PathBuf::as_path)).collect();
-        if !mine.is_empty() {
-            forget(&mine);
-        }
+        live.retain(|p| !mine.contains(&p.as_path()));
     }
 }
 
@@ -287,18 +329,34 @@ pub fn write_atomic(
 /// Refuses an output path that names the same file as any input (also through links or
 /// `..`), so a typo cannot destroy the data being processed.
 pub fn ensure_not_input(output: &Path, inputs: &[&Path]) -> Result<(), IoError> {
-    let canon = |p: &Path| -> Option<PathBuf> { std::fs::canonicalize(p).ok() };
-    let out = canon(output).or_else(|| {
-        // The output may not exist yet: compare its canonical folder plus file name.
-        let parent = output.parent().filter(|d| !d.as_os_str().is_empty()).unwrap_or(Path::new("."));
-        Some(canon(parent)?.join(output.file_name()?))
-    });
+    let out = resolved(output);
     for input in inputs {
-        if out.is_some() && canon(input) == out {
+        if out.is_some() && std::fs::canonicalize(input).ok() == out {
             return Err(IoError::SameAsInput { path: output.to_path_buf() });
         }
     }
     Ok(())
+}
+
+/// The file `path` will name once its missing folders are made: its deepest existing ancestor
+/// canonicalized, then the rest of the path taken lexically (`missing/../a.png` is `./a.png`,
+/// because `missing` will exist by the time it is written). `None` when no ancestor resolves.
+pub fn resolved(path: &Path) -> Option<PathBuf> {
+    for ancestor in path.ancestors() {
+        let base = if ancestor.as_os_str().is_empty() { Path::new(".") } else { ancestor };
+        let Ok(mut out) = std::fs::canonicalize(base) else { continue };
+        for part in path.strip_prefix(ancestor).ok()?.components() {
+            match part {
+                std::path::Component::ParentDir => {
+                    out.pop();
+                }
+                std::path::Component::Normal(name) => out.push(name),
+                _ => {}
+            }
+        }
+        return Some(out);
+    }
+    None
 }
 
 #[cfg(test)]
@@ -379,6 +437,37 @@ mod tests {
         let mut names: Vec<_> = std::fs::read_dir(&dir).unwrap().map(|e| e.unwrap().file_name()).collect();
         names.sort();
         assert_eq!(names, ["b", "c"], "neither a nor a temporary file");
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    #[test]
+    fn a_rename_that_fails_midway_puts_back_what_was_there() {
+        let dir = std::env::temp_dir().join(format!("bumpmap-fileset-restore-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        std::fs::write(dir.join("a"), b"old a").unwrap();
+        let mut set = FileSet::new(&[]);
+        set.write(&dir.join("a"), |w| w.write_all(b"new a")).unwrap();
+        set.write(&dir.join("sub/b"), |w| w.write_all(b"new b")).unwrap();
+        set.write(&dir.join("c"), |w| w.write_all(b"new c")).unwrap();
+        // The last temporary file vanishes: its rename fails after the others succeeded.
+        std::fs::remove_file(&set.staged[2].1).unwrap();
+        let err = set.commit().unwrap_err();
+        assert!(err.to_string().contains(&dir.join("c").display().to_string()), "{err}");
+        assert_eq!(std::fs::read(dir.join("a")).unwrap(), b"old a");
+        let names: Vec<_> = std::fs::read_dir(&dir).unwrap().map(|e| e.unwrap().file_name()).collect();
+        assert_eq!(names, ["a"], "no new file, no folder made for one, no backup");
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    #[test]
+    fn an_output_reached_through_a_folder_yet_to_be_made_is_still_checked() {
+        let dir = std::env::temp_dir().join(format!("bumpmap-resolved-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let input = dir.join("h.png");
+        std::fs::write(&input, b"heights").unwrap();
+        let sneaky = dir.join("missing/deeper/../../h.png");
+        assert!(matches!(ensure_not_input(&sneaky, &[&input]), Err(IoError::SameAsInput { .. })));
+        assert!(ensure_not_input(&dir.join("missing/h.png"), &[&input]).is_ok());
         std::fs::remove_dir_all(&dir).unwrap();
     }
 }

@@ -38,6 +38,15 @@ pub enum IoError {
         /// The largest side accepted.
         max: u32,
     },
+    /// An input whose decoded texels (with the copies made while converting them) are more
+    /// than the machine gives, found from its header before decoding.
+    #[error("{}: {source}", shown(path))]
+    OutOfMemory {
+        /// The file.
+        path: PathBuf,
+        /// What was needed.
+        source: bumpmap_math::buffer::OutOfMemory,
+    },
     /// An image of no texels.
     #[error("{}: image has no texels ({width}x{height})", shown(path))]
     Empty {

@@ -7,7 +7,7 @@
 use std::path::{Path, PathBuf};
 
 use bumpmap_math::{HeightField, HeightPreset, Rgba8Image};
-use image::{DynamicImage, ImageReader, Limits};
+use image::{DynamicImage, ImageFormat, ImageReader, Limits};
 
 use crate::atomic::FileSet;
 use crate::error::IoError;
@@ -204,13 +204,25 @@ fn check_exr(mut reader: impl std::io::BufRead, file_len: u64, name: &Path, max:
 /// Decodes the image from `source`; `name` is the file the errors name.
 fn decode(source: impl Source, name: &Path, limits: &DecodeLimits) -> Result<DynamicImage, IoError> {
     let read_err = |source| IoError::Read { path: name.to_path_buf(), source };
-    let open = || ImageReader::new(source.open().map_err(read_err)?).with_guessed_format().map_err(read_err);
+    // The magic bytes first; a TGA has none, so its extension names it when they say nothing.
+    let open = || {
+        let mut reader = ImageReader::new(source.open().map_err(read_err)?).with_guessed_format().map_err(read_err)?;
+        if reader.format().is_none()
+            && let Ok(format) = ImageFormat::from_path(name)
+        {
+            reader.set_format(format);
+        }
+        Ok::<_, IoError>(reader)
+    };
     let bad = |e: image::ImageError| IoError::Decode { path: name.to_path_buf(), reason: e.to_string() };
     // The header alone, without the decoder's own memory limit, so a huge declared size is
     // reported as a size against MAX_DIMENSION rather than as "memory limit exceeded".
     let mut header = open()?;
     header.no_limits();
-    let (width, height) = header.into_dimensions().map_err(bad)?;
+    let decoder = header.into_decoder().map_err(bad)?;
+    let (width, height) = image::ImageDecoder::dimensions(&decoder);
+    let decoded_bytes = image::ImageDecoder::total_bytes(&decoder);
+    drop(decoder);
     if width == 0 || height == 0 {
         return Err(IoError::Empty { path: name.to_path_buf(), width, height });
     }
@@ -218,6 +230,11 @@ fn decode(source: impl Source, name: &Path, limits: &DecodeLimits) -> Result<Dyn
     if width > max || height > max {
         return Err(IoError::TooLarge { path: name.to_path_buf(), width: width as u64, height: height as u64, max });
     }
+    // The decoder's buffer is not asked for fallibly: check up front that it fits, with a
+    // conversion's copy of it and a float per texel (what a height field or RGBA8 copy takes).
+    let needed = decoded_bytes.saturating_mul(2).saturating_add(width as u64 * height as u64 * 4);
+    bumpmap_math::buffer::ensure_available(needed, "decoding it")
+        .map_err(|source| IoError::OutOfMemory { path: name.to_path_buf(), source })?;
     check_png_palette(source.open().map_err(read_err)?, name)?;
     check_exr(source.open().map_err(read_err)?, source.len().map_err(read_err)?, name, max)?;
     let mut reader = open()?;

@@ -60,8 +60,14 @@ fn check_obj_faces(path: &Path, text: &str) -> Result<(), IoError> {
         for r in &refs {
             for (k, index) in r.split('/').enumerate().take(3).filter(|(_, t)| !t.is_empty()) {
                 let what = ["position", "texture coordinate", "normal"][k];
-                let n: i64 = index.parse().map_err(|_| {
-                    mesh_err(path, format!("line {}: {what} index '{index}' is not a whole number", i + 1))
+                let n: i64 = index.parse().map_err(|e: std::num::ParseIntError| {
+                    let why = match e.kind() {
+                        std::num::IntErrorKind::PosOverflow | std::num::IntErrorKind::NegOverflow => {
+                            format!("is beyond any count of the file's {}s", kinds[k])
+                        }
+                        _ => "is not a whole number".into(),
+                    };
+                    mesh_err(path, format!("line {}: {what} index '{index}' {why}", i + 1))
                 })?;
                 let ok = (1..=total[k]).contains(&n) || (-so_far[k]..=-1).contains(&n);
                 if !ok {

@@ -104,3 +104,59 @@ fn one_channel_openexr_heights_are_read() {
     let e = read_height_field(bytes.get_ref(), name, Channel::Alpha, &DecodeLimits::default()).unwrap_err();
     assert!(e.to_string().contains("has no alpha channel (it has one channel)"), "{e}");
 }
+
+#[test]
+fn a_tga_has_no_magic_bytes_and_is_named_by_its_extension() {
+    // A TGA starts with no signature, so sniffing the bytes finds nothing; the name decides.
+    let img = image::GrayImage::from_fn(5, 4, |x, y| image::Luma([(x * 40 + y * 7) as u8]));
+    let mut bytes = std::io::Cursor::new(Vec::new());
+    image::DynamicImage::ImageLuma8(img.clone()).write_to(&mut bytes, image::ImageFormat::Tga).unwrap();
+    let field = read_height_field(bytes.get_ref(), Path::new("rock.TGA"), Channel::Luminance, &DecodeLimits::default())
+        .unwrap();
+    assert_eq!((field.width(), field.height()), (5, 4));
+    for (got, p) in field.to_f32().iter().zip(img.pixels()) {
+        assert!((got - p.0[0] as f32 / 255.0).abs() < 1e-6, "{got} against {}", p.0[0]);
+    }
+    // The same bytes under a name with no image extension stay unrecognised.
+    let e = read_height_field(bytes.get_ref(), Path::new("rock.dat"), Channel::Luminance, &DecodeLimits::default())
+        .unwrap_err();
+    assert!(e.to_string().contains("rock.dat"), "{e}");
+}
+
+/// `--ignored` to write this file's hostile inputs as fuzz seeds (first byte 0: heights, read
+/// as luminance, as the `image` target reads it): `BUMPMAP_SEED_DIR=fuzz/regressions/image
+/// cargo test -p bumpmap-io --test hostile_exr -- --ignored`.
+#[test]
+#[ignore]
+fn write_fuzz_seeds() {
+    let dir = std::path::PathBuf::from(std::env::var("BUMPMAP_SEED_DIR").unwrap_or("/tmp".into()));
+    let ok = small_exr(8, 8);
+    let wide = with_window(with_window(small_exr(8, 1), "dataWindow", 700_000_000, 1), "displayWindow", 1, 1);
+    let tall = with_window(with_window(ok.clone(), "dataWindow", 16384, 16384), "displayWindow", 16384, 16384);
+    let mut huge = std::io::Cursor::new(Vec::new());
+    let img = image::Rgb32FImage::from_fn(4, 4, |x, _| image::Rgb([if x == 2 { 1e20 } else { 0.5 }, 0.0, 0.0]));
+    image::DynamicImage::ImageRgb32F(img).write_to(&mut huge, image::ImageFormat::OpenExr).unwrap();
+    let mut y_only = std::io::Cursor::new(Vec::new());
+    {
+        use exr::prelude::*;
+        let heights: Vec<f32> = (0..6 * 5).map(|i| i as f32).collect();
+        let channels = AnyChannels::sort(vec![AnyChannel::new("Y", FlatSamples::F32(heights))].into());
+        Image::from_channels((6, 5), channels).write().to_buffered(&mut y_only).unwrap();
+    }
+    let mut tiff = std::io::Cursor::new(Vec::new());
+    let heights: Vec<f32> = (0..6 * 5).map(|i| i as f32 * 0.1).collect();
+    tiff::encoder::TiffEncoder::new(&mut tiff)
+        .unwrap()
+        .write_image::<tiff::encoder::colortype::Gray32Float>(6, 5, &heights)
+        .unwrap();
+    for (name, bytes) in [
+        ("exr_8x8.exr.bin", &ok),
+        ("exr_data_window_700m_by_1.exr.bin", &wide),
+        ("exr_16384_square_without_chunks.exr.bin", &tall),
+        ("exr_height_1e20.exr.bin", huge.get_ref()),
+        ("exr_y_channel_only.exr.bin", y_only.get_ref()),
+        ("tiff_gray32_float.tif.bin", tiff.get_ref()),
+    ] {
+        std::fs::write(dir.join(name), [&[0u8][..], bytes].concat()).unwrap();
+    }
+}

@@ -55,8 +55,9 @@ fn indices_that_name_no_element_are_errors_checked_in_64_bits() {
     refused(&format!("{QUAD}f -5/1 2/2 3/3\n"), "position index -5 names none");
     refused(
         &format!("{QUAD}f 1/1 2/2 99999999999999999999/3\n"),
-        "position index '99999999999999999999' is not a whole number",
+        "position index '99999999999999999999' is beyond any count of the file's vs",
     );
+    refused(&format!("{QUAD}f 1/1 2/2 3x/3\n"), "position index '3x' is not a whole number");
     // Counting back reaches only what was defined before the face; forward indices, any of the file's.
     refused(&format!("v 0 0 0\nf -1 -2 -3\n{QUAD}"), "position index -2 names none");
     let obj = format!("{QUAD}f -4/-4 -3/-3 -2/-2\nv 5 5 5\nf 1/1 2/2 5/3\n");

@@ -4,7 +4,7 @@
 //! [`try_zeroed`], so an input too big for the machine becomes an [`OutOfMemory`] error that
 //! says how many bytes it needed, not an abort.
 //! This module does not estimate what a whole command needs; each error names the one buffer
-//! that could not be had.
+//! that could not be had, and [`ensure_available`] checks a command's own estimate up front.
 //!
 //! A 4096² normal map with its mips is 90 MB written once. Fresh pages from the kernel cost a
 //! fault and a clear each; with 4 KiB pages that is about half the time of making the map. On
@@ -97,6 +97,23 @@ pub fn try_zeroed<T: crate::Texel>(n: usize, what: &'static str) -> Result<Vec<T
     // SAFETY: allocated by the global allocator with `Layout::array::<T>(n)`, which is the
     // layout `Vec` uses for this capacity; zeroed bytes are valid texels.
     Ok(unsafe { Vec::from_raw_parts(ptr, n, n) })
+}
+
+/// Whether the process may still have `bytes` more: asks the allocator for that much address
+/// space and gives it back untouched (no page is written, so it costs no memory). For a
+/// command to refuse work whose buffers together will not fit, before the first of them, rather
+/// than running until some small allocation late in the work aborts.
+///
+/// ```
+/// use bumpmap_math::buffer::ensure_available;
+/// assert!(ensure_available(1 << 20, "a small scene").is_ok());
+/// let e = ensure_available(u64::MAX / 2, "a huge scene").unwrap_err();
+/// assert!(e.to_string().starts_with("not enough memory: a huge scene needs"));
+/// ```
+pub fn ensure_available(bytes: u64, what: &'static str) -> Result<(), OutOfMemory> {
+    let n = usize::try_from(bytes).map_err(|_| OutOfMemory { what, bytes })?;
+    let mut probe: Vec<u8> = Vec::new();
+    probe.try_reserve_exact(n).map_err(|_| OutOfMemory { what, bytes })
 }
 
 #[cfg(test)]

@@ -159,8 +159,14 @@ impl HeightField {
     }
 
     /// Heights quantized to 8 bits (`round(255·h)`), e.g. to save a preview.
+    /// A row at a time: no float copy of the whole field.
     pub fn to_u8(&self) -> Vec<u8> {
-        self.to_f32().iter().map(|&h| (h.clamp(0.0, 1.0) * 255.0 + 0.5) as u8).collect()
+        let mut buf = Vec::new();
+        let mut out = Vec::with_capacity(self.width * self.height);
+        for y in 0..self.height {
+            out.extend(self.row(y, &mut buf).iter().map(|&h| (h.clamp(0.0, 1.0) * 255.0 + 0.5) as u8));
+        }
+        out
     }
 }
 

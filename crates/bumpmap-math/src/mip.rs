@@ -344,6 +344,11 @@ impl MipChain {
         Rgba8Mips::from_levels(self.levels.clone())
     }
 
+    /// The levels as a texture, moved rather than copied (the encoding is dropped).
+    pub fn into_mips(self) -> Rgba8Mips {
+        Rgba8Mips::from_levels(self.levels)
+    }
+
     /// The chain as [`MipMode::Renormalize`] stores it: the same directions with A = 1 on every
     /// level (RGB already holds the normalized mean).
     pub fn with_opaque_alpha(&self) -> MipChain {

@@ -109,6 +109,10 @@ pub fn parse_side(s: &str) -> Result<usize, String> {
         .ok_or_else(|| format!("'{s}' is not a size in 1..={MAX_SIDE} pixels"))
 }
 
+/// The most quads along u or v. 2048² quads (8.4 M triangles, a few pixels each even on the
+/// largest framebuffer) draw a 512² image in 2.0 GB; 4096² took 7.9 GB.
+pub const MAX_TESSELLATION: usize = 2048;
+
 /// Two positive integers, `U,V`.
 pub fn parse_counts(s: &str) -> Result<(usize, usize), String> {
     let (a, b) = s.split_once(',').ok_or_else(|| format!("expected U,V, got '{s}'"))?;
@@ -116,8 +120,8 @@ pub fn parse_counts(s: &str) -> Result<(usize, usize), String> {
         x.trim()
             .parse::<usize>()
             .ok()
-            .filter(|&n| (1..=4096).contains(&n))
-            .ok_or_else(|| format!("'{x}' is not a count in 1..=4096"))
+            .filter(|&n| (1..=MAX_TESSELLATION).contains(&n))
+            .ok_or_else(|| format!("'{x}' is not a count in 1..={MAX_TESSELLATION}"))
     };
     Ok((p(a)?, p(b)?))
 }

@@ -35,7 +35,7 @@ pub struct SceneGroup {
     /// Torus radii R,r (hole centre to tube centre, tube)
     #[arg(long = "torus-radii", value_parser = parse_pair, default_value = "2,0.7", allow_hyphen_values = true)]
     pub torus_radii: (f32, f32),
-    /// Quads along u and v (default: the scene's; torus 128,64)
+    /// Quads along u and v, each at most 2048 (default: the scene's; torus 128,64)
     #[arg(long, value_parser = parse_counts)]
     pub tessellation: Option<(usize, usize)>,
     /// Texture repeats along s and t (default: the scene's; torus 6,2); negative mirrors; each non-zero, within ±1024
@@ -90,7 +90,7 @@ pub struct LightGroup {
     /// Spotlight fall-off exponent (cos^E), ≥ 0
     #[arg(long = "spot-exponent", default_value_t = 2.0, allow_negative_numbers = true, requires = "spot")]
     pub spot_exponent: f32,
-    /// Pattern projected by the spotlight: an image or a height-field preset (e.g. pinwheel)
+    /// Pattern projected by the spotlight: an image or a height-field preset (e.g. pinwheel); sampled at up to 2048 a side (a larger one is box-halved)
     #[arg(long = "spot-pattern", requires = "spot")]
     pub spot_pattern: Option<String>,
 }

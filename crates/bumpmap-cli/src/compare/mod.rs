@@ -159,6 +159,16 @@ pub fn measure(args: &CompareArgs, progress: bool) -> Result<(Results, Vec<PathB
     } else {
         args.techniques.iter().map(|t| t.trim().to_string()).filter(|t| !t.is_empty()).collect()
     };
+    // A name twice would draw twice and then collide on its own PNG: refused before any work.
+    for (i, name) in wanted.iter().enumerate() {
+        let key = TechniqueName::parse(name).map(|t| t.name().to_string()).unwrap_or_else(|_| name.clone());
+        if wanted[..i]
+            .iter()
+            .any(|w| TechniqueName::parse(w).map(|t| t.name().to_string()).unwrap_or_else(|_| w.clone()) == key)
+        {
+            return Err(CliError::Usage(format!("--techniques names {name} twice")));
+        }
+    }
     let mut backend = crate::render::renderer(args.backend)?;
     // The reference, each technique, convergence and the three studies.
     let steps = (wanted.len() + 5) as u64;
@@ -169,6 +179,7 @@ pub fn measure(args: &CompareArgs, progress: bool) -> Result<(Results, Vec<PathB
     let scene = spec.build().map_err(crate::render::core_err)?;
     let t = Instant::now();
     let reference = reference_image(&scene, size, spp)?;
+    crate::render::ensure_drawn(reference.pixels.iter().all(|p| *p == glam::Vec3::ZERO), &args.output)?;
     let reference_millis = t.elapsed().as_secs_f64() * 1e3;
     bar.inc(1);
 
