@@ -36,6 +36,7 @@ fn a_value_out_of_range_exits_2_however_it_is_noticed() {
         (&["render", "--size", "32", "--height-field", "bricks@16385"], "size 16385 is outside"),
         (&["render", "--size", "32", "--tessellation", "4096,64"], "'4096' is not a count in 1..=2048"),
         (&["compare", "--size", "16", "--techniques", "kilgard,kilgard"], "--techniques names kilgard twice"),
+        (&["render", "--size", "16", "--specular", "1e40"], "'1e40' is beyond single precision"),
         (&["bench", "reference", "--size", "16384", "--runs", "1"], "framebuffer 16384x16384 refused"),
     ]
     .into_iter()

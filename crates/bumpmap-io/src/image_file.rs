@@ -133,6 +133,10 @@ impl Default for DecodeLimits {
     }
 }
 
+/// The largest block of pixels an OpenEXR may declare: a DWAB block (256 scan lines) of 16384
+/// RGBA floats is 64 MiB; a tile as large as a 16384² image would be 4 GiB.
+const MAX_EXR_BLOCK: u64 = 256 << 20;
+
 /// Something an image can be decoded from more than once (the header is read first, alone).
 trait Source {
     type Reader: std::io::BufRead + std::io::Seek;
@@ -174,7 +178,14 @@ const EXR_MAGIC: [u8; 4] = [0x76, 0x2f, 0x31, 0x01];
 /// 341-byte file declared a 700,000,000×1 data window in a 1×1 display window); and every
 /// chunk of pixels costs at least 16 bytes in the file (its offset-table entry and its own
 /// header), so a file shorter than that declares pixels it does not have.
-fn check_exr(mut reader: impl std::io::BufRead, file_len: u64, name: &Path, max: u32) -> Result<(), IoError> {
+fn check_exr(
+    mut reader: impl std::io::BufRead,
+    file_len: u64,
+    name: &Path,
+    limits: &DecodeLimits,
+) -> Result<(), IoError> {
+    let max = limits.max_dimension.min(MAX_DIMENSION);
+    let max_block = limits.max_alloc.min(MAX_EXR_BLOCK);
     let mut magic = [0u8; 4];
     if reader.read_exact(&mut magic).is_err() || magic != EXR_MAGIC {
         return Ok(());
@@ -188,6 +199,25 @@ fn check_exr(mut reader: impl std::io::BufRead, file_len: u64, name: &Path, max:
         if w > max as u64 || h > max as u64 {
             return Err(bad(format!(
                 "layer {i}'s data window is {w}x{h} texels; the limit is {max}x{max} (whatever the display window says)"
+            )));
+        }
+        // The decoder reserves up to a block's uncompressed size for each chunk before reading
+        // it, whatever the chunk's own length: a tile declared 64576×16384 took 1.7 GB.
+        // exr's `Header::max_block_byte_size`, in saturating arithmetic (a hostile tile size
+        // times many channels overflows it).
+        let texels = match header.blocks {
+            exr::meta::BlockDescription::Tiles(t) => (t.tile_size.0 as u64).saturating_mul(t.tile_size.1 as u64),
+            exr::meta::BlockDescription::ScanLines => {
+                (header.compression.scan_lines_per_block() as u64).saturating_mul(w)
+            }
+        };
+        let block = texels.saturating_mul(header.channels.bytes_per_pixel as u64);
+        if block > max_block {
+            return Err(bad(format!(
+                "layer {i}'s blocks of pixels would take {} each (its tiles or scan-line blocks and {} bytes a texel); the limit is {}",
+                bumpmap_math::buffer::Bytes(block),
+                header.channels.bytes_per_pixel,
+                bumpmap_math::buffer::Bytes(max_block)
             )));
         }
         chunks = chunks.saturating_add(header.chunk_count as u64);
@@ -236,7 +266,7 @@ fn decode(source: impl Source, name: &Path, limits: &DecodeLimits) -> Result<Dyn
     bumpmap_math::buffer::ensure_available(needed, "decoding it")
         .map_err(|source| IoError::OutOfMemory { path: name.to_path_buf(), source })?;
     check_png_palette(source.open().map_err(read_err)?, name)?;
-    check_exr(source.open().map_err(read_err)?, source.len().map_err(read_err)?, name, max)?;
+    check_exr(source.open().map_err(read_err)?, source.len().map_err(read_err)?, name, limits)?;
     let mut reader = open()?;
     let mut image_limits = Limits::default();
     image_limits.max_image_width = Some(max);
@@ -325,8 +355,7 @@ fn one_channel_exr(
     if meta.headers.first().is_none_or(|h| h.channels.list.len() != 1) {
         return Ok(None);
     }
-    let max = limits.max_dimension.min(MAX_DIMENSION);
-    check_exr(source.open().map_err(read_err)?, source.len().map_err(read_err)?, name, max)?;
+    check_exr(source.open().map_err(read_err)?, source.len().map_err(read_err)?, name, limits)?;
     if !matches!(channel, Channel::Luminance | Channel::Red) {
         return Err(IoError::NoSuchChannel {
             path: name.to_path_buf(),

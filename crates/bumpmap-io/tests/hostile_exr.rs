@@ -160,3 +160,17 @@ fn write_fuzz_seeds() {
         std::fs::write(dir.join(name), [&[0u8][..], bytes].concat()).unwrap();
     }
 }
+
+#[test]
+fn a_tile_larger_than_any_block_the_limits_allow_is_refused_before_reading_a_chunk() {
+    // Found by fuzzing: an 862-byte one-channel EXR whose tiles are declared 64576×16384; the
+    // decoder reserved 1.7 GB for its first chunk.
+    let path =
+        concat!(env!("CARGO_MANIFEST_DIR"), "/../../fuzz/regressions/image/exr_tile_64576x16384_declared.exr.bin");
+    let bytes = std::fs::read(path).unwrap();
+    refused(&bytes[1..], "blocks of pixels would take");
+    let e = read_height_field(&bytes[1..], Path::new("t.exr"), Channel::Luminance, &DecodeLimits::default())
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("the limit is 256.0 MiB"), "{e}");
+}

@@ -4,7 +4,7 @@ use std::path::PathBuf;
 
 use clap::Args;
 
-use crate::args::parse_side;
+use crate::args::{parse_f32, parse_side};
 
 /// `bumpmap compare`.
 #[derive(Args, Debug)]
@@ -29,7 +29,7 @@ pub struct CompareArgs {
     #[arg(long = "height-field", default_value = "bricks")]
     pub height_field: String,
     /// Bump scale: the height of a unit step, in texels
-    #[arg(long = "bump-scale", default_value_t = 4.0)]
+    #[arg(value_parser = parse_f32, long = "bump-scale", default_value_t = 4.0)]
     pub bump_scale: f32,
     /// Square image size in pixels
     #[arg(long, default_value_t = 256, value_parser = parse_side)]

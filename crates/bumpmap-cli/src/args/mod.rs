@@ -63,6 +63,17 @@ pub enum Command {
     Compare(CompareArgs),
 }
 
+/// One number as typed: text that overflows single precision (`1e40`) is refused with the
+/// text, rather than becoming `inf` and reported as that; `NaN` and `inf` typed as such pass,
+/// for the option's own range check to name.
+pub fn parse_f32(s: &str) -> Result<f32, String> {
+    let v = s.trim().parse::<f32>().map_err(|_| format!("'{s}' is not a number"))?;
+    if v.is_infinite() && !s.to_ascii_lowercase().contains("inf") {
+        return Err(format!("'{s}' is beyond single precision (about ±3.4e38)"));
+    }
+    Ok(v)
+}
+
 /// Three numbers, `X,Y,Z`.
 pub fn parse_vec3(s: &str) -> Result<glam::Vec3, String> {
     let v: Vec<f32> = s

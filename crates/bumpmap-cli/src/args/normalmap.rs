@@ -7,7 +7,7 @@ use bumpmap_io::Channel;
 use bumpmap_math::{Encoding, Kernel, MipMode, Wrap};
 use clap::{Args, ValueEnum};
 
-use crate::args::{FormatArg, YArg};
+use crate::args::{FormatArg, YArg, parse_f32};
 
 /// The finite-difference kernel.
 #[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
@@ -133,7 +133,7 @@ pub struct NormalMapOpts {
     #[arg(long, value_enum, default_value = "forward")]
     pub kernel: KernelArg,
     /// Bump height: heights are in [0,1], derivatives per texel, n ∝ (−scale·∂F/∂u, −scale·∂F/∂v, 1)
-    #[arg(long, default_value_t = 4.0, allow_negative_numbers = true)]
+    #[arg(value_parser = parse_f32, long, default_value_t = 4.0, allow_negative_numbers = true)]
     pub scale: f32,
     /// What the kernel reads beyond the edges
     #[arg(long, value_enum, default_value = "repeat")]

@@ -8,7 +8,7 @@ use bumpmap::TechniqueName;
 use clap::builder::PossibleValue;
 use clap::{Args, ValueEnum};
 
-use crate::args::{ObjVArg, YArg, parse_counts, parse_pair, parse_repeat, parse_side, parse_vec3};
+use crate::args::{ObjVArg, YArg, parse_counts, parse_f32, parse_pair, parse_repeat, parse_side, parse_vec3};
 
 /// What is drawn: the geometry, its bumps and decal, the texture layout.
 #[derive(Args, Debug, Clone)]
@@ -27,7 +27,7 @@ pub struct SceneGroup {
     #[arg(long = "y-convention", value_enum, default_value = "opengl", requires = "normal_map")]
     pub y_convention: YArg,
     /// Bump strength: a height field's scale (the height of a unit step, in texels) [default: 4]; for a normal map (--normal-map or a glTF's) it multiplies the slopes as glTF's normalTexture.scale does [default: 1, or the material's]
-    #[arg(long = "bump-scale", allow_negative_numbers = true)]
+    #[arg(value_parser = parse_f32, long = "bump-scale", allow_negative_numbers = true)]
     pub bump_scale: Option<f32>,
     /// Decal image, or "none" [default: a glTF material's base colour; the brick decal for the bricks preset; none otherwise]
     #[arg(long)]
@@ -64,7 +64,7 @@ pub struct CameraGroup {
     #[arg(long, value_parser = parse_vec3, allow_hyphen_values = true)]
     pub up: Option<glam::Vec3>,
     /// Vertical field of view in degrees
-    #[arg(long, default_value_t = 45.0, allow_negative_numbers = true)]
+    #[arg(value_parser = parse_f32, long, default_value_t = 45.0, allow_negative_numbers = true)]
     pub fov: f32,
     /// Local or infinite viewer for the half-angle vector
     #[arg(long, value_enum, default_value = "local")]
@@ -85,10 +85,10 @@ pub struct LightGroup {
     #[arg(long, value_parser = parse_vec3, allow_hyphen_values = true)]
     pub spot: Option<glam::Vec3>,
     /// Spotlight cone half-angle in degrees, in (0, 90)
-    #[arg(long = "spot-cutoff", default_value_t = 25.0, allow_negative_numbers = true, requires = "spot")]
+    #[arg(value_parser = parse_f32, long = "spot-cutoff", default_value_t = 25.0, allow_negative_numbers = true, requires = "spot")]
     pub spot_cutoff: f32,
     /// Spotlight fall-off exponent (cos^E), ≥ 0
-    #[arg(long = "spot-exponent", default_value_t = 2.0, allow_negative_numbers = true, requires = "spot")]
+    #[arg(value_parser = parse_f32, long = "spot-exponent", default_value_t = 2.0, allow_negative_numbers = true, requires = "spot")]
     pub spot_exponent: f32,
     /// Pattern projected by the spotlight: an image or a height-field preset (e.g. pinwheel); sampled at up to 2048 a side (a larger one is box-halved)
     #[arg(long = "spot-pattern", requires = "spot")]
@@ -100,16 +100,16 @@ pub struct LightGroup {
 #[command(next_help_heading = "Material")]
 pub struct MaterialGroup {
     /// Ambient intensity I_ambient
-    #[arg(long, default_value_t = 0.2, allow_negative_numbers = true)]
+    #[arg(value_parser = parse_f32, long, default_value_t = 0.2, allow_negative_numbers = true)]
     pub ambient: f32,
     /// Diffuse coefficient k_diffuse
-    #[arg(long, default_value_t = 0.8, allow_negative_numbers = true)]
+    #[arg(value_parser = parse_f32, long, default_value_t = 0.8, allow_negative_numbers = true)]
     pub diffuse: f32,
     /// Specular coefficient (0 drops the specular pass)
-    #[arg(long, default_value_t = 1.0, allow_negative_numbers = true)]
+    #[arg(value_parser = parse_f32, long, default_value_t = 1.0, allow_negative_numbers = true)]
     pub specular: f32,
     /// Specular exponent (kilgard's combiners are fixed at 8)
-    #[arg(long, default_value_t = 8.0, allow_negative_numbers = true)]
+    #[arg(value_parser = parse_f32, long, default_value_t = 8.0, allow_negative_numbers = true)]
     pub shininess: f32,
     /// single-pass: gloss map scaling the specular: decal-alpha, bricks (shiny bricks, dull mortar) or an image (red channel, same size as the decal)
     #[arg(long)]

@@ -4,7 +4,7 @@ use std::path::PathBuf;
 
 use clap::Args;
 
-use crate::args::{ObjVArg, TangentModeArg};
+use crate::args::{ObjVArg, TangentModeArg, parse_f32};
 
 /// `bumpmap tangents`.
 #[derive(Args, Debug)]
@@ -30,7 +30,7 @@ pub struct TangentsArgs {
     #[arg(long, value_enum, default_value = "ours")]
     pub mode: TangentModeArg,
     /// Ours: tangents further apart than this many degrees split a vertex
-    #[arg(long = "split-angle", default_value_t = 60.0)]
+    #[arg(value_parser = parse_f32, long = "split-angle", default_value_t = 60.0)]
     pub split_angle: f32,
     /// glTF only: let buffer URIs lead outside the glTF's folder (absolute paths, ..); off by default, so a downloaded glTF cannot make bumpmap read other files
     #[arg(long = "allow-outside-paths")]
