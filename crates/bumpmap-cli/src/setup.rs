@@ -23,8 +23,8 @@ use bumpmap_io::{Channel, HeightSource, MeshOptions};
 use glam::{Vec2, Vec3};
 
 use crate::args::{
-    FilterArg, HalfAngleArg, NormalizeArg, PrecisionArg, SceneSetup, SelfShadowArg, SpecularArg, SpecularShadowArg,
-    TechniqueGroup, ViewerArg,
+    FilterArg, HalfAngleArg, NormalizeArg, PrecisionArg, SceneSetup, SelfShadowArg, SpecularArg, SpecularFilterArg,
+    SpecularShadowArg, TechniqueGroup, ViewerArg,
 };
 use crate::error::CliError;
 use crate::render::{core_err, lib_err};
@@ -321,6 +321,11 @@ fn technique_options(s: &SceneSetup, name: TechniqueName) -> Result<TechniqueOpt
         ))
     };
     let refuse = |feature| Err(core_err(bumpmap::CoreError::Unsupported { technique: "kilgard", feature }));
+    if t.specular_filter != SpecularFilterArg::None && !matches!(family, Technique::SinglePass(_)) {
+        return Err(CliError::Render(format!(
+            "--specular-filter shapes the single pass's float specular; --technique {name} does not draw with it (use --technique toksvig, or single-pass and its family)"
+        )));
+    }
     match family {
         Technique::Kilgard(_) => {
             use bumpmap::bumpmap_core::Feature;
@@ -392,6 +397,10 @@ fn technique_options(s: &SceneSetup, name: TechniqueName) -> Result<TechniqueOpt
             specular_shadow: specular_shadow(t),
             gloss,
             cube_size,
+            specular_filter: match t.specular_filter {
+                SpecularFilterArg::None => bumpmap::SpecularFilter::None,
+                SpecularFilterArg::Toksvig => bumpmap::SpecularFilter::Toksvig,
+            },
         },
         emboss: bumpmap::EmbossOptions { sampler, cube_size, ..Default::default() },
         reference: ReferenceOptions {

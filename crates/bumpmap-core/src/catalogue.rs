@@ -20,7 +20,8 @@ use crate::error::CoreError;
 use crate::scene::Scene;
 use crate::scenes::{BumpSource, SceneParams, SceneSpec};
 use crate::technique::{
-    BackFacing, EmbossOptions, KilgardOptions, Normalize, ReferenceOptions, SinglePassOptions, Technique,
+    BackFacing, EmbossOptions, KilgardOptions, Normalize, ReferenceOptions, SinglePassOptions, SpecularFilter,
+    Technique,
 };
 
 /// Every named technique, in the order `compare`'s report lists them (the reference, the oracle
@@ -37,6 +38,8 @@ pub enum TechniqueName {
     ObjectSpace,
     /// The single pass over mips without the length factor.
     MipRenormalized,
+    /// The single pass with Toksvig's filtered specular exponent.
+    Toksvig,
     /// The single pass without bumps.
     NoBump,
     /// Peercy's surface-independent map (Figure 7).
@@ -112,12 +115,13 @@ pub struct TechniqueOptions {
 
 impl TechniqueName {
     /// Every name, in catalogue order.
-    pub const ALL: [TechniqueName; 13] = [
+    pub const ALL: [TechniqueName; 14] = [
         TechniqueName::Kilgard,
         TechniqueName::SinglePass,
         TechniqueName::SinglePassCube,
         TechniqueName::ObjectSpace,
         TechniqueName::MipRenormalized,
+        TechniqueName::Toksvig,
         TechniqueName::NoBump,
         TechniqueName::PeercyIndependent,
         TechniqueName::PeercyDependent,
@@ -136,6 +140,7 @@ impl TechniqueName {
             TechniqueName::SinglePassCube => "single-pass-cube",
             TechniqueName::ObjectSpace => "object-space",
             TechniqueName::MipRenormalized => "mip-renormalized",
+            TechniqueName::Toksvig => "toksvig",
             TechniqueName::NoBump => "no-bump",
             TechniqueName::PeercyIndependent => "peercy-independent",
             TechniqueName::PeercyDependent => "peercy-dependent",
@@ -164,6 +169,9 @@ impl TechniqueName {
             }
             TechniqueName::MipRenormalized => {
                 "the single pass with mips that renormalize the averaged normal, dropping its length (§2.4.2)"
+            }
+            TechniqueName::Toksvig => {
+                "the single pass with Toksvig's filter (2005, past §2.5.3): the mip chain's |N| widens and dims the specular lobe, exponent s·|N|/(|N| + s(1 − |N|))"
             }
             TechniqueName::NoBump => "the single pass on a flat height field: the surface without bumps",
             TechniqueName::PeercyIndependent => {
@@ -198,6 +206,7 @@ impl TechniqueName {
             | TechniqueName::SinglePass
             | TechniqueName::SinglePassCube
             | TechniqueName::MipRenormalized
+            | TechniqueName::Toksvig
             | TechniqueName::NoBump => &[],
             TechniqueName::ObjectSpace => &[BuiltInSurface],
             TechniqueName::PeercyIndependent | TechniqueName::OffsetMap => &[HeightField],
@@ -256,6 +265,7 @@ impl TechniqueName {
             TechniqueName::Kilgard
             | TechniqueName::SinglePass
             | TechniqueName::SinglePassCube
+            | TechniqueName::Toksvig
             | TechniqueName::Emboss
             | TechniqueName::EmbossUnforced
             | TechniqueName::Reference => {}
@@ -271,6 +281,9 @@ impl TechniqueName {
             TechniqueName::Kilgard => Technique::Kilgard(options.kilgard.clone()),
             TechniqueName::SinglePassCube => {
                 Technique::SinglePass(SinglePassOptions { normalize: Normalize::Cube, ..single })
+            }
+            TechniqueName::Toksvig => {
+                Technique::SinglePass(SinglePassOptions { specular_filter: SpecularFilter::Toksvig, ..single })
             }
             TechniqueName::SinglePass
             | TechniqueName::ObjectSpace

@@ -38,6 +38,48 @@ pub enum SpecularShadow {
     Off,
 }
 
+/// How the specular term answers the filtered normal's length |Nₐ| (the mip chain's alpha):
+/// Kilgard §2.5.3 leaves a distant bumpy surface's highlight as tight as a flat one's.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum SpecularFilter {
+    /// The exponent as given.
+    #[default]
+    None,
+    /// Toksvig 2005 ([`toksvig`]): a shorter filtered normal widens and dims the lobe.
+    Toksvig,
+}
+
+/// Toksvig's filtered exponent and energy factor for a filtered normal of length `length` and
+/// Blinn-Phong exponent `shininess` (SPECS.md §9): σ² = (1 − |Nₐ|)/|Nₐ|, f = 1/(1 + s·σ²) =
+/// |Nₐ|/(|Nₐ| + s(1 − |Nₐ|)), exponent f·s, energy (1 + f·s)/(1 + s). At |Nₐ| = 1 (mip 0, or
+/// renormalized mips) it is exactly `(shininess, 1)`.
+///
+/// ```
+/// use bumpmap_core::shading::toksvig;
+/// assert_eq!(toksvig(1.0, 8.0), (8.0, 1.0));
+/// let (s, e) = toksvig(0.9, 32.0);
+/// assert!(s < 32.0 && e < 1.0);
+/// ```
+#[inline(always)]
+pub fn toksvig(length: f32, shininess: f32) -> (f32, f32) {
+    let len = clamp_lo(length, 0.0, 1.0);
+    let f = len / (len + shininess * (1.0 - len));
+    let s = f * shininess;
+    (s, (1.0 + s) / (1.0 + shininess))
+}
+
+/// The specular lobe `(H·N')^s` under `filter`, for the filtered normal's length `length`.
+#[inline(always)]
+pub fn filtered_specular(h_dot_n: f32, shininess: f32, filter: SpecularFilter, length: f32) -> f32 {
+    match filter {
+        SpecularFilter::None => specular_power(h_dot_n, shininess),
+        SpecularFilter::Toksvig => {
+            let (s, energy) = toksvig(length, shininess);
+            specular_power(h_dot_n, s) * energy
+        }
+    }
+}
+
 /// The coefficients and switches of one lit pass: the material's, times the light's colour.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct LitTerms {
@@ -53,6 +95,8 @@ pub struct LitTerms {
     pub self_shadow: SelfShadow,
     /// How the specular term is gated.
     pub specular_shadow: SpecularShadow,
+    /// How the specular exponent answers the filtered normal's length.
+    pub specular_filter: SpecularFilter,
 }
 
 impl LitTerms {
@@ -64,6 +108,7 @@ impl LitTerms {
         first: bool,
         self_shadow: SelfShadow,
         specular_shadow: SpecularShadow,
+        specular_filter: SpecularFilter,
     ) -> Self {
         Self {
             ambient: if first { material.ambient } else { Vec3::ZERO },
@@ -72,6 +117,7 @@ impl LitTerms {
             shininess: material.shininess,
             self_shadow,
             specular_shadow,
+            specular_filter,
         }
     }
 }
@@ -147,7 +193,8 @@ pub fn dot3(a: [f32; 3], b: [f32; 3]) -> f32 {
 }
 
 /// The colour of one fragment (alpha is 1): `decal · min(ambient + diffuse · light · s_self ·
-/// max(0, N'·L) · |N'|, 1) + specular · light · gate · gloss · (H·N')^shininess`.
+/// max(0, N'·L) · |N'|, 1) + specular · light · gate · gloss · (H·N')^shininess` (the lobe
+/// filtered as [`filtered_specular`] says).
 ///
 /// N'·L and H·N' use the expanded, not renormalized, normal-map vector and are clamped to
 /// [−1, 1] and [0, 1] as the combiners' outputs are, so a quantized normal cannot brighten past
@@ -158,7 +205,7 @@ pub fn shade(terms: &LitTerms, f: &Fragment) -> Vec3 {
     let h_dot_n = clamp_lo(dot3(f.h.to_array(), n), 0.0, 1.0);
     let s_self = self_shadow(terms.self_shadow, f.l_n);
     let gate = specular_gate(terms.specular_shadow, s_self, n_dot_l, f.l_n, f.h_n);
-    let power = specular_power(h_dot_n, terms.shininess);
+    let power = filtered_specular(h_dot_n, terms.shininess, terms.specular_filter, f.normal.w);
     let (ka, kd, ks, decal) = (terms.ambient.to_array(), terms.diffuse.to_array(), terms.specular.to_array(), f.decal);
     Vec3::from_array(std::array::from_fn(|c| {
         let diffuse = min_hi(ka[c] + kd[c] * (f.light * s_self * max_lo(n_dot_l, 0.0) * f.normal.w), 1.0);
@@ -214,7 +261,35 @@ mod tests {
             shininess: 8.0,
             self_shadow: SelfShadow::Ramp,
             specular_shadow: SpecularShadow::Kilgard,
+            specular_filter: SpecularFilter::None,
         }
+    }
+
+    #[test]
+    fn toksvig_widens_and_dims_the_lobe_as_the_normal_shortens_and_is_exact_at_length_1() {
+        for s in [1.0f32, 8.0, 32.0, 100.0] {
+            assert_eq!(toksvig(1.0, s), (s, 1.0));
+            let mut last = (s, 1.0);
+            for k in 1..=100 {
+                let len = 1.0 - k as f32 * 0.0099;
+                let (e, energy) = toksvig(len, s);
+                assert!(e < last.0 && energy < last.1, "length {len}, s {s}: {e}, {energy} after {last:?}");
+                assert!(e > 0.0 && energy > 1.0 / (1.0 + s) - 1e-6);
+                // σ² = (1 − |Nₐ|)/|Nₐ| and exponent s/(1 + s·σ²): the same number another way.
+                let sigma2 = (1.0 - len) / len;
+                assert!((e - s / (1.0 + s * sigma2)).abs() <= 1e-4 * s, "{e} vs {}", s / (1.0 + s * sigma2));
+                last = (e, energy);
+            }
+        }
+        // A shortened normal spreads the highlight: dimmer at its peak, brighter off it.
+        let short = Vec4::new(0.5, 0.5, 1.0, 0.9); // the mean direction (unit) and its length
+        let f = |h: Vec3| Fragment { normal: short, h, ..flat(Vec3::Z, h) };
+        let toksvig_terms = LitTerms { specular_filter: SpecularFilter::Toksvig, shininess: 64.0, ..terms() };
+        let plain = LitTerms { shininess: 64.0, ..terms() };
+        let peak = Vec3::new(0.0, 0.0, 1.0);
+        let off = Vec3::new(0.35, 0.0, 1.0).normalize();
+        assert!(shade(&toksvig_terms, &f(peak)).x < shade(&plain, &f(peak)).x);
+        assert!(shade(&toksvig_terms, &f(off)).x > shade(&plain, &f(off)).x);
     }
 
     fn flat(l: Vec3, h: Vec3) -> Fragment {

@@ -12,7 +12,10 @@ use glam::Vec3;
 
 use bumpmap_core::lane_math::{clamp_lo, max_lo, min_hi};
 use bumpmap_core::scene::{Attenuation, NormalTexels};
-use bumpmap_core::shading::{LitTerms, blinn_from_derivatives, offset_to_normal, shininess_is_whole, spot_cone};
+use bumpmap_core::shading::{
+    LitTerms, SpecularFilter, blinn_from_derivatives, filtered_specular, offset_to_normal, shininess_is_whole,
+    spot_cone,
+};
 use bumpmap_core::technique::{Gloss, HalfAngle, LitProgram, SelfShadow, SpecularShadow};
 use bumpmap_core::vertex::var;
 
@@ -337,12 +340,22 @@ fn lighting_lanes(terms: &LitTerms, sc: &mut Scratch, object_space: bool, n: usi
         SpecularShadow::CgTutorial => (0..n).for_each(|j| gate[j] = (n_dot_l[j] > 0.0 && l_n[j] > 0.0) as u8 as f32),
         SpecularShadow::Off => gate.fill(1.0),
     }
-    let power: &Lanes = if shininess_is_whole(terms.shininess) {
-        powi_lanes(h_dot_n, terms.shininess as u32, n, acc);
-        acc
-    } else {
-        h_dot_n[..n].iter_mut().for_each(|x| *x = x.powf(terms.shininess));
-        h_dot_n
+    let power: &Lanes = match terms.specular_filter {
+        SpecularFilter::None if shininess_is_whole(terms.shininess) => {
+            powi_lanes(h_dot_n, terms.shininess as u32, n, acc);
+            acc
+        }
+        SpecularFilter::None => {
+            h_dot_n[..n].iter_mut().for_each(|x| *x = x.powf(terms.shininess));
+            h_dot_n
+        }
+        // A per-fragment exponent from the filtered normal's length: the scalar model per lane.
+        filter @ SpecularFilter::Toksvig => {
+            for j in 0..n {
+                h_dot_n[j] = filtered_specular(h_dot_n[j], terms.shininess, filter, normal[3][j]);
+            }
+            h_dot_n
+        }
     };
     // Eq. 11 with the filtered (shortened) normal, Eq. 16 with the renormalized one.
     let (ka, kd, ks) = (terms.ambient, terms.diffuse, terms.specular);
@@ -363,11 +376,12 @@ mod tests {
     use glam::Vec4;
     use proptest::prelude::*;
 
-    fn modes() -> impl Strategy<Value = (SelfShadow, SpecularShadow, f32)> {
+    fn modes() -> impl Strategy<Value = (SelfShadow, SpecularShadow, f32, SpecularFilter)> {
         (
             prop_oneof![Just(SelfShadow::Ramp), Just(SelfShadow::Step), Just(SelfShadow::Off)],
             prop_oneof![Just(SpecularShadow::Kilgard), Just(SpecularShadow::CgTutorial), Just(SpecularShadow::Off)],
             prop_oneof![Just(8.0f32), Just(1.0), Just(13.0), Just(64.0), Just(7.5), Just(100.0)],
+            prop_oneof![Just(SpecularFilter::None), Just(SpecularFilter::Toksvig)],
         )
     }
 
@@ -376,7 +390,7 @@ mod tests {
         /// order; neither side fuses multiply-adds).
         #[test]
         fn lighting_lanes_is_shade(
-            (self_shadow, specular_shadow, shininess) in modes(),
+            (self_shadow, specular_shadow, shininess, specular_filter) in modes(),
             object_space in any::<bool>(),
             seed in any::<u64>(),
             k in (0.0f32..1.0, 0.0f32..1.0, 0.0f32..2.0),
@@ -388,6 +402,7 @@ mod tests {
                 shininess,
                 self_shadow,
                 specular_shadow,
+                specular_filter,
             };
             let mut rng = seed;
             let mut next = move || {

@@ -30,6 +30,6 @@ mod textures;
 pub use combiner_wgsl::combiners_wgsl;
 pub use context::Context;
 pub use error::GpuError;
-pub use lit::{self_shadow_name, specular_shadow_name};
+pub use lit::{self_shadow_name, specular_filter_name, specular_shadow_name};
 pub use prelude::shading_wgsl;
 pub use renderer::GpuRenderer;

@@ -12,7 +12,7 @@
 
 use bumpmap_core::scene::{Attenuation, NormalTexels};
 use bumpmap_core::shading::LitTerms;
-use bumpmap_core::technique::{Gloss, HalfAngle, LitProgram, Normalize, SelfShadow, SpecularShadow};
+use bumpmap_core::technique::{Gloss, HalfAngle, LitProgram, Normalize, SelfShadow, SpecularFilter, SpecularShadow};
 
 /// One switch of the lit program: its override constant and the WGSL names of its values, in
 /// code order (a value's code is its index here).
@@ -38,6 +38,8 @@ const SPECULAR_SHADOW: Switch = Switch {
     name: "SPECULAR_SHADOW",
     values: &["SPECULAR_SHADOW_KILGARD", "SPECULAR_SHADOW_CG_TUTORIAL", "SPECULAR_SHADOW_OFF"],
 };
+const SPECULAR_FILTER: Switch =
+    Switch { name: "SPECULAR_FILTER", values: &["SPECULAR_FILTER_NONE", "SPECULAR_FILTER_TOKSVIG"] };
 const GLOSS: Switch = Switch { name: "GLOSS", values: &["GLOSS_NONE", "GLOSS_DECAL_ALPHA", "GLOSS_MAP"] };
 const ATTENUATION: Switch = Switch {
     name: "ATTENUATION",
@@ -63,6 +65,14 @@ pub fn specular_shadow_name(mode: SpecularShadow) -> &'static str {
         SpecularShadow::Kilgard => "SPECULAR_SHADOW_KILGARD",
         SpecularShadow::CgTutorial => "SPECULAR_SHADOW_CG_TUTORIAL",
         SpecularShadow::Off => "SPECULAR_SHADOW_OFF",
+    }
+}
+
+/// The WGSL name of a specular filter's constant (`SPECULAR_FILTER_NONE`, …).
+pub fn specular_filter_name(filter: SpecularFilter) -> &'static str {
+    match filter {
+        SpecularFilter::None => "SPECULAR_FILTER_NONE",
+        SpecularFilter::Toksvig => "SPECULAR_FILTER_TOKSVIG",
     }
 }
 
@@ -93,7 +103,7 @@ fn normal_texels_name(t: &NormalTexels) -> &'static str {
 
 /// Every named value of every switch with its code: the prelude's constants.
 pub(crate) fn named_values() -> impl Iterator<Item = (&'static str, u32)> {
-    [SELF_SHADOW, SPECULAR_SHADOW, GLOSS, ATTENUATION, NORMAL_TEXELS]
+    [SELF_SHADOW, SPECULAR_SHADOW, SPECULAR_FILTER, GLOSS, ATTENUATION, NORMAL_TEXELS]
         .into_iter()
         .flat_map(|s| s.values.iter().enumerate().map(|(i, &v)| (v, i as u32)))
 }
@@ -103,6 +113,7 @@ pub(crate) fn named_values() -> impl Iterator<Item = (&'static str, u32)> {
 pub struct LitVariant {
     self_shadow: u32,
     specular_shadow: u32,
+    specular_filter: u32,
     normalize_cube: bool,
     fragment_half_angle: bool,
     gloss: u32,
@@ -121,6 +132,7 @@ impl Default for LitVariant {
         Self {
             self_shadow: 0,
             specular_shadow: 0,
+            specular_filter: 0,
             normalize_cube: false,
             fragment_half_angle: false,
             gloss: 0,
@@ -140,6 +152,7 @@ impl LitVariant {
         Self {
             self_shadow: SELF_SHADOW.code(self_shadow_name(p.terms.self_shadow)),
             specular_shadow: SPECULAR_SHADOW.code(specular_shadow_name(p.terms.specular_shadow)),
+            specular_filter: SPECULAR_FILTER.code(specular_filter_name(p.terms.specular_filter)),
             normalize_cube: p.normalize == Normalize::Cube,
             fragment_half_angle: p.half_angle == HalfAngle::Fragment,
             gloss: GLOSS.code(gloss_name(&p.gloss)),
@@ -154,11 +167,12 @@ impl LitVariant {
 
     /// The override constants by their names in `lit.wgsl`, with their values: the one list
     /// the pipeline's constants and the prelude's declarations are made from.
-    pub(crate) fn overrides(&self) -> [(&'static str, Override); 11] {
+    pub(crate) fn overrides(&self) -> [(&'static str, Override); 12] {
         use Override::{Code, Flag, Float};
         [
             (SELF_SHADOW.name, Code(self.self_shadow)),
             (SPECULAR_SHADOW.name, Code(self.specular_shadow)),
+            (SPECULAR_FILTER.name, Code(self.specular_filter)),
             ("NORMALIZE_CUBE", Flag(self.normalize_cube)),
             ("FRAGMENT_HALF_ANGLE", Flag(self.fragment_half_angle)),
             (GLOSS.name, Code(self.gloss)),

@@ -138,7 +138,7 @@ fn fs_lit(f: Varyings) -> @location(0) vec4<f32> {
         h_n = dot(h, n);
     }
     let light = attenuation(vary(f, VAR_LIGHT_DISTANCE)) * spot_factor(f);
-    let t = Terms(u.ambient.rgb, u.diffuse.rgb, u.specular.rgb, SHININESS, SELF_SHADOW, SPECULAR_SHADOW);
+    let t = Terms(u.ambient.rgb, u.diffuse.rgb, u.specular.rgb, SHININESS, SELF_SHADOW, SPECULAR_SHADOW, SPECULAR_FILTER);
     let frag = Fragment(normal, decal.rgb, gloss, l, h, l_n, h_n, light);
     return vec4<f32>(shade(t, frag), 1.0);
 }

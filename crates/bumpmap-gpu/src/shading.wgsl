@@ -12,6 +12,8 @@ struct Terms {
     // SPECULAR_SHADOW_KILGARD (s_self, H_z >= 0), SPECULAR_SHADOW_CG_TUTORIAL (N'.L > 0 and
     // L_z > 0) or SPECULAR_SHADOW_OFF.
     specular_shadow: u32,
+    // SPECULAR_FILTER_NONE or SPECULAR_FILTER_TOKSVIG (the exponent from |N'|, SPECS.md 9).
+    specular_filter: u32,
 };
 
 struct Fragment {
@@ -53,6 +55,22 @@ fn specular_power(x: f32, s: f32) -> f32 {
     return select(pow(x, s), 0.0, x <= 0.0);
 }
 
+// bumpmap_core::shading::toksvig: the filtered exponent and its energy factor.
+fn toksvig(length: f32, s: f32) -> vec2<f32> {
+    let len = clamp(length, 0.0, 1.0);
+    let f = len / (len + s * (1.0 - len));
+    let e = f * s;
+    return vec2<f32>(e, (1.0 + e) / (1.0 + s));
+}
+
+fn filtered_specular(h_dot_n: f32, s: f32, lobe_filter: u32, length: f32) -> f32 {
+    if lobe_filter == SPECULAR_FILTER_TOKSVIG {
+        let k = toksvig(length, s);
+        return specular_power(h_dot_n, k.x) * k.y;
+    }
+    return specular_power(h_dot_n, s);
+}
+
 fn shade(t: Terms, f: Fragment) -> vec3<f32> {
     let nv = f.normal.rgb * 2.0 - 1.0;
     let n_dot_l = clamp(dot(f.l, nv), -1.0, 1.0);
@@ -69,7 +87,7 @@ fn shade(t: Terms, f: Fragment) -> vec3<f32> {
     } else if t.specular_shadow == SPECULAR_SHADOW_CG_TUTORIAL {
         gate = select(0.0, 1.0, n_dot_l > 0.0 && f.l_n > 0.0);
     }
-    let power = specular_power(h_dot_n, t.shininess);
+    let power = filtered_specular(h_dot_n, t.shininess, t.specular_filter, f.normal.a);
     let diffuse = min(t.ambient + t.diffuse * (f.light * s_self * max(n_dot_l, 0.0) * f.normal.a), vec3<f32>(1.0));
     let specular = t.specular * (f.light * gate * f.gloss * power);
     return f.decal * diffuse + specular;

@@ -1,6 +1,6 @@
 //! `shading.wgsl`'s `shade()` against its definition, `bumpmap_core::shading::shade`, on random
-//! fragments for every self-shadowing and specular-gate mode and whole and fractional
-//! shininess, on a compute shader.
+//! fragments for every self-shadowing and specular-gate mode, whole and fractional shininess,
+//! with and without Toksvig's filter, on a compute shader.
 //!
 //! Tolerance: 2e-4 per channel (a twentieth of one 8-bit step, 1/255 ≈ 3.9e-3). Both sides
 //! compute in f32; the GPU may fuse multiply-adds in the dot products, and its `pow` for a
@@ -10,8 +10,8 @@
 mod common;
 
 use bumpmap_core::shading::{Fragment, LitTerms, shade};
-use bumpmap_core::technique::{SelfShadow, SpecularShadow};
-use bumpmap_gpu::{self_shadow_name, shading_wgsl, specular_shadow_name};
+use bumpmap_core::technique::{SelfShadow, SpecularFilter, SpecularShadow};
+use bumpmap_gpu::{self_shadow_name, shading_wgsl, specular_filter_name, specular_shadow_name};
 use glam::{Vec3, Vec4};
 
 struct Rng(u64);
@@ -68,7 +68,11 @@ fn wgsl_shade_is_the_lighting_model() {
         for specular_shadow in [SpecularShadow::Kilgard, SpecularShadow::CgTutorial, SpecularShadow::Off] {
             // The modes by the prelude's names, as lit.wgsl passes them.
             let (ss, sg) = (self_shadow_name(self_shadow), specular_shadow_name(specular_shadow));
-            for shininess in [8.0f32, 1.0, 33.0, 7.5, 100.0] {
+            for (shininess, specular_filter) in [8.0f32, 1.0, 33.0, 7.5, 100.0]
+                .into_iter()
+                .flat_map(|s| [(s, SpecularFilter::None), (s, SpecularFilter::Toksvig)])
+            {
+                let sf = specular_filter_name(specular_filter);
                 let terms = LitTerms {
                     ambient: Vec3::new(0.2, 0.1, 0.05),
                     diffuse: Vec3::new(0.8, 0.7, 0.9),
@@ -76,6 +80,7 @@ fn wgsl_shade_is_the_lighting_model() {
                     shininess,
                     self_shadow,
                     specular_shadow,
+                    specular_filter,
                 };
                 let v3 =
                     |v: Vec3| format!("vec3<f32>({}, {}, {})", wgsl_literal(v.x), wgsl_literal(v.y), wgsl_literal(v.z));
@@ -88,7 +93,7 @@ struct In {{ normal: vec4<f32>, decal_gloss: vec4<f32>, l_light: vec4<f32>, h_ln
 fn main(@builtin(global_invocation_id) id: vec3<u32>) {{
     if id.x >= arrayLength(&outputs) {{ return; }}
     let i = inputs[id.x];
-    let t = Terms({}, {}, {}, {}, {ss}, {sg});
+    let t = Terms({}, {}, {}, {}, {ss}, {sg}, {sf});
     let f = Fragment(i.normal, i.decal_gloss.xyz, i.decal_gloss.w, i.l_light.xyz, i.h_ln.xyz, i.h_ln.w, i.hn.x, i.l_light.w);
     outputs[id.x] = vec4<f32>(shade(t, f), 1.0);
 }}",
@@ -105,7 +110,7 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {{
                         worst = worst.max(d);
                         assert!(
                             d <= 2e-4,
-                            "{self_shadow:?}, {specular_shadow:?}, shininess {shininess}: {want} vs {g:?} for {f:?}"
+                            "{self_shadow:?}, {specular_shadow:?}, {specular_filter:?}, shininess {shininess}: {want} vs {g:?} for {f:?}"
                         );
                     }
                 }

@@ -8,7 +8,7 @@ use rayon::prelude::*;
 
 use bumpmap_core::Scene;
 use bumpmap_core::scene::SceneObject;
-use bumpmap_core::shading::{Fragment, LitTerms, shade, spot_cone};
+use bumpmap_core::shading::{Fragment, LitTerms, SpecularFilter, shade, spot_cone};
 use bumpmap_math::lighting::{Light, ObjectLighting, TangentFrame};
 use bumpmap_math::{Rgba8Image, Rgba8Mips};
 
@@ -192,7 +192,15 @@ fn shade_sample(
                 factor *= spot_cone(spot, at - world, spot.direction);
             }
         }
-        let terms = LitTerms::of(&object.material, light, i == 0, options.self_shadow, options.specular_shadow);
+        // The reference samples the exact surface: nothing to filter.
+        let terms = LitTerms::of(
+            &object.material,
+            light,
+            i == 0,
+            options.self_shadow,
+            options.specular_shadow,
+            SpecularFilter::None,
+        );
         let fragment = Fragment {
             normal: Vec4::new(normal.x * 0.5 + 0.5, normal.y * 0.5 + 0.5, normal.z * 0.5 + 0.5, 1.0),
             decal,

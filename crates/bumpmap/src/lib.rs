@@ -42,7 +42,7 @@ pub use renderer::{Backend, BackendChoice, Prepared, Renderer};
 pub use bumpmap_core::scene::{Attenuation, Camera, SceneLight, Spot, ViewerModel};
 pub use bumpmap_core::technique::{
     BackFacing, EmbossOptions, Gloss, HalfAngle, KilgardOptions, Normalize, ReferenceOptions, SelfShadow,
-    SinglePassOptions, SpecularMode, SpecularShadow,
+    SinglePassOptions, SpecularFilter, SpecularMode, SpecularShadow,
 };
 pub use bumpmap_core::{
     BumpMap, BumpSource, CoreError, Requirement, Scene, SceneKind, SceneParams, SceneSpec, Technique, TechniqueName,

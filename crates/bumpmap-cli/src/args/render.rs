@@ -153,6 +153,9 @@ pub struct TechniqueGroup {
     /// single-pass: geometric self-shadowing of the specular term
     #[arg(long = "specular-shadow", value_enum, default_value = "kilgard")]
     pub specular_shadow: SpecularShadowArg,
+    /// single-pass: the specular exponent from the mip chain's |N| (toksvig: a distant bumpy surface's highlight widens and dims; `--technique toksvig` sets it)
+    #[arg(long = "specular-filter", value_enum, default_value = "none")]
+    pub specular_filter: SpecularFilterArg,
 }
 
 /// A technique of the catalogue (`bumpmap_core::catalogue`), by its name; `--help` lists each
@@ -348,6 +351,15 @@ pub enum SpecularShadowArg {
     Cg,
     /// none
     Off,
+}
+
+/// How the specular exponent answers the filtered normal's length.
+#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum SpecularFilterArg {
+    /// the exponent as given
+    None,
+    /// Toksvig 2005: exponent s·|N|/(|N| + s(1 − |N|)), with its energy factor
+    Toksvig,
 }
 
 /// Texture filtering.

@@ -30,7 +30,7 @@ use crate::vertex::var;
 pub use emboss::{BackFacing, EmbossOptions};
 pub use kilgard::{KilgardOptions, SpecularMode};
 pub use reference::ReferenceOptions;
-pub use single_pass::{Gloss, HalfAngle, Normalize, SelfShadow, SinglePassOptions, SpecularShadow};
+pub use single_pass::{Gloss, HalfAngle, Normalize, SelfShadow, SinglePassOptions, SpecularFilter, SpecularShadow};
 
 /// A technique with its options.
 #[derive(Clone, Debug, PartialEq)]

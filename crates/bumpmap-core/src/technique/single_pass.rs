@@ -13,7 +13,7 @@ use bumpmap_math::Rgba8Mips;
 use crate::error::CoreError;
 use crate::scene::{Attenuation, Scene, SceneLight};
 use crate::shading::LitTerms;
-pub use crate::shading::{SelfShadow, SpecularShadow};
+pub use crate::shading::{SelfShadow, SpecularFilter, SpecularShadow};
 use crate::state::{Blend, PassState, Sampler};
 use crate::technique::{LitProgram, Pass, Program};
 
@@ -70,6 +70,8 @@ pub struct SinglePassOptions {
     pub gloss: Gloss,
     /// The cube map's face size for [`Normalize::Cube`].
     pub cube_size: usize,
+    /// How the specular exponent answers the filtered normal's length (Toksvig, or none).
+    pub specular_filter: SpecularFilter,
 }
 
 impl Default for SinglePassOptions {
@@ -82,6 +84,7 @@ impl Default for SinglePassOptions {
             specular_shadow: SpecularShadow::Kilgard,
             gloss: Gloss::None,
             cube_size: 32,
+            specular_filter: SpecularFilter::None,
         }
     }
 }
@@ -163,7 +166,8 @@ pub fn passes(scene: &Scene, options: &SinglePassOptions) -> Result<Vec<Pass>, C
     for (o, object) in scene.objects.iter().enumerate() {
         let m = &object.material;
         for (l, light) in scene.lights.iter().enumerate() {
-            let terms = LitTerms::of(m, light, l == 0, options.self_shadow, options.specular_shadow);
+            let terms =
+                LitTerms::of(m, light, l == 0, options.self_shadow, options.specular_shadow, options.specular_filter);
             let program = LitProgram {
                 normal_map: m.normal_map.clone(),
                 normal_space: m.normal_space,
