@@ -196,18 +196,26 @@ pub fn run(args: &DemoArgs) -> Result<(), CliError> {
     let staged = bumpmap_io::atomic::StagedFolder::new(&args.output)?;
     write_demo(staged.path(), args)?;
     let written = files_under(staged.path());
-    let foreign: Vec<String> = existing.difference(&written).take(3).map(|p| format!("'{}'", p.display())).collect();
+    // The GPU images (`gpu/`) are the demo's whether or not this run drew them.
+    let foreign: Vec<String> = existing
+        .difference(&written)
+        .filter(|p| !p.starts_with(GPU_FOLDER))
+        .map(|p| format!("'{}'", p.display()))
+        .collect();
     if !foreign.is_empty() {
         return Err(refuse(format!(
             "holds files or folders the demo does not write ({}{}); move them away or give another folder",
-            foreign.join(", "),
-            if existing.difference(&written).count() > 3 { ", …" } else { "" }
+            foreign[..foreign.len().min(3)].join(", "),
+            if foreign.len() > 3 { ", …" } else { "" }
         )));
     }
     let out = staged.commit()?;
     eprintln!("wrote the demo into {} (see its README.md)", out.display());
     Ok(())
 }
+
+/// The subfolder of the GPU backend's images, written when an adapter draws them.
+const GPU_FOLDER: &str = "gpu";
 
 /// The first line of the demo's README: what marks a folder as an earlier demo's.
 const DEMO_TITLE: &str = "# bumpmap demo\n";
@@ -358,7 +366,7 @@ fn gpu_renders(out: &Path, mode: DemoGpuArg) -> Result<String, CliError> {
         }
         Err(e) => return Err(e),
     };
-    let dir = out.join("gpu");
+    let dir = out.join(GPU_FOLDER);
     std::fs::create_dir_all(&dir).map_err(|e| CliError::Path { path: dir.clone(), reason: e.to_string() })?;
     let bar = ProgressBar::new(RENDERS.len() as u64)
         .with_style(ProgressStyle::with_template("{bar:40} {pos}/{len} {wide_msg}").expect("valid template"));

@@ -100,10 +100,10 @@ pub fn draw_args(args: &RenderArgs, progress: bool) -> Result<Drawn, CliError> {
     Ok(Drawn { frame, by, inputs: setup.inputs })
 }
 
-/// Refuses `output` for a frame that came out black (`black`: no pixel has any colour): nothing in view was
-/// drawn or lit, and a black PNG with exit status 0 would pass for a result. Written from the
-/// image, so it holds for every backend and the reference alike; the causes are named, since
-/// the image cannot tell them apart.
+/// Refuses `output` for a frame that came out black (`black`: no pixel has any colour): nothing
+/// in view was drawn or lit, and a black PNG with exit status 0 would pass for a result. Judged
+/// from the image, so it holds for every backend and the reference alike; the causes are named,
+/// since the image cannot tell them apart.
 pub fn ensure_drawn(black: bool, output: &Path) -> Result<(), CliError> {
     if !black {
         return Ok(());
