@@ -252,18 +252,9 @@ fn bench_render(args: &BenchRenderArgs) -> Result<(), CliError> {
     }
     let mut prepared = bumpmap::Prepared::new(&setup.spec, name, &setup.options).map_err(lib_err)?;
     let mut renderer = crate::render::renderer(args.setup.backend.backend)?;
-    let camera = prepared.scene.camera;
-    let (axis, centre) = (camera.view_up().normalize(), camera.target);
-    let start = prepared.scene.lights.first().map(|l| l.light);
+    let orbit = bumpmap::motion::LightOrbit::of(&prepared.scene);
     let mut frame = |k: u32| -> Result<(), CliError> {
-        use bumpmap_math::lighting::Light;
-        let turn = glam::Quat::from_axis_angle(axis, std::f32::consts::TAU * k as f32 / frames as f32);
-        if let (Some(light), Some(start)) = (prepared.scene.lights.first_mut(), start) {
-            light.light = match start {
-                Light::Positional(p) => Light::Positional(centre + turn * (p - centre)),
-                Light::Directional(d) => Light::Directional(turn * d),
-            };
-        }
+        orbit.place(&mut prepared.scene, k as f32 / frames as f32, 0.0);
         renderer.draw_unread(&prepared, size, size).map_err(lib_err)
     };
     let mut err = None;

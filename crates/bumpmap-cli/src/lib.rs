@@ -5,7 +5,7 @@
 //! - [`args`]: the command line (clap), a module per command, its value parsers and limits;
 //! - `setup`: the option groups `render` and `bench render` share, made into the front door's
 //!   scene description, technique and options (the user's own assets loaded);
-//! - `normalmap`, `cubemap`, `mesh` (tangents), `render`, `bench`, `demo`, `compare`: the
+//! - `normalmap`, `cubemap`, `mesh` (tangents), `render`, `bench`, `demo`, `compare`, `view`: the
 //!   subcommands, drawing through the `bumpmap` crate's renderer;
 //! - [`commands`]: the commands as functions over their parsed arguments, returning what they
 //!   would write (the Python package calls these);
@@ -27,6 +27,7 @@ mod mesh;
 mod normalmap;
 mod render;
 mod setup;
+mod view;
 
 use crate::args::{Cli, Command};
 
@@ -40,5 +41,6 @@ pub fn run(cli: Cli) -> Result<(), error::CliError> {
         Command::Tangents(a) => mesh::run(&a),
         Command::Demo(a) => demo::run(&a),
         Command::Compare(a) => compare::run(&a),
+        Command::View(a) => view::run(&a),
     }
 }

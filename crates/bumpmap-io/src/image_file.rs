@@ -565,6 +565,34 @@ pub fn save_png_into(
     })
 }
 
+/// Stages an animated PNG (APNG) into `set`: `frames`, each `width`×`height` 8-bit RGB (row 0
+/// first), shown `delay_ms` milliseconds each and looped forever. The first frame is also the
+/// still image a reader without APNG support shows.
+pub fn save_apng_into(
+    set: &mut FileSet,
+    path: &Path,
+    width: usize,
+    height: usize,
+    frames: &[Vec<u8>],
+    delay_ms: u16,
+) -> Result<(), IoError> {
+    debug_assert!(frames.iter().all(|f| f.len() == width * height * 3));
+    set.write(path, |w| {
+        let err = std::io::Error::other;
+        let mut encoder = png::Encoder::new(w, width as u32, height as u32);
+        encoder.set_color(png::ColorType::Rgb);
+        encoder.set_depth(png::BitDepth::Eight);
+        encoder.set_compression(png::Compression::Fast);
+        encoder.set_animated(frames.len() as u32, 0).map_err(err)?;
+        encoder.set_frame_delay(delay_ms, 1000).map_err(err)?;
+        let mut writer = encoder.write_header().map_err(err)?;
+        for frame in frames {
+            writer.write_image_data(frame).map_err(err)?;
+        }
+        writer.finish().map_err(err)
+    })
+}
+
 /// Stages a 16-bit RGBA PNG into `set`, a row at a time (PNG stores each channel big-endian),
 /// so no second copy of the image is made.
 pub fn save_png16_into(set: &mut FileSet, path: &Path, image: &bumpmap_math::Rgba16Image) -> Result<(), IoError> {

@@ -22,6 +22,7 @@
 //! - [`TechniqueName`]: the catalogue — every technique by name, what it needs, how it draws;
 //! - [`SceneSpec`]: what is drawn — a built-in surface or a mesh, camera, lights, material,
 //!   bumps from a height field or a normal map;
+//! - [`motion`]: the light orbiting and the camera turning between frames;
 //! - [`assets`]: your own normal map files and meshes with their glTF materials;
 //! - [`Error`]: everything that can go wrong, naming the value or the file.
 //!
@@ -34,6 +35,7 @@
 
 pub mod assets;
 mod error;
+pub mod motion;
 pub mod renderer;
 
 pub use error::Error;

@@ -9,6 +9,7 @@ mod demo;
 mod normalmap;
 mod render;
 mod tangents;
+mod view;
 
 pub use bench::*;
 pub use compare::*;
@@ -17,6 +18,7 @@ pub use demo::*;
 pub use normalmap::*;
 pub use render::*;
 pub use tangents::*;
+pub use view::*;
 
 use bumpmap_math::YConvention;
 use clap::{Parser, Subcommand, ValueEnum};
@@ -61,6 +63,8 @@ pub enum Command {
     Demo(DemoArgs),
     /// Render every technique on one scene, measure each against the reference, write a report
     Compare(CompareArgs),
+    /// A window on a scene with the light moving: keys switch techniques, passes and options
+    View(Box<ViewArgs>),
 }
 
 /// One number as typed: text that overflows single precision (`1e40`) is refused with the

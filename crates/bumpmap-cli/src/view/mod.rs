@@ -1,0 +1,103 @@
+//! `bumpmap view`: a window on a scene with the light orbiting, keys that switch technique,
+//! passes and options, the mouse moving camera and light, files dropped on it loaded in place;
+//! and, with no window at all, `--record`: an animated PNG of one orbit.
+//!
+//! - `keys`: every key, its `--keys` name and its help line, in one table;
+//! - `state`: the viewer's model (what is chosen, where things are, the prepared scene), with no
+//!   window, so every key is tested without a display;
+//! - `files`: what a file given or dropped is taken for;
+//! - `overlay`: text and wireframe drawn over a frame;
+//! - `record`: `--record`;
+//! - `window`: winit and softbuffer.
+//!
+//! What this module does not do: draw (the front door's renderer does, on either backend), or
+//! know a technique (the catalogue does; `t` walks it).
+
+mod files;
+mod keys;
+mod overlay;
+mod record;
+mod state;
+mod window;
+
+use std::path::{Path, PathBuf};
+
+pub use keys::Action;
+
+use crate::args::{KeyList, SceneSetup, ViewArgs};
+use crate::error::CliError;
+
+/// Runs `bumpmap view`.
+pub fn run(args: &ViewArgs) -> Result<(), CliError> {
+    let setup = with_file(args)?;
+    let named = crate::setup::named_inputs(&setup);
+    let inputs: Vec<&Path> = named.iter().map(PathBuf::as_path).collect();
+    for out in [&args.record, &args.screenshot].into_iter().flatten() {
+        bumpmap_io::atomic::ensure_not_input(out, &inputs)?;
+    }
+    match &args.record {
+        Some(out) => record::run(args, setup, out, &inputs),
+        None => window::run(args, setup, &inputs),
+    }
+}
+
+/// `render`'s options with FILE put where it belongs: a mesh as the scene, an image as the
+/// height field or the normal map. FILE and the option it would set cannot both be given.
+fn with_file(args: &ViewArgs) -> Result<SceneSetup, CliError> {
+    let mut setup = args.setup.clone();
+    let Some(file) = &args.file else { return Ok(setup) };
+    let kind = files::classify(file).map_err(|reason| CliError::Path { path: file.clone(), reason })?;
+    let scene = &mut setup.scene;
+    let clash = match kind {
+        files::Kind::Mesh => (scene.scene != "torus").then_some("--scene"),
+        _ => {
+            scene.height_field.as_ref().map(|_| "--height-field").or(scene.normal_map.as_ref().map(|_| "--normal-map"))
+        }
+    };
+    if let Some(flag) = clash {
+        return Err(CliError::Usage(format!("{}: give the file or {flag}, not both", file.display())));
+    }
+    match kind {
+        files::Kind::Mesh => scene.scene = format!("mesh:{}", file.display()),
+        files::Kind::HeightField => scene.height_field = Some(file.display().to_string()),
+        files::Kind::NormalMap => scene.normal_map = Some(file.clone()),
+    }
+    Ok(setup)
+}
+
+/// `--keys`' value parser.
+pub fn parse_keys_arg(s: &str) -> Result<KeyList, String> {
+    keys::parse_keys(s).map(KeyList)
+}
+
+/// `view --help`'s text after the options: examples, then every key from the key table.
+pub fn after_help() -> String {
+    let keys: Vec<String> = Action::ALL
+        .iter()
+        .map(|a| {
+            let key = match a.key() {
+                ' ' => "space".to_string(),
+                c => c.to_string(),
+            };
+            format!("  {key:<6} {}", a.description())
+        })
+        .collect();
+    format!(
+        "Examples:\n  \
+bumpmap view                                   # the paper's torus; the light orbits\n  \
+bumpmap view heights.png                       # your height field (drop files on the window too)\n  \
+bumpmap view model.glb --technique single-pass\n  \
+bumpmap view --record orbit.png --size 256     # an animated PNG of one orbit, no window needed\n  \
+bumpmap view --keys t,t,s --screenshot shot.png # press keys, write the last frame, exit\n\n\
+Keys (h or F1 shows them in the window):\n{}\n\n\
+Mouse: left-drag orbits the camera, right-drag moves the light, the wheel zooms.\n\n\
+The window needs a display (X11 or Wayland). Without one, --record still works; on a server, \
+run the window under xvfb-run (Debian: xvfb, xauth).",
+        keys.join("\n")
+    )
+}
+
+/// The keys `--keys` gives, none when it is not given.
+fn scripted_keys(args: &ViewArgs) -> Vec<Action> {
+    args.keys.as_ref().map(|k| k.0.clone()).unwrap_or_default()
+}

@@ -1,0 +1,71 @@
+//! `view --record OUT.png`: the light orbiting once as an animated PNG, frames straight from the
+//! renderer, no window (so no display is needed). `--keys` are pressed first, so a recording can
+//! start from any technique or toggle.
+
+use std::path::Path;
+
+use bumpmap_io::atomic::FileSet;
+use bumpmap_io::image_file::save_apng_into;
+
+use super::keys::Action;
+use super::state::Viewer;
+use crate::args::{SceneSetup, ViewArgs};
+use crate::error::CliError;
+use crate::render::lib_err;
+
+/// Frames in a recording when `--frames` does not say.
+pub const DEFAULT_FRAMES: u32 = 48;
+
+/// Writes the recording.
+pub fn run(args: &ViewArgs, setup: SceneSetup, out: &Path, inputs: &[&Path]) -> Result<(), CliError> {
+    let (width, height) = args.frame_size();
+    bumpmap::Renderer::check_size(width, height).map_err(lib_err)?;
+    let frames = args.frames.unwrap_or(DEFAULT_FRAMES) as usize;
+    let bytes = (frames * width * height * 3) as u64;
+    bumpmap::bumpmap_math::buffer::ensure_available(bytes, "the recording's frames").map_err(CliError::OutOfMemory)?;
+    let backend = setup.backend.backend;
+    let mut viewer = Viewer::new(setup)?;
+    for action in super::scripted_keys(args) {
+        if !matches!(action, Action::Screenshot | Action::Quit | Action::Backend) {
+            viewer.apply(action);
+        }
+        if let Some(m) = viewer.message.take() {
+            eprintln!("{}: {m}", action.name());
+        }
+    }
+    let reference = viewer.technique() == bumpmap::TechniqueName::Reference;
+    let mut renderer = if reference {
+        bumpmap::Renderer::new(bumpmap::BackendChoice::Cpu).map_err(lib_err)?
+    } else {
+        crate::render::renderer(backend)?
+    };
+    let bar = indicatif::ProgressBar::new(frames as u64).with_style(
+        indicatif::ProgressStyle::with_template("{msg} [{bar:30}] {pos}/{len} frames, {eta} left")
+            .expect("a valid template")
+            .progress_chars("=> "),
+    );
+    bar.set_message(format!("recording {}", viewer.technique()));
+    let mut images = Vec::with_capacity(frames);
+    let mut lit = false;
+    for k in 0..frames {
+        viewer.view.turns = k as f32 / frames as f32;
+        viewer.settle();
+        let image = renderer.draw(viewer.frame(), width, height).map_err(lib_err)?;
+        lit |= image.texels.iter().any(|&[r, g, b, _]| r | g | b != 0);
+        images.push(crate::render::rgb(&image));
+        bar.inc(1);
+    }
+    bar.finish_and_clear();
+    crate::render::ensure_drawn(!lit, out)?;
+    let mut set = FileSet::new(inputs);
+    save_apng_into(&mut set, out, width, height, &images, args.frame_ms)?;
+    set.commit()?;
+    eprintln!(
+        "wrote {} ({frames} frames of {width}x{height}, {} ms each: {} on {})",
+        out.display(),
+        args.frame_ms,
+        viewer.technique(),
+        if reference { "the CPU".to_string() } else { renderer.describe() }
+    );
+    Ok(())
+}

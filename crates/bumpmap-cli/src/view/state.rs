@@ -1,0 +1,644 @@
+//! The viewer's model, with no window: what the user has chosen (technique, scene, the passes
+//! and options toggled, bump scale, shininess, where the camera and light are), how each
+//! [`Action`] changes it, and the [`Prepared`] scene it makes. The window (`super::window`)
+//! and `--record` (`super::record`) only draw what this holds, so every key can be tested here
+//! without a display.
+//!
+//! A change that cannot be drawn (a technique that cannot draw the scene, a file that cannot be
+//! read) is undone: the old scene stays and the reason becomes [`Viewer::message`].
+
+use std::path::Path;
+
+use bumpmap::bumpmap_core::state::Sampler;
+use bumpmap::motion::{LightOrbit, MAX_TILT, orbit_camera};
+use bumpmap::{
+    BumpSource, Camera, MipMode, Normalize, Prepared, ReferenceOptions, SceneKind, SelfShadow, SpecularFilter,
+    Technique, TechniqueName, TechniqueOptions,
+};
+use glam::Vec3;
+
+use super::keys::Action;
+use crate::args::SceneSetup;
+use crate::error::CliError;
+use crate::setup::Setup;
+
+/// The mip levels a technique samples.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Mips {
+    /// The length of the averaged normal kept in alpha (Kilgard §5.3).
+    LengthFactor,
+    /// Every level renormalized (alpha 1), as most tools make them.
+    Renormalized,
+    /// Level 0 only (`GL_LINEAR`, no mipmaps): the shimmer mipmapping removes.
+    None,
+}
+
+impl Mips {
+    fn next(self) -> Self {
+        match self {
+            Mips::LengthFactor => Mips::Renormalized,
+            Mips::Renormalized => Mips::None,
+            Mips::None => Mips::LengthFactor,
+        }
+    }
+
+    fn name(self) -> &'static str {
+        match self {
+            Mips::LengthFactor => "length factor",
+            Mips::Renormalized => "renormalized",
+            Mips::None => "none",
+        }
+    }
+}
+
+/// Everything the user has chosen that changes the maps or the technique: a change here
+/// prepares the scene again.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Choices {
+    /// Index into [`TechniqueName::ALL`].
+    pub technique: usize,
+    /// Index into [`Viewer::scenes`].
+    pub scene: usize,
+    /// The decal pass (Kilgard Figure 12) drawn.
+    pub decal: bool,
+    /// The diffuse pass drawn.
+    pub diffuse: bool,
+    /// The specular pass drawn.
+    pub specular: bool,
+    /// Self-shadowing (Kilgard Eq. 11/12).
+    pub self_shadow: bool,
+    /// The mip levels sampled.
+    pub mips: Mips,
+    /// Normalization by the cube map rather than by math (the single pass).
+    pub cube: bool,
+    /// Nearest texels rather than trilinear filtering.
+    pub nearest: bool,
+    /// Toksvig's specular filter (the single pass).
+    pub toksvig: bool,
+    /// The bump scale: a height field's step height, or a normal map's slope factor.
+    pub bump_scale: f32,
+    /// The specular exponent.
+    pub shininess: f32,
+}
+
+/// Where the light and the camera are, and what is shown over the image: changes here only
+/// redraw.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct View {
+    /// The light's orbit stopped.
+    pub paused: bool,
+    /// How far round its orbit the light is, in turns.
+    pub turns: f32,
+    /// The light tilted toward the up axis, radians (right-drag).
+    pub light_tilt: f32,
+    /// The camera turned about its up axis, radians (left-drag).
+    pub yaw: f32,
+    /// The camera tilted toward its up axis, radians.
+    pub pitch: f32,
+    /// The camera's distance as a multiple of its starting one (the wheel).
+    pub zoom: f32,
+    /// The triangles' edges drawn.
+    pub wireframe: bool,
+    /// The frame rate shown.
+    pub frame_rate: bool,
+    /// The help overlay shown.
+    pub help: bool,
+}
+
+impl Default for View {
+    fn default() -> Self {
+        Self {
+            paused: false,
+            turns: 0.0,
+            light_tilt: 0.0,
+            yaw: 0.0,
+            pitch: 0.0,
+            zoom: 1.0,
+            wireframe: false,
+            frame_rate: false,
+            help: false,
+        }
+    }
+}
+
+/// What the window has to do after an action.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Effect {
+    /// Draw again.
+    Redraw,
+    /// Write a screenshot.
+    Screenshot,
+    /// Open the other backend.
+    SwitchBackend,
+    /// Close.
+    Quit,
+}
+
+/// The samples per pixel the reference is drawn with, one step per frame while nothing moves:
+/// a rough picture at once, then more, then `--spp`'s (64 by default) a few frames later.
+pub const REFERENCE_STEPS: [usize; 3] = [1, 4, 16];
+
+/// The turns per second of the light's orbit: once in 8 s, slow enough to follow a highlight.
+pub const TURNS_PER_SECOND: f32 = 0.125;
+
+/// The viewer's state and the scene it has prepared.
+pub struct Viewer {
+    args: SceneSetup,
+    base: Setup,
+    /// The scenes `o` cycles through.
+    pub scenes: Vec<SceneKind>,
+    /// What is chosen.
+    pub choices: Choices,
+    /// Where things are.
+    pub view: View,
+    prepared: Prepared,
+    home: Camera,
+    orbit: LightOrbit,
+    /// Steps of [`REFERENCE_STEPS`] drawn since the last move.
+    reference_step: usize,
+    /// The last error or note, for the overlay.
+    pub message: Option<String>,
+}
+
+/// The scenes a viewer offers: the four the issue names, and the one it started on when that
+/// is another (the floor, the wall on the floor, a loaded mesh).
+fn scenes_with(kind: &SceneKind) -> Vec<SceneKind> {
+    let mut scenes = vec![SceneKind::Torus, SceneKind::Wall, SceneKind::Sphere, SceneKind::Patch];
+    if !scenes.contains(kind) {
+        scenes.push(kind.clone());
+    }
+    scenes
+}
+
+impl Viewer {
+    /// The viewer on what `args` describe (files loaded, technique prepared).
+    pub fn new(args: SceneSetup) -> Result<Self, CliError> {
+        let base = crate::setup::setup(&args)?;
+        for note in &base.notes {
+            eprintln!("{note}");
+        }
+        let name = args.technique.technique.0;
+        let choices = Choices {
+            technique: TechniqueName::ALL.iter().position(|&t| t == name).unwrap_or(0),
+            scene: 0,
+            decal: true,
+            diffuse: true,
+            specular: true,
+            self_shadow: base.options.kilgard.self_shadow,
+            mips: match base.spec.params.mip_mode {
+                MipMode::LengthInAlpha => Mips::LengthFactor,
+                MipMode::Renormalize => Mips::Renormalized,
+            },
+            cube: base.options.single_pass.normalize == Normalize::Cube,
+            nearest: false,
+            toksvig: base.options.single_pass.specular_filter == SpecularFilter::Toksvig,
+            bump_scale: args.scene.bump_scale.unwrap_or(match base.spec.params.bumps {
+                BumpSource::Heights(_) => base.spec.params.normal_map.scale,
+                BumpSource::NormalMap(_) => 1.0,
+            }),
+            shininess: base.spec.params.shininess,
+        };
+        let scenes = scenes_with(&base.spec.kind);
+        let choices = Choices { scene: scenes.iter().position(|k| *k == base.spec.kind).unwrap_or(0), ..choices };
+        let prepared = prepare(&base, &scenes, &choices).map_err(crate::render::lib_err)?;
+        let (home, orbit) = (prepared.scene.camera, LightOrbit::of(&prepared.scene));
+        Ok(Self {
+            args,
+            base,
+            scenes,
+            choices,
+            view: View::default(),
+            prepared,
+            home,
+            orbit,
+            reference_step: 0,
+            message: None,
+        })
+    }
+
+    /// The technique chosen.
+    pub fn technique(&self) -> TechniqueName {
+        TechniqueName::ALL[self.choices.technique]
+    }
+
+    /// The scene as it is to be drawn now: the light and camera where the view has them, the
+    /// reference at its next number of samples.
+    pub fn frame(&mut self) -> &Prepared {
+        self.orbit.place(&mut self.prepared.scene, self.view.turns, self.view.light_tilt);
+        self.prepared.scene.camera = orbit_camera(&self.home, self.view.yaw, self.view.pitch, self.view.zoom);
+        if let Technique::Reference(options) = &mut self.prepared.technique {
+            let full = self.base.options.reference.samples_per_pixel;
+            let spp = REFERENCE_STEPS.get(self.reference_step).map_or(full, |&s| s.min(full));
+            *options = ReferenceOptions { samples_per_pixel: spp, ..*options };
+            self.reference_step = (self.reference_step + 1).min(REFERENCE_STEPS.len() + 1);
+        }
+        &self.prepared
+    }
+
+    /// Whether another frame would differ from the last: the light orbiting, or the reference
+    /// still refining.
+    pub fn animating(&self) -> bool {
+        !self.view.paused
+            || (self.technique() == TechniqueName::Reference && self.reference_step <= REFERENCE_STEPS.len())
+    }
+
+    /// The next frame as if nothing had moved for a while: the reference at its full samples.
+    pub fn settle(&mut self) {
+        self.reference_step = REFERENCE_STEPS.len();
+    }
+
+    /// Advances the light's orbit by `seconds` (nothing while paused).
+    pub fn advance(&mut self, seconds: f32) {
+        if !self.view.paused && seconds > 0.0 {
+            self.view.turns = (self.view.turns + seconds * TURNS_PER_SECOND).fract();
+            self.moved();
+        }
+    }
+
+    /// The scene moved: the reference starts refining again.
+    pub fn moved(&mut self) {
+        self.reference_step = 0;
+    }
+
+    /// Turns the camera (left-drag) by `dx`, `dy` radians.
+    pub fn orbit_camera(&mut self, dx: f32, dy: f32) {
+        self.view.yaw -= dx;
+        self.view.pitch = (self.view.pitch + dy).clamp(-MAX_TILT, MAX_TILT);
+        self.moved();
+    }
+
+    /// Moves the light (right-drag) by `dx` of a turn round and `dy` radians up.
+    pub fn move_light(&mut self, dx: f32, dy: f32) {
+        self.view.turns = (self.view.turns + dx).rem_euclid(1.0);
+        self.view.light_tilt = (self.view.light_tilt + dy).clamp(-MAX_TILT, MAX_TILT);
+        self.moved();
+    }
+
+    /// Zooms by `steps` wheel notches (positive: closer).
+    pub fn zoom(&mut self, steps: f32) {
+        self.view.zoom = (self.view.zoom * 0.9f32.powf(steps)).clamp(0.1, 20.0);
+        self.moved();
+    }
+
+    /// Does what `action` asks; a change that cannot be drawn is undone and named in
+    /// [`Viewer::message`].
+    pub fn apply(&mut self, action: Action) -> Effect {
+        let mut c = self.choices.clone();
+        let v = &mut self.view;
+        match action {
+            Action::Pause => v.paused = !v.paused,
+            Action::Wireframe => v.wireframe = !v.wireframe,
+            Action::FrameRate => v.frame_rate = !v.frame_rate,
+            Action::Help => v.help = !v.help,
+            Action::ResetView => {
+                *v = View { wireframe: v.wireframe, frame_rate: v.frame_rate, help: v.help, ..View::default() }
+            }
+            Action::Screenshot => return Effect::Screenshot,
+            Action::Backend => return Effect::SwitchBackend,
+            Action::Quit => return Effect::Quit,
+            Action::NextTechnique => return self.step_technique(1),
+            Action::PreviousTechnique => return self.step_technique(TechniqueName::ALL.len() - 1),
+            Action::NextScene => c.scene = (c.scene + 1) % self.scenes.len(),
+            Action::Decal => c.decal = !c.decal,
+            Action::Diffuse => c.diffuse = !c.diffuse,
+            Action::Specular => c.specular = !c.specular,
+            Action::SelfShadow => c.self_shadow = !c.self_shadow,
+            Action::MipMode => c.mips = c.mips.next(),
+            Action::Normalize => c.cube = !c.cube,
+            Action::Filter => c.nearest = !c.nearest,
+            Action::SpecularFilter => c.toksvig = !c.toksvig,
+            Action::BumpsUp => c.bump_scale *= 1.25,
+            Action::BumpsDown => c.bump_scale /= 1.25,
+            Action::ShininessUp => c.shininess = (c.shininess * 1.5).min(1e4),
+            Action::ShininessDown => c.shininess = (c.shininess / 1.5).max(0.5),
+        }
+        self.moved();
+        if c != self.choices {
+            self.choose(c);
+        }
+        Effect::Redraw
+    }
+
+    /// The next technique `step` places on (modulo the catalogue) that can draw the scene;
+    /// those skipped are named.
+    fn step_technique(&mut self, step: usize) -> Effect {
+        let n = TechniqueName::ALL.len();
+        let mut skipped = Vec::new();
+        let mut c = self.choices.clone();
+        for _ in 1..n {
+            c.technique = (c.technique + step) % n;
+            let name = TechniqueName::ALL[c.technique];
+            if self.choose(c.clone()) {
+                if !skipped.is_empty() {
+                    self.message = Some(format!("skipped {} (they cannot draw this scene)", skipped.join(", ")));
+                }
+                return Effect::Redraw;
+            }
+            skipped.push(name.name());
+        }
+        self.message = Some("no other technique can draw this scene".into());
+        Effect::Redraw
+    }
+
+    /// Prepares the scene for `choices`; keeps them when that works, else keeps the old ones
+    /// and says why. Whether it worked.
+    fn choose(&mut self, choices: Choices) -> bool {
+        if choices.bump_scale != self.choices.bump_scale
+            && matches!(self.base.spec.params.bumps, BumpSource::NormalMap(_))
+        {
+            // A normal map's scale is applied as it is read (glTF's normalTexture.scale).
+            let mut args = self.args.clone();
+            args.scene.bump_scale = Some(choices.bump_scale);
+            match crate::setup::setup(&args) {
+                Ok(base) => {
+                    self.args = args;
+                    self.base = base;
+                }
+                Err(e) => {
+                    self.message = Some(e.to_string());
+                    return false;
+                }
+            }
+        }
+        match prepare(&self.base, &self.scenes, &choices) {
+            Ok(prepared) => {
+                self.message = None;
+                self.set_prepared(prepared);
+                self.choices = choices;
+                self.moved();
+                true
+            }
+            Err(e) => {
+                self.message = Some(format!("{}: {e}", TechniqueName::ALL[choices.technique].name()));
+                false
+            }
+        }
+    }
+
+    /// Takes a newly prepared scene: the camera and the light's orbit start from its own.
+    fn set_prepared(&mut self, prepared: Prepared) {
+        self.home = prepared.scene.camera;
+        self.orbit = LightOrbit::of(&prepared.scene);
+        self.prepared = prepared;
+    }
+
+    /// Loads `path` in place: a mesh (OBJ, glTF, GLB) replaces the surface, a height field or
+    /// normal map goes onto it. A file that cannot be read leaves everything as it was, with
+    /// the reason in [`Viewer::message`]; the message on success says what it was taken for.
+    pub fn load(&mut self, path: &Path) -> Result<String, String> {
+        let mut args = self.args.clone();
+        let what = super::files::classify(path)?;
+        let shown = path.display();
+        let note = match what {
+            super::files::Kind::Mesh => {
+                args.scene.scene = format!("mesh:{}", path.display());
+                format!("{shown}: a mesh, replacing the surface")
+            }
+            super::files::Kind::HeightField => {
+                args.scene.height_field = Some(path.display().to_string());
+                args.scene.normal_map = None;
+                args.scene.bump_scale = None;
+                format!("{shown}: a height field")
+            }
+            super::files::Kind::NormalMap => {
+                args.scene.normal_map = Some(path.to_path_buf());
+                args.scene.height_field = None;
+                args.scene.bump_scale = None;
+                format!("{shown}: a normal map")
+            }
+        };
+        let base = crate::setup::setup(&args).map_err(|e| e.to_string())?;
+        let scenes = scenes_with(&base.spec.kind);
+        let mut choices = self.choices.clone();
+        if let super::files::Kind::Mesh = what {
+            choices.scene = scenes.iter().position(|k| *k == base.spec.kind).unwrap_or(0);
+        } else {
+            choices.scene = choices.scene.min(scenes.len() - 1);
+        }
+        choices.bump_scale = match base.spec.params.bumps {
+            BumpSource::Heights(_) => base.spec.params.normal_map.scale,
+            BumpSource::NormalMap(_) => 1.0,
+        };
+        // Try the chosen technique first, then any that can draw what was loaded.
+        let n = TechniqueName::ALL.len();
+        let found = (0..n).map(|k| (choices.technique + k) % n).find_map(|t| {
+            let c = Choices { technique: t, ..choices.clone() };
+            prepare(&base, &scenes, &c).ok().map(|p| (c, p))
+        });
+        let Some((choices, prepared)) = found else {
+            return Err(format!("{shown}: no technique can draw it"));
+        };
+        self.args = args;
+        self.base = base;
+        self.scenes = scenes;
+        self.choices = choices;
+        self.set_prepared(prepared);
+        self.moved();
+        self.message = Some(note.clone());
+        Ok(note)
+    }
+
+    /// One line saying what is drawn and with which options, for the overlay.
+    pub fn status(&self) -> String {
+        let c = &self.choices;
+        let mut off: Vec<&str> = Vec::new();
+        for (on, name) in [(c.decal, "decal"), (c.diffuse, "diffuse"), (c.specular, "specular")] {
+            if !on {
+                off.push(name);
+            }
+        }
+        if !c.self_shadow {
+            off.push("self-shadow");
+        }
+        format!(
+            "{} | {} | bumps {:.2} | shininess {:.1} | mips {} | {}{}{}{}",
+            self.technique().name(),
+            self.scenes[c.scene].name(),
+            c.bump_scale,
+            c.shininess,
+            c.mips.name(),
+            if c.nearest { "nearest" } else { "trilinear" },
+            if c.cube { " | cube map" } else { "" },
+            if c.toksvig { " | toksvig" } else { "" },
+            if off.is_empty() { String::new() } else { format!(" | off: {}", off.join(", ")) },
+        )
+    }
+}
+
+/// The scene and technique `choices` describe, on `base`.
+fn prepare(base: &Setup, scenes: &[SceneKind], c: &Choices) -> Result<Prepared, bumpmap::Error> {
+    let mut spec = base.spec.clone();
+    spec.kind = scenes[c.scene].clone();
+    let params = &mut spec.params;
+    if let BumpSource::Heights(_) = params.bumps {
+        params.normal_map.scale = c.bump_scale;
+    }
+    params.shininess = c.shininess;
+    if !c.decal {
+        params.decal = None;
+        params.default_decal = false;
+    }
+    if !c.diffuse {
+        params.diffuse = Vec3::ZERO;
+    }
+    if !c.specular {
+        params.specular = Vec3::ZERO;
+    }
+    params.mip_mode = if c.mips == Mips::Renormalized { MipMode::Renormalize } else { MipMode::LengthInAlpha };
+    let sampler = match (c.nearest, c.mips) {
+        (true, _) => Sampler::NEAREST_REPEAT,
+        (false, Mips::None) => Sampler::LINEAR_REPEAT,
+        (false, _) => Sampler::TRILINEAR_REPEAT,
+    };
+    let mut options: TechniqueOptions = base.options.clone();
+    options.kilgard.self_shadow = c.self_shadow;
+    options.kilgard.sampler = sampler;
+    options.emboss.sampler = sampler;
+    let sp = &mut options.single_pass;
+    sp.sampler = sampler;
+    sp.normalize = if c.cube { Normalize::Cube } else { Normalize::Math };
+    sp.specular_filter = if c.toksvig { SpecularFilter::Toksvig } else { SpecularFilter::None };
+    if !c.self_shadow {
+        sp.self_shadow = SelfShadow::Off;
+        options.reference.self_shadow = SelfShadow::Off;
+    } else if sp.self_shadow == SelfShadow::Off {
+        sp.self_shadow = SelfShadow::Ramp;
+        options.reference.self_shadow = SelfShadow::Ramp;
+    }
+    Prepared::new(&spec, TechniqueName::ALL[c.technique], &options)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use clap::Parser;
+
+    fn viewer(extra: &[&str]) -> Viewer {
+        let mut words = vec!["bumpmap", "view", "--backend", "cpu", "--tessellation", "16,8"];
+        words.extend_from_slice(extra);
+        let crate::args::Command::View(args) = crate::args::Cli::try_parse_from(words).unwrap().command else {
+            unreachable!("parsed as view")
+        };
+        Viewer::new(args.setup).unwrap()
+    }
+
+    fn normal_texels(v: &Viewer) -> Vec<[u8; 4]> {
+        v.prepared.scene.objects[0].material.normal_map.levels()[0].texels.clone()
+    }
+
+    #[test]
+    fn every_key_changes_what_it_names_and_toggles_come_back() {
+        for action in Action::ALL {
+            let mut v = viewer(&[]);
+            let (choices, view) = (v.choices.clone(), v.view);
+            let effect = v.apply(action);
+            match action {
+                Action::Screenshot => assert_eq!(effect, Effect::Screenshot),
+                Action::Backend => assert_eq!(effect, Effect::SwitchBackend),
+                Action::Quit => assert_eq!(effect, Effect::Quit),
+                // At the start there is nothing to reset.
+                Action::ResetView => assert_eq!(v.view, view),
+                _ => {
+                    assert_eq!(effect, Effect::Redraw);
+                    assert!(v.choices != choices || v.view != view, "{action:?} changed nothing");
+                    assert_eq!(v.message, None, "{action:?}: {:?}", v.message);
+                }
+            }
+            let toggle = matches!(
+                action,
+                Action::Pause
+                    | Action::Decal
+                    | Action::Diffuse
+                    | Action::Specular
+                    | Action::SelfShadow
+                    | Action::Normalize
+                    | Action::Filter
+                    | Action::SpecularFilter
+                    | Action::Wireframe
+                    | Action::FrameRate
+                    | Action::Help
+            );
+            if toggle {
+                v.apply(action);
+                assert_eq!((&v.choices, v.view), (&choices, view), "{action:?} twice");
+            }
+        }
+    }
+
+    #[test]
+    fn bumps_up_rebuilds_the_normal_map_and_the_passes_change_the_material() {
+        let mut v = viewer(&[]);
+        let before = normal_texels(&v);
+        v.apply(Action::BumpsUp);
+        assert_eq!(v.choices.bump_scale, 5.0);
+        assert_ne!(normal_texels(&v), before, "the normal map is made again with the new scale");
+        v.apply(Action::Decal);
+        v.apply(Action::Specular);
+        let m = &v.prepared.scene.objects[0].material;
+        assert!(m.decal.is_none() && m.specular == Vec3::ZERO && m.diffuse != Vec3::ZERO);
+    }
+
+    #[test]
+    fn a_technique_that_cannot_draw_the_scene_is_skipped_and_named() {
+        let dir = std::env::temp_dir().join(format!("bumpmap-view-state-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let map = dir.join("flat.png");
+        image::RgbaImage::from_pixel(16, 16, image::Rgba([128, 128, 255, 255])).save(&map).unwrap();
+        let mut v = viewer(&["--normal-map", map.to_str().unwrap()]);
+        let mut seen = Vec::new();
+        for _ in 0..TechniqueName::ALL.len() {
+            v.apply(Action::NextTechnique);
+            seen.push(v.technique());
+        }
+        assert!(!seen.contains(&TechniqueName::Reference), "the reference needs heights: {seen:?}");
+        assert!(seen.contains(&TechniqueName::SinglePass) && seen.contains(&TechniqueName::Kilgard));
+        let mut v = viewer(&["--normal-map", map.to_str().unwrap(), "--technique", "no-bump"]);
+        v.apply(Action::NextTechnique);
+        assert!(v.message.as_deref().is_some_and(|m| m.contains("peercy-independent")), "{:?}", v.message);
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    #[test]
+    fn a_file_that_cannot_be_read_keeps_the_scene_and_says_why() {
+        let mut v = viewer(&[]);
+        let before = (v.choices.clone(), normal_texels(&v));
+        let err = v.load(Path::new("/nonexistent/bumps.png")).unwrap_err();
+        assert!(err.contains("bumps.png"), "{err}");
+        assert_eq!((v.choices.clone(), normal_texels(&v)), before);
+        let err = v.load(Path::new("/nonexistent/model.obj")).unwrap_err();
+        assert!(err.contains("model.obj"), "{err}");
+    }
+
+    #[test]
+    fn the_reference_refines_while_nothing_moves() {
+        let mut v = viewer(&["--technique", "reference", "--spp", "32"]);
+        v.apply(Action::Pause);
+        let spp = |v: &mut Viewer| match v.frame().technique {
+            Technique::Reference(o) => o.samples_per_pixel,
+            _ => unreachable!(),
+        };
+        let steps: Vec<usize> = (0..5).map(|_| spp(&mut v)).collect();
+        assert_eq!(steps, [1, 4, 16, 32, 32]);
+        assert!(!v.animating(), "converged and paused: nothing left to draw");
+        v.move_light(0.1, 0.0);
+        assert!(v.animating());
+        assert_eq!(spp(&mut v), 1, "a move starts over");
+    }
+
+    #[test]
+    fn the_light_orbits_and_the_camera_turns() {
+        let mut v = viewer(&[]);
+        let light0 = v.frame().scene.lights[0].light;
+        v.advance(1.0);
+        assert_ne!(v.frame().scene.lights[0].light, light0);
+        let eye0 = v.frame().scene.camera.eye;
+        v.orbit_camera(0.5, 0.2);
+        assert_ne!(v.frame().scene.camera.eye, eye0);
+        v.apply(Action::ResetView);
+        assert_eq!(v.frame().scene.camera.eye, eye0);
+        v.apply(Action::Pause);
+        let light = v.frame().scene.lights[0].light;
+        v.advance(1.0);
+        assert_eq!(v.frame().scene.lights[0].light, light, "paused");
+    }
+}

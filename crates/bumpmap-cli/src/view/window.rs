@@ -1,0 +1,394 @@
+//! The viewer's window: winit's event loop, frames from the front door's renderer presented
+//! through softbuffer (on either backend: the GPU's frame is read back first), keys and mouse
+//! turned into the model's actions, files dropped on it loaded in place, and the scripted runs
+//! (`--frames`, `--keys`, `--screenshot`).
+//!
+//! What this module does not do: decide what a key does (`super::state`) or draw text
+//! (`super::overlay`). Nothing here ends the program on a bad file or a failed frame: the
+//! message is shown in the window and the old scene kept.
+
+use std::num::NonZeroU32;
+use std::path::{Path, PathBuf};
+use std::rc::Rc;
+use std::time::Instant;
+
+use bumpmap::{Backend, BackendChoice, Renderer, Rgba8Image, TechniqueName};
+use bumpmap_io::atomic::FileSet;
+use bumpmap_io::image_file::{PngLayout, save_png_into};
+use winit::application::ApplicationHandler;
+use winit::dpi::PhysicalSize;
+use winit::event::{ElementState, MouseButton, MouseScrollDelta, WindowEvent};
+use winit::event_loop::{ActiveEventLoop, ControlFlow, EventLoop};
+use winit::keyboard::{Key, NamedKey};
+use winit::window::{Window, WindowId};
+
+use super::keys::Action;
+use super::overlay::{self, Corner};
+use super::state::{Effect, Viewer};
+use crate::args::{SceneSetup, ViewArgs};
+use crate::error::CliError;
+use crate::render::lib_err;
+
+/// The seconds of the light's orbit each scripted frame advances: the same pictures on every
+/// machine, whatever its frame rate.
+const SCRIPTED_FRAME_SECONDS: f32 = 1.0 / 30.0;
+
+/// Opens the window and runs until it is closed (or the script ends).
+pub fn run(args: &ViewArgs, setup: SceneSetup, inputs: &[&Path]) -> Result<(), CliError> {
+    ensure_display()?;
+    let backend = setup.backend.backend;
+    let viewer = Viewer::new(setup)?;
+    let reference_only = viewer.technique() == TechniqueName::Reference;
+    let renderer = if reference_only && backend == crate::args::BackendArg::Auto {
+        Renderer::new(BackendChoice::Cpu).map_err(lib_err)?
+    } else {
+        crate::render::renderer(backend)?
+    };
+    let event_loop = EventLoop::new().map_err(|e| no_display(&e.to_string()))?;
+    let keys = super::scripted_keys(args);
+    let frames = args
+        .frames
+        .map(|f| f as usize)
+        .or_else(|| (args.keys.is_some() || args.screenshot.is_some()).then_some(keys.len() + 1));
+    let mut app = App {
+        viewer,
+        renderer,
+        size: args.frame_size(),
+        window: None,
+        surface: None,
+        last: None,
+        drawn: None,
+        frame: 0,
+        script: Script { frames, keys, screenshot: args.screenshot.clone() },
+        inputs: inputs.iter().map(|p| p.to_path_buf()).collect(),
+        fps: Fps::default(),
+        cursor: None,
+        dragging: None,
+        result: Ok(()),
+    };
+    event_loop.run_app(&mut app).map_err(|e| CliError::Render(format!("the window's event loop failed: {e}")))?;
+    app.result
+}
+
+/// Refuses to start without a display, saying what to do instead.
+fn ensure_display() -> Result<(), CliError> {
+    let set = |v: &str| std::env::var_os(v).is_some_and(|s| !s.is_empty());
+    if set("DISPLAY") || set("WAYLAND_DISPLAY") {
+        return Ok(());
+    }
+    Err(no_display("neither DISPLAY nor WAYLAND_DISPLAY is set"))
+}
+
+fn no_display(why: &str) -> CliError {
+    CliError::NoDevice(format!(
+        "no display to open a window on ({why}). Run it in a desktop session; on a server, under \
+         xvfb-run (Debian: apt-get install xvfb xauth); or write an animated PNG without a window: \
+         bumpmap view --record orbit.png"
+    ))
+}
+
+/// What `--frames`, `--keys` and `--screenshot` ask for.
+struct Script {
+    frames: Option<usize>,
+    keys: Vec<Action>,
+    screenshot: Option<PathBuf>,
+}
+
+/// Frames per second over the last half second or so.
+#[derive(Default)]
+struct Fps {
+    since: Option<Instant>,
+    count: u32,
+    value: f32,
+}
+
+impl Fps {
+    fn tick(&mut self) {
+        let now = Instant::now();
+        let since = *self.since.get_or_insert(now);
+        self.count += 1;
+        let elapsed = now.duration_since(since).as_secs_f32();
+        if elapsed >= 0.5 {
+            self.value = self.count as f32 / elapsed;
+            self.count = 0;
+            self.since = Some(now);
+        }
+    }
+}
+
+struct App {
+    viewer: Viewer,
+    renderer: Renderer,
+    size: (usize, usize),
+    window: Option<Rc<Window>>,
+    surface: Option<softbuffer::Surface<Rc<Window>, Rc<Window>>>,
+    /// When the last frame was drawn (the orbit advances by the time since).
+    last: Option<Instant>,
+    /// The last frame as shown, overlay included: what `s` writes.
+    drawn: Option<Rgba8Image>,
+    frame: usize,
+    script: Script,
+    inputs: Vec<PathBuf>,
+    fps: Fps,
+    cursor: Option<(f64, f64)>,
+    dragging: Option<MouseButton>,
+    result: Result<(), CliError>,
+}
+
+impl App {
+    fn fail(&mut self, event_loop: &ActiveEventLoop, e: CliError) {
+        self.result = Err(e);
+        event_loop.exit();
+    }
+
+    fn title(&self) -> String {
+        let backend = match self.renderer.backend() {
+            Backend::Cpu => "cpu".to_string(),
+            Backend::Gpu => format!("gpu ({})", self.renderer.describe().trim_start_matches("gpu: ")),
+        };
+        let mut title = format!("bumpmap view - {} on {backend}", self.viewer.technique());
+        if self.viewer.view.frame_rate || self.script.frames.is_none() {
+            title += &format!(" - {:.0} fps", self.fps.value);
+        }
+        title
+    }
+
+    fn act(&mut self, event_loop: &ActiveEventLoop, action: Action) {
+        match self.viewer.apply(action) {
+            Effect::Redraw => {}
+            Effect::Quit => event_loop.exit(),
+            Effect::Screenshot => match self.screenshot(None) {
+                Ok(path) => println!("wrote {}", path.display()),
+                Err(e) => self.viewer.message = Some(e.to_string()),
+            },
+            Effect::SwitchBackend => {
+                let other = match self.renderer.backend() {
+                    Backend::Cpu => BackendChoice::Gpu,
+                    Backend::Gpu => BackendChoice::Cpu,
+                };
+                match Renderer::new(other) {
+                    Ok(r) => self.renderer = r,
+                    Err(e) => self.viewer.message = Some(lib_err(e).to_string()),
+                }
+            }
+        }
+        if let Some(m) = &self.viewer.message {
+            eprintln!("{}", m);
+        }
+        self.redraw();
+    }
+
+    fn redraw(&self) {
+        if let Some(w) = &self.window {
+            w.request_redraw();
+        }
+    }
+
+    /// Writes the last frame shown to `path`, or to the first free `bumpmap-view-NNN.png` here.
+    fn screenshot(&self, path: Option<&Path>) -> Result<PathBuf, CliError> {
+        let Some(image) = &self.drawn else {
+            return Err(CliError::Render("no frame has been drawn yet".into()));
+        };
+        let path = match path {
+            Some(p) => p.to_path_buf(),
+            None => (1..10_000)
+                .map(|n| PathBuf::from(format!("bumpmap-view-{n:03}.png")))
+                .find(|p| !p.exists())
+                .ok_or_else(|| CliError::Render("bumpmap-view-001..9999.png all exist here".into()))?,
+        };
+        let inputs: Vec<&Path> = self.inputs.iter().map(PathBuf::as_path).collect();
+        let mut set = FileSet::new(&inputs);
+        let rgb = crate::render::rgb(image);
+        save_png_into(&mut set, &path, image.width, image.height, PngLayout::Rgb8, &rgb)?;
+        set.commit()?;
+        Ok(path)
+    }
+
+    /// Draws a frame, puts the overlay on it and presents it.
+    fn draw(&mut self, event_loop: &ActiveEventLoop) {
+        let Some(window) = self.window.clone() else { return };
+        let now = Instant::now();
+        let seconds = match (self.script.frames, self.last) {
+            (Some(_), _) if self.frame > 0 => SCRIPTED_FRAME_SECONDS,
+            (None, Some(last)) => now.duration_since(last).as_secs_f32().min(0.25),
+            _ => 0.0,
+        };
+        self.last = Some(now);
+        self.viewer.advance(seconds);
+        let size = window.inner_size();
+        let (Some(w), Some(h)) = (NonZeroU32::new(size.width), NonZeroU32::new(size.height)) else { return };
+        let (width, height) = (w.get() as usize, h.get() as usize);
+        let reference = self.viewer.technique() == TechniqueName::Reference;
+        // The reference samples the exact surface on the CPU whichever backend is open.
+        let drawn = if reference && self.renderer.backend() == Backend::Gpu {
+            Renderer::new(BackendChoice::Cpu).and_then(|mut r| r.draw(self.viewer.frame(), width, height))
+        } else {
+            self.renderer.draw(self.viewer.frame(), width, height)
+        };
+        let mut image = match drawn {
+            Ok(image) => image,
+            Err(e) => {
+                self.viewer.message = Some(lib_err(e).to_string());
+                Rgba8Image::new(width, height, vec![[0, 0, 0, 255]; width * height])
+            }
+        };
+        if self.viewer.view.wireframe {
+            let scene = self.viewer.frame().scene.clone();
+            overlay::wireframe(&mut image, &scene);
+        }
+        self.fps.tick();
+        if self.viewer.view.help {
+            let mut lines = vec!["bumpmap view: keys".to_string(), String::new()];
+            lines.extend(Action::ALL.iter().map(|a| {
+                let key = match a.key() {
+                    ' ' => "space".to_string(),
+                    c => c.to_string(),
+                };
+                format!("{key:<6} {}", a.description())
+            }));
+            lines.push(String::new());
+            lines.push("drag: camera; right-drag: light; wheel: zoom".into());
+            lines.push("drop a height field, normal map or mesh on it".into());
+            overlay::text(&mut image, &lines, Corner::TopLeft, 2);
+        }
+        let mut status = vec![self.viewer.status()];
+        if self.viewer.view.frame_rate {
+            status[0] = format!("{:.1} fps | {}", self.fps.value, status[0]);
+        }
+        if let Some(m) = &self.viewer.message {
+            status.insert(0, m.clone());
+        }
+        overlay::text(&mut image, &status, Corner::BottomLeft, 1);
+        if let Err(e) = self.present(w, h, &image) {
+            return self.fail(event_loop, CliError::Render(format!("showing a frame in the window: {e}")));
+        }
+        self.drawn = Some(image);
+        window.set_title(&self.title());
+        self.frame += 1;
+        self.script_step(event_loop);
+    }
+
+    /// Copies `image` into the window's buffer (0RGB words) and shows it.
+    fn present(&mut self, w: NonZeroU32, h: NonZeroU32, image: &Rgba8Image) -> Result<(), softbuffer::SoftBufferError> {
+        let Some(surface) = &mut self.surface else { return Ok(()) };
+        surface.resize(w, h)?;
+        let mut buffer = surface.buffer_mut()?;
+        for (out, &[r, g, b, _]) in buffer.iter_mut().zip(&image.texels) {
+            *out = (r as u32) << 16 | (g as u32) << 8 | b as u32;
+        }
+        buffer.present()
+    }
+
+    /// After each frame of a scripted run: the next key, or the screenshot and the end.
+    fn script_step(&mut self, event_loop: &ActiveEventLoop) {
+        let Some(frames) = self.script.frames else { return };
+        if self.frame >= frames {
+            if let Some(path) = self.script.screenshot.clone() {
+                match self.screenshot(Some(&path)) {
+                    Ok(p) => eprintln!("wrote {}", p.display()),
+                    Err(e) => return self.fail(event_loop, e),
+                }
+            }
+            event_loop.exit();
+            return;
+        }
+        if let Some(&action) = self.script.keys.get(self.frame - 1) {
+            self.act(event_loop, action);
+        }
+    }
+}
+
+impl ApplicationHandler for App {
+    fn resumed(&mut self, event_loop: &ActiveEventLoop) {
+        if self.window.is_some() {
+            return;
+        }
+        let (w, h) = self.size;
+        let attributes = Window::default_attributes()
+            .with_title(self.title())
+            .with_inner_size(PhysicalSize::new(w as u32, h as u32));
+        let made = event_loop
+            .create_window(attributes)
+            .map_err(|e| no_display(&format!("the window could not be made: {e}")))
+            .and_then(|window| {
+                let window = Rc::new(window);
+                let context = softbuffer::Context::new(window.clone())
+                    .map_err(|e| no_display(&format!("no software buffer for the display: {e}")))?;
+                let surface = softbuffer::Surface::new(&context, window.clone())
+                    .map_err(|e| no_display(&format!("no software buffer for the window: {e}")))?;
+                Ok((window, surface))
+            });
+        match made {
+            Ok((window, surface)) => {
+                window.request_redraw();
+                self.window = Some(window);
+                self.surface = Some(surface);
+            }
+            Err(e) => self.fail(event_loop, e),
+        }
+    }
+
+    fn window_event(&mut self, event_loop: &ActiveEventLoop, _id: WindowId, event: WindowEvent) {
+        match event {
+            WindowEvent::CloseRequested => event_loop.exit(),
+            WindowEvent::Resized(_) => self.redraw(),
+            WindowEvent::RedrawRequested => self.draw(event_loop),
+            WindowEvent::KeyboardInput { event, .. } if event.state == ElementState::Pressed => {
+                let action = match &event.logical_key {
+                    Key::Named(NamedKey::Space) => Some(Action::Pause),
+                    Key::Named(NamedKey::Escape) => Some(Action::Quit),
+                    Key::Named(NamedKey::F1) => Some(Action::Help),
+                    Key::Character(s) => s.chars().next().and_then(Action::for_key),
+                    _ => None,
+                };
+                if let Some(action) = action {
+                    self.act(event_loop, action);
+                }
+            }
+            WindowEvent::MouseInput { state, button, .. } => {
+                self.dragging = (state == ElementState::Pressed).then_some(button);
+            }
+            WindowEvent::CursorMoved { position, .. } => {
+                let (x, y) = (position.x, position.y);
+                if let (Some((px, py)), Some(button)) = (self.cursor, self.dragging) {
+                    let (dx, dy) = ((x - px) as f32, (y - py) as f32);
+                    match button {
+                        MouseButton::Left => self.viewer.orbit_camera(dx * 0.01, dy * 0.01),
+                        MouseButton::Right => self.viewer.move_light(dx / self.size.0 as f32, -dy * 0.01),
+                        _ => {}
+                    }
+                    self.redraw();
+                }
+                self.cursor = Some((x, y));
+            }
+            WindowEvent::MouseWheel { delta, .. } => {
+                let steps = match delta {
+                    MouseScrollDelta::LineDelta(_, y) => y,
+                    MouseScrollDelta::PixelDelta(p) => p.y as f32 / 40.0,
+                };
+                self.viewer.zoom(steps);
+                self.redraw();
+            }
+            WindowEvent::DroppedFile(path) => {
+                match self.viewer.load(&path) {
+                    Ok(note) => eprintln!("{note}"),
+                    Err(e) => {
+                        eprintln!("{e}");
+                        self.viewer.message = Some(e);
+                    }
+                }
+                self.redraw();
+            }
+            _ => {}
+        }
+    }
+
+    fn about_to_wait(&mut self, event_loop: &ActiveEventLoop) {
+        if self.viewer.animating() || self.script.frames.is_some() {
+            event_loop.set_control_flow(ControlFlow::Poll);
+            self.redraw();
+        } else {
+            event_loop.set_control_flow(ControlFlow::Wait);
+        }
+    }
+}

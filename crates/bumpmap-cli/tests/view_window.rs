@@ -1,0 +1,238 @@
+//! `bumpmap view`'s window under a virtual X server (Xvfb), driven by real key presses
+//! (xdotool) and looked at through X screenshots (ImageMagick's `import`): each promised change
+//! shows in the window. The screenshots are kept in `target/test-output/view_window/` to be
+//! looked at.
+//!
+//! Without Xvfb, xdotool or `import` the test says so and passes — except under CI (`CI` set),
+//! where `.ci/run` installs them and a missing one fails.
+
+mod common;
+
+use std::io::{BufRead, BufReader};
+use std::path::{Path, PathBuf};
+use std::process::{Child, Command, Stdio};
+use std::time::{Duration, Instant};
+
+use bumpmap::Rgba8Image;
+
+/// A virtual X server on a free display, stopped when dropped.
+struct Xvfb {
+    child: Child,
+    display: String,
+}
+
+impl Xvfb {
+    fn start() -> Option<Self> {
+        let mut child = Command::new("Xvfb")
+            .args(["-displayfd", "1", "-screen", "0", "1024x768x24", "-nolisten", "tcp"])
+            .stdout(Stdio::piped())
+            .stderr(Stdio::null())
+            .spawn()
+            .ok()?;
+        let mut line = String::new();
+        BufReader::new(child.stdout.take()?).read_line(&mut line).ok()?;
+        Some(Self { child, display: format!(":{}", line.trim()) })
+    }
+}
+
+impl Drop for Xvfb {
+    fn drop(&mut self) {
+        let _ = self.child.kill();
+        let _ = self.child.wait();
+    }
+}
+
+/// The viewer's process, killed when dropped (a test that fails midway leaves none behind).
+struct Viewer(Child);
+
+impl Drop for Viewer {
+    fn drop(&mut self) {
+        let _ = self.0.kill();
+        let _ = self.0.wait();
+    }
+}
+
+fn tool(display: &str, program: &str, args: &[&str]) -> std::process::Output {
+    Command::new(program).args(args).env("DISPLAY", display).output().unwrap_or_else(|e| panic!("{program}: {e}"))
+}
+
+/// What is missing to run the window, if anything.
+fn missing_tools() -> Option<String> {
+    let missing: Vec<&str> = ["Xvfb", "xdotool", "import"]
+        .into_iter()
+        .filter(|t| {
+            Command::new("sh").args(["-c", &format!("command -v {t}")]).output().map_or(true, |o| !o.status.success())
+        })
+        .collect();
+    (!missing.is_empty()).then(|| format!("{} not installed (Debian: xvfb xdotool imagemagick)", missing.join(", ")))
+}
+
+struct Session {
+    x: Xvfb,
+    window: String,
+    out: PathBuf,
+    shots: usize,
+}
+
+impl Session {
+    /// Starts the viewer with `args` and waits for its window.
+    fn open(x: Xvfb, out: &Path, args: &[&str]) -> (Self, Viewer) {
+        let child = Command::new(env!("CARGO_BIN_EXE_bumpmap"))
+            .arg("view")
+            .args(args)
+            .env("DISPLAY", &x.display)
+            .current_dir(out)
+            .stdout(Stdio::piped())
+            .stderr(Stdio::inherit())
+            .spawn()
+            .expect("run bumpmap view");
+        let viewer = Viewer(child);
+        let found = tool(&x.display, "xdotool", &["search", "--sync", "--name", "bumpmap view"]);
+        let window =
+            String::from_utf8_lossy(&found.stdout).lines().next().expect("the viewer's window appears").to_string();
+        tool(&x.display, "xdotool", &["windowfocus", "--sync", &window]);
+        let session = Self { x, window, out: out.to_path_buf(), shots: 0 };
+        (session, viewer)
+    }
+
+    fn key(&self, key: &str) {
+        let o = tool(&self.x.display, "xdotool", &["key", "--delay", "50", key]);
+        assert!(o.status.success(), "xdotool key {key}: {}", String::from_utf8_lossy(&o.stderr));
+    }
+
+    /// The window's contents now, kept as `NN-name.png`.
+    fn shot(&mut self, name: &str) -> Rgba8Image {
+        self.shots += 1;
+        let path = self.out.join(format!("{:02}-{name}.png", self.shots));
+        let o = tool(&self.x.display, "import", &["-window", &self.window, path.to_str().unwrap()]);
+        assert!(o.status.success(), "import: {}", String::from_utf8_lossy(&o.stderr));
+        let image = image::open(&path).expect("import wrote a PNG").to_rgba8();
+        let (w, h) = (image.width() as usize, image.height() as usize);
+        Rgba8Image::new(w, h, image.pixels().map(|p| p.0).collect())
+    }
+
+    /// Screenshots until one differs from `before` (a redraw takes a frame or two); panics
+    /// naming `what` after 20 s without a change.
+    fn changed(&mut self, name: &str, before: &Rgba8Image, what: &str) -> Rgba8Image {
+        let start = Instant::now();
+        loop {
+            let now = self.shot(name);
+            if differing(&now, before) > 0 {
+                return now;
+            }
+            assert!(start.elapsed() < Duration::from_secs(20), "{what}: the window did not change");
+            std::thread::sleep(Duration::from_millis(300));
+        }
+    }
+
+    /// Presses `key` and returns the window once it has changed from `before` and held still.
+    fn press(&mut self, key: &str, name: &str, before: &Rgba8Image) -> Rgba8Image {
+        self.key(key);
+        self.changed(name, before, key);
+        self.settled(name)
+    }
+
+    /// A screenshot once the window has held still for a moment.
+    fn settled(&mut self, name: &str) -> Rgba8Image {
+        let mut last = self.shot(name);
+        for _ in 0..40 {
+            std::thread::sleep(Duration::from_millis(400));
+            let now = self.shot(name);
+            if differing(&now, &last) == 0 {
+                return now;
+            }
+            last = now;
+        }
+        panic!("{name}: the window kept changing");
+    }
+}
+
+/// Pixels whose colour differs.
+fn differing(a: &Rgba8Image, b: &Rgba8Image) -> usize {
+    assert_eq!((a.width, a.height), (b.width, b.height));
+    a.texels.iter().zip(&b.texels).filter(|(p, q)| p[..3] != q[..3]).count()
+}
+
+/// Mean of red minus blue over the image: the brick decal's colour.
+fn redness(image: &Rgba8Image) -> f64 {
+    image.texels.iter().map(|t| t[0] as f64 - t[2] as f64).sum::<f64>() / image.texels.len() as f64
+}
+
+/// Pixels near white: the specular highlights.
+fn highlights(image: &Rgba8Image) -> usize {
+    image.texels.iter().filter(|t| t[..3].iter().all(|&c| c > 200)).count()
+}
+
+/// Pure white pixels in the top-left quarter: the help overlay's glyphs.
+fn white_top_left(image: &Rgba8Image) -> usize {
+    (0..image.height / 2)
+        .flat_map(|y| (0..image.width / 2).map(move |x| (x, y)))
+        .filter(|&(x, y)| image.texels[y * image.width + x][..3] == [255, 255, 255])
+        .count()
+}
+
+#[test]
+fn every_key_the_issue_names_changes_the_window() {
+    if let Some(why) = missing_tools() {
+        assert!(std::env::var_os("CI").is_none(), "{why}");
+        eprintln!("skipped: {why}");
+        return;
+    }
+    let out = bumpmap_testkit::output_dir().join("view_window");
+    let _ = std::fs::remove_dir_all(&out);
+    std::fs::create_dir_all(&out).unwrap();
+    let x = Xvfb::start().expect("Xvfb starts");
+    let (mut s, mut viewer) = Session::open(x, &out, &["--backend", "cpu", "--width", "480", "--height", "360"]);
+
+    let first = s.shot("start");
+    s.changed("orbiting", &first, "the light's orbit");
+
+    s.key("space");
+    let paused = s.settled("paused");
+
+    let no_decal = s.press("1", "no-decal", &paused);
+    assert!(redness(&no_decal) < redness(&paused) - 5.0, "without the decal the bricks are not red");
+    let back = s.press("1", "decal-again", &no_decal);
+    assert_eq!(differing(&back, &paused), 0, "the decal back gives the same picture");
+
+    let no_specular = s.press("3", "no-specular", &paused);
+    assert!(
+        highlights(&no_specular) * 2 < highlights(&paused).max(1),
+        "without the specular pass the highlights go: {} → {} near-white pixels",
+        highlights(&paused),
+        highlights(&no_specular)
+    );
+    s.press("3", "specular-again", &no_specular);
+
+    let higher = s.press("plus", "bumps-higher", &paused);
+    assert!(differing(&higher, &paused) > 2000, "+ rebuilds the normal map with higher bumps");
+
+    let single_pass = s.press("t", "technique-t", &higher);
+    assert!(differing(&single_pass, &higher) > 2000, "t changes the technique");
+
+    let help = s.press("h", "help", &single_pass);
+    assert!(white_top_left(&help) > 2000, "h shows the help overlay");
+    s.press("h", "help-off", &help);
+
+    s.key("s");
+    let written = out.join("bumpmap-view-001.png");
+    let start = Instant::now();
+    while !written.exists() && start.elapsed() < Duration::from_secs(20) {
+        std::thread::sleep(Duration::from_millis(200));
+    }
+    assert!(written.exists(), "s writes bumpmap-view-001.png");
+
+    s.key("q");
+    let start = Instant::now();
+    let status = loop {
+        if let Some(status) = viewer.0.try_wait().unwrap() {
+            break status;
+        }
+        assert!(start.elapsed() < Duration::from_secs(20), "q closes the viewer");
+        std::thread::sleep(Duration::from_millis(100));
+    };
+    assert!(status.success(), "the viewer exits 0 on q");
+    let mut stdout = String::new();
+    std::io::Read::read_to_string(viewer.0.stdout.as_mut().unwrap(), &mut stdout).unwrap();
+    assert!(stdout.contains("wrote bumpmap-view-001.png"), "s prints the file's name: {stdout:?}");
+}
