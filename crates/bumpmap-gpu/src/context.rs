@@ -15,6 +15,9 @@ pub struct Context {
     /// What the adapter says of itself.
     pub info: wgpu::AdapterInfo,
     faults: Arc<Mutex<Faults>>,
+    /// The adapter, and the instance it came from: a window's surface is made from them.
+    pub(crate) adapter: wgpu::Adapter,
+    pub(crate) instance: wgpu::Instance,
 }
 
 #[derive(Default)]
@@ -46,14 +49,14 @@ impl Context {
             desc.flags = wgpu::InstanceFlags::from_build_config().with_env();
             let instance = wgpu::Instance::new(desc);
             match wgpu::util::initialize_adapter_from_env_or_default(&instance, None).await {
-                Ok(adapter) => return Self::with_adapter(adapter).await,
+                Ok(adapter) => return Self::with_adapter(instance, adapter).await,
                 Err(e) => last = Some(e.to_string()),
             }
         }
         Err(GpuError::NoAdapter(last.unwrap_or_default()))
     }
 
-    async fn with_adapter(adapter: wgpu::Adapter) -> Result<Self, GpuError> {
+    async fn with_adapter(instance: wgpu::Instance, adapter: wgpu::Adapter) -> Result<Self, GpuError> {
         let info = adapter.get_info();
         let (device, queue) = adapter
             .request_device(&wgpu::DeviceDescriptor {
@@ -77,7 +80,7 @@ impl Context {
             let mut f = f.lock().unwrap_or_else(|p| p.into_inner());
             f.lost = Some(if message.is_empty() { format!("{reason:?}") } else { format!("{reason:?}: {message}") });
         });
-        Ok(Self { device, queue, info, faults })
+        Ok(Self { device, queue, info, faults, adapter, instance })
     }
 
     /// The adapter's largest 2D texture side.

@@ -37,6 +37,9 @@ pub enum GpuError {
     /// wgpu reported an error (a bug of this backend, or an out-of-memory).
     #[error("wgpu: {0}")]
     Wgpu(String),
+    /// A window's surface could not be made or shown.
+    #[error("the window's surface: {0}")]
+    Surface(String),
     /// Reading the frame back failed.
     #[error("reading the frame back failed: {0}")]
     Readback(String),

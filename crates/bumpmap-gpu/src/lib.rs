@@ -1,5 +1,5 @@
 //! The GPU backend: `bumpmap_core`'s techniques drawn with wgpu, headless (render to texture,
-//! read back).
+//! read back) or into a window's surface.
 //!
 //! - `renderer`: [`GpuRenderer`], a technique's passes as render passes into an RGBA8 target;
 //! - `pipelines`: GL state (depth, blend, colour mask, culling) as pipeline state;
@@ -10,9 +10,11 @@
 //!   stage and its varying slots, the lit program's switches ([`shading_wgsl`]);
 //! - `lit` with `lit.wgsl` and `shading.wgsl`: the single pass's fragment program, its uniforms
 //!   and its override constants;
-//! - `context`: the adapter and device, and the faults wgpu reports out of band ([`Context`]).
+//! - `context`: the adapter and device, and the faults wgpu reports out of band ([`Context`]);
+//! - `present`: a frame shown on a window's surface with an overlay over it
+//!   ([`WindowSurface`]).
 //!
-//! Not here: a window or surface (the viewer's), and any CPU rasterization — this crate depends
+//! Not here: making a window (the viewer's), and any CPU rasterization — this crate depends
 //! on the core and math crates only. Most users reach it through the `bumpmap` crate's
 //! renderer, which picks this backend or the CPU's.
 
@@ -24,6 +26,7 @@ mod error;
 mod lit;
 mod pipelines;
 mod prelude;
+mod present;
 mod renderer;
 mod textures;
 
@@ -32,4 +35,7 @@ pub use context::Context;
 pub use error::GpuError;
 pub use lit::{self_shadow_name, specular_filter_name, specular_shadow_name};
 pub use prelude::shading_wgsl;
+pub use present::WindowSurface;
 pub use renderer::GpuRenderer;
+/// What a window must offer for [`GpuRenderer::window_surface`] (wgpu's own bound).
+pub use wgpu::DisplayAndWindowHandle;

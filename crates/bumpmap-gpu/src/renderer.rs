@@ -27,7 +27,7 @@ pub struct GpuRenderer {
     textures: Textures,
     target: Option<Target>,
     meshes: Vec<(Arc<Mesh>, wgpu::Buffer, u32)>,
-    ctx: Context,
+    pub(crate) ctx: Context,
 }
 
 impl Drop for GpuRenderer {
@@ -39,11 +39,11 @@ impl Drop for GpuRenderer {
 }
 
 /// The colour and depth attachments and the buffer they are read back through.
-struct Target {
+pub(crate) struct Target {
     width: usize,
     height: usize,
     color: wgpu::Texture,
-    color_view: wgpu::TextureView,
+    pub(crate) color_view: wgpu::TextureView,
     depth_view: wgpu::TextureView,
     readback: wgpu::Buffer,
     padded_row: u32,
@@ -98,7 +98,7 @@ impl GpuRenderer {
     }
 
     /// Records the frame's passes; snapshots are read back on the way.
-    fn encode(
+    pub(crate) fn encode(
         &mut self,
         scene: &Scene,
         technique: &Technique,
@@ -161,7 +161,7 @@ impl GpuRenderer {
         Ok(encoder)
     }
 
-    fn ensure_target(&mut self, width: usize, height: usize) -> Result<(), GpuError> {
+    pub(crate) fn ensure_target(&mut self, width: usize, height: usize) -> Result<(), GpuError> {
         if width == 0 || height == 0 {
             return Err(GpuError::EmptyFramebuffer { width, height });
         }
@@ -185,7 +185,9 @@ impl GpuRenderer {
                 view_formats: &[],
             })
         };
-        let color = attachment("colour", COLOR_FORMAT, wgpu::TextureUsages::COPY_SRC);
+        // Read back for an image; read by the window surface's copy (`crate::present`).
+        let color =
+            attachment("colour", COLOR_FORMAT, wgpu::TextureUsages::COPY_SRC | wgpu::TextureUsages::TEXTURE_BINDING);
         let depth = attachment("depth", DEPTH_FORMAT, wgpu::TextureUsages::empty());
         let padded_row = (4 * width as u32).next_multiple_of(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT);
         let readback = self.ctx.device.create_buffer(&wgpu::BufferDescriptor {
@@ -204,6 +206,11 @@ impl GpuRenderer {
             padded_row,
         });
         Ok(())
+    }
+
+    /// The target the last frame was drawn into, if any.
+    pub(crate) fn target(&self) -> Option<&Target> {
+        self.target.as_ref()
     }
 
     /// The mesh's index buffer, uploaded once per `Arc`.

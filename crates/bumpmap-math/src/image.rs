@@ -65,6 +65,28 @@ impl Rgba16Image {
 }
 
 impl Rgba8Image {
+    /// Lays `overlay` (straight alpha, the same size) over this image: each colour becomes
+    /// `mix(colour, overlay, alpha)`, rounded; this image's alpha is kept. What a viewer's text
+    /// and wireframe do to a frame; `bumpmap_gpu`'s window surface does the same in WGSL.
+    ///
+    /// ```
+    /// use bumpmap_math::Rgba8Image;
+    ///
+    /// let mut frame = Rgba8Image::new(2, 1, vec![[100, 100, 100, 7]; 2]);
+    /// let overlay = Rgba8Image::new(2, 1, vec![[0, 0, 0, 0], [255, 0, 0, 255]]);
+    /// frame.overlay(&overlay);
+    /// assert_eq!(frame.texels, [[100, 100, 100, 7], [255, 0, 0, 7]]);
+    /// ```
+    pub fn overlay(&mut self, overlay: &Rgba8Image) {
+        assert_eq!((self.width, self.height), (overlay.width, overlay.height), "an overlay of the image's size");
+        for (c, o) in self.texels.iter_mut().zip(&overlay.texels) {
+            let a = o[3] as u32;
+            for k in 0..3 {
+                c[k] = ((c[k] as u32 * (255 - a) + o[k] as u32 * a + 127) / 255) as u8;
+            }
+        }
+    }
+
     /// An image whose every texel is `(v, v, v, 255)` for the gray values `values`.
     pub fn from_gray(width: usize, height: usize, values: &[u8]) -> Self {
         Self::new(width, height, values.iter().map(|&v| [v, v, v, 255]).collect())

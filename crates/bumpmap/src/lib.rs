@@ -18,7 +18,8 @@
 //! ```
 //!
 //! - [`Renderer`] ([`renderer`]): one renderer over both backends, [`BackendChoice`] CPU, GPU or
-//!   automatic; [`Prepared`] makes a technique's maps once for many frames;
+//!   automatic; [`Prepared`] makes a technique's maps once for many frames; [`WindowSurface`]
+//!   shows the GPU's frames in a window;
 //! - [`TechniqueName`]: the catalogue — every technique by name, what it needs, how it draws;
 //! - [`SceneSpec`]: what is drawn — a built-in surface or a mesh, camera, lights, material,
 //!   bumps from a height field or a normal map;
@@ -39,7 +40,7 @@ pub mod motion;
 pub mod renderer;
 
 pub use error::Error;
-pub use renderer::{Backend, BackendChoice, Prepared, Renderer};
+pub use renderer::{Backend, BackendChoice, Prepared, Renderer, WindowSurface};
 
 pub use bumpmap_core::scene::{Attenuation, Camera, SceneLight, Spot, ViewerModel};
 pub use bumpmap_core::technique::{

@@ -230,6 +230,71 @@ impl Renderer {
     }
 }
 
+/// A window the GPU backend draws into (a swap chain): frames go to the screen without coming
+/// back to the CPU. Made by [`Renderer::window_surface`].
+pub struct WindowSurface(bumpmap_gpu::WindowSurface);
+
+impl WindowSurface {
+    /// The size frames are drawn at.
+    pub fn size(&self) -> (usize, usize) {
+        let (w, h) = self.0.size();
+        (w as usize, h as usize)
+    }
+}
+
+impl Renderer {
+    /// A surface on `window` (a winit window, say, behind an `Arc`) for frames of
+    /// `width`×`height`, on the GPU backend; `None` on the CPU's, whose frames a caller shows
+    /// itself (with softbuffer, say).
+    pub fn window_surface(
+        &self,
+        window: impl bumpmap_gpu::DisplayAndWindowHandle + 'static,
+        width: usize,
+        height: usize,
+    ) -> Result<Option<WindowSurface>, Error> {
+        match &self.inner {
+            Inner::Cpu { .. } => Ok(None),
+            Inner::Gpu(g) => Ok(Some(WindowSurface(g.window_surface(window, width as u32, height as u32)?))),
+        }
+    }
+
+    /// Sizes `surface` for frames of `width`×`height`.
+    pub fn resize_surface(&self, surface: &mut WindowSurface, width: usize, height: usize) {
+        if let Inner::Gpu(g) = &self.inner {
+            g.resize(&mut surface.0, width as u32, height as u32);
+        }
+    }
+
+    /// Draws `prepared` into `surface` at its size with `overlay` (straight alpha, the same
+    /// size; see [`Rgba8Image::overlay`]) over it, and shows it. The reference is drawn on the
+    /// CPU and shown through the surface. A surface of another backend's is an error.
+    pub fn present(
+        &mut self,
+        surface: &mut WindowSurface,
+        prepared: &Prepared,
+        overlay: &Rgba8Image,
+    ) -> Result<(), Error> {
+        let (width, height) = surface.size();
+        Self::check_size(width, height)?;
+        if let Technique::Reference(options) = &prepared.technique {
+            let mut image = self.reference(&prepared.scene, options, width, height)?;
+            image.overlay(overlay);
+            return match &mut self.inner {
+                Inner::Gpu(g) => Ok(g.present_image(&mut surface.0, &image)?),
+                Inner::Cpu { .. } => {
+                    Err(Error::Gpu(bumpmap_gpu::GpuError::Surface("a CPU renderer has no surface".into())))
+                }
+            };
+        }
+        match &mut self.inner {
+            Inner::Gpu(g) => Ok(g.present(&mut surface.0, &prepared.scene, &prepared.technique, overlay)?),
+            Inner::Cpu { .. } => {
+                Err(Error::Gpu(bumpmap_gpu::GpuError::Surface("a CPU renderer has no surface".into())))
+            }
+        }
+    }
+}
+
 /// The kept framebuffer, made anew when the size changes.
 fn framebuffer_of(fb: &mut Option<Framebuffer>, width: usize, height: usize) -> Result<&mut Framebuffer, CpuError> {
     if fb.as_ref().is_none_or(|f| (f.width, f.height) != (width, height)) {

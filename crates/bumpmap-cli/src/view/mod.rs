@@ -57,6 +57,12 @@ fn with_file(args: &ViewArgs) -> Result<SceneSetup, CliError> {
     if let Some(flag) = clash {
         return Err(CliError::Usage(format!("{}: give the file or {flag}, not both", file.display())));
     }
+    let taken = match kind {
+        files::Kind::Mesh => "a mesh",
+        files::Kind::HeightField => "a height field",
+        files::Kind::NormalMap => "a normal map",
+    };
+    eprintln!("{}: opened as {taken}", file.display());
     match kind {
         files::Kind::Mesh => scene.scene = format!("mesh:{}", file.display()),
         files::Kind::HeightField => scene.height_field = Some(file.display().to_string()),

@@ -1,5 +1,7 @@
-//! What the viewer draws over a rendered frame: text (the help, the status line, a message)
-//! from `font8x8`'s glyphs on a darkened box, and the triangles' edges for the wireframe.
+//! What the viewer draws over a rendered frame, into a layer of its own with straight alpha
+//! (laid over the frame by `Rgba8Image::overlay` on the CPU, or by the window surface on the
+//! GPU): text (the help, the status line, a message) from `font8x8`'s glyphs on a box that
+//! darkens what is behind it, and the triangles' edges for the wireframe.
 //!
 //! What this module does not do: render (the frame comes from the renderer), or lay out more
 //! than lines of text from the top-left or bottom-left corner.
@@ -17,8 +19,16 @@ pub enum Corner {
     BottomLeft,
 }
 
+/// The box behind text: black at three quarters, so what is behind shows at a quarter.
+const BOX: [u8; 4] = [0, 0, 0, 192];
+
+/// A layer of `width`×`height` with nothing on it.
+pub fn layer(width: usize, height: usize) -> Rgba8Image {
+    Rgba8Image::new(width, height, vec![[0; 4]; width * height])
+}
+
 /// Draws `lines` in white on a box that darkens what is behind it to a quarter, glyphs at up to
-/// `max_scale` times their 8 pixels: the largest scale at which the box fits the image.
+/// `max_scale` times their 8 pixels: the largest scale at which the box fits the layer.
 pub fn text(image: &mut Rgba8Image, lines: &[String], corner: Corner, max_scale: usize) {
     if lines.is_empty() {
         return;
@@ -35,8 +45,8 @@ pub fn text(image: &mut Rgba8Image, lines: &[String], corner: Corner, max_scale:
     };
     for y in top..top + box_h {
         for t in &mut image.texels[y * image.width..y * image.width + box_w] {
-            for c in &mut t[..3] {
-                *c /= 4;
+            if t[3] < BOX[3] {
+                *t = BOX;
             }
         }
     }
@@ -112,7 +122,9 @@ mod tests {
     #[test]
     fn text_lights_pixels_in_its_corner_only() {
         let mut image = Rgba8Image::new(64, 48, vec![[100, 100, 100, 255]; 64 * 48]);
-        text(&mut image, &["Hi".into()], Corner::BottomLeft, 1);
+        let mut over = layer(64, 48);
+        text(&mut over, &["Hi".into()], Corner::BottomLeft, 1);
+        image.overlay(&over);
         let white = |y0: usize, y1: usize| {
             (y0..y1)
                 .flat_map(|y| (0..64).map(move |x| (x, y)))

@@ -1,7 +1,7 @@
-//! The viewer's window: winit's event loop, frames from the front door's renderer presented
-//! through softbuffer (on either backend: the GPU's frame is read back first), keys and mouse
-//! turned into the model's actions, files dropped on it loaded in place, and the scripted runs
-//! (`--frames`, `--keys`, `--screenshot`).
+//! The viewer's window: winit's event loop; frames from the front door's renderer shown on the
+//! GPU's surface (wgpu: the frame never comes back to the CPU) or, from the CPU backend,
+//! through softbuffer; keys and mouse turned into the model's actions, files dropped on it
+//! loaded in place, and the scripted runs (`--frames`, `--keys`, `--screenshot`).
 //!
 //! What this module does not do: decide what a key does (`super::state`) or draw text
 //! (`super::overlay`). Nothing here ends the program on a bad file or a failed frame: the
@@ -9,10 +9,10 @@
 
 use std::num::NonZeroU32;
 use std::path::{Path, PathBuf};
-use std::rc::Rc;
+use std::sync::Arc;
 use std::time::Instant;
 
-use bumpmap::{Backend, BackendChoice, Renderer, Rgba8Image, TechniqueName};
+use bumpmap::{Backend, BackendChoice, Renderer, Rgba8Image, TechniqueName, WindowSurface};
 use bumpmap_io::atomic::FileSet;
 use bumpmap_io::image_file::{PngLayout, save_png_into};
 use winit::application::ApplicationHandler;
@@ -55,7 +55,7 @@ pub fn run(args: &ViewArgs, setup: SceneSetup, inputs: &[&Path]) -> Result<(), C
         renderer,
         size: args.frame_size(),
         window: None,
-        surface: None,
+        presenter: None,
         last: None,
         drawn: None,
         frame: 0,
@@ -64,6 +64,7 @@ pub fn run(args: &ViewArgs, setup: SceneSetup, inputs: &[&Path]) -> Result<(), C
         fps: Fps::default(),
         cursor: None,
         dragging: None,
+        timing: Timing::default(),
         result: Ok(()),
     };
     event_loop.run_app(&mut app).map_err(|e| CliError::Render(format!("the window's event loop failed: {e}")))?;
@@ -116,23 +117,69 @@ impl Fps {
     }
 }
 
+/// The last frame shown.
+enum Shown {
+    /// The frame with its overlay.
+    Image(Rgba8Image),
+    /// Only the overlay: the frame went from the GPU to the screen.
+    Overlay(Rgba8Image),
+}
+
+/// How frames reach the window.
+enum Presenter {
+    /// The GPU's own surface.
+    Gpu(WindowSurface),
+    /// A CPU frame copied into the window (the CPU backend, or a GPU without a surface here).
+    Soft(softbuffer::Surface<Arc<Window>, Arc<Window>>),
+}
+
+/// A presenter for `renderer` on `window`: the GPU's surface where it has one, else
+/// softbuffer, with the reason the GPU's could not be had.
+fn presenter(renderer: &Renderer, window: &Arc<Window>) -> Result<(Presenter, Option<String>), CliError> {
+    let size = window.inner_size();
+    let (w, h) = (size.width.max(1) as usize, size.height.max(1) as usize);
+    let mut note = None;
+    match renderer.window_surface(window.clone(), w, h) {
+        Ok(Some(surface)) => return Ok((Presenter::Gpu(surface), None)),
+        Ok(None) => {}
+        Err(e) => note = Some(format!("{e}; showing the GPU's frames through the CPU instead")),
+    }
+    let context = softbuffer::Context::new(window.clone())
+        .map_err(|e| no_display(&format!("no software buffer for the display: {e}")))?;
+    let surface = softbuffer::Surface::new(&context, window.clone())
+        .map_err(|e| no_display(&format!("no software buffer for the window: {e}")))?;
+    Ok((Presenter::Soft(surface), note))
+}
+
 struct App {
     viewer: Viewer,
     renderer: Renderer,
     size: (usize, usize),
-    window: Option<Rc<Window>>,
-    surface: Option<softbuffer::Surface<Rc<Window>, Rc<Window>>>,
+    window: Option<Arc<Window>>,
+    presenter: Option<Presenter>,
     /// When the last frame was drawn (the orbit advances by the time since).
     last: Option<Instant>,
-    /// The last frame as shown, overlay included: what `s` writes.
-    drawn: Option<Rgba8Image>,
+    /// The last frame shown: what `s` writes.
+    drawn: Option<Shown>,
     frame: usize,
     script: Script,
     inputs: Vec<PathBuf>,
     fps: Fps,
     cursor: Option<(f64, f64)>,
     dragging: Option<MouseButton>,
+    /// A scripted run's timings: when the first frame was shown, and the key pressed last with
+    /// when, until the frame after it is shown.
+    timing: Timing,
     result: Result<(), CliError>,
+}
+
+/// What a scripted run measures, printed on stderr: the frame rate after the first frame
+/// (the window's own making left out), and each key's time to the next frame shown (for `+`,
+/// the normal map rebuilt and drawn).
+#[derive(Default)]
+struct Timing {
+    first: Option<Instant>,
+    key: Option<(Action, Instant)>,
 }
 
 impl App {
@@ -154,6 +201,9 @@ impl App {
     }
 
     fn act(&mut self, event_loop: &ActiveEventLoop, action: Action) {
+        if self.script.frames.is_some() {
+            self.timing.key = Some((action, Instant::now()));
+        }
         match self.viewer.apply(action) {
             Effect::Redraw => {}
             Effect::Quit => event_loop.exit(),
@@ -167,7 +217,20 @@ impl App {
                     Backend::Gpu => BackendChoice::Cpu,
                 };
                 match Renderer::new(other) {
-                    Ok(r) => self.renderer = r,
+                    Ok(r) => {
+                        // The old surface goes before the new one is made on the same window.
+                        self.presenter = None;
+                        self.renderer = r;
+                        if let Some(window) = self.window.clone() {
+                            match presenter(&self.renderer, &window) {
+                                Ok((p, note)) => {
+                                    self.presenter = Some(p);
+                                    self.viewer.message = note;
+                                }
+                                Err(e) => return self.fail(event_loop, e),
+                            }
+                        }
+                    }
                     Err(e) => self.viewer.message = Some(lib_err(e).to_string()),
                 }
             }
@@ -184,11 +247,26 @@ impl App {
         }
     }
 
-    /// Writes the last frame shown to `path`, or to the first free `bumpmap-view-NNN.png` here.
-    fn screenshot(&self, path: Option<&Path>) -> Result<PathBuf, CliError> {
-        let Some(image) = &self.drawn else {
+    /// Writes the last frame shown to `path`, or to the first free `bumpmap-view-NNN.png` here
+    /// (a frame shown on the GPU's surface is drawn again and read back for it).
+    fn screenshot(&mut self, path: Option<&Path>) -> Result<PathBuf, CliError> {
+        let Some(shown) = self.drawn.take() else {
             return Err(CliError::Render("no frame has been drawn yet".into()));
         };
+        let image = match shown {
+            Shown::Image(image) => image,
+            Shown::Overlay(layer) => {
+                let mut image = self.renderer.draw(self.viewer.frame(), layer.width, layer.height).map_err(lib_err)?;
+                image.overlay(&layer);
+                image
+            }
+        };
+        let written = self.write_png(path, &image);
+        self.drawn = Some(Shown::Image(image));
+        written
+    }
+
+    fn write_png(&self, path: Option<&Path>, image: &Rgba8Image) -> Result<PathBuf, CliError> {
         let path = match path {
             Some(p) => p.to_path_buf(),
             None => (1..10_000)
@@ -218,25 +296,53 @@ impl App {
         let size = window.inner_size();
         let (Some(w), Some(h)) = (NonZeroU32::new(size.width), NonZeroU32::new(size.height)) else { return };
         let (width, height) = (w.get() as usize, h.get() as usize);
-        let reference = self.viewer.technique() == TechniqueName::Reference;
-        // The reference samples the exact surface on the CPU whichever backend is open.
-        let drawn = if reference && self.renderer.backend() == Backend::Gpu {
-            Renderer::new(BackendChoice::Cpu).and_then(|mut r| r.draw(self.viewer.frame(), width, height))
-        } else {
-            self.renderer.draw(self.viewer.frame(), width, height)
-        };
-        let mut image = match drawn {
-            Ok(image) => image,
-            Err(e) => {
-                self.viewer.message = Some(lib_err(e).to_string());
-                Rgba8Image::new(width, height, vec![[0, 0, 0, 255]; width * height])
-            }
-        };
+        // Once per frame: each call moves the reference a step on in its refinement.
+        let prepared = self.viewer.frame().clone();
+        let mut layer = overlay::layer(width, height);
         if self.viewer.view.wireframe {
-            let scene = self.viewer.frame().scene.clone();
-            overlay::wireframe(&mut image, &scene);
+            overlay::wireframe(&mut layer, &prepared.scene);
         }
         self.fps.tick();
+        self.overlay_text(&mut layer);
+        if let Some(Presenter::Gpu(surface)) = &mut self.presenter {
+            self.renderer.resize_surface(surface, width, height);
+            match self.renderer.present(surface, &prepared, &layer) {
+                Ok(()) => self.drawn = Some(Shown::Overlay(layer)),
+                // The device or the window failed: nothing more can be shown.
+                Err(e @ bumpmap::Error::Gpu(_)) => {
+                    return self.fail(event_loop, CliError::Render(format!("showing a frame in the window: {e}")));
+                }
+                // The scene: say so and keep the window.
+                Err(e) => self.viewer.message = Some(lib_err(e).to_string()),
+            }
+        } else {
+            let reference = self.viewer.technique() == TechniqueName::Reference;
+            // The reference samples the exact surface on the CPU whichever backend is open.
+            let drawn = if reference && self.renderer.backend() == Backend::Gpu {
+                Renderer::new(BackendChoice::Cpu).and_then(|mut r| r.draw(&prepared, width, height))
+            } else {
+                self.renderer.draw(&prepared, width, height)
+            };
+            let mut image = match drawn {
+                Ok(image) => image,
+                Err(e) => {
+                    self.viewer.message = Some(lib_err(e).to_string());
+                    Rgba8Image::new(width, height, vec![[0, 0, 0, 255]; width * height])
+                }
+            };
+            image.overlay(&layer);
+            if let Err(e) = self.present_soft(w, h, &image) {
+                return self.fail(event_loop, CliError::Render(format!("showing a frame in the window: {e}")));
+            }
+            self.drawn = Some(Shown::Image(image));
+        }
+        window.set_title(&self.title());
+        self.frame += 1;
+        self.script_step(event_loop);
+    }
+
+    /// The help, the status line and the last message, drawn into `layer`.
+    fn overlay_text(&self, layer: &mut Rgba8Image) {
         if self.viewer.view.help {
             let mut lines = vec!["bumpmap view: keys".to_string(), String::new()];
             lines.extend(Action::ALL.iter().map(|a| {
@@ -249,7 +355,7 @@ impl App {
             lines.push(String::new());
             lines.push("drag: camera; right-drag: light; wheel: zoom".into());
             lines.push("drop a height field, normal map or mesh on it".into());
-            overlay::text(&mut image, &lines, Corner::TopLeft, 2);
+            overlay::text(layer, &lines, Corner::TopLeft, 2);
         }
         let mut status = vec![self.viewer.status()];
         if self.viewer.view.frame_rate {
@@ -258,19 +364,17 @@ impl App {
         if let Some(m) = &self.viewer.message {
             status.insert(0, m.clone());
         }
-        overlay::text(&mut image, &status, Corner::BottomLeft, 1);
-        if let Err(e) = self.present(w, h, &image) {
-            return self.fail(event_loop, CliError::Render(format!("showing a frame in the window: {e}")));
-        }
-        self.drawn = Some(image);
-        window.set_title(&self.title());
-        self.frame += 1;
-        self.script_step(event_loop);
+        overlay::text(layer, &status, Corner::BottomLeft, 1);
     }
 
     /// Copies `image` into the window's buffer (0RGB words) and shows it.
-    fn present(&mut self, w: NonZeroU32, h: NonZeroU32, image: &Rgba8Image) -> Result<(), softbuffer::SoftBufferError> {
-        let Some(surface) = &mut self.surface else { return Ok(()) };
+    fn present_soft(
+        &mut self,
+        w: NonZeroU32,
+        h: NonZeroU32,
+        image: &Rgba8Image,
+    ) -> Result<(), softbuffer::SoftBufferError> {
+        let Some(Presenter::Soft(surface)) = &mut self.presenter else { return Ok(()) };
         surface.resize(w, h)?;
         let mut buffer = surface.buffer_mut()?;
         for (out, &[r, g, b, _]) in buffer.iter_mut().zip(&image.texels) {
@@ -282,7 +386,26 @@ impl App {
     /// After each frame of a scripted run: the next key, or the screenshot and the end.
     fn script_step(&mut self, event_loop: &ActiveEventLoop) {
         let Some(frames) = self.script.frames else { return };
+        let now = Instant::now();
+        if let Some((key, at)) = self.timing.key.take() {
+            eprintln!("{}: the next frame after {:.1} ms", key.name(), now.duration_since(at).as_secs_f64() * 1e3);
+        }
+        let first = *self.timing.first.get_or_insert(now);
         if self.frame >= frames {
+            if frames > 1 {
+                let seconds = now.duration_since(first).as_secs_f64();
+                let (w, h) = match &self.drawn {
+                    Some(Shown::Image(i) | Shown::Overlay(i)) => (i.width, i.height),
+                    None => (0, 0),
+                };
+                eprintln!(
+                    "{} frames of {w}x{h} in {seconds:.2} s after the first: {:.1} frames/s ({} on {})",
+                    frames - 1,
+                    (frames - 1) as f64 / seconds,
+                    self.viewer.technique(),
+                    self.renderer.describe()
+                );
+            }
             if let Some(path) = self.script.screenshot.clone() {
                 match self.screenshot(Some(&path)) {
                     Ok(p) => eprintln!("wrote {}", p.display()),
@@ -307,22 +430,19 @@ impl ApplicationHandler for App {
         let attributes = Window::default_attributes()
             .with_title(self.title())
             .with_inner_size(PhysicalSize::new(w as u32, h as u32));
-        let made = event_loop
-            .create_window(attributes)
-            .map_err(|e| no_display(&format!("the window could not be made: {e}")))
-            .and_then(|window| {
-                let window = Rc::new(window);
-                let context = softbuffer::Context::new(window.clone())
-                    .map_err(|e| no_display(&format!("no software buffer for the display: {e}")))?;
-                let surface = softbuffer::Surface::new(&context, window.clone())
-                    .map_err(|e| no_display(&format!("no software buffer for the window: {e}")))?;
-                Ok((window, surface))
-            });
-        match made {
-            Ok((window, surface)) => {
+        let window = match event_loop.create_window(attributes) {
+            Ok(w) => Arc::new(w),
+            Err(e) => return self.fail(event_loop, no_display(&format!("the window could not be made: {e}"))),
+        };
+        match presenter(&self.renderer, &window) {
+            Ok((p, note)) => {
+                if let Some(note) = note {
+                    eprintln!("{note}");
+                    self.viewer.message = Some(note);
+                }
+                self.presenter = Some(p);
                 window.request_redraw();
                 self.window = Some(window);
-                self.surface = Some(surface);
             }
             Err(e) => self.fail(event_loop, e),
         }

@@ -1,0 +1,83 @@
+//! `bumpmap view` without a window: `--record`'s animated PNG, read back frame by frame by the
+//! `image` crate's APNG decoder (Pillow reads it in the Python tests), and the errors a viewer
+//! gives before it opens anything.
+
+mod common;
+
+use common::{bumpmap, scratch, stderr};
+
+/// The frames of an APNG, decoded.
+fn frames(path: &std::path::Path) -> Vec<image::RgbaImage> {
+    use image::AnimationDecoder;
+    let file = std::io::BufReader::new(std::fs::File::open(path).unwrap());
+    let decoder = image::codecs::png::PngDecoder::new(file).unwrap();
+    assert!(decoder.is_apng().unwrap(), "an animated PNG");
+    decoder.apng().unwrap().into_frames().map(|f| f.unwrap().into_buffer()).collect()
+}
+
+#[test]
+fn record_writes_one_orbit_of_the_light_as_an_animated_png() {
+    let dir = scratch("view_record");
+    let out = dir.join("orbit.png");
+    let o = bumpmap(&[
+        "view",
+        "--record",
+        out.to_str().unwrap(),
+        "--backend",
+        "cpu",
+        "--size",
+        "64",
+        "--frames",
+        "8",
+        "--frame-ms",
+        "50",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(stderr(&o).contains("8 frames of 64x64"), "{}", stderr(&o));
+    let frames = frames(&out);
+    assert_eq!(frames.len(), 8);
+    for (k, f) in frames.iter().enumerate() {
+        assert_eq!(f.dimensions(), (64, 64));
+        assert!(f.pixels().filter(|p| p.0[0] > 40).count() > 200, "frame {k} shows the torus");
+    }
+    // The light moves: neighbouring frames differ, and half a turn differs most.
+    for k in 0..8 {
+        assert_ne!(frames[k], frames[(k + 1) % 8], "frames {k} and {} are the same", (k + 1) % 8);
+    }
+}
+
+#[test]
+fn record_refuses_what_it_cannot_do_before_any_work() {
+    let dir = scratch("view_record_refusals");
+    let out = dir.join("o.png");
+    let o = bumpmap(&["view", "--record", out.to_str().unwrap(), "--keys", "t,zz"]);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(stderr(&o).contains("'zz' is not a viewer key"), "{}", stderr(&o));
+    // The recording may not replace the height field it shows.
+    let heights = dir.join("h.png");
+    common::write_gray_png(&heights, 16, 16, |x, y| ((x * y) % 256) as u8);
+    let before = std::fs::read(&heights).unwrap();
+    let o = bumpmap(&["view", heights.to_str().unwrap(), "--record", heights.to_str().unwrap(), "--size", "32"]);
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    assert_eq!(std::fs::read(&heights).unwrap(), before, "the input is untouched");
+    // A file and the option it stands for, both.
+    let o =
+        bumpmap(&["view", heights.to_str().unwrap(), "--height-field", "dimples", "--record", out.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(stderr(&o).contains("not both"), "{}", stderr(&o));
+    assert!(!out.exists());
+}
+
+#[test]
+fn without_a_display_the_window_says_what_to_do() {
+    let o = std::process::Command::new(env!("CARGO_BIN_EXE_bumpmap"))
+        .args(["view", "--backend", "cpu"])
+        .env_remove("DISPLAY")
+        .env_remove("WAYLAND_DISPLAY")
+        .output()
+        .unwrap();
+    assert_eq!(o.status.code(), Some(1));
+    let err = stderr(&o);
+    assert!(err.contains("no display") && err.contains("xvfb-run") && err.contains("--record"), "{err}");
+    assert!(!err.contains("panicked"), "{err}");
+}
