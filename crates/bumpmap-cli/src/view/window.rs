@@ -128,7 +128,7 @@ enum Shown {
 /// How frames reach the window.
 enum Presenter {
     /// The GPU's own surface.
-    Gpu(WindowSurface),
+    Gpu(Box<WindowSurface>),
     /// A CPU frame copied into the window (the CPU backend, or a GPU without a surface here).
     Soft(softbuffer::Surface<Arc<Window>, Arc<Window>>),
 }
@@ -140,7 +140,7 @@ fn presenter(renderer: &Renderer, window: &Arc<Window>) -> Result<(Presenter, Op
     let (w, h) = (size.width.max(1) as usize, size.height.max(1) as usize);
     let mut note = None;
     match renderer.window_surface(window.clone(), w, h) {
-        Ok(Some(surface)) => return Ok((Presenter::Gpu(surface), None)),
+        Ok(Some(surface)) => return Ok((Presenter::Gpu(Box::new(surface)), None)),
         Ok(None) => {}
         Err(e) => note = Some(format!("{e}; showing the GPU's frames through the CPU instead")),
     }
