@@ -80,4 +80,35 @@ fn without_a_display_the_window_says_what_to_do() {
     let err = stderr(&o);
     assert!(err.contains("no display") && err.contains("xvfb-run") && err.contains("--record"), "{err}");
     assert!(!err.contains("panicked"), "{err}");
+    // A display named but not there: the same advice, with the reason.
+    let o = std::process::Command::new(env!("CARGO_BIN_EXE_bumpmap"))
+        .args(["view", "--backend", "cpu"])
+        .env("DISPLAY", ":77")
+        .env_remove("WAYLAND_DISPLAY")
+        .output()
+        .unwrap();
+    assert_eq!(o.status.code(), Some(1));
+    let err = stderr(&o);
+    assert!(err.contains("X server") && err.contains("xvfb-run") && !err.contains("panicked"), "{err}");
+}
+
+#[test]
+fn the_readme_lists_every_key_the_viewer_has() {
+    let help = String::from_utf8(bumpmap(&["view", "--help"]).stdout).unwrap();
+    let block = &help[help.find("Keys (").unwrap()..help.find("Mouse:").unwrap()];
+    let keys: Vec<(String, String)> = block
+        .lines()
+        .skip(1)
+        .filter(|l| !l.trim().is_empty())
+        .map(|l| (l[2..9].trim().to_string(), l[9..].trim().to_string()))
+        .collect();
+    assert!(keys.len() > 20, "{block}");
+    let readme = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/../../README.md")).unwrap();
+    for (key, does) in &keys {
+        let row = format!("| `{key}` | {does} |");
+        assert!(readme.contains(&row), "README.md lacks the row {row}");
+    }
+    let rows = readme.lines().filter(|l| l.starts_with("| `") && l.ends_with(" |") && l.matches('|').count() == 3);
+    let listed: Vec<&str> = rows.filter(|l| keys.iter().any(|(k, _)| l.starts_with(&format!("| `{k}` |")))).collect();
+    assert_eq!(listed.len(), keys.len(), "one README row per key");
 }

@@ -582,7 +582,8 @@ pub fn save_apng_into(
         let mut encoder = png::Encoder::new(w, width as u32, height as u32);
         encoder.set_color(png::ColorType::Rgb);
         encoder.set_depth(png::BitDepth::Eight);
-        encoder.set_compression(png::Compression::Fast);
+        // Made to be shared (a README, a report): a smaller file is worth the encoder's time.
+        encoder.set_compression(png::Compression::Balanced);
         encoder.set_animated(frames.len() as u32, 0).map_err(err)?;
         encoder.set_frame_delay(delay_ms, 1000).map_err(err)?;
         let mut writer = encoder.write_header().map_err(err)?;

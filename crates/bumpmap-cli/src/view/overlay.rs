@@ -73,8 +73,9 @@ pub fn text(image: &mut Rgba8Image, lines: &[String], corner: Corner, max_scale:
     }
 }
 
-/// Draws every triangle edge of `scene`'s objects, as the camera sees them, in green. Edges
-/// with an end behind the eye are left out rather than clipped.
+/// Draws the edges of the triangles of `scene`'s objects that face the camera, in green.
+/// Triangles with a corner behind the eye are left out rather than clipped; hidden front faces
+/// (behind another part of the object) are drawn, as there is no depth test here.
 pub fn wireframe(image: &mut Rgba8Image, scene: &Scene) {
     let (w, h) = (image.width as f32, image.height as f32);
     let clip_from_world = scene.camera.clip_from_world(w / h);
@@ -90,10 +91,15 @@ pub fn wireframe(image: &mut Rgba8Image, scene: &Scene) {
             })
             .collect();
         for tri in &object.mesh.indices {
-            for (a, b) in [(tri[0], tri[1]), (tri[1], tri[2]), (tri[2], tri[0])] {
-                if let (Some(Some(a)), Some(Some(b))) = (screen.get(a as usize), screen.get(b as usize)) {
-                    line(image, *a, *b, [40, 255, 90, 255]);
-                }
+            let corner = |i: u32| screen.get(i as usize).copied().flatten();
+            let (Some(a), Some(b), Some(c)) = (corner(tri[0]), corner(tri[1]), corner(tri[2])) else { continue };
+            // Counter-clockwise faces the eye (GL's default front face); on screen, whose y
+            // runs down, that is a negative signed area.
+            if (b - a).perp_dot(c - a) >= 0.0 {
+                continue;
+            }
+            for (p, q) in [(a, b), (b, c), (c, a)] {
+                line(image, p, q, [40, 255, 90, 255]);
             }
         }
     }

@@ -1,0 +1,23 @@
+#!/usr/bin/env bash
+# The viewer's frame rates and the time from `+` to the first frame with the new bumps
+# (BENCHMARKS.md), in one run: `bumpmap view` scripted under a virtual X server. Each frame
+# rate is over 150 frames after the first, the light orbiting, drawn and shown in an 800x600
+# window; the rebuild times are each key's time to the next frame with a 1024² height field.
+# Usage: scripts/bench_viewer.sh   (needs xvfb-run; the GPU rows need an adapter: lavapipe)
+set -euo pipefail
+root=$(cd "$(dirname "$0")/.." && pwd)
+cargo build --release -p bumpmap-cli --manifest-path "$root/Cargo.toml" >&2
+B=$root/target/release/bumpmap
+x() { xvfb-run -a -s "-screen 0 1024x768x24" "$B" view --width 800 --height 600 "$@" 2>&1; }
+for backend in cpu gpu; do
+    for technique in kilgard single-pass; do
+        x --backend "$backend" --technique "$technique" --frames 151 | grep "frames/s"
+    done
+done
+keys=plus,minus,plus,minus,plus,minus,plus,minus,plus,minus
+for technique in kilgard single-pass; do
+    echo "+/- with noise:7@1024 ($technique, cpu): ms to the next frame, each key"
+    x --backend cpu --technique "$technique" --height-field noise:7@1024 --keys "$keys" | grep "the next frame" \
+        | sed 's/.*after \([0-9.]*\) ms/\1/' | sort -n | tr '\n' ' '
+    echo
+done
