@@ -138,6 +138,30 @@ impl Session {
         String::from_utf8_lossy(&o.stdout).trim().to_string()
     }
 
+    fn mouse(&self, args: &[&str]) {
+        let o = tool(&self.x.display, "xdotool", args);
+        assert!(o.status.success(), "xdotool {args:?}: {}", String::from_utf8_lossy(&o.stderr));
+    }
+
+    /// Drags with mouse `button` from the window's centre 80 pixels right and 30 down, in
+    /// steps, and returns the window once it has changed and held still.
+    fn drag(&mut self, button: u8, name: &str, before: &Rgba8Image) -> Rgba8Image {
+        let b = button.to_string();
+        self.mouse(&["mousemove", "--window", &self.window.clone(), "240", "180"]);
+        self.mouse(&["mousedown", &b]);
+        for _ in 0..8 {
+            self.mouse(&["mousemove_relative", "--", "10", "4"]);
+        }
+        self.mouse(&["mouseup", &b]);
+        let moved = self.changed(name, before, name);
+        self.settled_after(name, moved)
+    }
+
+    /// `first`, or the picture after it once the window holds still.
+    fn settled_after(&mut self, name: &str, _first: Rgba8Image) -> Rgba8Image {
+        self.settled(name)
+    }
+
     /// A screenshot once the window has held still for a moment.
     fn settled(&mut self, name: &str) -> Rgba8Image {
         let mut last = self.shot(name);
@@ -195,6 +219,22 @@ fn every_key_the_issue_names_changes_the_window() {
 
     s.key("space");
     let paused = s.settled("paused");
+
+    // The mouse: a left-drag turns the camera, a right-drag moves the light, the wheel zooms;
+    // r puts both back, to the same picture.
+    let dragged = s.drag(1, "camera-drag", &paused);
+    let lit = s.drag(3, "light-drag", &dragged);
+    assert!(differing(&lit, &dragged) > 2000, "a right-drag moves the light");
+    s.mouse(&["click", "4"]);
+    let zoomed = s.changed("wheel", &lit, "the wheel");
+    let zoomed = s.settled_after("wheel", zoomed);
+    let lit_pixels = |i: &Rgba8Image| i.texels.iter().filter(|t| t[0] > 30).count();
+    assert!(lit_pixels(&zoomed) > lit_pixels(&lit), "the wheel up comes closer: the torus covers more");
+    let reset = s.press("r", "reset", &zoomed);
+    // Where a fresh viewer starts: the light at the start of its orbit, the camera at home.
+    let (_, home) = scripted(&s.x, &s.out, "home", &["--keys", "space,r", "--width", "480", "--height", "360"]);
+    assert_eq!(differing(&reset, &home), 0, "r puts the camera and the light back where they started");
+    let paused = reset;
 
     let no_decal = s.press("1", "no-decal", &paused);
     assert!(redness(&no_decal) < redness(&paused) - 5.0, "without the decal the bricks are not red");
@@ -274,7 +314,7 @@ fn scripted(x: &Xvfb, dir: &Path, name: &str, args: &[&str]) -> (String, Rgba8Im
     let o = Command::new(env!("CARGO_BIN_EXE_bumpmap"))
         .arg("view")
         .args(args)
-        .args(["--backend", "cpu", "--width", "320", "--height", "240", "--screenshot", out.to_str().unwrap()])
+        .args(["--backend", "cpu", "--screenshot", out.to_str().unwrap()])
         .env("DISPLAY", &x.display)
         .output()
         .expect("run bumpmap view");
@@ -282,7 +322,6 @@ fn scripted(x: &Xvfb, dir: &Path, name: &str, args: &[&str]) -> (String, Rgba8Im
     assert!(o.status.success(), "{name}: {err}");
     let image = image::open(&out).expect("the screenshot").to_rgba8();
     let (w, h) = (image.width() as usize, image.height() as usize);
-    assert_eq!((w, h), (320, 240));
     (err, Rgba8Image::new(w, h, image.pixels().map(|p| p.0).collect()))
 }
 
@@ -301,13 +340,15 @@ fn a_loaded_normal_map_and_scripted_keys_show_in_the_screenshot() {
     assert!(o.status.success(), "{}", common::stderr(&o));
     let x = Xvfb::start().expect("Xvfb starts");
 
-    let (_, bricks) = scripted(&x, &dir, "bricks", &["--keys", "space"]);
-    let (err, dimples) = scripted(&x, &dir, "dimples", &[map.to_str().unwrap(), "--keys", "space"]);
+    let small = ["--width", "320", "--height", "240"];
+    let (_, bricks) = scripted(&x, &dir, "bricks", &[&small[..], &["--keys", "space"]].concat());
+    let (err, dimples) =
+        scripted(&x, &dir, "dimples", &[&small[..], &[map.to_str().unwrap(), "--keys", "space"]].concat());
     assert!(err.contains("opened as a normal map"), "{err}");
     assert!(differing(&bricks, &dimples) > 5000, "the loaded normal map shows instead of the bricks");
     assert!(err.contains("frames/s"), "a scripted run reports its frame rate: {err}");
 
-    let (err, no_decal) = scripted(&x, &dir, "bricks-no-decal", &["--keys", "space,1"]);
+    let (err, no_decal) = scripted(&x, &dir, "bricks-no-decal", &[&small[..], &["--keys", "space,1"]].concat());
     assert!(err.contains("1: the next frame after"), "each key's time to the next frame: {err}");
     assert!(redness(&no_decal) < redness(&bricks) - 5.0, "--keys presses 1: the decal goes");
 }

@@ -291,7 +291,15 @@ impl Viewer {
             Action::FrameRate => v.frame_rate = !v.frame_rate,
             Action::Help => v.help = !v.help,
             Action::ResetView => {
-                *v = View { wireframe: v.wireframe, frame_rate: v.frame_rate, help: v.help, ..View::default() }
+                // Where they started; what is shown and whether the orbit runs stay.
+                let keep = View {
+                    paused: v.paused,
+                    wireframe: v.wireframe,
+                    frame_rate: v.frame_rate,
+                    help: v.help,
+                    ..View::default()
+                };
+                *v = keep;
             }
             Action::Screenshot => return Effect::Screenshot,
             Action::Backend => return Effect::SwitchBackend,
