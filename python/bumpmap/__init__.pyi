@@ -81,6 +81,7 @@ def render(
     height: Optional[int] = None,
     height_field: Optional[str] = None,
     normal_map: Optional[_Path] = None,
+    rebuild_mips: bool = False,
     bump_scale: Optional[float] = None,
     decal: Optional[str] = None,
     eye: Optional[_Vec3] = None,

@@ -146,6 +146,7 @@ pub fn setup(s: &SceneSetup) -> Result<Setup, CliError> {
             y_convention: scene.y_convention.into(),
             scale: bump_scale.unwrap_or(1.0),
             mip_mode: MipMode::LengthInAlpha,
+            rebuild_mips: scene.rebuild_mips,
         };
         let map = load_normal_map(path, &options).map_err(lib_err)?;
         notes.push(format!(

@@ -312,3 +312,30 @@ fn bad_material_textures_fail_cleanly() {
         assert!(err.contains("normalTexture (image 0)") || err.contains(uri), "names the texture: {err}");
     }
 }
+
+#[test]
+fn renormalized_stored_mips_get_a_warning_naming_the_fix_and_rebuild_mips_applies_it() {
+    let dir = scratch("own_renormalized_mips");
+    let (renormalized, own) = (dir.join("renormalized.ktx2"), dir.join("own.ktx2"));
+    for (path, mode) in [(&renormalized, "renormalize"), (&own, "length-in-alpha")] {
+        let o = bumpmap(&["normalmap", "dimples", "-o", path.to_str().unwrap(), "--mips", "--mip-mode", mode]);
+        assert!(o.status.success(), "{}", stderr(&o));
+    }
+    // Far enough that the smaller levels are what is seen.
+    let far = ["--technique", "toksvig", "--eye", "0,-24,10"];
+    let (with_renormalized, err) =
+        render(&dir, "a", &[&["--normal-map", renormalized.to_str().unwrap()], &far[..]].concat());
+    assert!(
+        err.contains("renormalized.ktx2: its own mip levels were renormalized") && err.contains("--rebuild-mips"),
+        "{err}"
+    );
+    let (with_own, err) = render(&dir, "b", &[&["--normal-map", own.to_str().unwrap()], &far[..]].concat());
+    assert!(!err.contains("renormalized ("), "a map with the length in alpha gets no warning: {err}");
+    let rebuilt_args = [&["--normal-map", renormalized.to_str().unwrap(), "--rebuild-mips"], &far[..]].concat();
+    let (rebuilt, err) = render(&dir, "c", &rebuilt_args);
+    assert!(err.contains("its own 9 levels set aside") && !err.contains("warning"), "{err}");
+    // Rebuilt from level 0, the levels are the length-in-alpha ones again (within the steps
+    // level 0's quantization makes), and far from the renormalized ones.
+    let (near_own, far_own) = (psnr(&rebuilt, &with_own), psnr(&with_renormalized, &with_own));
+    assert!(near_own > far_own + 3.0, "rebuilt {near_own:.1} dB from the own levels, renormalized {far_own:.1} dB");
+}

@@ -33,13 +33,16 @@ pub struct ImportOptions {
     pub scale: f32,
     /// What the smaller levels store when the map has none of its own.
     pub mip_mode: MipMode,
+    /// Make the smaller levels from level 0 (with [`ImportOptions::mip_mode`]) even when the
+    /// map has its own: what to do with levels another tool renormalized.
+    pub rebuild_mips: bool,
 }
 
 impl Default for ImportOptions {
     /// Green up (glTF, Blender, and what `bumpmap normalmap` writes), scale 1, the length in
     /// alpha.
     fn default() -> Self {
-        Self { y_convention: YConvention::YUp, scale: 1.0, mip_mode: MipMode::LengthInAlpha }
+        Self { y_convention: YConvention::YUp, scale: 1.0, mip_mode: MipMode::LengthInAlpha, rebuild_mips: false }
     }
 }
 
@@ -56,7 +59,17 @@ pub struct ImportedNormalMap {
     /// Whether the map's alpha held something other than the normal's length (level 0's was not
     /// 1 everywhere: a height or a gloss packed there): it was replaced by the length.
     pub foreign_alpha: bool,
+    /// Whether the map's own level 1 says every averaged normal has length 1 where averaging
+    /// level 0 gives shorter ones: the levels were renormalized (as most tools write them), and
+    /// the length factor (Kilgard §5.3) and Toksvig's filter, which read that length, have
+    /// nothing to work with. Kept as stored; [`ImportOptions::rebuild_mips`] makes them anew.
+    pub renormalized_mips: bool,
 }
+
+/// The longest the mean of a 2×2 block of level 0 may be, somewhere, for a map's own level 1
+/// with alpha 1 everywhere to count as renormalized: a map whose neighbouring normals barely
+/// differ loses nothing by renormalizing.
+pub const RENORMALIZED_BELOW: f32 = 0.97;
 
 /// The lowest level-0 alpha (of 1) still read as "the normal's length is 1": a map whose level
 /// 0 has a lower alpha anywhere packs something else there.
@@ -166,7 +179,8 @@ pub fn import_normal_map<T: Texel>(
         Image { width: level.width, height: level.height, texels }
     };
     let foreign_alpha = level0.texels.iter().any(|t| t.unpack(enc)[3] < OPAQUE_ALPHA);
-    let stored_mips = levels.len() > 1;
+    let renormalized_mips = levels.len() > 1 && !foreign_alpha && renormalized(levels, &direction);
+    let stored_mips = levels.len() > 1 && !options.rebuild_mips;
     let chain = if stored_mips {
         let mut chain = MipChain { levels: levels.iter().map(convert).collect(), encoding: enc };
         if foreign_alpha {
@@ -186,13 +200,36 @@ pub fn import_normal_map<T: Texel>(
         chain.levels[0].texels.iter_mut().for_each(|t| t[3] = 255);
         chain
     };
-    Ok(ImportedNormalMap { chain, off_unit: off as f32 / (width * height) as f32, stored_mips, foreign_alpha })
+    Ok(ImportedNormalMap {
+        chain,
+        off_unit: off as f32 / (width * height) as f32,
+        stored_mips,
+        foreign_alpha,
+        renormalized_mips,
+    })
+}
+
+/// Whether `levels[1]` stores length 1 everywhere (alpha ≥ [`OPAQUE_ALPHA`]) though the mean of
+/// some 2×2 block of level 0's unit normals is shorter than [`RENORMALIZED_BELOW`].
+fn renormalized<T: Texel>(levels: &[Image<T>], direction: &(impl Fn(T) -> Vec3 + Sync)) -> bool {
+    let (level0, level1) = (&levels[0], &levels[1]);
+    if level1.texels.iter().any(|&t| t.unpack(Encoding::Unorm)[3] < OPAQUE_ALPHA) {
+        return false;
+    }
+    let w = level0.width;
+    (0..level0.height / 2).into_par_iter().any(|y| {
+        (0..w / 2).any(|x| {
+            let at =
+                |dx: usize, dy: usize| direction(level0.texels[(2 * y + dy) * w + 2 * x + dx]).normalize_or(Vec3::Z);
+            ((at(0, 0) + at(1, 0) + at(0, 1) + at(1, 1)) * 0.25).length() < RENORMALIZED_BELOW
+        })
+    })
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::{HeightPreset, NormalMapOptions};
+    use crate::{HeightField, HeightPreset, NormalMapOptions};
 
     fn chain_of(convention: YConvention) -> MipChain {
         let field = HeightPreset::Bricks.render(32, 32);
@@ -297,5 +334,26 @@ mod tests {
         let got = import_normal_map::<[u8; 4]>(&[photo], &ImportOptions::default()).unwrap();
         assert!(got.off_unit > 0.5, "{}", got.off_unit);
         assert!(matches!(import_normal_map::<[u8; 4]>(&[], &ImportOptions::default()), Err(ImportError::Empty)));
+    }
+
+    #[test]
+    fn renormalized_levels_are_told_from_the_length_in_alpha_and_rebuilt_on_request() {
+        let field = HeightPreset::Dimples.render(64, 64);
+        let chain = |mode| MipChain::<[u8; 4]>::from_height(&field, &NormalMapOptions::default(), mode).unwrap();
+        let (own, renormalized) = (chain(MipMode::LengthInAlpha), chain(MipMode::Renormalize));
+        let yup = ImportOptions { y_convention: YConvention::TEXTURE_SPACE, ..Default::default() };
+        assert!(!import_normal_map(&own.levels, &yup).unwrap().renormalized_mips);
+        let got = import_normal_map(&renormalized.levels, &yup).unwrap();
+        assert!(got.renormalized_mips && got.stored_mips);
+        assert!(got.chain.levels[1].texels.iter().all(|t| t[3] == 255), "kept as stored");
+        // A flat map loses nothing by renormalizing: no warning.
+        let flat = HeightField::from_fn(64, 64, |_, _| 0.5);
+        let flat = MipChain::<[u8; 4]>::from_height(&flat, &NormalMapOptions::default(), MipMode::Renormalize).unwrap();
+        assert!(!import_normal_map(&flat.levels, &yup).unwrap().renormalized_mips);
+        // Rebuilt: the levels made from level 0, with the length in alpha.
+        let rebuilt = import_normal_map(&renormalized.levels, &ImportOptions { rebuild_mips: true, ..yup }).unwrap();
+        assert!(!rebuilt.stored_mips);
+        assert!(rebuilt.chain.levels[1].texels.iter().any(|t| t[3] < 240), "lengths below 1 are back");
+        assert_eq!(rebuilt.chain.levels.len(), renormalized.levels.len());
     }
 }

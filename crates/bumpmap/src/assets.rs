@@ -41,6 +41,12 @@ pub enum Warning {
         /// The file (or the glTF texture).
         path: PathBuf,
     },
+    /// A normal map whose own smaller levels were renormalized (alpha 1 everywhere though
+    /// level 0's normals vary): the length factor and Toksvig's filter get nothing from them.
+    RenormalizedMips {
+        /// The file (or the glTF texture).
+        path: PathBuf,
+    },
     /// Something the mesh file asked for that is not drawn.
     Ignored {
         /// The file.
@@ -66,6 +72,14 @@ impl fmt::Display for Warning {
                  it is drawn with the length in alpha instead",
                 path.display()
             ),
+            Warning::RenormalizedMips { path } => write!(
+                f,
+                "{}: its own mip levels were renormalized (their alpha, the length of the averaged normal, is 1 \
+                 everywhere though its normals vary): the length factor and Toksvig's specular filter have \
+                 nothing to work with, so the bumps stay too bright and too shiny at a distance. \
+                 Let bumpmap make the levels from level 0 instead: --rebuild-mips",
+                path.display()
+            ),
             Warning::Ignored { path, what } => write!(f, "{}: {what}", path.display()),
         }
     }
@@ -84,6 +98,11 @@ pub struct LoadedNormalMap {
     pub off_unit: f32,
     /// Whether the file's alpha held something else than the normal's length.
     pub foreign_alpha: bool,
+    /// Whether the file's own smaller levels were renormalized (see
+    /// [`bumpmap_math::imported::ImportedNormalMap::renormalized_mips`]).
+    pub renormalized_mips: bool,
+    /// Whether the smaller levels drawn are the file's own (false: made here from level 0).
+    pub own_mips: bool,
     /// How the smaller levels were made when the file had none.
     pub mip_mode: MipMode,
     /// Where it came from.
@@ -94,10 +113,14 @@ impl LoadedNormalMap {
     /// What the map is, in words: size, format, and where its mips came from.
     pub fn describe(&self) -> String {
         let level = &self.chain.levels[0];
-        let mips = match (self.stored_levels, self.mip_mode) {
-            (1, MipMode::LengthInAlpha) => "mips made with the length in alpha".to_string(),
-            (1, MipMode::Renormalize) => "mips made renormalized".to_string(),
-            (n, _) => format!("its own {n} levels"),
+        let made = match self.mip_mode {
+            MipMode::LengthInAlpha => "mips made with the length in alpha",
+            MipMode::Renormalize => "mips made renormalized",
+        };
+        let mips = match self.stored_levels {
+            1 => made.to_string(),
+            n if self.own_mips => format!("its own {n} levels"),
+            n => format!("{made} (its own {n} levels set aside)"),
         };
         format!("{}x{} {}, {mips}", level.width, level.height, self.format.name())
     }
@@ -110,6 +133,9 @@ impl LoadedNormalMap {
         }
         if self.foreign_alpha {
             w.push(Warning::ForeignAlpha { path: self.source.clone() });
+        }
+        if self.renormalized_mips && self.own_mips {
+            w.push(Warning::RenormalizedMips { path: self.source.clone() });
         }
         w
     }
@@ -132,6 +158,8 @@ fn import(texture: &StoredTexture, source: &Path, options: &ImportOptions) -> Re
         stored_levels: texture.levels.len(),
         off_unit: imported.off_unit,
         foreign_alpha: imported.foreign_alpha,
+        renormalized_mips: imported.renormalized_mips,
+        own_mips: imported.stored_mips,
         mip_mode: options.mip_mode,
         source: source.to_path_buf(),
     })
@@ -291,6 +319,7 @@ pub fn load_mesh(path: &Path, options: &MeshLoad) -> Result<MeshAsset, Error> {
                         y_convention: YConvention::YUp,
                         scale: normal_scale,
                         mip_mode: options.mip_mode,
+                        rebuild_mips: false,
                     };
                     let map = import(&t.texture, &t.source, &import_options)?;
                     warnings.extend(map.warnings());

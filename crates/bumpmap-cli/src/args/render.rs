@@ -23,6 +23,9 @@ pub struct SceneGroup {
     /// A normal map to draw as it is (PNG at 8 or 16 bits, other images, DDS or KTX2 with the mip levels it carries, BC5/BC7 included); without stored mips the chain is made with the length in alpha
     #[arg(long = "normal-map")]
     pub normal_map: Option<PathBuf>,
+    /// Make --normal-map's smaller levels from its level 0, with the length in alpha, instead of using the file's own (for levels another tool renormalized, which the length factor and --specular-filter toksvig get nothing from)
+    #[arg(long = "rebuild-mips", requires = "normal_map")]
+    pub rebuild_mips: bool,
     /// Which way --normal-map's green points as the image is displayed: opengl (alias y-up: glTF, Blender, Unity, and what `bumpmap normalmap` writes) or directx (alias y-down: Unreal, 3ds Max)
     #[arg(long = "y-convention", value_enum, default_value = "opengl", requires = "normal_map")]
     pub y_convention: YArg,
