@@ -23,23 +23,63 @@ pub fn run(args: &NormalmapArgs) -> Result<(), CliError> {
     let channel: Channel = args.map.channel.into();
     let input = Path::new(&args.input);
     if input.is_dir() {
+        if args.roughness_out.is_some() {
+            return Err(CliError::Usage(
+                "--roughness-out writes one roughness map: give one height field, not a folder".into(),
+            ));
+        }
         return run_folder(input, args, &options, channel);
     }
     let source = HeightSource::parse(&args.input);
     let format = texel_format(args)?;
     let output = output_file(&args.output, &source, &args.input, format);
     check_format(&output, format)?;
-    if let Some(path) = source.path() {
-        ensure_not_input(&output, &[path])?;
+    let inputs: Vec<&Path> = source.path().into_iter().collect();
+    for out in std::iter::once(&output).chain(&args.roughness_out) {
+        ensure_not_input(out, &inputs)?;
+    }
+    if let Some(rough) = &args.roughness_out
+        && level_path(rough, 0) == level_path(&output, 0)
+    {
+        return Err(CliError::Usage(format!("--roughness-out {} is the normal map's own file", rough.display())));
     }
     let field = source.load(channel)?;
     let levels = make_chain(&field, &options, args.mips, args.mip_mode.into(), format, &args.input)?;
+    let roughness = match &args.roughness_out {
+        Some(_) => Some(roughness_chain(&field, args, &options)?),
+        None => None,
+    };
     // The heights are not needed to write the chain: a 16384² field is 1 GiB of floats.
     drop(field);
-    let inputs: Vec<&Path> = source.path().into_iter().collect();
-    let written = write_set(&output, &levels, &inputs, format)?;
+    let mut set = FileSet::new(&inputs);
+    write_into(&mut set, &output, &levels, format)?;
+    if let (Some(out), Some(chain)) = (&args.roughness_out, roughness) {
+        write_into(&mut set, out, &Chain::Rgba8(chain), TextureFormat::Rgba8)?;
+    }
+    let written = set.commit()?;
     eprintln!("wrote {}", describe(&written));
     Ok(())
+}
+
+/// `--roughness-out`'s levels: the lengths of the averaged normals from a 16-bit chain with the
+/// length in alpha (whatever the normal map's own depth and mip mode), made into roughness by
+/// [`filament_roughness`](bumpmap_math::roughness::filament_roughness) and laid out in RGBA8 as
+/// `--roughness-layout` says.
+fn roughness_chain(
+    field: &HeightField,
+    args: &NormalmapArgs,
+    options: &NormalMapOptions,
+) -> Result<MipChain, CliError> {
+    let lengths: MipChain<[u16; 4]> = make_texels(field, options, true, MipMode::LengthInAlpha, &args.input)?;
+    let levels = bumpmap_math::roughness::roughness_levels(&lengths, args.roughness)
+        .into_iter()
+        .map(|level| bumpmap_math::Image {
+            width: level.width,
+            height: level.height,
+            texels: level.texels.into_iter().map(|r| args.roughness_layout.texel(r)).collect(),
+        })
+        .collect();
+    Ok(MipChain { levels, encoding: bumpmap_math::Encoding::Unorm })
 }
 
 /// The output file for one input: `-o` itself, or, when `-o` is a folder (an existing one, or

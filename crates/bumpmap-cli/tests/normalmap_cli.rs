@@ -383,3 +383,52 @@ fn exr_heights_are_read_as_stored_in_float() {
         "texel (3, 5) is NaN",
     );
 }
+
+#[test]
+fn roughness_out_is_written_with_the_normal_map_or_not_at_all() {
+    let dir = scratch("normalmap_roughness_out");
+    let (n, r) = (dir.join("n.png"), dir.join("r.ktx2"));
+    let o = bumpmap(&[
+        "normalmap",
+        "bricks@64",
+        "-o",
+        n.to_str().unwrap(),
+        "--mips",
+        "--roughness-out",
+        r.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let texture = bumpmap_io::load_texture(&r).unwrap();
+    let bumpmap_io::StoredLevels::Rgba8(levels) = &texture.levels else { panic!("RGBA8 levels") };
+    assert_eq!(levels.len(), 7, "a roughness level for each normal-map level, 64² to 1²");
+    assert!(levels[0].texels.iter().all(|t| t[0] == 128), "level 0: the default roughness 0.5 everywhere");
+    assert!(levels[2].texels.iter().any(|t| t[0] > 140), "the mortar's edges spread the normals: rougher");
+
+    // Refused before any work, nothing written: no --mips, the normal map's own file, a folder,
+    // a value out of range; an output format it cannot write leaves neither file.
+    let fresh = scratch("normalmap_roughness_refused");
+    let (n, r) = (fresh.join("n.png"), fresh.join("r.png"));
+    for (args, code) in [
+        (vec!["--roughness-out", r.to_str().unwrap()], 2),
+        (vec!["--mips", "--roughness-out", n.to_str().unwrap()], 2),
+        (vec!["--mips", "--roughness-out", r.to_str().unwrap(), "--roughness", "1.5"], 2),
+        (vec!["--mips", "--roughness-out", fresh.join("r.jpg").to_str().unwrap()], 1),
+    ] {
+        let mut all = vec!["normalmap", "bricks@64", "-o", n.to_str().unwrap()];
+        all.extend(args.iter().copied());
+        let o = bumpmap(&all);
+        assert_eq!(o.status.code(), Some(code), "{all:?}: {}", stderr(&o));
+        assert!(listing(&fresh).is_empty(), "{all:?} left {:?}", listing(&fresh));
+    }
+    let o = bumpmap(&[
+        "normalmap",
+        dir.to_str().unwrap(),
+        "-o",
+        fresh.join("out/").to_str().unwrap(),
+        "--mips",
+        "--roughness-out",
+        r.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(stderr(&o).contains("not a folder"), "{}", stderr(&o));
+}

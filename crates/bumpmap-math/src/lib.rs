@@ -25,6 +25,7 @@ pub mod lighting;
 pub mod mesh;
 pub mod mip;
 pub mod normalmap;
+pub mod roughness;
 pub mod surface;
 pub mod tangent;
 

@@ -194,6 +194,48 @@ pub struct NormalmapArgs {
     /// How heights become normals.
     #[command(flatten)]
     pub map: NormalMapOpts,
+    /// Also write a roughness map with a level for each normal-map level (.png: R.png, R.mip1.png, …; .dds or .ktx2: all levels, RGBA8): each texel the --roughness of the surface made rougher by the spread of the normals it averages (Filament's prefilter: α′ = √(α² + 2/κ), κ from the mean normal's length), what GGX shaders in engines read in place of the length factor
+    #[arg(long = "roughness-out", requires = "mips")]
+    pub roughness_out: Option<PathBuf>,
+    /// The surface's own perceptual roughness (glTF's roughnessFactor), in [0, 1]: level 0's value wherever its normal is one
+    #[arg(long, default_value_t = 0.5, value_parser = parse_unit, requires = "roughness_out")]
+    pub roughness: f32,
+    /// Channels of --roughness-out: gray (roughness in RGB), gloss (1 − roughness in RGB), gltf (glTF's metallicRoughness and Unreal's ORM: G roughness, B metallic 0, R 1), unity (Unity's metallic-smoothness: R metallic 0, A smoothness)
+    #[arg(long = "roughness-layout", value_enum, default_value = "gray", requires = "roughness_out")]
+    pub roughness_layout: RoughnessLayoutArg,
+}
+
+/// Where a roughness map puts its value.
+#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum RoughnessLayoutArg {
+    /// Roughness in R, G and B; A 1
+    Gray,
+    /// 1 − roughness (gloss, smoothness) in R, G and B; A 1
+    Gloss,
+    /// glTF metallicRoughness / Unreal ORM: R 1 (no occlusion), G roughness, B metallic 0, A 1
+    Gltf,
+    /// Unity metallic-smoothness: R metallic 0, G and B 0, A smoothness (1 − roughness)
+    Unity,
+}
+
+impl RoughnessLayoutArg {
+    /// The RGBA8 texel for perceptual roughness `r` in [0, 1].
+    pub fn texel(self, r: f32) -> [u8; 4] {
+        let byte = |v: f32| (v.clamp(0.0, 1.0) * 255.0).round() as u8;
+        let (rough, gloss) = (byte(r), byte(1.0 - r));
+        match self {
+            RoughnessLayoutArg::Gray => [rough, rough, rough, 255],
+            RoughnessLayoutArg::Gloss => [gloss, gloss, gloss, 255],
+            RoughnessLayoutArg::Gltf => [255, rough, 0, 255],
+            RoughnessLayoutArg::Unity => [0, 0, 0, gloss],
+        }
+    }
+}
+
+/// A number in [0, 1].
+fn parse_unit(s: &str) -> Result<f32, String> {
+    let v = parse_f32(s)?;
+    if (0.0..=1.0).contains(&v) { Ok(v) } else { Err(format!("'{s}' is not in [0, 1]")) }
 }
 
 fn parse_bits(s: &str) -> Result<u8, String> {
