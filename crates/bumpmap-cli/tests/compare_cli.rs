@@ -104,6 +104,39 @@ fn renormalized_mips_are_too_bright_at_a_distance_and_the_length_factor_is_close
 }
 
 #[test]
+fn toksvigs_filter_closes_most_of_the_specular_gap_at_a_distance() {
+    // Kilgard §2.5.3 on the golf ball, specular alone, at five distances over 16×.
+    let dir = scratch("compare_specular");
+    let r = compare(&dir, &["--techniques", "single-pass"]);
+    let rows = r["specular_filtering"].as_array().unwrap();
+    let distances: Vec<f64> = rows.iter().map(|row| row["distance"].as_f64().unwrap()).collect();
+    assert_eq!(distances, [1.0, 2.0, 4.0, 8.0, 16.0]);
+    for row in rows {
+        let d = row["distance"].as_f64().unwrap();
+        let filter = |name: &str, what: &str| row["filters"][name][what].as_f64().unwrap();
+        let (renormalized, toksvig) = (filter("renormalized mips", "energy_error"), filter("Toksvig", "energy_error"));
+        let reference_width = row["reference"]["width"].as_f64().unwrap();
+        let width_error = |name: &str| (filter(name, "width") / reference_width - 1.0).abs();
+        if d == 4.0 || d == 8.0 {
+            // Far, with the ball still tens of pixels across: at most half the energy error.
+            assert!(
+                toksvig.abs() <= 0.5 * renormalized.abs(),
+                "{d}×: toksvig {toksvig:+.3}, renormalized {renormalized:+.3}"
+            );
+        }
+        if d >= 4.0 {
+            // The highlight's width: renormalized mips keep a smooth ball's; Toksvig's follows
+            // the reference's.
+            assert!(width_error("Toksvig") <= 0.5 * width_error("renormalized mips"), "{d}×: width {row}");
+        }
+        if d == 16.0 {
+            // The ball a few pixels across: both within 10 % of the reference's energy.
+            assert!(toksvig.abs() < 0.1 && renormalized.abs() < 0.1, "{d}×: {row}");
+        }
+    }
+}
+
+#[test]
 fn unknown_techniques_are_skipped_with_their_reason_and_bad_options_are_refused() {
     let dir = scratch("compare_bad");
     let r = compare(&dir, &["--techniques", "kilgard,emboss-2000"]);
@@ -159,12 +192,19 @@ fn the_report_opens_in_a_real_browser_with_every_image_and_plot_loaded() {
     let loaded = &dom[start..start + dom[start..].find("</pre>").unwrap()];
     let widths: Vec<(&str, u32)> =
         loaded.lines().map(|l| l.rsplit_once(' ').map(|(src, w)| (src, w.parse().unwrap())).unwrap()).collect();
-    // reference + 2 × (image + heat map) + 4 plots + Peercy's reference and three figures.
-    assert_eq!(widths.len(), 13, "{loaded}");
+    // reference + 2 × (image + heat map) + 6 plots + Peercy's reference and three figures.
+    assert_eq!(widths.len(), 15, "{loaded}");
     for (src, w) in &widths {
         assert!(*w > 0, "{src} did not load");
     }
-    for plot in ["convergence.svg", "golf_ball.svg", "emboss_angle.svg", "peercy.svg"] {
+    for plot in [
+        "convergence.svg",
+        "golf_ball.svg",
+        "specular_energy.svg",
+        "specular_width.svg",
+        "emboss_angle.svg",
+        "peercy.svg",
+    ] {
         assert!(widths.iter().any(|(s, _)| *s == plot), "{plot} is not on the page: {loaded}");
     }
 }

@@ -202,3 +202,35 @@ fn thread_counts_are_bounded() {
         assert!(stderr(&o).contains("1..=256"), "--threads {bad} names the range: {}", stderr(&o));
     }
 }
+
+#[test]
+fn toksvigs_filter_leaves_near_detail_alone() {
+    // Up close the wall's normal map is magnified: level 0, every length 1, and Toksvig's
+    // exponent is the unfiltered one, byte for byte. Farther away, where the smaller levels are
+    // read, the filter acts.
+    let dir = scratch("render_toksvig_near");
+    let draw = |technique: &str, eye: &str| {
+        let out = dir.join(format!("{technique}-{eye}.png"));
+        let o = bumpmap(&[
+            "render",
+            "--scene",
+            "wall",
+            "--technique",
+            technique,
+            "--eye",
+            eye,
+            "--shininess",
+            "32",
+            "--size",
+            "128",
+            "-o",
+            out.to_str().unwrap(),
+        ]);
+        assert!(o.status.success(), "{}", stderr(&o));
+        image::open(&out).unwrap().to_rgb8()
+    };
+    assert_eq!(draw("single-pass", "0,0,1.2"), draw("toksvig", "0,0,1.2"), "magnified: the same bytes");
+    let (plain, filtered) = (draw("single-pass", "0,0,4"), draw("toksvig", "0,0,4"));
+    let differing = plain.pixels().zip(filtered.pixels()).filter(|(a, b)| a != b).count();
+    assert!(differing > 500, "minified, the filter acts: {differing} pixels differ");
+}

@@ -87,6 +87,8 @@ pub struct Results {
     pub golf_ball: Vec<(f32, f64, f64, f64)>,
     /// The same with the sphere's own light, from the side.
     pub golf_ball_side: Vec<(f32, f64, f64, f64)>,
+    /// The golf ball's highlight at a distance, by specular filter (Kilgard §2.5.3).
+    pub specular: Vec<studies::SpecularRow>,
     /// Kilgard §3.1's embossing studies.
     pub emboss: EmbossStudy,
     /// Peercy's Figures 5–7 on his patch.
@@ -171,7 +173,7 @@ pub fn measure(args: &CompareArgs, progress: bool) -> Result<(Results, Vec<PathB
     }
     let mut backend = crate::render::renderer(args.backend)?;
     // The reference, each technique, convergence and the three studies.
-    let steps = (wanted.len() + 5) as u64;
+    let steps = (wanted.len() + 6) as u64;
     let bar = if progress { ProgressBar::new(steps) } else { ProgressBar::hidden() }
         .with_style(ProgressStyle::with_template("{bar:40} {pos}/{len} {elapsed} {wide_msg}").expect("valid template"));
 
@@ -210,6 +212,9 @@ pub fn measure(args: &CompareArgs, progress: bool) -> Result<(Results, Vec<PathB
     let golf_ball = studies::golf_ball_study(&mut backend, true)?;
     let golf_ball_side = studies::golf_ball_study(&mut backend, false)?;
     bar.inc(1);
+    bar.set_message("specular filtering at a distance (Kilgard §2.5.3)");
+    let specular = studies::specular_study(&mut backend)?;
+    bar.inc(1);
     bar.set_message("embossing (Kilgard §3.1)");
     let emboss = studies::emboss_study(&mut backend)?;
     bar.inc(1);
@@ -229,6 +234,7 @@ pub fn measure(args: &CompareArgs, progress: bool) -> Result<(Results, Vec<PathB
         convergence,
         golf_ball,
         golf_ball_side,
+        specular,
         emboss,
         peercy,
         total_millis: start.elapsed().as_secs_f64() * 1e3,

@@ -1,5 +1,6 @@
 //! The report's plots as SVG (`plotters`): the reference's convergence, the golf ball at a
-//! distance, embossing by light angle and Peercy's figures by bump scale.
+//! distance, its highlight's energy and width by specular filter, embossing by light angle and
+//! Peercy's figures by bump scale.
 //!
 //! What this module does not do: measure anything (the studies do) or write files.
 
@@ -13,6 +14,8 @@ pub fn plots(r: &Results) -> Vec<(&'static str, String)> {
     vec![
         ("convergence.svg", convergence_plot(r)),
         ("golf_ball.svg", golf_ball_plot(r)),
+        ("specular_energy.svg", specular_plot(r, 0)),
+        ("specular_width.svg", specular_plot(r, 1)),
         ("emboss_angle.svg", emboss_plot(r)),
         ("peercy.svg", peercy_plot(r)),
     ]
@@ -145,6 +148,36 @@ fn convergence_plot(r: &Results) -> String {
         let points: Vec<(f64, f64)> = r.convergence.iter().map(|(k, e)| (*k as f64, *e)).collect();
         chart.draw_series(LineSeries::new(points.clone(), BLUE.stroke_width(2))).expect("series");
         chart.draw_series(points.iter().map(|p| Circle::new(*p, 4, BLUE.filled()))).expect("points");
+    })
+}
+
+/// Kilgard §2.5.3: the golf ball's specular energy (`which` 0) or highlight width (1) by
+/// distance, the reference and each filter.
+fn specular_plot(r: &Results, which: usize) -> String {
+    let pick = |v: (f64, f64)| if which == 0 { v.0 } else { v.1 };
+    let values = r.specular.iter().flat_map(|row| std::iter::once(pick(row.reference)).chain(row.filters.map(pick)));
+    let hi = values.fold(0.0f64, f64::max) * 1.15 + 1e-3;
+    let dmax = r.specular.last().map_or(16.0, |row| row.distance as f64 * 1.3);
+    let labels = Labels {
+        caption: if which == 0 {
+            "Golf ball's highlight by distance: specular energy"
+        } else {
+            "Golf ball's highlight by distance: width (× ball radius)"
+        },
+        x: "distance (× nearest)",
+        y: if which == 0 { "specular energy" } else { "highlight width" },
+        legend: Some(SeriesLabelPosition::LowerLeft),
+    };
+    svg_plot(labels, (0.8f64..dmax).log_scale(), 0.0..hi, |chart| {
+        let line = |row: &super::studies::SpecularRow, k: Option<usize>| {
+            (row.distance as f64, pick(k.map_or(row.reference, |k| row.filters[k])))
+        };
+        let reference = r.specular.iter().map(|row| line(row, None)).collect();
+        labelled_line(chart, "reference", BLACK, reference);
+        let colors = [RED, BLUE, GREEN];
+        for (k, name) in super::studies::SPECULAR_FILTERS.iter().enumerate() {
+            labelled_line(chart, name, colors[k], r.specular.iter().map(|row| line(row, Some(k))).collect());
+        }
     })
 }
 

@@ -37,6 +37,7 @@ pub fn json(r: &Results) -> String {
         "convergence": r.convergence.iter().map(|(k, e)| json!({"k": k, "rmse_to_4k": e})).collect::<Vec<_>>(),
         "golf_ball": golf_json(&r.golf_ball),
         "golf_ball_side_light": golf_json(&r.golf_ball_side),
+        "specular_filtering": specular_json(&r.specular),
         "emboss": {
             "by_angle": r.emboss.by_angle.iter().map(|(a, er, eb, sr, sb, c)| json!({"degrees": a, "emboss_rmse": er,
                 "emboss_bias": eb, "single_pass_rmse": sr, "single_pass_bias": sb, "emboss_contrast_ratio": c})).collect::<Vec<_>>(),
@@ -60,6 +61,26 @@ pub fn json(r: &Results) -> String {
         "total_millis": r.total_millis,
     });
     serde_json::to_string_pretty(&value).expect("a JSON value serializes") + "\n"
+}
+
+fn specular_json(rows: &[super::studies::SpecularRow]) -> Vec<Value> {
+    rows.iter()
+        .map(|row| {
+            let mut filters = serde_json::Map::new();
+            for (k, name) in super::studies::SPECULAR_FILTERS.iter().enumerate() {
+                let (energy, width) = row.filters[k];
+                filters.insert(
+                    name.to_string(),
+                    json!({"energy": energy, "width": width, "energy_error": row.energy_errors()[k]}),
+                );
+            }
+            json!({
+                "distance": row.distance,
+                "reference": {"energy": row.reference.0, "width": row.reference.1},
+                "filters": filters,
+            })
+        })
+        .collect()
 }
 
 fn golf_json(rows: &[(f32, f64, f64, f64)]) -> Vec<Value> {
@@ -119,6 +140,33 @@ pub fn html(r: &Results) -> String {
             .collect()
     };
     let (golf, golf_side) = (golf_rows(&r.golf_ball), golf_rows(&r.golf_ball_side));
+    let specular_rows: String = r
+        .specular
+        .iter()
+        .map(|row| {
+            let errors = row.energy_errors();
+            let cells: String = (0..3)
+                .map(|k| {
+                    let (e, w) = row.filters[k];
+                    format!("<td>{e:.4} ({:+.1} %)</td><td>{w:.3}</td>", 100.0 * errors[k])
+                })
+                .collect();
+            format!(
+                "<tr><td>{}×</td><td>{:.4}</td><td>{:.3}</td>{cells}</tr>",
+                row.distance, row.reference.0, row.reference.1
+            )
+        })
+        .collect();
+    let specular_summary = r
+        .specular
+        .iter()
+        .map(|row| {
+            let [renormalized, _, toksvig] = row.energy_errors();
+            let ratio = toksvig.abs() / renormalized.abs().max(1e-9);
+            format!("{}×: {:.2}", row.distance, ratio)
+        })
+        .collect::<Vec<_>>()
+        .join(", ");
     let emboss_angles: String = r
         .emboss
         .by_angle
@@ -199,6 +247,13 @@ figcaption {{ font-size: 0.85em; max-width: {size}px; }}
 <p><img src="golf_ball.svg" alt="golf ball plot"></p>
 <p>The same ball with the sphere scene's own light, from the side. Here much of each footprint faces away from the light, N·L is clamped at 0, and the length factor becomes a lower bound (the mean of clamped dot products is at least the clamped dot product of the mean normal): it is too dark.</p>
 <table><tr><th>distance</th><th>reference</th><th>length factor</th><th>renormalized</th></tr>{golf_side}</table>
+<h2>The golf ball's highlight at a distance: specular filtering (Kilgard §2.5.3)</h2>
+<p>The same ball, 160×160 pixels, specular alone (ambient and diffuse 0, k_s 1, shininess 32), a directional light behind the eye, at five distances over a 16× range; every variant is the single pass. Specular energy is the frame's summed brightness over the pixels the reference's ball touches; width is the brightness-weighted RMS distance from the highlight's centre, as a fraction of the ball's radius. The mips average the dimples' normals into one, so the single pass keeps a highlight as tight as a smooth ball's while the reference's spreads and dims. The length in alpha does not reach the specular term (it is the same as renormalized mips here); Toksvig's filter widens the lobe by it, s′ = s·|N|/(|N| + s(1 − |N|)), with the energy factor (1 + s′)/(1 + s).</p>
+<table><tr><th rowspan="2">distance</th><th colspan="2">reference</th><th colspan="2">renormalized mips</th><th colspan="2">length factor</th><th colspan="2">Toksvig</th></tr>
+<tr><th>energy</th><th>width</th><th>energy (error)</th><th>width</th><th>energy (error)</th><th>width</th><th>energy (error)</th><th>width</th></tr>
+{specular_rows}</table>
+<p>Toksvig's energy error as a fraction of renormalized mips', by distance: {specular_summary}.</p>
+<p><img src="specular_energy.svg" alt="specular energy by distance"> <img src="specular_width.svg" alt="highlight width by distance"></p>
 <h2>Embossing (Kilgard §3.1)</h2>
 <p>The brick wall without specular (embossing is diffuse only), 96×96 pixels, a directional light at each angle from the wall's normal. Contrast is the standard deviation of the wall's brightness, as a fraction of the reference's. With the light along the normal the shift is zero, the two fetches agree, and embossing is flat (contrast near 0) and too bright (positive bias): it shows L_z = 1 where the bumps should turn the normal away from the light.</p>
 <table><tr><th>light</th><th>emboss RMSE</th><th>emboss bias</th><th>emboss contrast</th><th>single-pass RMSE</th><th>single-pass bias</th></tr>{emboss_angles}</table>

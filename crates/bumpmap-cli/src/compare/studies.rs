@@ -1,5 +1,6 @@
 //! The studies `compare` makes of claims the papers make in pictures, each on its own scene:
-//! Kilgard §2.4.2's golf ball, §3.1's embossing, and Peercy's Figures 5–7.
+//! Kilgard §2.4.2's golf ball, §3.1's embossing, Peercy's Figures 5–7, and the specular
+//! filtering §2.5.3 leaves open (the golf ball's highlight at a distance).
 //!
 //! What this module does not do: score images (that is [`super::metrics`]) or write files
 //! ([`super::report`]).
@@ -8,7 +9,7 @@ use std::sync::Arc;
 
 use bumpmap::{BumpSource, Renderer, SceneSpec, TechniqueName};
 use bumpmap_core::scenes::{self, SceneKind, SceneParams};
-use bumpmap_core::technique::{BackFacing, EmbossOptions, SinglePassOptions, Technique};
+use bumpmap_core::technique::{BackFacing, EmbossOptions, SinglePassOptions, SpecularFilter, Technique};
 use bumpmap_math::{MipMode, NormalMapOptions, Rgba8Image};
 use bumpmap_reference::LinearImage;
 use glam::Vec3;
@@ -79,6 +80,106 @@ pub fn golf_ball_study(backend: &mut Renderer, headlight: bool) -> Result<Vec<(f
         rows.push((factor, mean(&reference.pixels), length, renormalized));
     }
     Ok(rows)
+}
+
+/// The distances (× the nearest) of the specular study: five over a 16× range.
+pub const SPECULAR_DISTANCES: [f32; 5] = [1.0, 2.0, 4.0, 8.0, 16.0];
+
+/// The specular filters the study measures, in its columns' order: renormalized mips, the
+/// length in alpha (which the single pass's specular does not read), and Toksvig's filter.
+pub const SPECULAR_FILTERS: [&str; 3] = ["renormalized mips", "length factor", "Toksvig"];
+
+/// One distance of [`specular_study`]: the reference's and each filter's `(energy, width)`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SpecularRow {
+    /// Distance from the ball, × the nearest.
+    pub distance: f32,
+    /// The reference.
+    pub reference: (f64, f64),
+    /// Each of [`SPECULAR_FILTERS`].
+    pub filters: [(f64, f64); 3],
+}
+
+impl SpecularRow {
+    /// Each filter's energy error against the reference, relative (−0.1: 10 % too little).
+    pub fn energy_errors(&self) -> [f64; 3] {
+        self.filters.map(|(e, _)| e / self.reference.0 - 1.0)
+    }
+}
+
+/// Kilgard §2.5.3 measured: the golf ball's highlight as it moves away, specular alone
+/// (ambient and diffuse 0, k_s 1, shininess 32), a directional light behind the eye. Averaging
+/// the dimples' normals in the mips leaves one normal where the footprint had many: the
+/// reference's highlight spreads and dims, the unfiltered single pass keeps it tight; Toksvig's
+/// filter widens the lobe by the length the mips keep. With k_s 1 and no other term no pixel
+/// passes 1, so the 8-bit frames clip nothing.
+///
+/// Energy: the frame's summed brightness over the number of pixels the reference's ball
+/// touches (as the golf ball study counts). Width: the brightness-weighted RMS distance from
+/// the highlight's centroid, over the ball's radius in pixels (√(pixels/π)).
+pub fn specular_study(backend: &mut Renderer) -> Result<Vec<SpecularRow>, CliError> {
+    const SIZE: usize = 160;
+    let near = Vec3::new(0.0, -5.0, 1.5);
+    let light = bumpmap_core::scene::SceneLight::white(bumpmap_math::lighting::Light::Directional(near.normalize()));
+    let base = SceneParams {
+        lights: vec![light],
+        bumps: BumpSource::Heights(Arc::new(bumpmap_math::HeightPreset::Dimples.render(256, 256))),
+        normal_map: NormalMapOptions { scale: 12.0, ..Default::default() },
+        default_decal: false,
+        ambient: Vec3::ZERO,
+        diffuse: Vec3::ZERO,
+        specular: Vec3::ONE,
+        shininess: 32.0,
+        ..Default::default()
+    };
+    let mut rows = Vec::new();
+    for distance in SPECULAR_DISTANCES {
+        let params = SceneParams { eye: Some(near * distance), ..base.clone() };
+        let scene = scenes::build(&SceneKind::Sphere, &params).map_err(core_err)?;
+        let reference = reference_image(&scene, SIZE, 64)?;
+        let n = reference.pixels.iter().filter(|c| c.max_element() > 0.0).count().max(1) as f64;
+        let measure = |pixels: &[Vec3]| highlight(pixels, SIZE, n);
+        let mut filtered = |mode, filter| -> Result<(f64, f64), CliError> {
+            let scene = scenes::build(&SceneKind::Sphere, &SceneParams { mip_mode: mode, ..params.clone() })
+                .map_err(core_err)?;
+            let technique = Technique::SinglePass(SinglePassOptions { specular_filter: filter, ..Default::default() });
+            let frame = draw(backend, &scene, &technique, SIZE, SIZE, false)?;
+            Ok(measure(&metrics::linear(&frame.image)))
+        };
+        let filters = [
+            filtered(MipMode::Renormalize, SpecularFilter::None)?,
+            filtered(MipMode::LengthInAlpha, SpecularFilter::None)?,
+            filtered(MipMode::LengthInAlpha, SpecularFilter::Toksvig)?,
+        ];
+        rows.push(SpecularRow { distance, reference: measure(&reference.pixels), filters });
+    }
+    Ok(rows)
+}
+
+/// `(energy, width)` of a `size`² frame's highlight, for a ball covering `n` pixels.
+fn highlight(pixels: &[Vec3], size: usize, n: f64) -> (f64, f64) {
+    let value = |p: &Vec3| (p.x + p.y + p.z) as f64 / 3.0;
+    let total: f64 = pixels.iter().map(value).sum();
+    if total <= 0.0 {
+        return (0.0, 0.0);
+    }
+    let at = |i: usize| ((i % size) as f64 + 0.5, (i / size) as f64 + 0.5);
+    let (mut cx, mut cy) = (0.0, 0.0);
+    for (i, p) in pixels.iter().enumerate() {
+        let (x, y) = at(i);
+        cx += value(p) * x;
+        cy += value(p) * y;
+    }
+    (cx, cy) = (cx / total, cy / total);
+    let spread: f64 = pixels
+        .iter()
+        .enumerate()
+        .map(|(i, p)| {
+            let (x, y) = at(i);
+            value(p) * ((x - cx).powi(2) + (y - cy).powi(2))
+        })
+        .sum();
+    (total / n, (spread / total).sqrt() / (n / std::f64::consts::PI).sqrt())
 }
 
 /// The pixels the reference covers whose eight neighbours it covers too: the surface without
