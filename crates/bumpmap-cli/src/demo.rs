@@ -276,6 +276,8 @@ fn write_demo(out: &Path, args: &DemoArgs) -> Result<(), CliError> {
     index += "- `fig11_torus.decal.png`, `.diffuse.png`, `.specular.png`: Kilgard Figure 12, the framebuffer after each pass\n";
     bar.set_message("your own assets: a normal map file, a glTF with its material");
     index += &own_assets(&mut cpu, out)?;
+    bar.set_message("the light orbiting the torus (an animated PNG)");
+    index += &orbit(&mut cpu, out)?;
     bar.finish_and_clear();
     index += &gpu_renders(out, args.gpu)?;
     let compare = crate::args::CompareArgs {
@@ -295,6 +297,23 @@ fn write_demo(out: &Path, args: &DemoArgs) -> Result<(), CliError> {
 ";
     crate::normalmap::write_text(&out.join("README.md"), &index)?;
     Ok(())
+}
+
+/// `orbit.png`: the paper's torus by its three passes with the light carried once round it, as
+/// an animated PNG (what `bumpmap view --record` writes). Returns the index's line.
+fn orbit(renderer: &mut Renderer, out: &Path) -> Result<String, CliError> {
+    use bumpmap::{Prepared, SceneSpec, TechniqueName, TechniqueOptions};
+    const SIDE: usize = 200;
+    const FRAMES: usize = 30;
+    let spec = SceneSpec::new(SceneKind::Torus);
+    let mut prepared = Prepared::new(&spec, TechniqueName::Kilgard, &TechniqueOptions::default()).map_err(lib_err)?;
+    let frames = crate::view::record::orbit(renderer, &mut prepared, SIDE, SIDE, FRAMES, || {})?;
+    let mut set = bumpmap_io::atomic::FileSet::new(&[]);
+    bumpmap_io::image_file::save_apng_into(&mut set, &out.join("orbit.png"), SIDE, SIDE, &frames, 100)?;
+    set.commit()?;
+    Ok(format!(
+        "- `orbit.png`: an animated PNG, the light carried once round the torus ({FRAMES} frames, `kilgard`): `bumpmap view` shows it live, `bumpmap view --record` writes it\n"
+    ))
 }
 
 /// What a user brings: the dimples normal map the demo wrote (a PNG, green up) drawn on the

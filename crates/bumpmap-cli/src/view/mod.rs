@@ -16,7 +16,7 @@
 mod files;
 mod keys;
 mod overlay;
-mod record;
+pub(crate) mod record;
 mod state;
 mod window;
 

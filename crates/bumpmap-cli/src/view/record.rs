@@ -13,6 +13,27 @@ use crate::args::{SceneSetup, ViewArgs};
 use crate::error::CliError;
 use crate::render::lib_err;
 
+/// `frames` frames of `prepared` at `width`×`height`, its first light carried once round the
+/// point looked at (`bumpmap::motion::LightOrbit`), as RGB bytes; `tick` after each. What
+/// `--record` and the demo's animation draw.
+pub fn orbit(
+    renderer: &mut bumpmap::Renderer,
+    prepared: &mut bumpmap::Prepared,
+    width: usize,
+    height: usize,
+    frames: usize,
+    mut tick: impl FnMut(),
+) -> Result<Vec<Vec<u8>>, CliError> {
+    let path = bumpmap::motion::LightOrbit::of(&prepared.scene);
+    let mut images = Vec::with_capacity(frames);
+    for k in 0..frames {
+        path.place(&mut prepared.scene, k as f32 / frames as f32, 0.0);
+        images.push(crate::render::rgb(&renderer.draw(prepared, width, height).map_err(lib_err)?));
+        tick();
+    }
+    Ok(images)
+}
+
 /// Frames in a recording when `--frames` does not say.
 pub const DEFAULT_FRAMES: u32 = 48;
 
@@ -45,17 +66,11 @@ pub fn run(args: &ViewArgs, setup: SceneSetup, out: &Path, inputs: &[&Path]) -> 
             .progress_chars("=> "),
     );
     bar.set_message(format!("recording {}", viewer.technique()));
-    let mut images = Vec::with_capacity(frames);
-    let mut lit = false;
-    for k in 0..frames {
-        viewer.view.turns = k as f32 / frames as f32;
-        viewer.settle();
-        let image = renderer.draw(viewer.frame(), width, height).map_err(lib_err)?;
-        lit |= image.texels.iter().any(|&[r, g, b, _]| r | g | b != 0);
-        images.push(crate::render::rgb(&image));
-        bar.inc(1);
-    }
+    viewer.settle();
+    let mut prepared = viewer.frame().clone();
+    let images = orbit(&mut renderer, &mut prepared, width, height, frames, || bar.inc(1))?;
     bar.finish_and_clear();
+    let lit = images.iter().any(|frame| frame.iter().any(|&c| c != 0));
     crate::render::ensure_drawn(!lit, out)?;
     let mut set = FileSet::new(inputs);
     save_apng_into(&mut set, out, width, height, &images, args.frame_ms)?;
