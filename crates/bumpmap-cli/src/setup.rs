@@ -401,6 +401,7 @@ fn technique_options(s: &SceneSetup, name: TechniqueName) -> Result<TechniqueOpt
             specular_filter: match t.specular_filter {
                 SpecularFilterArg::None => bumpmap::SpecularFilter::None,
                 SpecularFilterArg::Toksvig => bumpmap::SpecularFilter::Toksvig,
+                SpecularFilterArg::RoughnessMap => bumpmap::SpecularFilter::RoughnessMap,
             },
         },
         emboss: bumpmap::EmbossOptions { sampler, cube_size, ..Default::default() },

@@ -40,6 +40,8 @@ pub enum TechniqueName {
     MipRenormalized,
     /// The single pass with Toksvig's filtered specular exponent.
     Toksvig,
+    /// The single pass with the exponent from the exported roughness map.
+    RoughnessMap,
     /// The single pass without bumps.
     NoBump,
     /// Peercy's surface-independent map (Figure 7).
@@ -115,13 +117,14 @@ pub struct TechniqueOptions {
 
 impl TechniqueName {
     /// Every name, in catalogue order.
-    pub const ALL: [TechniqueName; 14] = [
+    pub const ALL: [TechniqueName; 15] = [
         TechniqueName::Kilgard,
         TechniqueName::SinglePass,
         TechniqueName::SinglePassCube,
         TechniqueName::ObjectSpace,
         TechniqueName::MipRenormalized,
         TechniqueName::Toksvig,
+        TechniqueName::RoughnessMap,
         TechniqueName::NoBump,
         TechniqueName::PeercyIndependent,
         TechniqueName::PeercyDependent,
@@ -141,6 +144,7 @@ impl TechniqueName {
             TechniqueName::ObjectSpace => "object-space",
             TechniqueName::MipRenormalized => "mip-renormalized",
             TechniqueName::Toksvig => "toksvig",
+            TechniqueName::RoughnessMap => "roughness-map",
             TechniqueName::NoBump => "no-bump",
             TechniqueName::PeercyIndependent => "peercy-independent",
             TechniqueName::PeercyDependent => "peercy-dependent",
@@ -172,6 +176,9 @@ impl TechniqueName {
             }
             TechniqueName::Toksvig => {
                 "the single pass with Toksvig's filter (2005, past §2.5.3): the mip chain's |N| widens and dims the specular lobe, exponent s·|N|/(|N| + s(1 − |N|))"
+            }
+            TechniqueName::RoughnessMap => {
+                "the single pass reading roughness as an engine does from `normalmap --roughness-out` (Filament's prefilter of the mips' |N|), turned into a Blinn–Phong exponent and normalization"
             }
             TechniqueName::NoBump => "the single pass on a flat height field: the surface without bumps",
             TechniqueName::PeercyIndependent => {
@@ -207,6 +214,7 @@ impl TechniqueName {
             | TechniqueName::SinglePassCube
             | TechniqueName::MipRenormalized
             | TechniqueName::Toksvig
+            | TechniqueName::RoughnessMap
             | TechniqueName::NoBump => &[],
             TechniqueName::ObjectSpace => &[BuiltInSurface],
             TechniqueName::PeercyIndependent | TechniqueName::OffsetMap => &[HeightField],
@@ -266,6 +274,7 @@ impl TechniqueName {
             | TechniqueName::SinglePass
             | TechniqueName::SinglePassCube
             | TechniqueName::Toksvig
+            | TechniqueName::RoughnessMap
             | TechniqueName::Emboss
             | TechniqueName::EmbossUnforced
             | TechniqueName::Reference => {}
@@ -284,6 +293,9 @@ impl TechniqueName {
             }
             TechniqueName::Toksvig => {
                 Technique::SinglePass(SinglePassOptions { specular_filter: SpecularFilter::Toksvig, ..single })
+            }
+            TechniqueName::RoughnessMap => {
+                Technique::SinglePass(SinglePassOptions { specular_filter: SpecularFilter::RoughnessMap, ..single })
             }
             TechniqueName::SinglePass
             | TechniqueName::ObjectSpace

@@ -47,6 +47,9 @@ pub enum SpecularFilter {
     None,
     /// Toksvig 2005 ([`toksvig`]): a shorter filtered normal widens and dims the lobe.
     Toksvig,
+    /// The roughness `bumpmap normalmap --roughness-out` exports, read as an engine's
+    /// Blinn–Phong shader reads roughness ([`roughness_map`]).
+    RoughnessMap,
 }
 
 /// Toksvig's filtered exponent and energy factor for a filtered normal of length `length` and
@@ -68,6 +71,29 @@ pub fn toksvig(length: f32, shininess: f32) -> (f32, f32) {
     (s, (1.0 + s) / (1.0 + shininess))
 }
 
+/// The exponent and energy factor a Blinn–Phong shader gets from the roughness map
+/// `normalmap --roughness-out` makes: the exponent as GGX α² = 2/(s + 2) (the usual
+/// correspondence), its perceptual roughness α^½ made rougher by the filtered normal's length
+/// with Filament's prefilter ([`bumpmap_math::roughness::filament_roughness`], the exported
+/// map's formula), and back: exponent s′ = 2/α′² − 2, energy (s′ + 2)/(s + 2), the ratio of
+/// normalized Blinn–Phong lobes. At |Nₐ| = 1 it gives back `(shininess, 1)` within rounding.
+///
+/// ```
+/// use bumpmap_core::shading::roughness_map;
+/// let (s, e) = roughness_map(1.0, 32.0);
+/// assert!((s - 32.0).abs() < 1e-3 && (e - 1.0).abs() < 1e-4);
+/// let (s, e) = roughness_map(0.9, 32.0);
+/// assert!(s < 32.0 && e < 1.0);
+/// ```
+#[inline(always)]
+pub fn roughness_map(length: f32, shininess: f32) -> (f32, f32) {
+    let alpha2 = 2.0 / (shininess + 2.0);
+    let rough = bumpmap_math::roughness::filament_roughness(alpha2.sqrt().sqrt(), length);
+    let alpha2 = (rough * rough) * (rough * rough);
+    let s = clamp_lo(2.0 / alpha2 - 2.0, 0.0, f32::MAX);
+    (s, (s + 2.0) / (shininess + 2.0))
+}
+
 /// The specular lobe `(H·N')^s` under `filter`, for the filtered normal's length `length`.
 #[inline(always)]
 pub fn filtered_specular(h_dot_n: f32, shininess: f32, filter: SpecularFilter, length: f32) -> f32 {
@@ -75,6 +101,10 @@ pub fn filtered_specular(h_dot_n: f32, shininess: f32, filter: SpecularFilter, l
         SpecularFilter::None => specular_power(h_dot_n, shininess),
         SpecularFilter::Toksvig => {
             let (s, energy) = toksvig(length, shininess);
+            specular_power(h_dot_n, s) * energy
+        }
+        SpecularFilter::RoughnessMap => {
+            let (s, energy) = roughness_map(length, shininess);
             specular_power(h_dot_n, s) * energy
         }
     }

@@ -350,7 +350,7 @@ fn lighting_lanes(terms: &LitTerms, sc: &mut Scratch, object_space: bool, n: usi
             h_dot_n
         }
         // A per-fragment exponent from the filtered normal's length: the scalar model per lane.
-        filter @ SpecularFilter::Toksvig => {
+        filter @ (SpecularFilter::Toksvig | SpecularFilter::RoughnessMap) => {
             for j in 0..n {
                 h_dot_n[j] = filtered_specular(h_dot_n[j], terms.shininess, filter, normal[3][j]);
             }
@@ -381,7 +381,7 @@ mod tests {
             prop_oneof![Just(SelfShadow::Ramp), Just(SelfShadow::Step), Just(SelfShadow::Off)],
             prop_oneof![Just(SpecularShadow::Kilgard), Just(SpecularShadow::CgTutorial), Just(SpecularShadow::Off)],
             prop_oneof![Just(8.0f32), Just(1.0), Just(13.0), Just(64.0), Just(7.5), Just(100.0)],
-            prop_oneof![Just(SpecularFilter::None), Just(SpecularFilter::Toksvig)],
+            prop_oneof![Just(SpecularFilter::None), Just(SpecularFilter::Toksvig), Just(SpecularFilter::RoughnessMap)],
         )
     }
 

@@ -38,8 +38,10 @@ const SPECULAR_SHADOW: Switch = Switch {
     name: "SPECULAR_SHADOW",
     values: &["SPECULAR_SHADOW_KILGARD", "SPECULAR_SHADOW_CG_TUTORIAL", "SPECULAR_SHADOW_OFF"],
 };
-const SPECULAR_FILTER: Switch =
-    Switch { name: "SPECULAR_FILTER", values: &["SPECULAR_FILTER_NONE", "SPECULAR_FILTER_TOKSVIG"] };
+const SPECULAR_FILTER: Switch = Switch {
+    name: "SPECULAR_FILTER",
+    values: &["SPECULAR_FILTER_NONE", "SPECULAR_FILTER_TOKSVIG", "SPECULAR_FILTER_ROUGHNESS_MAP"],
+};
 const GLOSS: Switch = Switch { name: "GLOSS", values: &["GLOSS_NONE", "GLOSS_DECAL_ALPHA", "GLOSS_MAP"] };
 const ATTENUATION: Switch = Switch {
     name: "ATTENUATION",
@@ -73,6 +75,7 @@ pub fn specular_filter_name(filter: SpecularFilter) -> &'static str {
     match filter {
         SpecularFilter::None => "SPECULAR_FILTER_NONE",
         SpecularFilter::Toksvig => "SPECULAR_FILTER_TOKSVIG",
+        SpecularFilter::RoughnessMap => "SPECULAR_FILTER_ROUGHNESS_MAP",
     }
 }
 

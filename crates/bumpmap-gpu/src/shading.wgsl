@@ -12,7 +12,7 @@ struct Terms {
     // SPECULAR_SHADOW_KILGARD (s_self, H_z >= 0), SPECULAR_SHADOW_CG_TUTORIAL (N'.L > 0 and
     // L_z > 0) or SPECULAR_SHADOW_OFF.
     specular_shadow: u32,
-    // SPECULAR_FILTER_NONE or SPECULAR_FILTER_TOKSVIG (the exponent from |N'|, SPECS.md 9).
+    // SPECULAR_FILTER_NONE, _TOKSVIG or _ROUGHNESS_MAP (the exponent from |N'|, SPECS.md 9).
     specular_filter: u32,
 };
 
@@ -63,9 +63,31 @@ fn toksvig(length: f32, s: f32) -> vec2<f32> {
     return vec2<f32>(e, (1.0 + e) / (1.0 + s));
 }
 
+// bumpmap_core::shading::roughness_map, with bumpmap_math::roughness::filament_roughness
+// written out: the exponent as GGX alpha, roughened by Filament's prefilter, and back.
+fn roughness_map(length: f32, s: f32) -> vec2<f32> {
+    let base = sqrt(sqrt(2.0 / (s + 2.0)));
+    let alpha = min(base, 1.0) * min(base, 1.0);
+    let r = clamp(length, 0.0, 1.0);
+    var variance = 0.0;
+    if r < 1.0 {
+        // Rust divides by 0 at r = 0 and gets infinity; WGSL may not: a huge number instead,
+        // which the min below makes the same roughness, 1.
+        variance = 2.0 * (1.0 - r * r) / max(3.0 * r - r * r * r, 1e-30);
+    }
+    let rough = min(sqrt(sqrt(alpha * alpha + variance)), 1.0);
+    let alpha2 = (rough * rough) * (rough * rough);
+    let e = max(2.0 / alpha2 - 2.0, 0.0);
+    return vec2<f32>(e, (e + 2.0) / (s + 2.0));
+}
+
 fn filtered_specular(h_dot_n: f32, s: f32, lobe_filter: u32, length: f32) -> f32 {
     if lobe_filter == SPECULAR_FILTER_TOKSVIG {
         let k = toksvig(length, s);
+        return specular_power(h_dot_n, k.x) * k.y;
+    }
+    if lobe_filter == SPECULAR_FILTER_ROUGHNESS_MAP {
+        let k = roughness_map(length, s);
         return specular_power(h_dot_n, k.x) * k.y;
     }
     return specular_power(h_dot_n, s);

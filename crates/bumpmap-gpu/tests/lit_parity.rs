@@ -1,6 +1,6 @@
 //! `shading.wgsl`'s `shade()` against its definition, `bumpmap_core::shading::shade`, on random
 //! fragments for every self-shadowing and specular-gate mode, whole and fractional shininess,
-//! with and without Toksvig's filter, on a compute shader.
+//! without a specular filter, with Toksvig's and with the roughness map's, on a compute shader.
 //!
 //! Tolerance: 2e-4 per channel (a twentieth of one 8-bit step, 1/255 ≈ 3.9e-3). Both sides
 //! compute in f32; the GPU may fuse multiply-adds in the dot products, and its `pow` for a
@@ -68,10 +68,9 @@ fn wgsl_shade_is_the_lighting_model() {
         for specular_shadow in [SpecularShadow::Kilgard, SpecularShadow::CgTutorial, SpecularShadow::Off] {
             // The modes by the prelude's names, as lit.wgsl passes them.
             let (ss, sg) = (self_shadow_name(self_shadow), specular_shadow_name(specular_shadow));
-            for (shininess, specular_filter) in [8.0f32, 1.0, 33.0, 7.5, 100.0]
-                .into_iter()
-                .flat_map(|s| [(s, SpecularFilter::None), (s, SpecularFilter::Toksvig)])
-            {
+            for (shininess, specular_filter) in [8.0f32, 1.0, 33.0, 7.5, 100.0].into_iter().flat_map(|s| {
+                [SpecularFilter::None, SpecularFilter::Toksvig, SpecularFilter::RoughnessMap].map(|f| (s, f))
+            }) {
                 let sf = specular_filter_name(specular_filter);
                 let terms = LitTerms {
                     ambient: Vec3::new(0.2, 0.1, 0.05),

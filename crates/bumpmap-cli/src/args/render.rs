@@ -363,6 +363,8 @@ pub enum SpecularFilterArg {
     None,
     /// Toksvig 2005: exponent s·|N|/(|N| + s(1 − |N|)), with its energy factor
     Toksvig,
+    /// The roughness `normalmap --roughness-out` exports (Filament's prefilter of |N|), as a Blinn–Phong exponent
+    RoughnessMap,
 }
 
 /// Texture filtering.

@@ -86,8 +86,9 @@ pub fn golf_ball_study(backend: &mut Renderer, headlight: bool) -> Result<Vec<(f
 pub const SPECULAR_DISTANCES: [f32; 5] = [1.0, 2.0, 4.0, 8.0, 16.0];
 
 /// The specular filters the study measures, in its columns' order: renormalized mips, the
-/// length in alpha (which the single pass's specular does not read), and Toksvig's filter.
-pub const SPECULAR_FILTERS: [&str; 3] = ["renormalized mips", "length factor", "Toksvig"];
+/// length in alpha (which the single pass's specular does not read), Toksvig's filter, and the
+/// exported roughness map read by a Blinn–Phong shader.
+pub const SPECULAR_FILTERS: [&str; 4] = ["renormalized mips", "length factor", "Toksvig", "roughness map"];
 
 /// One distance of [`specular_study`]: the reference's and each filter's `(energy, width)`.
 #[derive(Clone, Debug, PartialEq)]
@@ -97,12 +98,12 @@ pub struct SpecularRow {
     /// The reference.
     pub reference: (f64, f64),
     /// Each of [`SPECULAR_FILTERS`].
-    pub filters: [(f64, f64); 3],
+    pub filters: [(f64, f64); 4],
 }
 
 impl SpecularRow {
     /// Each filter's energy error against the reference, relative (−0.1: 10 % too little).
-    pub fn energy_errors(&self) -> [f64; 3] {
+    pub fn energy_errors(&self) -> [f64; 4] {
         self.filters.map(|(e, _)| e / self.reference.0 - 1.0)
     }
 }
@@ -150,6 +151,7 @@ pub fn specular_study(backend: &mut Renderer) -> Result<Vec<SpecularRow>, CliErr
             filtered(MipMode::Renormalize, SpecularFilter::None)?,
             filtered(MipMode::LengthInAlpha, SpecularFilter::None)?,
             filtered(MipMode::LengthInAlpha, SpecularFilter::Toksvig)?,
+            filtered(MipMode::LengthInAlpha, SpecularFilter::RoughnessMap)?,
         ];
         rows.push(SpecularRow { distance, reference: measure(&reference.pixels), filters });
     }

@@ -73,8 +73,8 @@ pub struct Choices {
     pub cube: bool,
     /// Nearest texels rather than trilinear filtering.
     pub nearest: bool,
-    /// Toksvig's specular filter (the single pass).
-    pub toksvig: bool,
+    /// The specular filter (the single pass): none, Toksvig's, the roughness map's.
+    pub specular_filter: SpecularFilter,
     /// The bump scale: a height field's step height, or a normal map's slope factor.
     pub bump_scale: f32,
     /// The specular exponent.
@@ -191,7 +191,7 @@ impl Viewer {
             },
             cube: base.options.single_pass.normalize == Normalize::Cube,
             nearest: false,
-            toksvig: base.options.single_pass.specular_filter == SpecularFilter::Toksvig,
+            specular_filter: base.options.single_pass.specular_filter,
             bump_scale: args.scene.bump_scale.unwrap_or(match base.spec.params.bumps {
                 BumpSource::Heights(_) => base.spec.params.normal_map.scale,
                 BumpSource::NormalMap(_) => 1.0,
@@ -314,7 +314,13 @@ impl Viewer {
             Action::MipMode => c.mips = c.mips.next(),
             Action::Normalize => c.cube = !c.cube,
             Action::Filter => c.nearest = !c.nearest,
-            Action::SpecularFilter => c.toksvig = !c.toksvig,
+            Action::SpecularFilter => {
+                c.specular_filter = match c.specular_filter {
+                    SpecularFilter::None => SpecularFilter::Toksvig,
+                    SpecularFilter::Toksvig => SpecularFilter::RoughnessMap,
+                    SpecularFilter::RoughnessMap => SpecularFilter::None,
+                }
+            }
             Action::BumpsUp => c.bump_scale *= 1.25,
             Action::BumpsDown => c.bump_scale /= 1.25,
             Action::ShininessUp => c.shininess = (c.shininess * 1.5).min(1e4),
@@ -467,7 +473,11 @@ impl Viewer {
             c.mips.name(),
             if c.nearest { "nearest" } else { "trilinear" },
             if c.cube { " | cube map" } else { "" },
-            if c.toksvig { " | toksvig" } else { "" },
+            match c.specular_filter {
+                SpecularFilter::None => "",
+                SpecularFilter::Toksvig => " | toksvig",
+                SpecularFilter::RoughnessMap => " | roughness map",
+            },
             if off.is_empty() { String::new() } else { format!(" | off: {}", off.join(", ")) },
         )
     }
@@ -505,7 +515,7 @@ fn prepare(base: &Setup, scenes: &[SceneKind], c: &Choices) -> Result<Prepared, 
     let sp = &mut options.single_pass;
     sp.sampler = sampler;
     sp.normalize = if c.cube { Normalize::Cube } else { Normalize::Math };
-    sp.specular_filter = if c.toksvig { SpecularFilter::Toksvig } else { SpecularFilter::None };
+    sp.specular_filter = c.specular_filter;
     if !c.self_shadow {
         sp.self_shadow = SelfShadow::Off;
         options.reference.self_shadow = SelfShadow::Off;
@@ -561,7 +571,6 @@ mod tests {
                     | Action::SelfShadow
                     | Action::Normalize
                     | Action::Filter
-                    | Action::SpecularFilter
                     | Action::Wireframe
                     | Action::FrameRate
                     | Action::Help
