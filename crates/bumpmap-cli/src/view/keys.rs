@@ -137,7 +137,7 @@ impl Action {
             Action::MipMode => "mips: length factor, renormalized, none",
             Action::Normalize => "normalize by cube map / math",
             Action::Filter => "texture filter: trilinear / nearest",
-            Action::SpecularFilter => "specular filter: none, Toksvig, roughness map",
+            Action::SpecularFilter => "spec. filter: none/Toksvig/roughness map",
             Action::BumpsUp => "bumps higher (normal map rebuilt)",
             Action::BumpsDown => "bumps lower",
             Action::ShininessUp => "shininess up",
@@ -192,6 +192,9 @@ mod tests {
             }
             assert_eq!(Action::parse(&a.name()), Ok(*a));
             assert_eq!(Action::for_key(a.key()), Some(*a));
+            // The help overlay's glyphs are drawn twice their size in the default 800-pixel
+            // window only while every line (a 7-column key, then this) fits 49 columns.
+            assert!(a.description().chars().count() + 7 <= 49, "{a:?}: its help line is too long for 2x glyphs");
         }
     }
 
