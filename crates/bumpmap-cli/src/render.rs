@@ -242,9 +242,15 @@ pub fn core_err(e: CoreError) -> CliError {
         Feature::HeightMap => "a scene without its height field (--normal-map, or a glTF's own normal map)".into(),
         Feature::OffsetMap => "an offset map (its combiners cannot renormalize N + D per pixel)".into(),
         Feature::SurfaceMap => "a normal map made for one surface (its passes read every texture with the repeating coordinates)".into(),
+        Feature::LeanFilter => "--specular-filter lean on this map".into(),
     }
     };
     match e {
+        CoreError::Unsupported { feature: Feature::LeanFilter, .. } => CliError::Render(
+            "--specular-filter lean (or --technique lean) reads the slopes of a tangent-space map of unit normals; \
+             the object-space, offset-map and peercy-blinn techniques' maps have none: use --specular-filter toksvig"
+                .into(),
+        ),
         CoreError::Unsupported { technique, feature } => CliError::Render(format!(
             "--technique {technique} cannot do {}: the paper's combiners have no room for it; use --technique single-pass",
             flag(&feature)

@@ -402,6 +402,7 @@ fn technique_options(s: &SceneSetup, name: TechniqueName) -> Result<TechniqueOpt
                 SpecularFilterArg::None => bumpmap::SpecularFilter::None,
                 SpecularFilterArg::Toksvig => bumpmap::SpecularFilter::Toksvig,
                 SpecularFilterArg::RoughnessMap => bumpmap::SpecularFilter::RoughnessMap,
+                SpecularFilterArg::Lean => bumpmap::SpecularFilter::Lean,
             },
         },
         emboss: bumpmap::EmbossOptions { sampler, cube_size, ..Default::default() },

@@ -42,6 +42,8 @@ pub enum TechniqueName {
     Toksvig,
     /// The single pass with the exponent from the exported roughness map.
     RoughnessMap,
+    /// The single pass with LEAN mapping's specular lobe.
+    Lean,
     /// The single pass without bumps.
     NoBump,
     /// Peercy's surface-independent map (Figure 7).
@@ -117,7 +119,7 @@ pub struct TechniqueOptions {
 
 impl TechniqueName {
     /// Every name, in catalogue order.
-    pub const ALL: [TechniqueName; 15] = [
+    pub const ALL: [TechniqueName; 16] = [
         TechniqueName::Kilgard,
         TechniqueName::SinglePass,
         TechniqueName::SinglePassCube,
@@ -125,6 +127,7 @@ impl TechniqueName {
         TechniqueName::MipRenormalized,
         TechniqueName::Toksvig,
         TechniqueName::RoughnessMap,
+        TechniqueName::Lean,
         TechniqueName::NoBump,
         TechniqueName::PeercyIndependent,
         TechniqueName::PeercyDependent,
@@ -145,6 +148,7 @@ impl TechniqueName {
             TechniqueName::MipRenormalized => "mip-renormalized",
             TechniqueName::Toksvig => "toksvig",
             TechniqueName::RoughnessMap => "roughness-map",
+            TechniqueName::Lean => "lean",
             TechniqueName::NoBump => "no-bump",
             TechniqueName::PeercyIndependent => "peercy-independent",
             TechniqueName::PeercyDependent => "peercy-dependent",
@@ -179,6 +183,9 @@ impl TechniqueName {
             }
             TechniqueName::RoughnessMap => {
                 "the single pass reading roughness as an engine does from `normalmap --roughness-out` (Filament's prefilter of the mips' |N|), turned into a Blinn–Phong exponent and normalization"
+            }
+            TechniqueName::Lean => {
+                "the single pass with LEAN mapping (Olano & Baker 2010): the slopes' first and second moments mip-filtered linearly, the highlight a Gaussian of their covariance plus 1/s, anisotropic"
             }
             TechniqueName::NoBump => "the single pass on a flat height field: the surface without bumps",
             TechniqueName::PeercyIndependent => {
@@ -215,6 +222,7 @@ impl TechniqueName {
             | TechniqueName::MipRenormalized
             | TechniqueName::Toksvig
             | TechniqueName::RoughnessMap
+            | TechniqueName::Lean
             | TechniqueName::NoBump => &[],
             TechniqueName::ObjectSpace => &[BuiltInSurface],
             TechniqueName::PeercyIndependent | TechniqueName::OffsetMap => &[HeightField],
@@ -275,6 +283,7 @@ impl TechniqueName {
             | TechniqueName::SinglePassCube
             | TechniqueName::Toksvig
             | TechniqueName::RoughnessMap
+            | TechniqueName::Lean
             | TechniqueName::Emboss
             | TechniqueName::EmbossUnforced
             | TechniqueName::Reference => {}
@@ -296,6 +305,9 @@ impl TechniqueName {
             }
             TechniqueName::RoughnessMap => {
                 Technique::SinglePass(SinglePassOptions { specular_filter: SpecularFilter::RoughnessMap, ..single })
+            }
+            TechniqueName::Lean => {
+                Technique::SinglePass(SinglePassOptions { specular_filter: SpecularFilter::Lean, ..single })
             }
             TechniqueName::SinglePass
             | TechniqueName::ObjectSpace

@@ -37,6 +37,8 @@ pub enum Feature {
     /// A tangent-space map made for one surface, addressed across the whole surface rather
     /// than with the repeating texture coordinates.
     SurfaceMap,
+    /// The LEAN filter on a map that has no tangent-space slopes (object space, or offsets).
+    LeanFilter,
 }
 
 impl std::fmt::Display for Feature {
@@ -55,6 +57,9 @@ impl std::fmt::Display for Feature {
             Feature::BumpScale(s) => write!(f, "a bump scale of {s} (its combiners scale by 1, 2 or 4)"),
             Feature::HeightMap => f.write_str("a material without its height field (a normal map given as it is)"),
             Feature::OffsetMap => f.write_str("an offset map (its combiners cannot renormalize N + D per pixel)"),
+            Feature::LeanFilter => f.write_str(
+                "the LEAN specular filter on an object-space or offset map (its moments are the slopes of a tangent-space map of unit normals)",
+            ),
             Feature::SurfaceMap => f.write_str(
                 "a normal map made for one surface (its passes read every texture with the repeating coordinates)",
             ),

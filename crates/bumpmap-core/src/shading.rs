@@ -9,6 +9,7 @@
 //! [`Fragment`] fields), and the three-pass technique's 8-bit arithmetic (that is the register
 //! combiners' setup data, `setups`).
 
+pub use bumpmap_math::lean::LeanMoments;
 use glam::{Vec3, Vec4};
 
 use crate::lane_math::{clamp_lo, max_lo, min_hi};
@@ -50,6 +51,11 @@ pub enum SpecularFilter {
     /// The roughness `bumpmap normalmap --roughness-out` exports, read as an engine's
     /// Blinn–Phong shader reads roughness ([`roughness_map`]).
     RoughnessMap,
+    /// LEAN mapping (Olano & Baker 2010): the lobe a Gaussian in slope space whose covariance
+    /// is the filtered slopes' spread plus the material's own width
+    /// ([`bumpmap_math::lean::LeanMoments::specular`]); it reads [`Fragment::moments`], not
+    /// |Nₐ|, and needs a tangent-space map of unit normals.
+    Lean,
 }
 
 /// Toksvig's filtered exponent and energy factor for a filtered normal of length `length` and
@@ -94,9 +100,17 @@ pub fn roughness_map(length: f32, shininess: f32) -> (f32, f32) {
     (s, (s + 2.0) / (shininess + 2.0))
 }
 
-/// The specular lobe `(H·N')^s` under `filter`, for the filtered normal's length `length`.
+/// The specular lobe `(H·N')^s` under `filter`, for the filtered normal's length `length`, or,
+/// for LEAN, the lobe of the filtered `moments` at the half-angle vector `h` (tangent space).
 #[inline(always)]
-pub fn filtered_specular(h_dot_n: f32, shininess: f32, filter: SpecularFilter, length: f32) -> f32 {
+pub fn filtered_specular(
+    h_dot_n: f32,
+    shininess: f32,
+    filter: SpecularFilter,
+    length: f32,
+    h: Vec3,
+    moments: LeanMoments,
+) -> f32 {
     match filter {
         SpecularFilter::None => specular_power(h_dot_n, shininess),
         SpecularFilter::Toksvig => {
@@ -107,6 +121,7 @@ pub fn filtered_specular(h_dot_n: f32, shininess: f32, filter: SpecularFilter, l
             let (s, energy) = roughness_map(length, shininess);
             specular_power(h_dot_n, s) * energy
         }
+        SpecularFilter::Lean => moments.specular(h, shininess),
     }
 }
 
@@ -171,6 +186,9 @@ pub struct Fragment {
     pub h_n: f32,
     /// Attenuation × spotlight, in [0, 1].
     pub light: f32,
+    /// The filtered LEAN moments of the slopes (read only by [`SpecularFilter::Lean`];
+    /// [`LeanMoments::FLAT`] otherwise).
+    pub moments: LeanMoments,
 }
 
 /// The self-shadowing factor s_self of Eq. 11 for L·N = `l_n`.
@@ -235,7 +253,7 @@ pub fn shade(terms: &LitTerms, f: &Fragment) -> Vec3 {
     let h_dot_n = clamp_lo(dot3(f.h.to_array(), n), 0.0, 1.0);
     let s_self = self_shadow(terms.self_shadow, f.l_n);
     let gate = specular_gate(terms.specular_shadow, s_self, n_dot_l, f.l_n, f.h_n);
-    let power = filtered_specular(h_dot_n, terms.shininess, terms.specular_filter, f.normal.w);
+    let power = filtered_specular(h_dot_n, terms.shininess, terms.specular_filter, f.normal.w, f.h, f.moments);
     let (ka, kd, ks, decal) = (terms.ambient.to_array(), terms.diffuse.to_array(), terms.specular.to_array(), f.decal);
     Vec3::from_array(std::array::from_fn(|c| {
         let diffuse = min_hi(ka[c] + kd[c] * (f.light * s_self * max_lo(n_dot_l, 0.0) * f.normal.w), 1.0);
@@ -332,6 +350,7 @@ mod tests {
             l_n: l.z,
             h_n: h.z,
             light: 1.0,
+            moments: LeanMoments::FLAT,
         }
     }
 

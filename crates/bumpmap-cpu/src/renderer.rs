@@ -7,9 +7,9 @@
 
 use std::sync::Arc;
 
-use bumpmap_core::technique::{Binding as CoreBinding, Gloss, Normalize, Program, Technique};
+use bumpmap_core::technique::{Binding as CoreBinding, Gloss, Normalize, Program, SpecularFilter, Technique};
 use bumpmap_core::{Scene, vertex::Vertex};
-use bumpmap_math::{Encoding, NormalizationCubeMap, Rgba8Mips};
+use bumpmap_math::{Encoding, LeanMips, NormalizationCubeMap, Rgba8Mips};
 
 use crate::combiners::Combiners;
 use crate::error::CpuError;
@@ -17,7 +17,7 @@ use crate::fixed_function::{Binding, FixedFunction, TextureUnit};
 use crate::framebuffer::Framebuffer;
 use crate::raster::{DrawState, Rasterizer};
 use crate::single_pass::SinglePass;
-use crate::texture::{Texture2d, TextureCube};
+use crate::texture::{MomentTexture, Texture2d, TextureCube};
 
 /// Texture copies kept at most; past it the cache starts again.
 const MAX_CACHED_TEXTURES: usize = 32;
@@ -27,6 +27,8 @@ const MAX_CACHED_TEXTURES: usize = 32;
 pub struct CpuRenderer {
     raster: Rasterizer,
     textures: Vec<(Arc<Rgba8Mips>, Arc<Texture2d>)>,
+    /// LEAN moments, keyed by the normal map they were made from.
+    moments: Vec<(Arc<Rgba8Mips>, Arc<MomentTexture>)>,
     cubes: Vec<((usize, Encoding), Arc<TextureCube>)>,
 }
 
@@ -78,6 +80,9 @@ impl CpuRenderer {
                         cube: (program.normalize == Normalize::Cube)
                             .then(|| self.cube(program.cube_size, Encoding::Unorm)),
                         normal_map: self.texture(&program.normal_map)?,
+                        moments: (program.terms.specular_filter == SpecularFilter::Lean)
+                            .then(|| self.moments(&program.normal_map))
+                            .transpose()?,
                         decal: program.decal.as_ref().map(|d| self.texture(d)).transpose()?,
                         gloss: match &program.gloss {
                             Gloss::Map(g) => Some(self.texture(g)?),
@@ -120,6 +125,21 @@ impl CpuRenderer {
         }
         let t = Arc::new(Texture2d::try_from_mips(mips)?);
         self.textures.push((mips.clone(), t.clone()));
+        Ok(t)
+    }
+
+    /// The LEAN moments of `normal_map`'s level 0 (unorm texels, as a material's are), made
+    /// once per `Arc`.
+    fn moments(&mut self, normal_map: &Arc<Rgba8Mips>) -> Result<Arc<MomentTexture>, CpuError> {
+        if let Some((_, t)) = self.moments.iter().find(|(m, _)| Arc::ptr_eq(m, normal_map)) {
+            return Ok(t.clone());
+        }
+        if self.moments.len() >= MAX_CACHED_TEXTURES {
+            self.moments.clear();
+        }
+        let lean = LeanMips::from_normal_map(normal_map, Encoding::Unorm)?;
+        let t = Arc::new(MomentTexture::try_from_mips(&lean)?);
+        self.moments.push((normal_map.clone(), t.clone()));
         Ok(t)
     }
 

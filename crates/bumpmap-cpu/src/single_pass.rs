@@ -13,8 +13,8 @@ use glam::Vec3;
 use bumpmap_core::lane_math::{clamp_lo, max_lo, min_hi};
 use bumpmap_core::scene::{Attenuation, NormalTexels};
 use bumpmap_core::shading::{
-    LitTerms, SpecularFilter, blinn_from_derivatives, filtered_specular, offset_to_normal, shininess_is_whole,
-    spot_cone,
+    LeanMoments, LitTerms, SpecularFilter, blinn_from_derivatives, filtered_specular, offset_to_normal,
+    shininess_is_whole, spot_cone,
 };
 use bumpmap_core::technique::{Gloss, HalfAngle, LitProgram, SelfShadow, SpecularShadow};
 use bumpmap_core::vertex::var;
@@ -22,7 +22,7 @@ use bumpmap_core::vertex::var;
 use crate::combiners::{LANES, Lanes};
 use crate::fixed_function::pack_2d_coords;
 use crate::raster::{FragmentBatch, FragmentShader};
-use crate::texture::{Sampler, Texture2d, TextureCube, sample_2d, sample_2d_lanes, sample_cube_lanes};
+use crate::texture::{MomentTexture, Sampler, Texture2d, TextureCube, sample_2d, sample_2d_lanes, sample_cube_lanes};
 
 /// The per-light fragment program.
 pub(crate) struct SinglePass<'a> {
@@ -32,6 +32,8 @@ pub(crate) struct SinglePass<'a> {
     pub cube: Option<Arc<TextureCube>>,
     /// The program's textures as texture units hold them.
     pub normal_map: Arc<Texture2d>,
+    /// The normal map's LEAN moments, for [`SpecularFilter::Lean`].
+    pub moments: Option<Arc<MomentTexture>>,
     pub decal: Option<Arc<Texture2d>>,
     pub gloss: Option<Arc<Texture2d>>,
     pub pattern: Option<Arc<Texture2d>>,
@@ -47,6 +49,8 @@ pub struct Scratch {
     normal: [Lanes; 4],
     decal: [Lanes; 4],
     gloss: [Lanes; 4],
+    /// The filtered LEAN moments (Bx, By, Mxx, Myy, Mxy, J), when the filter reads them.
+    moments: [Lanes; 6],
     /// L and H after per-fragment normalization, and vectors being packed or normalized.
     l: [Lanes; 3],
     h: [Lanes; 3],
@@ -76,6 +80,7 @@ impl Scratch {
             normal: [z; 4],
             decal: [z; 4],
             gloss: [z; 4],
+            moments: [z; 6],
             l: [z; 3],
             h: [z; 3],
             v: [z; 3],
@@ -238,6 +243,10 @@ impl FragmentShader for SinglePass<'_> {
         let (scale, object_space) = (o.normal_space.texcoord_scale().to_array(), o.normal_space.is_object());
         let size = |t: &Texture2d| (t.width(), t.height());
         self.sample(&self.normal_map, batch, scale, sc, live_n, Tex::Normal, false);
+        if let Some(moments) = &self.moments {
+            // Same size and levels as the normal map: the coordinates just packed.
+            moments.sample_lanes(&self.program.sampler, &sc.coords, live_n, &mut sc.moments);
+        }
         match o.normal_texels {
             NormalTexels::UnitVector => {}
             NormalTexels::Offset { range } => {
@@ -321,7 +330,7 @@ impl FragmentShader for SinglePass<'_> {
 /// `normal`, `decal`, `gloss`, `l`, `h`, `light` and, in object space, `l_n` and `h_n` (in
 /// tangent space L_z and H_z); uses the other fields of `sc` as scratch.
 fn lighting_lanes(terms: &LitTerms, sc: &mut Scratch, object_space: bool, n: usize, out: &mut [Lanes; 4]) {
-    let Scratch { normal, decal, gloss, l, h, l_n, h_n, light, s_self, n_dot_l, h_dot_n, gate, acc, .. } = sc;
+    let Scratch { normal, decal, gloss, moments, l, h, l_n, h_n, light, s_self, n_dot_l, h_dot_n, gate, acc, .. } = sc;
     let (l_n, h_n) = if object_space { (&*l_n, &*h_n) } else { (&l[2], &h[2]) };
     match terms.self_shadow {
         SelfShadow::Ramp => (0..n).for_each(|j| s_self[j] = clamp_lo(8.0 * l_n[j], 0.0, 1.0)),
@@ -352,7 +361,16 @@ fn lighting_lanes(terms: &LitTerms, sc: &mut Scratch, object_space: bool, n: usi
         // A per-fragment exponent from the filtered normal's length: the scalar model per lane.
         filter @ (SpecularFilter::Toksvig | SpecularFilter::RoughnessMap) => {
             for j in 0..n {
-                h_dot_n[j] = filtered_specular(h_dot_n[j], terms.shininess, filter, normal[3][j]);
+                h_dot_n[j] =
+                    filtered_specular(h_dot_n[j], terms.shininess, filter, normal[3][j], Vec3::Z, LeanMoments::FLAT);
+            }
+            h_dot_n
+        }
+        // LEAN's lobe from the filtered moments and H, per lane.
+        SpecularFilter::Lean => {
+            for j in 0..n {
+                let m = LeanMoments::from_array(std::array::from_fn(|c| moments[c][j]));
+                h_dot_n[j] = m.specular(Vec3::new(h[0][j], h[1][j], h[2][j]), terms.shininess);
             }
             h_dot_n
         }
@@ -381,7 +399,12 @@ mod tests {
             prop_oneof![Just(SelfShadow::Ramp), Just(SelfShadow::Step), Just(SelfShadow::Off)],
             prop_oneof![Just(SpecularShadow::Kilgard), Just(SpecularShadow::CgTutorial), Just(SpecularShadow::Off)],
             prop_oneof![Just(8.0f32), Just(1.0), Just(13.0), Just(64.0), Just(7.5), Just(100.0)],
-            prop_oneof![Just(SpecularFilter::None), Just(SpecularFilter::Toksvig), Just(SpecularFilter::RoughnessMap)],
+            prop_oneof![
+                Just(SpecularFilter::None),
+                Just(SpecularFilter::Toksvig),
+                Just(SpecularFilter::RoughnessMap),
+                Just(SpecularFilter::Lean)
+            ],
         )
     }
 
@@ -417,6 +440,14 @@ mod tests {
                     sc.decal[c][j] = next();
                 }
                 sc.gloss[0][j] = next();
+                // Slopes in [−2, 2] and second moments at least their squares (a spread).
+                let b = [next() * 4.0 - 2.0, next() * 4.0 - 2.0];
+                let spread = [next(), next() * 0.2 - 0.1, next()];
+                let m = [b[0] * b[0] + spread[0], b[0] * b[1] + spread[1], b[1] * b[1] + spread[2]];
+                let jacobian = 1.0 + next() * 10.0;
+                for (c, v) in [b[0], b[1], m[0], m[2], m[1], jacobian].into_iter().enumerate() {
+                    sc.moments[c][j] = v;
+                }
                 let l = Vec3::new(next() * 2.0 - 1.0, next() * 2.0 - 1.0, next() * 2.0 - 1.0).normalize_or(Vec3::Z);
                 let h = Vec3::new(next() * 2.0 - 1.0, next() * 2.0 - 1.0, next() * 2.0 - 1.0).normalize_or(Vec3::Z);
                 for c in 0..3 {
@@ -442,6 +473,7 @@ mod tests {
                     l_n: if object_space { input.l_n[j] } else { l.z },
                     h_n: if object_space { input.h_n[j] } else { h.z },
                     light: input.light[j],
+                    moments: LeanMoments::from_array(std::array::from_fn(|c| input.moments[c][j])),
                 };
                 let expected = shade(&terms, &f);
                 for c in 0..3 {

@@ -14,7 +14,9 @@ use bumpmap_math::{CubeFace, NormalizationCubeMap, Rgba8Image, Rgba8Mips};
 pub use bumpmap_core::state::{MagFilter, MinFilter, Sampler, WrapMode};
 
 mod lanes;
+mod moments;
 pub use lanes::{sample_2d_lanes, sample_cube_lanes};
+pub(crate) use moments::MomentTexture;
 
 /// One mip level: `width`×`height` RGBA8 texels, row 0 = t = 0.
 ///
@@ -226,22 +228,48 @@ impl Level {
         let v = self.bytes_at(r1 + i1).mul_add(Vec4::splat(w[3]), v);
         v * (1.0 / 255.0)
     }
-
-    #[inline(always)]
-    fn filter(&self, s: f32, t: f32, linear: bool, sampler: &Sampler) -> Vec4 {
-        if linear { self.linear(s, t, sampler) } else { self.nearest(s, t, sampler) }
-    }
 }
 
 /// Samples a 2D texture at (s, t) with level of detail λ (GL 1.2 §3.8.8–3.8.9).
 #[inline(always)]
 pub fn sample_2d(tex: &Texture2d, sampler: &Sampler, s: f32, t: f32, lambda: f32) -> Vec4 {
-    let base = &tex.levels[0];
+    sample_levels(&tex.levels, sampler, s, t, lambda)
+}
+
+/// One level's NEAREST and LINEAR lookups, for [`sample_levels`]'s mipmap rules.
+pub(crate) trait Filter {
+    /// What a lookup returns; mipmap levels blend as `a·(1 − f) + b·f`.
+    type Value: Copy + std::ops::Mul<f32, Output = Self::Value> + std::ops::Add<Output = Self::Value>;
+    fn nearest(&self, s: f32, t: f32, sampler: &Sampler) -> Self::Value;
+    fn linear(&self, s: f32, t: f32, sampler: &Sampler) -> Self::Value;
+    #[inline(always)]
+    fn filter(&self, s: f32, t: f32, linear: bool, sampler: &Sampler) -> Self::Value {
+        if linear { self.linear(s, t, sampler) } else { self.nearest(s, t, sampler) }
+    }
+}
+
+impl Filter for Level {
+    type Value = Vec4;
+    #[inline(always)]
+    fn nearest(&self, s: f32, t: f32, sampler: &Sampler) -> Vec4 {
+        Level::nearest(self, s, t, sampler)
+    }
+    #[inline(always)]
+    fn linear(&self, s: f32, t: f32, sampler: &Sampler) -> Vec4 {
+        Level::linear(self, s, t, sampler)
+    }
+}
+
+/// GL 1.2's choice of level and filter for λ over `levels` (level 0 first), whatever a texel
+/// holds: the one home of the mipmap rules for the 8-bit texture units and the float moments.
+#[inline(always)]
+pub(crate) fn sample_levels<L: Filter>(levels: &[L], sampler: &Sampler, s: f32, t: f32, lambda: f32) -> L::Value {
+    let base = &levels[0];
     if lambda <= sampler.switch_over() || !lambda.is_finite() && lambda < 0.0 {
         return base.filter(s, t, sampler.mag == MagFilter::Linear, sampler);
     }
-    let q = (tex.levels.len() - 1) as f32;
-    let pick = |d: f32| &tex.levels[d.min(q) as usize];
+    let q = (levels.len() - 1) as f32;
+    let pick = |d: f32| &levels[d.min(q) as usize];
     match sampler.min {
         MinFilter::Nearest => base.nearest(s, t, sampler),
         MinFilter::Linear => base.linear(s, t, sampler),

@@ -40,7 +40,12 @@ const SPECULAR_SHADOW: Switch = Switch {
 };
 const SPECULAR_FILTER: Switch = Switch {
     name: "SPECULAR_FILTER",
-    values: &["SPECULAR_FILTER_NONE", "SPECULAR_FILTER_TOKSVIG", "SPECULAR_FILTER_ROUGHNESS_MAP"],
+    values: &[
+        "SPECULAR_FILTER_NONE",
+        "SPECULAR_FILTER_TOKSVIG",
+        "SPECULAR_FILTER_ROUGHNESS_MAP",
+        "SPECULAR_FILTER_LEAN",
+    ],
 };
 const GLOSS: Switch = Switch { name: "GLOSS", values: &["GLOSS_NONE", "GLOSS_DECAL_ALPHA", "GLOSS_MAP"] };
 const ATTENUATION: Switch = Switch {
@@ -76,6 +81,7 @@ pub fn specular_filter_name(filter: SpecularFilter) -> &'static str {
         SpecularFilter::None => "SPECULAR_FILTER_NONE",
         SpecularFilter::Toksvig => "SPECULAR_FILTER_TOKSVIG",
         SpecularFilter::RoughnessMap => "SPECULAR_FILTER_ROUGHNESS_MAP",
+        SpecularFilter::Lean => "SPECULAR_FILTER_LEAN",
     }
 }
 

@@ -1,7 +1,7 @@
 // The single pass's fragment program: the texture lookups, per-fragment renormalization,
 // attenuation and spotlight that make a Fragment, then shading.wgsl's shade(). Texture units:
 // the normal map, the decal, the gloss map (white 1x1 textures where absent), the spotlight
-// pattern and the normalization cube map.
+// pattern, the normalization cube map and LEAN's two moment textures.
 
 struct Lit {
     ambient: vec4<f32>,
@@ -31,6 +31,9 @@ struct Lit {
 @group(0) @binding(5) var cube_map: texture_cube<f32>;
 @group(0) @binding(6) var material_sampler: sampler;
 @group(0) @binding(7) var clamp_sampler: sampler;
+// LEAN's moments (Bx, By, Mxx, Myy) and (Mxy, J), at the normal map's size (white where unused).
+@group(0) @binding(8) var lean_b_m: texture_2d<f32>;
+@group(0) @binding(9) var lean_m_xy: texture_2d<f32>;
 
 // normalize(v), or +Z where v has no direction.
 fn normalize_or_z(v: vec3<f32>) -> vec3<f32> {
@@ -139,6 +142,16 @@ fn fs_lit(f: Varyings) -> @location(0) vec4<f32> {
     }
     let light = attenuation(vary(f, VAR_LIGHT_DISTANCE)) * spot_factor(f);
     let t = Terms(u.ambient.rgb, u.diffuse.rgb, u.specular.rgb, SHININESS, SELF_SHADOW, SPECULAR_SHADOW, SPECULAR_FILTER);
-    let frag = Fragment(normal, decal.rgb, gloss, l, h, l_n, h_n, light);
+    var lean_b = vec2<f32>(0.0);
+    var lean_m = vec3<f32>(0.0);
+    var lean_j = 1.0;
+    if SPECULAR_FILTER == SPECULAR_FILTER_LEAN {
+        let bm = textureSample(lean_b_m, material_sampler, st * u.normal_scale.xy);
+        let xy_j = textureSample(lean_m_xy, material_sampler, st * u.normal_scale.xy);
+        lean_b = bm.xy;
+        lean_m = vec3<f32>(bm.z, xy_j.r, bm.w);
+        lean_j = xy_j.g;
+    }
+    let frag = Fragment(normal, decal.rgb, gloss, l, h, l_n, h_n, light, lean_b, lean_m, lean_j);
     return vec4<f32>(shade(t, frag), 1.0);
 }

@@ -163,6 +163,8 @@ impl Pipelines {
                 texture_entry(5, Cube),
                 sampler_entry(6),
                 sampler_entry(7),
+                texture_entry(8, D2),
+                texture_entry(9, D2),
             ],
         });
         let mut entries = Vec::new();

@@ -8,7 +8,9 @@
 use std::sync::Arc;
 
 use bumpmap_core::Scene;
-use bumpmap_core::technique::{Binding, CombinerProgram, Gloss, LitProgram, Normalize, Program, Technique};
+use bumpmap_core::technique::{
+    Binding, CombinerProgram, Gloss, LitProgram, Normalize, Program, SpecularFilter, Technique,
+};
 use bumpmap_math::{Rgba8Image, mesh::Mesh};
 use wgpu::util::DeviceExt as _;
 
@@ -251,6 +253,10 @@ impl GpuRenderer {
             Normalize::Cube => t.cube(ctx, p.cube_size, bumpmap_math::Encoding::Unorm),
             Normalize::Math => t.white_cube(ctx),
         };
+        let [lean_b_m, lean_m_xy] = match p.terms.specular_filter {
+            SpecularFilter::Lean => t.moments(ctx, &p.normal_map)?,
+            _ => [t.white_2d(ctx), t.white_2d(ctx)],
+        };
         let material = t.sampler(ctx, p.sampler);
         let clamp = t.sampler(ctx, bumpmap_core::state::Sampler::LINEAR_CLAMP);
         let uniforms = ctx.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
@@ -268,6 +274,8 @@ impl GpuRenderer {
             wgpu::BindGroupEntry { binding: 5, resource: TextureView(&cube) },
             wgpu::BindGroupEntry { binding: 6, resource: Sampler(&material) },
             wgpu::BindGroupEntry { binding: 7, resource: Sampler(&clamp) },
+            wgpu::BindGroupEntry { binding: 8, resource: TextureView(&lean_b_m) },
+            wgpu::BindGroupEntry { binding: 9, resource: TextureView(&lean_m_xy) },
         ];
         Ok(ctx.device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("lit"),

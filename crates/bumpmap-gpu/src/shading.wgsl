@@ -12,7 +12,8 @@ struct Terms {
     // SPECULAR_SHADOW_KILGARD (s_self, H_z >= 0), SPECULAR_SHADOW_CG_TUTORIAL (N'.L > 0 and
     // L_z > 0) or SPECULAR_SHADOW_OFF.
     specular_shadow: u32,
-    // SPECULAR_FILTER_NONE, _TOKSVIG or _ROUGHNESS_MAP (the exponent from |N'|, SPECS.md 9).
+    // SPECULAR_FILTER_NONE, _TOKSVIG or _ROUGHNESS_MAP (the exponent from |N'|, SPECS.md 9), or
+    // _LEAN (the lobe from the moments).
     specular_filter: u32,
 };
 
@@ -28,6 +29,11 @@ struct Fragment {
     h_n: f32,
     // Attenuation x spotlight.
     light: f32,
+    // The filtered LEAN moments: the mean slope B and (Mxx, Mxy, Myy).
+    lean_b: vec2<f32>,
+    lean_m: vec3<f32>,
+    // And the mean slope-to-direction Jacobian J = 1/Nz^3.
+    lean_j: f32,
 };
 
 // x^k for a whole k by binary powering (the order of f32::powi).
@@ -81,6 +87,23 @@ fn roughness_map(length: f32, s: f32) -> vec2<f32> {
     return vec2<f32>(e, (e + 2.0) / (s + 2.0));
 }
 
+// bumpmap_math::lean::LeanMoments::specular: the Gaussian of the slopes' covariance plus 1/s at
+// H's slope, widened by the mean Jacobian J, over Hz^3 (slopes to directions at H).
+fn lean_specular(b: vec2<f32>, m: vec3<f32>, j: f32, h: vec3<f32>, s: f32) -> f32 {
+    if h.z <= 1e-4 {
+        return 0.0;
+    }
+    let inv_s = j / s;
+    let sxx = m.x - b.x * b.x + inv_s;
+    let sxy = m.y - b.x * b.y;
+    let syy = m.z - b.y * b.y + inv_s;
+    let det = max(sxx * syy - sxy * sxy, 1e-6 / (s * s));
+    let hx = h.x / h.z - b.x;
+    let hy = h.y / h.z - b.y;
+    let e = (hx * hx * syy - 2.0 * hx * hy * sxy + hy * hy * sxx) / det;
+    return exp(-0.5 * e) / (s * sqrt(det)) / (h.z * h.z * h.z);
+}
+
 fn filtered_specular(h_dot_n: f32, s: f32, lobe_filter: u32, length: f32) -> f32 {
     if lobe_filter == SPECULAR_FILTER_TOKSVIG {
         let k = toksvig(length, s);
@@ -109,7 +132,12 @@ fn shade(t: Terms, f: Fragment) -> vec3<f32> {
     } else if t.specular_shadow == SPECULAR_SHADOW_CG_TUTORIAL {
         gate = select(0.0, 1.0, n_dot_l > 0.0 && f.l_n > 0.0);
     }
-    let power = filtered_specular(h_dot_n, t.shininess, t.specular_filter, f.normal.a);
+    var power = 0.0;
+    if t.specular_filter == SPECULAR_FILTER_LEAN {
+        power = lean_specular(f.lean_b, f.lean_m, f.lean_j, f.h, t.shininess);
+    } else {
+        power = filtered_specular(h_dot_n, t.shininess, t.specular_filter, f.normal.a);
+    }
     let diffuse = min(t.ambient + t.diffuse * (f.light * s_self * max(n_dot_l, 0.0) * f.normal.a), vec3<f32>(1.0));
     let specular = t.specular * (f.light * gate * f.gloss * power);
     return f.decal * diffuse + specular;

@@ -1,6 +1,7 @@
 //! Textures on the device: a scene's RGBA8 mip chains (every level uploaded, linear
 //! `Rgba8Unorm`, never sRGB), normalization cube maps (Kilgard Appendix D) as cube textures,
-//! white 1×1 stand-ins for absent units, and GL sampler state as wgpu samplers.
+//! white 1×1 stand-ins for absent units, LEAN moments as half floats, and GL sampler state as
+//! wgpu samplers.
 //!
 //! Uploads are cached by the scene's `Arc`s, so a texture crosses the bus once however many
 //! passes and frames read it.
@@ -8,7 +9,7 @@
 use std::sync::Arc;
 
 use bumpmap_core::state::{MagFilter, MinFilter, Sampler, WrapMode};
-use bumpmap_math::{Encoding, NormalizationCubeMap, Rgba8Image, Rgba8Mips};
+use bumpmap_math::{Encoding, LeanMips, NormalizationCubeMap, Rgba8Image, Rgba8Mips};
 
 use crate::context::Context;
 use crate::error::GpuError;
@@ -20,6 +21,8 @@ const MAX_CACHED: usize = 32;
 #[derive(Default)]
 pub struct Textures {
     mips: Vec<(Arc<Rgba8Mips>, wgpu::TextureView)>,
+    /// LEAN moments, keyed by the normal map they were made from.
+    moments: Vec<(Arc<Rgba8Mips>, [wgpu::TextureView; 2])>,
     cubes: Vec<((usize, Encoding), wgpu::TextureView)>,
     samplers: Vec<(Sampler, wgpu::Sampler)>,
     white_2d: Option<wgpu::TextureView>,
@@ -77,6 +80,65 @@ impl Textures {
         }
         self.mips.push((mips.clone(), view.clone()));
         Ok(view)
+    }
+
+    /// The LEAN moments of `normal_map`'s level 0 (`bumpmap_math::lean`), every level, as two
+    /// half-float textures the material sampler filters like the normal map: `Rgba16Float`
+    /// (Bx, By, Mxx, Myy) and `Rg16Float` (Mxy, J). Half floats keep 11 bits: M − BBᵀ loses about
+    /// 10⁻³·M to rounding, small beside the lobe's own 1/s for the exponents used here.
+    pub fn moments(&mut self, ctx: &Context, normal_map: &Arc<Rgba8Mips>) -> Result<[wgpu::TextureView; 2], GpuError> {
+        if let Some((_, v)) = self.moments.iter().find(|(m, _)| Arc::ptr_eq(m, normal_map)) {
+            return Ok(v.clone());
+        }
+        let max = ctx.max_texture_side();
+        let (width, height) = (normal_map.width(), normal_map.height());
+        if width > max as usize || height > max as usize {
+            return Err(GpuError::TooLarge { what: "a texture", width, height, max });
+        }
+        let lean = LeanMips::from_normal_map(normal_map, Encoding::Unorm).map_err(bumpmap_core::CoreError::from)?;
+        let levels = lean.levels.len() as u32;
+        let make = |label, format| {
+            ctx.device.create_texture(&wgpu::TextureDescriptor {
+                label: Some(label),
+                size: wgpu::Extent3d { width: width as u32, height: height as u32, depth_or_array_layers: 1 },
+                mip_level_count: levels,
+                sample_count: 1,
+                dimension: wgpu::TextureDimension::D2,
+                format,
+                usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
+                view_formats: &[],
+            })
+        };
+        let b_m = make("LEAN B, Mxx, Myy", wgpu::TextureFormat::Rgba16Float);
+        let m_xy = make("LEAN Mxy, J", wgpu::TextureFormat::Rg16Float);
+        let half = |x: f32| half::f16::from_f32(x).to_le_bytes();
+        for (k, level) in lean.levels.iter().enumerate() {
+            let four: Vec<u8> = level.texels.iter().flat_map(|t| [t.b.x, t.b.y, t.m.x, t.m.z]).flat_map(half).collect();
+            let two: Vec<u8> = level.texels.iter().flat_map(|t| [t.m.y, t.j]).flat_map(half).collect();
+            for (texture, bytes, texel_bytes) in [(&b_m, four, 8), (&m_xy, two, 4)] {
+                ctx.queue.write_texture(
+                    wgpu::TexelCopyTextureInfo {
+                        texture,
+                        mip_level: k as u32,
+                        origin: wgpu::Origin3d::ZERO,
+                        aspect: wgpu::TextureAspect::All,
+                    },
+                    &bytes,
+                    wgpu::TexelCopyBufferLayout {
+                        offset: 0,
+                        bytes_per_row: Some(texel_bytes * level.width as u32),
+                        rows_per_image: Some(level.height as u32),
+                    },
+                    wgpu::Extent3d { width: level.width as u32, height: level.height as u32, depth_or_array_layers: 1 },
+                );
+            }
+        }
+        let views = [&b_m, &m_xy].map(|t| t.create_view(&wgpu::TextureViewDescriptor::default()));
+        if self.moments.len() >= MAX_CACHED {
+            self.moments.clear();
+        }
+        self.moments.push((normal_map.clone(), views.clone()));
+        Ok(views)
     }
 
     /// The normalization cube map of face size `size` (faces +X, −X, +Y, −Y, +Z, −Z: wgpu's

@@ -1,6 +1,7 @@
 //! `shading.wgsl`'s `shade()` against its definition, `bumpmap_core::shading::shade`, on random
 //! fragments for every self-shadowing and specular-gate mode, whole and fractional shininess,
-//! without a specular filter, with Toksvig's and with the roughness map's, on a compute shader.
+//! without a specular filter, with Toksvig's, the roughness map's and LEAN's, on a compute
+//! shader.
 //!
 //! Tolerance: 2e-4 per channel (a twentieth of one 8-bit step, 1/255 ≈ 3.9e-3). Both sides
 //! compute in f32; the GPU may fuse multiply-adds in the dot products, and its `pow` for a
@@ -9,10 +10,10 @@
 
 mod common;
 
-use bumpmap_core::shading::{Fragment, LitTerms, shade};
+use bumpmap_core::shading::{Fragment, LeanMoments, LitTerms, shade};
 use bumpmap_core::technique::{SelfShadow, SpecularFilter, SpecularShadow};
 use bumpmap_gpu::{self_shadow_name, shading_wgsl, specular_filter_name, specular_shadow_name};
-use glam::{Vec3, Vec4};
+use glam::{Vec2, Vec3, Vec4};
 
 struct Rng(u64);
 
@@ -47,6 +48,13 @@ fn wgsl_shade_is_the_lighting_model() {
                 l_n: l.z,
                 h_n: h.z,
                 light: rng.unit(),
+                moments: {
+                    // Slopes in [−2, 2] and second moments at least their squares (a spread).
+                    let b = Vec2::new(rng.unit() * 4.0 - 2.0, rng.unit() * 4.0 - 2.0);
+                    let spread = Vec3::new(rng.unit(), rng.unit() * 0.2 - 0.1, rng.unit());
+                    let j = 1.0 + rng.unit() * 10.0;
+                    LeanMoments { b, m: Vec3::new(b.x * b.x, b.x * b.y, b.y * b.y) + spread, j }
+                },
             }
         })
         .collect();
@@ -57,7 +65,8 @@ fn wgsl_shade_is_the_lighting_model() {
             v.extend(f.decal.extend(f.gloss).to_array());
             v.extend(f.l.extend(f.light).to_array());
             v.extend(f.h.extend(f.l_n).to_array());
-            v.extend([f.h_n, 0.0, 0.0, 0.0]);
+            v.extend([f.h_n, f.moments.b.x, f.moments.b.y, f.moments.m.x]);
+            v.extend([f.moments.m.y, f.moments.m.z, f.moments.j, 0.0]);
             v
         })
         .collect();
@@ -69,7 +78,8 @@ fn wgsl_shade_is_the_lighting_model() {
             // The modes by the prelude's names, as lit.wgsl passes them.
             let (ss, sg) = (self_shadow_name(self_shadow), specular_shadow_name(specular_shadow));
             for (shininess, specular_filter) in [8.0f32, 1.0, 33.0, 7.5, 100.0].into_iter().flat_map(|s| {
-                [SpecularFilter::None, SpecularFilter::Toksvig, SpecularFilter::RoughnessMap].map(|f| (s, f))
+                [SpecularFilter::None, SpecularFilter::Toksvig, SpecularFilter::RoughnessMap, SpecularFilter::Lean]
+                    .map(|f| (s, f))
             }) {
                 let sf = specular_filter_name(specular_filter);
                 let terms = LitTerms {
@@ -85,7 +95,7 @@ fn wgsl_shade_is_the_lighting_model() {
                     |v: Vec3| format!("vec3<f32>({}, {}, {})", wgsl_literal(v.x), wgsl_literal(v.y), wgsl_literal(v.z));
                 let wgsl = format!(
                     "{shading}
-struct In {{ normal: vec4<f32>, decal_gloss: vec4<f32>, l_light: vec4<f32>, h_ln: vec4<f32>, hn: vec4<f32> }};
+struct In {{ normal: vec4<f32>, decal_gloss: vec4<f32>, l_light: vec4<f32>, h_ln: vec4<f32>, hn: vec4<f32>, m: vec4<f32> }};
 @group(0) @binding(0) var<storage, read> inputs: array<In>;
 @group(0) @binding(1) var<storage, read_write> outputs: array<vec4<f32>>;
 @compute @workgroup_size(64)
@@ -93,7 +103,7 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {{
     if id.x >= arrayLength(&outputs) {{ return; }}
     let i = inputs[id.x];
     let t = Terms({}, {}, {}, {}, {ss}, {sg}, {sf});
-    let f = Fragment(i.normal, i.decal_gloss.xyz, i.decal_gloss.w, i.l_light.xyz, i.h_ln.xyz, i.h_ln.w, i.hn.x, i.l_light.w);
+    let f = Fragment(i.normal, i.decal_gloss.xyz, i.decal_gloss.w, i.l_light.xyz, i.h_ln.xyz, i.h_ln.w, i.hn.x, i.l_light.w, i.hn.yz, vec3<f32>(i.hn.w, i.m.xy), i.m.z);
     outputs[id.x] = vec4<f32>(shade(t, f), 1.0);
 }}",
                     v3(terms.ambient),

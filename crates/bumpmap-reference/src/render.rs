@@ -210,6 +210,7 @@ fn shade_sample(
             l_n: l.z,
             h_n: h.z,
             light: factor,
+            moments: bumpmap_core::shading::LeanMoments::FLAT,
         };
         color += shade(&terms, &fragment).clamp(Vec3::ZERO, Vec3::ONE);
     }

@@ -156,7 +156,7 @@ pub struct TechniqueGroup {
     /// single-pass: geometric self-shadowing of the specular term
     #[arg(long = "specular-shadow", value_enum, default_value = "kilgard")]
     pub specular_shadow: SpecularShadowArg,
-    /// single-pass: the specular exponent from the mip chain's |N| (toksvig: a distant bumpy surface's highlight widens and dims; `--technique toksvig` sets it)
+    /// single-pass: how the specular lobe answers the bumps a pixel averages (toksvig and roughness-map: the exponent from the mip chain's |N|; lean: the slopes' moments; a distant bumpy surface's highlight widens and dims; `--technique toksvig` or `lean` sets it)
     #[arg(long = "specular-filter", value_enum, default_value = "none")]
     pub specular_filter: SpecularFilterArg,
 }
@@ -365,6 +365,8 @@ pub enum SpecularFilterArg {
     Toksvig,
     /// The roughness `normalmap --roughness-out` exports (Filament's prefilter of |N|), as a Blinn–Phong exponent
     RoughnessMap,
+    /// LEAN mapping (Olano & Baker 2010): the slopes' first and second moments, filtered, make an anisotropic Gaussian lobe (tangent-space maps of unit normals)
+    Lean,
 }
 
 /// Texture filtering.

@@ -174,7 +174,7 @@ fn specular_plot(r: &Results, which: usize) -> String {
         };
         let reference = r.specular.iter().map(|row| line(row, None)).collect();
         labelled_line(chart, "reference", BLACK, reference);
-        let colors = [RED, BLUE, GREEN, MAGENTA];
+        let colors = [RED, BLUE, GREEN, MAGENTA, CYAN];
         for (k, name) in super::studies::SPECULAR_FILTERS.iter().enumerate() {
             labelled_line(chart, name, colors[k], r.specular.iter().map(|row| line(row, Some(k))).collect());
         }

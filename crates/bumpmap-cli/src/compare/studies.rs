@@ -86,9 +86,9 @@ pub fn golf_ball_study(backend: &mut Renderer, headlight: bool) -> Result<Vec<(f
 pub const SPECULAR_DISTANCES: [f32; 5] = [1.0, 2.0, 4.0, 8.0, 16.0];
 
 /// The specular filters the study measures, in its columns' order: renormalized mips, the
-/// length in alpha (which the single pass's specular does not read), Toksvig's filter, and the
-/// exported roughness map read by a Blinn–Phong shader.
-pub const SPECULAR_FILTERS: [&str; 4] = ["renormalized mips", "length factor", "Toksvig", "roughness map"];
+/// length in alpha (which the single pass's specular does not read), Toksvig's filter, the
+/// exported roughness map read by a Blinn–Phong shader, and LEAN mapping.
+pub const SPECULAR_FILTERS: [&str; 5] = ["renormalized mips", "length factor", "Toksvig", "roughness map", "LEAN"];
 
 /// One distance of [`specular_study`]: the reference's and each filter's `(energy, width)`.
 #[derive(Clone, Debug, PartialEq)]
@@ -98,12 +98,12 @@ pub struct SpecularRow {
     /// The reference.
     pub reference: (f64, f64),
     /// Each of [`SPECULAR_FILTERS`].
-    pub filters: [(f64, f64); 4],
+    pub filters: [(f64, f64); 5],
 }
 
 impl SpecularRow {
     /// Each filter's energy error against the reference, relative (−0.1: 10 % too little).
-    pub fn energy_errors(&self) -> [f64; 4] {
+    pub fn energy_errors(&self) -> [f64; 5] {
         self.filters.map(|(e, _)| e / self.reference.0 - 1.0)
     }
 }
@@ -112,7 +112,7 @@ impl SpecularRow {
 /// (ambient and diffuse 0, k_s 1, shininess 32), a directional light behind the eye. Averaging
 /// the dimples' normals in the mips leaves one normal where the footprint had many: the
 /// reference's highlight spreads and dims, the unfiltered single pass keeps it tight; Toksvig's
-/// filter widens the lobe by the length the mips keep. With k_s 1 and no other term no pixel
+/// filter widens the lobe by the length the mips keep, LEAN by the slopes' covariance. With k_s 1 and no other term no pixel
 /// passes 1, so the 8-bit frames clip nothing.
 ///
 /// Energy: the frame's summed brightness over the number of pixels the reference's ball
@@ -152,6 +152,7 @@ pub fn specular_study(backend: &mut Renderer) -> Result<Vec<SpecularRow>, CliErr
             filtered(MipMode::LengthInAlpha, SpecularFilter::None)?,
             filtered(MipMode::LengthInAlpha, SpecularFilter::Toksvig)?,
             filtered(MipMode::LengthInAlpha, SpecularFilter::RoughnessMap)?,
+            filtered(MipMode::LengthInAlpha, SpecularFilter::Lean)?,
         ];
         rows.push(SpecularRow { distance, reference: measure(&reference.pixels), filters });
     }

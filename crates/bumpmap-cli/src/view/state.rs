@@ -73,7 +73,7 @@ pub struct Choices {
     pub cube: bool,
     /// Nearest texels rather than trilinear filtering.
     pub nearest: bool,
-    /// The specular filter (the single pass): none, Toksvig's, the roughness map's.
+    /// The specular filter (the single pass): none, Toksvig's, the roughness map's, LEAN.
     pub specular_filter: SpecularFilter,
     /// The bump scale: a height field's step height, or a normal map's slope factor.
     pub bump_scale: f32,
@@ -318,7 +318,8 @@ impl Viewer {
                 c.specular_filter = match c.specular_filter {
                     SpecularFilter::None => SpecularFilter::Toksvig,
                     SpecularFilter::Toksvig => SpecularFilter::RoughnessMap,
-                    SpecularFilter::RoughnessMap => SpecularFilter::None,
+                    SpecularFilter::RoughnessMap => SpecularFilter::Lean,
+                    SpecularFilter::Lean => SpecularFilter::None,
                 }
             }
             Action::BumpsUp => c.bump_scale *= 1.25,
@@ -477,6 +478,7 @@ impl Viewer {
                 SpecularFilter::None => "",
                 SpecularFilter::Toksvig => " | toksvig",
                 SpecularFilter::RoughnessMap => " | roughness map",
+                SpecularFilter::Lean => " | LEAN",
             },
             if off.is_empty() { String::new() } else { format!(" | off: {}", off.join(", ")) },
         )

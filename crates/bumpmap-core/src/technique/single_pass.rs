@@ -10,7 +10,7 @@ use std::sync::Arc;
 
 use bumpmap_math::Rgba8Mips;
 
-use crate::error::CoreError;
+use crate::error::{CoreError, Feature};
 use crate::scene::{Attenuation, Scene, SceneLight};
 use crate::shading::LitTerms;
 pub use crate::shading::{SelfShadow, SpecularFilter, SpecularShadow};
@@ -109,6 +109,11 @@ pub fn validate(scene: &Scene, options: &SinglePassOptions) -> Result<(), CoreEr
         }
         if options.gloss == Gloss::DecalAlpha && m.decal.is_none() {
             return Err(CoreError::GlossNeedsDecal);
+        }
+        if options.specular_filter == SpecularFilter::Lean
+            && (m.normal_space.is_object() || m.normal_texels != crate::scene::NormalTexels::UnitVector)
+        {
+            return Err(CoreError::Unsupported { technique: "single-pass", feature: Feature::LeanFilter });
         }
     }
     for light in &scene.lights {
