@@ -23,9 +23,9 @@ pub fn run(args: &NormalmapArgs) -> Result<(), CliError> {
     let channel: Channel = args.map.channel.into();
     let input = Path::new(&args.input);
     if input.is_dir() {
-        if args.roughness_out.is_some() {
+        if args.roughness_out.is_some() || args.lean_out.is_some() {
             return Err(CliError::Usage(
-                "--roughness-out writes one roughness map: give one height field, not a folder".into(),
+                "--roughness-out and --lean-out write one map: give one height field, not a folder".into(),
             ));
         }
         return run_folder(input, args, &options, channel);
@@ -35,8 +35,15 @@ pub fn run(args: &NormalmapArgs) -> Result<(), CliError> {
     let output = output_file(&args.output, &source, &args.input, format);
     check_format(&output, format)?;
     let inputs: Vec<&Path> = source.path().into_iter().collect();
-    for out in std::iter::once(&output).chain(&args.roughness_out) {
+    let lean_out = args.lean_out.as_ref().map(|l| lean_paths(l)).transpose()?;
+    for out in std::iter::once(&output).chain(&args.roughness_out).chain(lean_out.iter().flatten()) {
         ensure_not_input(out, &inputs)?;
+    }
+    if let Some(lean) = &lean_out {
+        let others = [Some(level_path(&output, 0)), args.roughness_out.as_ref().map(|r| level_path(r, 0))];
+        if let Some(clash) = lean.iter().find(|l| others.iter().flatten().any(|o| o == *l)) {
+            return Err(CliError::Usage(format!("--lean-out: {} is another output's file", clash.display())));
+        }
     }
     if let Some(rough) = &args.roughness_out
         && level_path(rough, 0) == level_path(&output, 0)
@@ -49,12 +56,25 @@ pub fn run(args: &NormalmapArgs) -> Result<(), CliError> {
         Some(_) => Some(roughness_chain(&field, args, &options)?),
         None => None,
     };
+    let lean = match &lean_out {
+        Some(_) => Some(lean_levels(&field, &options, &args.input)?),
+        None => None,
+    };
     // The heights are not needed to write the chain: a 16384² field is 1 GiB of floats.
     drop(field);
     let mut set = FileSet::new(&inputs);
     write_into(&mut set, &output, &levels, format)?;
     if let (Some(out), Some(chain)) = (&args.roughness_out, roughness) {
         write_into(&mut set, out, &Chain::Rgba8(chain), TextureFormat::Rgba8)?;
+    }
+    if let (Some(paths), Some(planes)) = (&lean_out, &lean) {
+        for (path, plane) in paths.iter().zip(planes) {
+            let tex = TextureLayout { faces: vec![plane.iter().map(Level::Rgba32F).collect()] };
+            match path.extension().map(|e| e.to_string_lossy().to_ascii_lowercase()).as_deref() {
+                Some("dds") => write_dds_into(&mut set, path, &tex, TextureFormat::Rgba32Float)?,
+                _ => write_ktx2_into(&mut set, path, &tex, TextureFormat::Rgba32Float)?,
+            }
+        }
     }
     let written = set.commit()?;
     eprintln!("wrote {}", describe(&written));
@@ -80,6 +100,42 @@ fn roughness_chain(
         })
         .collect();
     Ok(MipChain { levels, encoding: bumpmap_math::Encoding::Unorm })
+}
+
+/// `--lean-out`'s two files: `L` itself and `L`'s stem with `.mxy-j` before the extension.
+/// Only .ktx2 and .dds hold floats.
+fn lean_paths(out: &Path) -> Result<[PathBuf; 2], CliError> {
+    let ext = out.extension().map(|e| e.to_string_lossy().to_ascii_lowercase()).unwrap_or_default();
+    if ext != "ktx2" && ext != "dds" {
+        return Err(CliError::Usage(format!(
+            "--lean-out {}: the moments are floats, which .ktx2 or .dds hold (not .{ext})",
+            out.display()
+        )));
+    }
+    let stem = out.file_stem().unwrap_or_default().to_string_lossy();
+    let ext = out.extension().unwrap_or_default().to_string_lossy();
+    Ok([out.to_path_buf(), out.with_file_name(format!("{stem}.mxy-j.{ext}"))])
+}
+
+/// `--lean-out`'s levels, two planes: (Bx, By, Mxx, Myy) and (Mxy, J, 0, 0), from the 8-bit
+/// normal map's level 0 (the chain `render` draws from, whatever `--bits` the normal map is
+/// written at), by [`LeanMips`](bumpmap_math::LeanMips).
+fn lean_levels(
+    field: &HeightField,
+    options: &NormalMapOptions,
+    name: &str,
+) -> Result<[Vec<bumpmap_math::Image<[f32; 4]>>; 2], CliError> {
+    let chain: MipChain = make_texels(field, options, true, MipMode::LengthInAlpha, name)?;
+    let encoding = chain.encoding;
+    let lean = bumpmap_math::LeanMips::from_normal_map(&chain.into_mips(), encoding)
+        .map_err(|e| CliError::NormalMap { path: name.to_string(), source: NormalMapError::OutOfMemory(e) })?;
+    let plane = |texel: fn(&bumpmap_math::LeanMoments) -> [f32; 4]| {
+        lean.levels
+            .iter()
+            .map(|l| bumpmap_math::Image::new(l.width, l.height, l.texels.iter().map(texel).collect()))
+            .collect()
+    };
+    Ok([plane(|t| [t.b.x, t.b.y, t.m.x, t.m.z]), plane(|t| [t.m.y, t.j, 0.0, 0.0])])
 }
 
 /// The output file for one input: `-o` itself, or, when `-o` is a folder (an existing one, or

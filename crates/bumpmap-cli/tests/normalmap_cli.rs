@@ -432,3 +432,36 @@ fn roughness_out_is_written_with_the_normal_map_or_not_at_all() {
     assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
     assert!(stderr(&o).contains("not a folder"), "{}", stderr(&o));
 }
+
+#[test]
+fn lean_out_writes_two_float_textures_with_the_normal_map_or_nothing() {
+    let dir = scratch("normalmap_lean_out");
+    let (n, l) = (dir.join("n.png"), dir.join("l.ktx2"));
+    let o =
+        bumpmap(&["normalmap", "dimples@32", "-o", n.to_str().unwrap(), "--mips", "--lean-out", l.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    // The ktx2 crate reads them: float levels, one for each of the normal map's (32² to 1²).
+    for path in [l.clone(), dir.join("l.mxy-j.ktx2")] {
+        let bytes = std::fs::read(&path).unwrap();
+        let reader = ktx2::Reader::new(&bytes[..]).expect("valid KTX2");
+        assert_eq!(reader.header().format, Some(ktx2::Format::R32G32B32A32_SFLOAT), "{}", path.display());
+        assert_eq!(reader.header().level_count, 6);
+    }
+    // Refused before any work, nothing written: PNG cannot hold floats, no --mips, the normal
+    // map's own file, a folder of height fields.
+    let fresh = scratch("normalmap_lean_refused");
+    let (n, l_png, l_dds) = (fresh.join("n.png"), fresh.join("l.png"), fresh.join("l.dds"));
+    let (n, l_png, l_dds) = (n.to_str().unwrap(), l_png.to_str().unwrap(), l_dds.to_str().unwrap());
+    for (args, says) in [
+        (vec!["-o", n, "--mips", "--lean-out", l_png], "which .ktx2 or .dds hold"),
+        (vec!["-o", n, "--lean-out", l_dds], "--mips"),
+        (vec!["-o", l_dds, "--mips", "--format", "bc7", "--lean-out", l_dds], "is another output's file"),
+    ] {
+        let mut all = vec!["normalmap", "dimples@32"];
+        all.extend(args.iter().copied());
+        let o = bumpmap(&all);
+        assert_eq!(o.status.code(), Some(2), "{all:?}: {}", stderr(&o));
+        assert!(stderr(&o).contains(says), "{all:?}: {}", stderr(&o));
+        assert!(listing(&fresh).is_empty(), "{all:?} left {:?}", listing(&fresh));
+    }
+}

@@ -245,7 +245,7 @@ fn the_specular_filters_leave_near_detail_alone() {
     // LEAN's lobe is a Gaussian over slopes ((H·N)^s to first order), and magnified its filter
     // still blends the moments of neighbouring texels, which is spread where their slopes
     // differ (the bricks' bevels): the same picture, most channels within a few steps.
-    // Measured: mean 3.1 steps, 92 % within 8.
+    // Measured: mean 2.9 steps, 93 % within 8.
     let lean = draw("lean", "0,0,1.2");
     let diffs: Vec<u8> = near.as_raw().iter().zip(lean.as_raw()).map(|(a, b)| a.abs_diff(*b)).collect();
     let mean = diffs.iter().map(|&d| d as f64).sum::<f64>() / diffs.len() as f64;

@@ -87,21 +87,21 @@ fn roughness_map(length: f32, s: f32) -> vec2<f32> {
     return vec2<f32>(e, (e + 2.0) / (s + 2.0));
 }
 
-// bumpmap_math::lean::LeanMoments::specular: the Gaussian of the slopes' covariance plus 1/s at
+// bumpmap_math::lean::LeanMoments::specular: the Gaussian of the slopes' covariance plus J/(s+1) at
 // H's slope, widened by the mean Jacobian J, over Hz^3 (slopes to directions at H).
 fn lean_specular(b: vec2<f32>, m: vec3<f32>, j: f32, h: vec3<f32>, s: f32) -> f32 {
     if h.z <= 1e-4 {
         return 0.0;
     }
-    let inv_s = j / s;
+    let inv_s = j / (s + 1.0);
     let sxx = m.x - b.x * b.x + inv_s;
     let sxy = m.y - b.x * b.y;
     let syy = m.z - b.y * b.y + inv_s;
-    let det = max(sxx * syy - sxy * sxy, 1e-6 / (s * s));
+    let det = max(sxx * syy - sxy * sxy, 1e-6 / ((s + 1.0) * (s + 1.0)));
     let hx = h.x / h.z - b.x;
     let hy = h.y / h.z - b.y;
     let e = (hx * hx * syy - 2.0 * hx * hy * sxy + hy * hy * sxx) / det;
-    return exp(-0.5 * e) / (s * sqrt(det)) / (h.z * h.z * h.z);
+    return exp(-0.5 * e) / ((s + 1.0) * sqrt(det)) / (h.z * h.z * h.z);
 }
 
 fn filtered_specular(h_dot_n: f32, s: f32, lobe_filter: u32, length: f32) -> f32 {

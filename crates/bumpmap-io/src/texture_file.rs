@@ -20,7 +20,7 @@ use std::path::Path;
 
 use crate::atomic::FileSet;
 use crate::error::IoError;
-use bumpmap_math::{Rgba8Image, Rgba16Image};
+use bumpmap_math::{Image, Rgba8Image, Rgba16Image};
 
 /// What a texture file holds: `levels[face][level]`, one face for 2D, six (+X, −X, +Y, −Y, +Z,
 /// −Z) for a cube map. Every face has the same number of levels and sizes.
@@ -36,6 +36,8 @@ pub enum Level<'a> {
     Rgba8(&'a Rgba8Image),
     /// 16 bits a channel.
     Rgba16(&'a Rgba16Image),
+    /// 32-bit floats (LEAN's moments: slopes and their squares, not colours).
+    Rgba32F(&'a Image<[f32; 4]>),
 }
 
 impl Level<'_> {
@@ -44,6 +46,7 @@ impl Level<'_> {
         match self {
             Level::Rgba8(l) => (l.width, l.height),
             Level::Rgba16(l) => (l.width, l.height),
+            Level::Rgba32F(l) => (l.width, l.height),
         }
     }
 }
@@ -72,6 +75,8 @@ pub enum TextureFormat {
     Bc5,
     /// BC7 (four channels).
     Bc7,
+    /// 32-bit float RGBA, uncompressed (for [`Level::Rgba32F`] only).
+    Rgba32Float,
 }
 
 impl TextureFormat {
@@ -82,6 +87,7 @@ impl TextureFormat {
             TextureFormat::Rgba16 => "R16G16B16A16_UNORM",
             TextureFormat::Bc5 => "BC5_UNORM",
             TextureFormat::Bc7 => "BC7_UNORM",
+            TextureFormat::Rgba32Float => "R32G32B32A32_FLOAT",
         }
     }
 
@@ -91,6 +97,7 @@ impl TextureFormat {
             TextureFormat::Rgba16 => 11,
             TextureFormat::Bc5 => 83,
             TextureFormat::Bc7 => 98,
+            TextureFormat::Rgba32Float => 2,
         }
     }
 
@@ -100,6 +107,7 @@ impl TextureFormat {
             TextureFormat::Rgba16 => 91,
             TextureFormat::Bc5 => 141,
             TextureFormat::Bc7 => 145,
+            TextureFormat::Rgba32Float => 109,
         }
     }
 
@@ -113,7 +121,7 @@ impl TextureFormat {
         match self {
             TextureFormat::Rgba8 => 4,
             TextureFormat::Rgba16 => 8,
-            TextureFormat::Bc5 | TextureFormat::Bc7 => 16,
+            TextureFormat::Bc5 | TextureFormat::Bc7 | TextureFormat::Rgba32Float => 16,
         }
     }
 }
@@ -127,6 +135,18 @@ fn encode_level(path: &Path, level: Level, format: TextureFormat) -> Result<Vec<
     use rayon::prelude::*;
     let narrowed;
     let level = match (level, format) {
+        (Level::Rgba32F(l), TextureFormat::Rgba32Float) => {
+            return Ok(l.texels.iter().flatten().flat_map(|v| v.to_le_bytes()).collect());
+        }
+        (Level::Rgba32F(_), _) | (_, TextureFormat::Rgba32Float) => {
+            return Err(IoError::Write {
+                path: path.to_path_buf(),
+                source: std::io::Error::other(format!(
+                    "float levels are stored as R32G32B32A32_FLOAT and only they are, not as {}",
+                    format.name()
+                )),
+            });
+        }
         (Level::Rgba16(l), TextureFormat::Rgba16) => return Ok(l.to_le_bytes()),
         (Level::Rgba8(l), TextureFormat::Rgba16) => {
             return Ok(l.as_bytes().iter().flat_map(|&b| (b as u16 * 257).to_le_bytes()).collect());
@@ -139,7 +159,7 @@ fn encode_level(path: &Path, level: Level, format: TextureFormat) -> Result<Vec<
     };
     let target = match format {
         TextureFormat::Rgba8 => return Ok(level.as_bytes().to_vec()),
-        TextureFormat::Rgba16 => unreachable!("handled above"),
+        TextureFormat::Rgba16 | TextureFormat::Rgba32Float => unreachable!("handled above"),
         TextureFormat::Bc5 => image_dds::ImageFormat::BC5RgUnorm,
         TextureFormat::Bc7 => image_dds::ImageFormat::BC7RgbaUnorm,
     };
@@ -309,7 +329,11 @@ pub fn write_ktx2_into(
     }
     let mut head = Vec::with_capacity(dfd_offset + dfd.len());
     head.extend_from_slice(&IDENTIFIER);
-    let type_size = if format == TextureFormat::Rgba16 { 2 } else { 1 };
+    let type_size = match format {
+        TextureFormat::Rgba16 => 2,
+        TextureFormat::Rgba32Float => 4,
+        _ => 1,
+    };
     for v in [format.vk(), type_size, base_width as u32, base_height as u32, 0, 0, faces as u32, levels as u32, 0] {
         head.extend_from_slice(&v.to_le_bytes());
     }
@@ -343,18 +367,32 @@ pub fn write_ktx2_into(
 /// (RGBSDA model), RGBA16 as four 16-bit ones; BC5 as two 64-bit samples, red and green (model BC5); BC7 as one 128-bit
 /// sample (model BC7), with 4×4 texel blocks.
 fn linear_dfd(format: TextureFormat) -> Vec<u8> {
-    /// A sample: bit offset, bit length − 1, channel id, upper value.
-    type Sample = (u16, u8, u8, u32);
+    /// A sample: bit offset, bit length − 1, channel id with its qualifiers, lower and upper
+    /// values.
+    type Sample = (u16, u8, u8, u32, u32);
+    // Float samples: channel id | KHR_DF_SAMPLE_DATATYPE_FLOAT | _SIGNED; lower −1.0, upper 1.0
+    // as IEEE bits (the Data Format specification's convention for float formats).
+    const F: u8 = 0x80 | 0x40;
+    let (lo, hi) = ((-1.0f32).to_bits(), 1.0f32.to_bits());
     // Model, texel block dimensions − 1, bytes per block, samples.
     let (model, dims, bytes, samples): (u8, [u8; 4], u8, &[Sample]) = match format {
         TextureFormat::Rgba8 => {
-            (1, [0, 0, 0, 0], 4, &[(0, 7, 0, 255), (8, 7, 1, 255), (16, 7, 2, 255), (24, 7, 15, 255)])
+            (1, [0, 0, 0, 0], 4, &[(0, 7, 0, 0, 255), (8, 7, 1, 0, 255), (16, 7, 2, 0, 255), (24, 7, 15, 0, 255)])
         }
-        TextureFormat::Rgba16 => {
-            (1, [0, 0, 0, 0], 8, &[(0, 15, 0, 65535), (16, 15, 1, 65535), (32, 15, 2, 65535), (48, 15, 15, 65535)])
-        }
-        TextureFormat::Bc5 => (132, [3, 3, 0, 0], 16, &[(0, 63, 0, u32::MAX), (64, 63, 1, u32::MAX)]),
-        TextureFormat::Bc7 => (134, [3, 3, 0, 0], 16, &[(0, 127, 0, u32::MAX)]),
+        TextureFormat::Rgba16 => (
+            1,
+            [0, 0, 0, 0],
+            8,
+            &[(0, 15, 0, 0, 65535), (16, 15, 1, 0, 65535), (32, 15, 2, 0, 65535), (48, 15, 15, 0, 65535)],
+        ),
+        TextureFormat::Bc5 => (132, [3, 3, 0, 0], 16, &[(0, 63, 0, 0, u32::MAX), (64, 63, 1, 0, u32::MAX)]),
+        TextureFormat::Bc7 => (134, [3, 3, 0, 0], 16, &[(0, 127, 0, 0, u32::MAX)]),
+        TextureFormat::Rgba32Float => (
+            1,
+            [0, 0, 0, 0],
+            16,
+            &[(0, 31, F, lo, hi), (32, 31, 1 | F, lo, hi), (64, 31, 2 | F, lo, hi), (96, 31, 15 | F, lo, hi)],
+        ),
     };
     let block = 24 + 16 * samples.len();
     let mut d = Vec::with_capacity(4 + block);
@@ -365,10 +403,10 @@ fn linear_dfd(format: TextureFormat) -> Vec<u8> {
     d.extend_from_slice(&[model, 1, 1, 0]); // model, BT.709 primaries, linear, straight alpha
     d.extend_from_slice(&dims); // texel block dimensions, each minus one
     d.extend_from_slice(&[bytes, 0, 0, 0, 0, 0, 0, 0]); // bytes in plane 0
-    for &(offset, length, channel, upper) in samples {
+    for &(offset, length, channel, lower, upper) in samples {
         d.extend_from_slice(&offset.to_le_bytes());
         d.extend_from_slice(&[length, channel, 0, 0, 0, 0]); // bit length − 1, channel id, position 0
-        d.extend_from_slice(&0u32.to_le_bytes());
+        d.extend_from_slice(&lower.to_le_bytes());
         d.extend_from_slice(&upper.to_le_bytes());
     }
     d
@@ -411,6 +449,37 @@ mod tests {
             }
             std::fs::remove_file(path).unwrap();
         }
+    }
+
+    #[test]
+    fn float_levels_parse_with_independent_readers_and_refuse_other_formats() {
+        let data: Vec<Image<[f32; 4]>> = vec![
+            Image::new(2, 2, vec![[-1.5, 0.25, 2.25, 1e-3], [0.0, -0.0, 7.0, 1.0], [3.5, 1.0, 0.5, 2.0], [1.0; 4]]),
+            Image::new(1, 1, vec![[0.5, -0.5, 1.25, 9.0]]),
+        ];
+        let tex = TextureLayout { faces: vec![data.iter().map(Level::Rgba32F).collect()] };
+        let floats = |l: &Image<[f32; 4]>| l.texels.iter().flatten().flat_map(|v| v.to_le_bytes()).collect::<Vec<u8>>();
+        let path = tmp("tf.ktx2");
+        write_ktx2(&path, &tex, TextureFormat::Rgba32Float).unwrap();
+        let bytes = std::fs::read(&path).unwrap();
+        let reader = ktx2::Reader::new(&bytes[..]).expect("valid KTX2");
+        assert_eq!(reader.header().format, Some(ktx2::Format::R32G32B32A32_SFLOAT));
+        assert_eq!(reader.header().type_size, 4);
+        for (k, level) in reader.levels().enumerate() {
+            assert_eq!(level.data, floats(&data[k]).as_slice(), "level {k}");
+        }
+        std::fs::remove_file(path).unwrap();
+        let path = tmp("tf.dds");
+        write_dds(&path, &tex, TextureFormat::Rgba32Float).unwrap();
+        let dds = ddsfile::Dds::read(std::fs::File::open(&path).unwrap()).expect("valid DDS");
+        assert_eq!(dds.get_dxgi_format(), Some(ddsfile::DxgiFormat::R32G32B32A32_Float));
+        assert_eq!(dds.get_num_mipmap_levels(), 2);
+        assert_eq!(dds.data, [floats(&data[0]), floats(&data[1])].concat());
+        std::fs::remove_file(path).unwrap();
+        // Floats are not squeezed into bytes, nor bytes passed off as floats.
+        assert!(write_dds(&tmp("tf8.dds"), &tex, TextureFormat::Rgba8).is_err());
+        let eight = chain();
+        assert!(write_ktx2(&tmp("t8f.ktx2"), &layout(&eight, 1), TextureFormat::Rgba32Float).is_err());
     }
 
     #[test]

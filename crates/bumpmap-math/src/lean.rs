@@ -4,27 +4,34 @@
 //!
 //! A unit normal N (tangent space) has the slope B = (Nx/Nz, Ny/Nz) and second moment
 //! M = (Bx², Bx·By, By²). Averaged over a footprint, M − BBᵀ is the covariance of the slopes;
-//! adding the material's own lobe width I/s gives the Gaussian Σ that the specular lobe uses
-//! ([`LeanMoments::specular`]).
+//! adding the material's own lobe width gives the Gaussian Σ that the specular lobe uses
+//! ([`LeanMoments::specular`]). The chain here holds each level's exact mean over the level-0
+//! texels it covers (the footprints of [`crate::mip`]), which a GPU's trilinear filter then
+//! keeps on averaging.
 //!
-//! One moment more than the paper's: J = 1/Nz³ = (1 + |B|²)^{3/2}, the Jacobian from directions
-//! to slopes (dΩ = d(slope)/J). A texel's (H·N)^s covers 2π/s of directions, so 2π·J/s of
-//! slopes: a steep facet's highlight is wider in slope space, and brings more, than LEAN's
-//! constant lobe I/s gives it. The lobe here is therefore weighted by the Jacobian at H's own
-//! slope, 1/Hz³ (where a facet must lie to send H's highlight), and its width by J's mean
-//! ([`LeanMoments::covariance`]), so that any single texel still peaks at 1, as (H·N)^s does.
+//! Two changes to the paper's lobe, both from reading a Gaussian over slopes as the (H·N)^s of
+//! the single pass, which the reference draws per sample:
+//! - The base width is 1/(s + 1), not 1/s: a flat texel's (H·N)^s holds 2π/(s + 1) over
+//!   directions, and so does exp(−|h̃|²(s + 1)/2)/Hz³ below (on the bricks' torus at s = 8 this
+//!   alone takes LEAN from 24.8 to 25.9 dB against the reference).
+//! - One moment more: J = 1/Nz³ = (1 + |B|²)^{3/2}, the Jacobian from directions to slopes
+//!   (dΩ = d(slope)/J). A tilted texel's lobe covers J times the slopes a flat one's does, so a
+//!   steep facet's highlight is wider in slope space, and brings more, than a constant lobe
+//!   gives it. The lobe is weighted by the Jacobian at H's own slope, 1/Hz³ (where a facet must
+//!   lie to send H's highlight), and widened by J's mean ([`LeanMoments::covariance`]), so that
+//!   any single texel still peaks at 1, as (H·N)^s does. Where every normal is straight up,
+//!   J = 1.
+//!
 //! Measured on a map whose slopes are mostly flat with steep walls (the golf ball's dimples,
 //! `compare`'s specular study, 1× to 16×): the paper's lobe loses 29–46 % of the highlight's
-//! energy; with J's mean as the lobe's mass instead of 1/Hz³ it gains 27–36 % (the steep
-//! facets' mass lands where the sphere shows little area); as here, −1 to −10 %. Where every
-//! normal is straight up, J = 1.
+//! energy; with J's mean as the lobe's weight instead of 1/Hz³ it gains 27–36 % (the steep
+//! facets' weight lands where the sphere shows little area); as here, −4 to −12 %.
 //!
 //! What no single Gaussian does: follow a slope distribution that is not one. The dimples'
 //! slopes are peaked (half below 0.32) with long tails (to 2.6); a Gaussian of the same
-//! covariance spreads the highlight a third wider than the reference's (0.54 against 0.40 of the
-//! ball's radius, computed from the map's slopes alone), which is what the study measures. The chain here holds each level's exact mean over the level-0
-//! texels it covers (the footprints of [`crate::mip`]), which is what a GPU's trilinear filter
-//! then keeps on averaging.
+//! covariance spreads the highlight a third wider than the reference's (0.54 against 0.40 of
+//! the ball's radius, and 6.5 % less energy, computed from the map's slopes alone), which is
+//! what the study measures.
 //!
 //! What this module does not do: sample the moments (the backends' texture units), or make
 //! moments for object-space maps or offset maps (slopes are relative to the tangent plane's
@@ -86,13 +93,13 @@ impl LeanMoments {
         Self { b: Vec2::new(a[0], a[1]), m: Vec3::new(a[2], a[4], a[3]), j: a[5] }
     }
 
-    /// Σ = M − BBᵀ + I·J/s as (Σxx, Σxy, Σyy): the spread of the slopes plus a Blinn–Phong
-    /// lobe of exponent `shininess` read as a Gaussian of variance 1/s in slope space (Olano &
-    /// Baker §3.2, with the errata's correction of the lobe's variance), widened by the mean
-    /// Jacobian J so that its determinant grows as J² (the lobe of a texel tilted by θ covers
-    /// J = 1/cos³θ times the slopes of a flat one's).
+    /// Σ = M − BBᵀ + I·J/(s + 1) as (Σxx, Σxy, Σyy): the spread of the slopes plus a
+    /// Blinn–Phong lobe of exponent `shininess` read as a Gaussian in slope space (Olano & Baker
+    /// §3.2 with the errata, whose variance is 1/s; 1/(s + 1) here, see the module's docs),
+    /// widened by the mean Jacobian J so that its determinant grows as J² (the lobe of a texel
+    /// tilted by θ covers J = 1/cos³θ times the slopes of a flat one's).
     pub fn covariance(self, shininess: f32) -> Vec3 {
-        let inv_s = self.j / shininess;
+        let inv_s = self.j / (shininess + 1.0);
         Vec3::new(
             self.m.x - self.b.x * self.b.x + inv_s,
             self.m.y - self.b.x * self.b.y,
@@ -102,14 +109,14 @@ impl LeanMoments {
 
     /// The specular lobe for the unit half-angle vector `h` (tangent space): the Gaussian
     /// exp(−e/2), e = (h̃ − B)ᵀ Σ⁻¹ (h̃ − B), h̃ = (Hx/Hz, Hy/Hz), with Σ from
-    /// [`LeanMoments::covariance`], over LEAN's 2π·√det Σ, times 2π/(s·Hz³) (the integral over
-    /// slopes of a texel's (H·N)^s lobe where H's highlight lies, see the module's docs). Any
-    /// single texel peaks at 1 where H lies along its normal; a flat one gives
-    /// exp(−s·|h̃|²/2)/Hz³, (H·N)^s to first order in θ² with a lobe √(s/(s − 3)) wider (5 %
-    /// at s = 32); a spread texel widens and dims, as Toksvig's does.
+    /// [`LeanMoments::covariance`], over LEAN's 2π·√det Σ, times 2π/((s + 1)·Hz³) (a texel's
+    /// (H·N)^s over directions, moved to slopes where H's highlight lies: the module's docs).
+    /// Any single texel peaks at 1 where H lies along its normal; a flat one gives
+    /// exp(−(s + 1)|h̃|²/2)/Hz³, the same integral as (H·N)^s and its curvature at the peak
+    /// that of (H·N)^(s − 2); a spread texel widens and dims, as Toksvig's does.
     ///
     /// Zero where H lies within 10⁻⁴ of the surface or below it (the lobe's tail there is
-    /// nothing in f32). det Σ is kept at least 1/s² · 10⁻⁶ (errata: M − BBᵀ can round below
+    /// nothing in f32). det Σ is kept at least 10⁻⁶/(s + 1)² (errata: M − BBᵀ can round below
     /// zero).
     ///
     /// ```
@@ -125,11 +132,11 @@ impl LeanMoments {
             return 0.0;
         }
         let sigma = self.covariance(shininess);
-        let floor = 1e-6 / (shininess * shininess);
+        let floor = 1e-6 / ((shininess + 1.0) * (shininess + 1.0));
         let det = (sigma.x * sigma.z - sigma.y * sigma.y).max(floor);
         let (hx, hy) = (h.x / h.z - self.b.x, h.y / h.z - self.b.y);
         let e = (hx * hx * sigma.z - 2.0 * hx * hy * sigma.y + hy * hy * sigma.x) / det;
-        (-0.5 * e).exp() / (shininess * det.sqrt()) / (h.z * h.z * h.z)
+        (-0.5 * e).exp() / ((shininess + 1.0) * det.sqrt()) / (h.z * h.z * h.z)
     }
 
     fn scaled_sum(self, other: Self, w: f32) -> Self {
@@ -265,7 +272,7 @@ mod tests {
     }
 
     #[test]
-    fn a_flat_texel_is_blinn_phong_to_second_order_and_spread_widens_and_dims_it() {
+    fn a_flat_texel_is_close_to_blinn_phong_and_spread_widens_and_dims_it() {
         let s = 32.0;
         for deg in [0.0f32, 2.0, 5.0, 10.0] {
             let h = Vec3::new(deg.to_radians().sin(), 0.0, deg.to_radians().cos());
@@ -280,12 +287,13 @@ mod tests {
         );
         let mean = (a + b) * 0.5;
         assert!(mean.b.length() < 1e-6);
-        // J = (1 + 0.3²)^{3/2} for both; Σ = diag(0.3² + J/s, J/s); at H = +z the peak
-        // 1/(s·√det Σ).
+        // J = (1 + 0.3²)^{3/2} for both; Σ = diag(0.3² + J/(s + 1), J/(s + 1)); at H = +z the
+        // peak 1/((s + 1)·√det Σ).
         let j = 1.09f32.powf(1.5);
         assert!((mean.j - j).abs() < 1e-5, "{} vs {j}", mean.j);
         let peak = mean.specular(Vec3::Z, s);
-        let want = 1.0 / (s * ((0.09 + j / s) * (j / s)).sqrt());
+        let v = j / (s + 1.0);
+        let want = 1.0 / ((s + 1.0) * ((0.09 + v) * v).sqrt());
         assert!((peak - want).abs() < 1e-4, "the spread dims the peak: {peak} vs {want}");
         let off_x = Vec3::new(0.35, 0.0, 1.0).normalize();
         let off_y = Vec3::new(0.0, 0.35, 1.0).normalize();
@@ -303,6 +311,24 @@ mod tests {
             let n = Vec3::new(x, y, z);
             let peak = LeanMoments::of_normal(n).specular(n, s);
             prop_assert!((peak - 1.0).abs() < 1e-3, "{}: {}", n, peak);
+        }
+    }
+
+    #[test]
+    fn a_flat_texels_lobe_holds_what_blinn_phongs_does_over_directions() {
+        // ∫ (H·N)^s dΩ = 2π/(s + 1); the lobe's integral, by the midpoint rule over θ.
+        for s in [1.0f32, 8.0, 32.0, 100.0] {
+            let steps = 200_000;
+            let d = std::f64::consts::FRAC_PI_2 / steps as f64;
+            let total: f64 = (0..steps)
+                .map(|i| {
+                    let theta = (i as f64 + 0.5) * d;
+                    let h = Vec3::new(theta.sin() as f32, 0.0, theta.cos() as f32);
+                    LeanMoments::FLAT.specular(h, s) as f64 * 2.0 * std::f64::consts::PI * theta.sin() * d
+                })
+                .sum();
+            let want = 2.0 * std::f64::consts::PI / (s as f64 + 1.0);
+            assert!((total / want - 1.0).abs() < 2e-3, "s {s}: {total} vs {want}");
         }
     }
 

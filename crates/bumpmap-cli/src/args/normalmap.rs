@@ -203,6 +203,9 @@ pub struct NormalmapArgs {
     /// Channels of --roughness-out: gray (roughness in RGB), gloss (1 − roughness in RGB), gltf (glTF's metallicRoughness and Unreal's ORM: G roughness, B metallic 0, R 1), unity (Unity's metallic-smoothness: R metallic 0, A smoothness)
     #[arg(long = "roughness-layout", value_enum, default_value = "gray", requires = "roughness_out")]
     pub roughness_layout: RoughnessLayoutArg,
+    /// Also write LEAN mapping's moments (Olano & Baker 2010) for every level, as 32-bit floats in .ktx2 or .dds: L.ktx2 holds (Bx, By, Mxx, Myy), L.mxy-j.ktx2 holds (Mxy, J, 0, 0), with B = (Nx/Nz, Ny/Nz), M = (Bx², BxBy, By²), J = 1/Nz³, each level the mean over the level-0 texels it covers of the 8-bit normal map's; what `--specular-filter lean` renders from
+    #[arg(long = "lean-out", requires = "mips")]
+    pub lean_out: Option<PathBuf>,
 }
 
 /// Where a roughness map puts its value.
