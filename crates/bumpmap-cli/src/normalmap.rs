@@ -57,7 +57,7 @@ pub fn run(args: &NormalmapArgs) -> Result<(), CliError> {
         None => None,
     };
     let lean = match &lean_out {
-        Some(_) => Some(lean_levels(&field, &options, &args.input)?),
+        Some(_) => Some(lean_levels(&field, &options, &levels, &args.input)?),
         None => None,
     };
     // The heights are not needed to write the chain: a 16384² field is 1 GiB of floats.
@@ -119,15 +119,23 @@ fn lean_paths(out: &Path) -> Result<[PathBuf; 2], CliError> {
 
 /// `--lean-out`'s levels, two planes: (Bx, By, Mxx, Myy) and (Mxy, J, 0, 0), from the 8-bit
 /// normal map's level 0 (the chain `render` draws from, whatever `--bits` the normal map is
-/// written at), by [`LeanMips`](bumpmap_math::LeanMips).
+/// written at), by [`LeanMips`](bumpmap_math::LeanMips): the written chain's own level 0 when
+/// it is 8-bit (its mip mode changes no level-0 texel), else one made at 8 bits.
 fn lean_levels(
     field: &HeightField,
     options: &NormalMapOptions,
+    written: &Chain,
     name: &str,
 ) -> Result<[Vec<bumpmap_math::Image<[f32; 4]>>; 2], CliError> {
-    let chain: MipChain = make_texels(field, options, true, MipMode::LengthInAlpha, name)?;
-    let encoding = chain.encoding;
-    let lean = bumpmap_math::LeanMips::from_normal_map(&chain.into_mips(), encoding)
+    let made;
+    let chain: &MipChain = match written {
+        Chain::Rgba8(chain) => chain,
+        Chain::Rgba16(_) => {
+            made = make_texels(field, options, true, MipMode::LengthInAlpha, name)?;
+            &made
+        }
+    };
+    let lean = bumpmap_math::LeanMips::from_level0(&chain.levels[0], chain.levels.len(), chain.encoding)
         .map_err(|e| CliError::NormalMap { path: name.to_string(), source: NormalMapError::OutOfMemory(e) })?;
     let plane = |texel: fn(&bumpmap_math::LeanMoments) -> [f32; 4]| {
         lean.levels

@@ -447,6 +447,21 @@ fn lean_out_writes_two_float_textures_with_the_normal_map_or_nothing() {
         assert_eq!(reader.header().format, Some(ktx2::Format::R32G32B32A32_SFLOAT), "{}", path.display());
         assert_eq!(reader.header().level_count, 6);
     }
+    // From the 8-bit map `render` draws from, whatever depth the normal map is written at.
+    let l16 = dir.join("l16.ktx2");
+    let o = bumpmap(&[
+        "normalmap",
+        "dimples@32",
+        "-o",
+        dir.join("n16.png").to_str().unwrap(),
+        "--bits",
+        "16",
+        "--mips",
+        "--lean-out",
+        l16.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert_eq!(std::fs::read(&l16).unwrap(), std::fs::read(&l).unwrap(), "the same moments at --bits 16");
     // Refused before any work, nothing written: PNG cannot hold floats, no --mips, the normal
     // map's own file, a folder of height fields.
     let fresh = scratch("normalmap_lean_refused");

@@ -138,10 +138,6 @@ impl LeanMoments {
         let e = (hx * hx * sigma.z - 2.0 * hx * hy * sigma.y + hy * hy * sigma.x) / det;
         (-0.5 * e).exp() / ((shininess + 1.0) * det.sqrt()) / (h.z * h.z * h.z)
     }
-
-    fn scaled_sum(self, other: Self, w: f32) -> Self {
-        self + other * w
-    }
 }
 
 /// Moments add as a filter's weighted sum needs them to.
@@ -176,14 +172,22 @@ impl LeanMips {
     /// filtered down to as many levels as `normal_map` has. Errors with the size needed when
     /// memory runs out.
     pub fn from_normal_map(normal_map: &Rgba8Mips, encoding: Encoding) -> Result<Self, OutOfMemory> {
-        let base = &normal_map.levels()[0];
+        Self::from_level0(&normal_map.levels()[0], normal_map.levels().len(), encoding)
+    }
+
+    /// [`LeanMips::from_normal_map`] from a normal map's level 0 alone, `count` levels (at most
+    /// down to 1×1).
+    pub fn from_level0(base: &Rgba8Image, count: usize, encoding: Encoding) -> Result<Self, OutOfMemory> {
         let level0 = moments_of_level(base, encoding)?;
-        let mut levels = Vec::with_capacity(normal_map.levels().len());
+        let mut levels = Vec::with_capacity(count);
         levels.push(level0);
         // How many level-0 columns and rows each texel of the newest level covers.
         let mut cols = vec![1u32; base.width];
         let mut rows = vec![1u32; base.height];
-        while levels.len() < normal_map.levels().len() {
+        while levels.len() < count && {
+            let last = levels.last().expect("level 0 is there");
+            last.width > 1 || last.height > 1
+        } {
             let prev = levels.last().expect("level 0 is there");
             let (w, h) = (next_size(prev.width), next_size(prev.height));
             let next_cols: Vec<u32> = (0..w).map(|i| footprint(i, prev.width).map(|x| cols[x]).sum()).collect();
@@ -197,7 +201,7 @@ impl LeanMips {
                     for y in footprint(j, prev.height) {
                         for x in footprint(i, prev.width) {
                             let weight = (cols[x] * rows[y]) as f32 / total;
-                            sum = sum.scaled_sum(prev.texel(x, y), weight);
+                            sum = sum + prev.texel(x, y) * weight;
                         }
                     }
                     texels.push(sum);
