@@ -42,3 +42,23 @@ def test_the_roughness_map_is_filaments_prefilter_of_the_normal_maps_lengths(cli
     assert levels == 9
     assert rougher[0] == round(0.35 * 255), "level 0: every normal alone, the surface's own roughness"
     assert rougher[4] > rougher[0] + 20, f"the smaller levels are rougher where the dimples spread: {rougher}"
+
+
+def test_render_reads_an_exported_roughness_map(cli, tmp_path):
+    """The file `--roughness-out` writes (glTF's ORM layout, KTX2) drawn by `render`'s
+    roughness-map technique: nearly the picture of the map the renderer makes itself from the
+    normal map, and far from the unfiltered single pass. Shininess 30 is roughness 0.5."""
+    import bumpmap
+
+    normals, orm = tmp_path / "n.png", tmp_path / "orm.ktx2"
+    cli("normalmap", "dimples@256", "-o", normals, "--mips", "--roughness-out", orm, "--roughness", "0.5",
+        "--roughness-layout", "gltf")
+    common = dict(backend="cpu", size=96, scene="sphere", eye=(0, -9, 2.5), shininess=30, ambient=0, diffuse=0,
+                  normal_map=str(normals))
+    read = bumpmap.render(technique="roughness-map", roughness_map=str(orm), roughness_layout="gltf", **common)
+    made = bumpmap.render(technique="roughness-map", **common)
+    plain = bumpmap.render(technique="single-pass", **common)
+    read, made, plain = (a[..., :3].astype(np.float64) for a in (read, made, plain))
+    assert (read > 40).sum() > 100, "the highlight is drawn"
+    near, far = np.abs(read - made).mean(), np.abs(read - plain).mean()
+    assert near < 0.05 and far > 4 * near, (near, far)

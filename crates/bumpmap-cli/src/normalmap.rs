@@ -53,7 +53,7 @@ pub fn run(args: &NormalmapArgs) -> Result<(), CliError> {
     let field = source.load(channel)?;
     let levels = make_chain(&field, &options, args.mips, args.mip_mode.into(), format, &args.input)?;
     let roughness = match &args.roughness_out {
-        Some(_) => Some(roughness_chain(&field, args, &options)?),
+        Some(_) => Some(roughness_chain(&field, &options, args.roughness, args.roughness_layout, &args.input)?),
         None => None,
     };
     let lean = match &lean_out {
@@ -81,22 +81,25 @@ pub fn run(args: &NormalmapArgs) -> Result<(), CliError> {
     Ok(())
 }
 
-/// `--roughness-out`'s levels: the lengths of the averaged normals from a 16-bit chain with the
-/// length in alpha (whatever the normal map's own depth and mip mode), made into roughness by
+/// `--roughness-out`'s levels for a surface of perceptual roughness `perceptual`: the lengths of
+/// the averaged normals from a 16-bit chain with the length in alpha (whatever the normal map's
+/// own depth and mip mode), made into roughness by
 /// [`filament_roughness`](bumpmap_math::roughness::filament_roughness) and laid out in RGBA8 as
-/// `--roughness-layout` says.
-fn roughness_chain(
+/// `layout` says. `compare`'s specular study draws with these levels too.
+pub(crate) fn roughness_chain(
     field: &HeightField,
-    args: &NormalmapArgs,
     options: &NormalMapOptions,
+    perceptual: f32,
+    layout: crate::args::RoughnessLayoutArg,
+    name: &str,
 ) -> Result<MipChain, CliError> {
-    let lengths: MipChain<[u16; 4]> = make_texels(field, options, true, MipMode::LengthInAlpha, &args.input)?;
-    let levels = bumpmap_math::roughness::roughness_levels(&lengths, args.roughness)
+    let lengths: MipChain<[u16; 4]> = make_texels(field, options, true, MipMode::LengthInAlpha, name)?;
+    let levels = bumpmap_math::roughness::roughness_levels(&lengths.levels, perceptual)
         .into_iter()
         .map(|level| bumpmap_math::Image {
             width: level.width,
             height: level.height,
-            texels: level.texels.into_iter().map(|r| args.roughness_layout.texel(r)).collect(),
+            texels: level.texels.into_iter().map(|r| layout.texel(r)).collect(),
         })
         .collect();
     Ok(MipChain { levels, encoding: bumpmap_math::Encoding::Unorm })

@@ -243,6 +243,7 @@ pub fn core_err(e: CoreError) -> CliError {
         Feature::OffsetMap => "an offset map (its combiners cannot renormalize N + D per pixel)".into(),
         Feature::SurfaceMap => "a normal map made for one surface (its passes read every texture with the repeating coordinates)".into(),
         Feature::LeanFilter => "--specular-filter lean on this map".into(),
+        Feature::RoughnessFilter => "--specular-filter roughness-map on this map".into(),
     }
     };
     match e {
@@ -251,6 +252,12 @@ pub fn core_err(e: CoreError) -> CliError {
              the object-space, offset-map and peercy-blinn techniques' maps have none: use --specular-filter toksvig"
                 .into(),
         ),
+        CoreError::Unsupported { feature: Feature::RoughnessFilter, .. } => CliError::Render(
+            "--specular-filter roughness-map (or --technique roughness-map) reads the normal lengths a map of unit normals keeps in its mips' alpha; \
+             the offset-map and peercy-blinn techniques' maps hold offsets or derivatives there: use --technique single-pass"
+                .into(),
+        ),
+        e @ CoreError::RoughnessSize { .. } => CliError::Render(format!("--roughness-map: {e}")),
         CoreError::Unsupported { technique, feature } => CliError::Render(format!(
             "--technique {technique} cannot do {}: the paper's combiners have no room for it; use --technique single-pass",
             flag(&feature)

@@ -23,8 +23,8 @@ use bumpmap_io::{Channel, HeightSource, MeshOptions};
 use glam::{Vec2, Vec3};
 
 use crate::args::{
-    FilterArg, HalfAngleArg, NormalizeArg, PrecisionArg, SceneSetup, SelfShadowArg, SpecularArg, SpecularFilterArg,
-    SpecularShadowArg, TechniqueGroup, ViewerArg,
+    FilterArg, HalfAngleArg, NormalizeArg, PrecisionArg, RoughnessLayoutArg, SceneSetup, SelfShadowArg, SpecularArg,
+    SpecularFilterArg, SpecularShadowArg, TechniqueGroup, ViewerArg,
 };
 use crate::error::CliError;
 use crate::render::{core_err, lib_err};
@@ -64,6 +64,7 @@ pub fn named_inputs(s: &SceneSetup) -> Vec<PathBuf> {
     if let Some(d) = s.scene.decal.as_deref().filter(|d| *d != "none") {
         files.push(PathBuf::from(d));
     }
+    files.extend(s.material.roughness_map.clone());
     for spec in [&s.lights.spot_pattern, &s.material.gloss].into_iter().flatten() {
         if let Some(p) =
             HeightSource::parse(spec).path().filter(|_| !matches!(spec.as_str(), "bricks" | "decal-alpha" | "none"))
@@ -295,6 +296,70 @@ fn sampler(filter: FilterArg) -> Sampler {
     }
 }
 
+/// A roughness map for `--roughness-map`: a DDS or KTX2 file's own levels, or a PNG (or other
+/// image) with `NAME.mip1.png`, `NAME.mip2.png`, … beside it as `normalmap --roughness-out`
+/// writes them; each texel's roughness read by `layout` into the gray form the renderers
+/// sample. A lone image gets box-filtered levels, with a warning: they keep no spread.
+fn load_roughness_map(path: &Path, layout: RoughnessLayoutArg) -> Result<Rgba8Mips, CliError> {
+    let to_rgba8 = |stored: bumpmap_io::StoredTexture| -> Vec<Rgba8Image> {
+        match stored.levels {
+            bumpmap_io::StoredLevels::Rgba8(levels) => levels,
+            bumpmap_io::StoredLevels::Rgba16(levels) => levels
+                .into_iter()
+                .map(|l| {
+                    let texels = l.texels.iter().map(|t| t.map(|c| ((c as u32 * 255 + 32767) / 65535) as u8)).collect();
+                    Rgba8Image::new(l.width, l.height, texels)
+                })
+                .collect(),
+        }
+    };
+    let mut levels = to_rgba8(bumpmap_io::load_texture(path)?);
+    if levels.len() == 1 {
+        for k in 1.. {
+            let mip = crate::normalmap::level_path(path, k);
+            if !mip.is_file() {
+                break;
+            }
+            let (w, h) = (levels[k - 1].width, levels[k - 1].height);
+            let next = to_rgba8(bumpmap_io::load_texture(&mip)?).swap_remove(0);
+            let want = (bumpmap::bumpmap_math::mip::next_size(w), bumpmap::bumpmap_math::mip::next_size(h));
+            if (next.width, next.height) != want {
+                return Err(CliError::Path {
+                    path: mip,
+                    reason: format!(
+                        "is {}x{}, but level {k} of a {w}x{h} level 0 is {}x{} (--roughness-map's levels)",
+                        next.width, next.height, want.0, want.1
+                    ),
+                });
+            }
+            levels.push(next);
+            if want == (1, 1) {
+                break;
+            }
+        }
+    }
+    let gray = |level: Rgba8Image| {
+        let texels = level
+            .texels
+            .iter()
+            .map(|&t| {
+                let r = bumpmap::bumpmap_math::roughness::unorm8(layout.read(t));
+                [r, r, r, 255]
+            })
+            .collect();
+        Rgba8Image::new(level.width, level.height, texels)
+    };
+    if levels.len() == 1 {
+        eprintln!(
+            "warning: {}: one level, so its smaller levels are box-filtered and hold no spread of the normals; \
+             `bumpmap normalmap --mips --roughness-out` writes every level",
+            bumpmap_io::error::shown(path)
+        );
+        return Ok(Rgba8Mips::with_box_mipmaps(gray(levels.swap_remove(0))));
+    }
+    Ok(Rgba8Mips::from_levels(levels.into_iter().map(gray).collect()))
+}
+
 fn self_shadow(t: &TechniqueGroup) -> SelfShadow {
     match (t.no_self_shadow, t.self_shadow) {
         (true, _) | (_, SelfShadowArg::Off) => SelfShadow::Off,
@@ -367,6 +432,24 @@ fn technique_options(s: &SceneSetup, name: TechniqueName) -> Result<TechniqueOpt
         }
         Some(path) => Gloss::Map(Arc::new(Rgba8Mips::with_box_mipmaps(bumpmap_io::load_rgba8(Path::new(path))?))),
     };
+    let roughness_map = match &m.roughness_map {
+        None => None,
+        Some(path) if name == TechniqueName::RoughnessMap || t.specular_filter == SpecularFilterArg::RoughnessMap => {
+            Some(Arc::new(load_roughness_map(path, m.roughness_layout)?))
+        }
+        Some(_) => {
+            return Err(CliError::Usage(format!(
+                "--roughness-map is read by the roughness-map specular filter: add --technique roughness-map (or --specular-filter roughness-map), not --technique {name}{}",
+                match t.specular_filter {
+                    SpecularFilterArg::None => String::new(),
+                    f => format!(
+                        " with --specular-filter {}",
+                        clap::ValueEnum::to_possible_value(&f).map(|v| v.get_name().to_owned()).unwrap_or_default()
+                    ),
+                }
+            )));
+        }
+    };
     let sampler = sampler(t.filter);
     let cube_size = t.cube_size as usize;
     Ok(TechniqueOptions {
@@ -404,6 +487,7 @@ fn technique_options(s: &SceneSetup, name: TechniqueName) -> Result<TechniqueOpt
                 SpecularFilterArg::RoughnessMap => bumpmap::SpecularFilter::RoughnessMap,
                 SpecularFilterArg::Lean => bumpmap::SpecularFilter::Lean,
             },
+            roughness_map,
         },
         emboss: bumpmap::EmbossOptions { sampler, cube_size, ..Default::default() },
         reference: ReferenceOptions {

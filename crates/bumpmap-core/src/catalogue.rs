@@ -182,7 +182,7 @@ impl TechniqueName {
                 "the single pass with Toksvig's filter (2005, past §2.5.3): the mip chain's |N| widens and dims the specular lobe, exponent s·|N|/(|N| + s(1 − |N|))"
             }
             TechniqueName::RoughnessMap => {
-                "the single pass reading roughness as an engine does from `normalmap --roughness-out` (Filament's prefilter of the mips' |N|), turned into a Blinn–Phong exponent and normalization"
+                "the single pass sampling a roughness map as an engine does: `normalmap --roughness-out`'s (Filament's prefilter of each level's |N|), made from the normal map or given as a file, turned into a Blinn–Phong exponent and normalization"
             }
             TechniqueName::Lean => {
                 "the single pass with LEAN mapping (Olano & Baker 2010): the slopes' first and second moments mip-filtered linearly, the highlight a Gaussian of their covariance plus 1/s, anisotropic"

@@ -39,6 +39,9 @@ pub enum Feature {
     SurfaceMap,
     /// The LEAN filter on a map that has no tangent-space slopes (object space, or offsets).
     LeanFilter,
+    /// The roughness-map filter made from a map whose alpha is not a normal's length (offsets
+    /// or derivatives).
+    RoughnessFilter,
 }
 
 impl std::fmt::Display for Feature {
@@ -59,6 +62,9 @@ impl std::fmt::Display for Feature {
             Feature::OffsetMap => f.write_str("an offset map (its combiners cannot renormalize N + D per pixel)"),
             Feature::LeanFilter => f.write_str(
                 "the LEAN specular filter on an object-space or offset map (its moments are the slopes of a tangent-space map of unit normals)",
+            ),
+            Feature::RoughnessFilter => f.write_str(
+                "the roughness-map specular filter on an offset or derivative map (its roughness comes from the lengths a map of unit normals keeps in alpha)",
             ),
             Feature::SurfaceMap => f.write_str(
                 "a normal map made for one surface (its passes read every texture with the repeating coordinates)",
@@ -108,6 +114,15 @@ pub enum CoreError {
         gloss: (usize, usize),
         /// The decal's size.
         decal: (usize, usize),
+    },
+    /// A roughness map is read with the normal map's texture coordinates and levels, so their
+    /// sizes must agree.
+    #[error("the roughness map is {}x{} but the normal map is {}x{}: it is read with the normal map's coordinates and levels and must be the same size", .roughness.0, .roughness.1, .normal_map.0, .normal_map.1)]
+    RoughnessSize {
+        /// The roughness map's size.
+        roughness: (usize, usize),
+        /// The normal map's size.
+        normal_map: (usize, usize),
     },
     /// Gloss from the decal's alpha without a decal.
     #[error("gloss from the decal's alpha needs a decal")]

@@ -9,6 +9,9 @@
 //! [`Fragment`] fields), and the three-pass technique's 8-bit arithmetic (that is the register
 //! combiners' setup data, `setups`).
 
+use std::sync::Arc;
+
+use bumpmap_math::Rgba8Mips;
 pub use bumpmap_math::lean::LeanMoments;
 use glam::{Vec3, Vec4};
 
@@ -48,8 +51,9 @@ pub enum SpecularFilter {
     None,
     /// Toksvig 2005 ([`toksvig`]): a shorter filtered normal widens and dims the lobe.
     Toksvig,
-    /// The roughness `bumpmap normalmap --roughness-out` exports, read as an engine's
-    /// Blinn–Phong shader reads roughness ([`roughness_map`]).
+    /// A roughness map (the one `bumpmap normalmap --roughness-out` exports, or one made the
+    /// same way from the normal map) read as an engine's Blinn–Phong shader reads roughness
+    /// ([`roughness_exponent`]); it reads [`Fragment::roughness`], not |Nₐ|.
     RoughnessMap,
     /// LEAN mapping (Olano & Baker 2010): the lobe a Gaussian in slope space whose covariance
     /// is the filtered slopes' spread plus the material's own width
@@ -77,37 +81,92 @@ pub fn toksvig(length: f32, shininess: f32) -> (f32, f32) {
     (s, (1.0 + s) / (1.0 + shininess))
 }
 
-/// The exponent and energy factor a Blinn–Phong shader gets from the roughness map
-/// `normalmap --roughness-out` makes: the exponent as GGX α² = 2/(s + 2) (the usual
-/// correspondence), its perceptual roughness α^½ made rougher by the filtered normal's length
-/// with Filament's prefilter ([`bumpmap_math::roughness::filament_roughness`], the exported
-/// map's formula), and back: exponent s′ = 2/α′² − 2, energy (s′ + 2)/(s + 2), the ratio of
-/// normalized Blinn–Phong lobes. At |Nₐ| = 1 it gives back `(shininess, 1)` within rounding.
+/// The smallest perceptual roughness a roughness map is read as (Filament's
+/// `MIN_PERCEPTUAL_ROUGHNESS` for fp32): a texel of 0 would ask for an infinite exponent.
+pub const MIN_PERCEPTUAL_ROUGHNESS: f32 = 0.045;
+
+/// The perceptual roughness (glTF's, GGX α^½) of Blinn–Phong exponent `shininess`, by the usual
+/// correspondence α² = 2/(s + 2): the surface's own roughness a roughness map starts from.
 ///
 /// ```
-/// use bumpmap_core::shading::roughness_map;
-/// let (s, e) = roughness_map(1.0, 32.0);
+/// use bumpmap_core::shading::{perceptual_roughness, roughness_exponent};
+/// let r = perceptual_roughness(32.0);
+/// assert!((r - (2.0f32 / 34.0).powf(0.25)).abs() < 1e-6);
+/// assert!((roughness_exponent(r, 32.0).0 - 32.0).abs() < 1e-3, "and back");
+/// ```
+pub fn perceptual_roughness(shininess: f32) -> f32 {
+    (2.0 / (shininess + 2.0)).sqrt().sqrt()
+}
+
+/// The exponent and energy factor a Blinn–Phong shader reads from a roughness map's texel
+/// `roughness` (perceptual, as `normalmap --roughness-out` writes it): α² = roughness⁴,
+/// exponent s′ = 2/α² − 2, energy (s′ + 2)/(s + 2) — the ratio of the normalized Blinn–Phong
+/// lobes, so a texel of the material's own roughness (`shininess` s) draws the model's lobe
+/// unchanged and a rougher one a wider, dimmer lobe of the same integral. Roughness is clamped
+/// to [[`MIN_PERCEPTUAL_ROUGHNESS`], 1].
+///
+/// ```
+/// use bumpmap_core::shading::{perceptual_roughness, roughness_exponent};
+/// let (s, e) = roughness_exponent(perceptual_roughness(32.0), 32.0);
 /// assert!((s - 32.0).abs() < 1e-3 && (e - 1.0).abs() < 1e-4);
-/// let (s, e) = roughness_map(0.9, 32.0);
-/// assert!(s < 32.0 && e < 1.0);
+/// let (s, e) = roughness_exponent(0.6, 32.0);
+/// assert!(s < 32.0 && e < 1.0, "rougher: wider and dimmer");
+/// assert_eq!(roughness_exponent(1.0, 32.0).0, 0.0, "as rough as it gets: a constant lobe");
 /// ```
 #[inline(always)]
-pub fn roughness_map(length: f32, shininess: f32) -> (f32, f32) {
-    let alpha2 = 2.0 / (shininess + 2.0);
-    let rough = bumpmap_math::roughness::filament_roughness(alpha2.sqrt().sqrt(), length);
-    let alpha2 = (rough * rough) * (rough * rough);
+pub fn roughness_exponent(roughness: f32, shininess: f32) -> (f32, f32) {
+    let r = clamp_lo(roughness, MIN_PERCEPTUAL_ROUGHNESS, 1.0);
+    let alpha2 = (r * r) * (r * r);
     let s = clamp_lo(2.0 / alpha2 - 2.0, 0.0, f32::MAX);
     (s, (s + 2.0) / (shininess + 2.0))
 }
 
-/// The specular lobe `(H·N')^s` under `filter`, for the filtered normal's length `length`, or,
-/// for LEAN, the lobe of the filtered `moments` at the half-angle vector `h` (tangent space).
+/// The roughness map the renderers sample for [`SpecularFilter::RoughnessMap`] when none is
+/// given: `normalmap --roughness-out`'s gray map of `normal_map`'s levels (their lengths through
+/// Filament's prefilter, [`bumpmap_math::roughness::roughness_mips`]) for a surface of exponent
+/// `shininess` ([`perceptual_roughness`]).
+pub fn roughness_texture(normal_map: &Rgba8Mips, shininess: f32) -> Rgba8Mips {
+    bumpmap_math::roughness::roughness_mips(normal_map, perceptual_roughness(shininess))
+}
+
+/// The backends' store of [`roughness_texture`]s, each made once per normal map (`Arc`) and
+/// shininess, so a frame after the first makes none and the texture units' caches, keyed by
+/// `Arc`, find their copies.
+#[derive(Debug, Default)]
+pub struct RoughnessTextures {
+    /// (normal map, shininess's bits, the roughness texture made of them).
+    made: Vec<(Arc<Rgba8Mips>, u32, Arc<Rgba8Mips>)>,
+}
+
+impl RoughnessTextures {
+    /// Kept at most; past it the store starts again.
+    const MAX: usize = 16;
+
+    /// The roughness texture of `normal_map` for exponent `shininess`.
+    pub fn get(&mut self, normal_map: &Arc<Rgba8Mips>, shininess: f32) -> Arc<Rgba8Mips> {
+        let bits = shininess.to_bits();
+        if let Some((_, _, r)) = self.made.iter().find(|(m, s, _)| Arc::ptr_eq(m, normal_map) && *s == bits) {
+            return r.clone();
+        }
+        if self.made.len() >= Self::MAX {
+            self.made.clear();
+        }
+        let r = Arc::new(roughness_texture(normal_map, shininess));
+        self.made.push((normal_map.clone(), bits, r.clone()));
+        r
+    }
+}
+
+/// The specular lobe `(H·N')^s` under `filter`: for Toksvig's, at the filtered normal's length
+/// `length`; for the roughness map's, at the sampled perceptual `roughness`; for LEAN, the lobe
+/// of the filtered `moments` at the half-angle vector `h` (tangent space).
 #[inline(always)]
 pub fn filtered_specular(
     h_dot_n: f32,
     shininess: f32,
     filter: SpecularFilter,
     length: f32,
+    roughness: f32,
     h: Vec3,
     moments: LeanMoments,
 ) -> f32 {
@@ -118,7 +177,7 @@ pub fn filtered_specular(
             specular_power(h_dot_n, s) * energy
         }
         SpecularFilter::RoughnessMap => {
-            let (s, energy) = roughness_map(length, shininess);
+            let (s, energy) = roughness_exponent(roughness, shininess);
             specular_power(h_dot_n, s) * energy
         }
         SpecularFilter::Lean => moments.specular(h, shininess),
@@ -189,6 +248,9 @@ pub struct Fragment {
     /// The filtered LEAN moments of the slopes (read only by [`SpecularFilter::Lean`];
     /// [`LeanMoments::FLAT`] otherwise).
     pub moments: LeanMoments,
+    /// The filtered roughness map's perceptual roughness in [0, 1] (read only by
+    /// [`SpecularFilter::RoughnessMap`]).
+    pub roughness: f32,
 }
 
 /// The self-shadowing factor s_self of Eq. 11 for L·N = `l_n`.
@@ -253,7 +315,8 @@ pub fn shade(terms: &LitTerms, f: &Fragment) -> Vec3 {
     let h_dot_n = clamp_lo(dot3(f.h.to_array(), n), 0.0, 1.0);
     let s_self = self_shadow(terms.self_shadow, f.l_n);
     let gate = specular_gate(terms.specular_shadow, s_self, n_dot_l, f.l_n, f.h_n);
-    let power = filtered_specular(h_dot_n, terms.shininess, terms.specular_filter, f.normal.w, f.h, f.moments);
+    let power =
+        filtered_specular(h_dot_n, terms.shininess, terms.specular_filter, f.normal.w, f.roughness, f.h, f.moments);
     let (ka, kd, ks, decal) = (terms.ambient.to_array(), terms.diffuse.to_array(), terms.specular.to_array(), f.decal);
     Vec3::from_array(std::array::from_fn(|c| {
         let diffuse = min_hi(ka[c] + kd[c] * (f.light * s_self * max_lo(n_dot_l, 0.0) * f.normal.w), 1.0);
@@ -351,7 +414,36 @@ mod tests {
             h_n: h.z,
             light: 1.0,
             moments: LeanMoments::FLAT,
+            roughness: perceptual_roughness(8.0),
         }
+    }
+
+    #[test]
+    fn a_roughness_texel_of_the_materials_own_roughness_draws_the_plain_lobe() {
+        let rough = LitTerms { specular_filter: SpecularFilter::RoughnessMap, ..terms() };
+        for h in [Vec3::Z, Vec3::new(0.3, 0.1, 1.0).normalize(), Vec3::new(0.6, -0.2, 0.8).normalize()] {
+            let (a, b) = (shade(&rough, &flat(Vec3::Z, h)), shade(&terms(), &flat(Vec3::Z, h)));
+            assert!((a - b).abs().max_element() < 1e-4, "{a} vs {b}");
+        }
+        // A rougher texel: dimmer at the peak, brighter off it; the |N| the texel also holds is
+        // not what this filter reads.
+        let f = |h: Vec3, r: f32| Fragment { roughness: r, normal: Vec4::new(0.5, 0.5, 1.0, 0.5), ..flat(Vec3::Z, h) };
+        let off = Vec3::new(1.0, 0.0, 1.0).normalize();
+        let own = perceptual_roughness(8.0);
+        assert!(shade(&rough, &f(Vec3::Z, 0.8)).x < shade(&rough, &f(Vec3::Z, own)).x);
+        assert!(shade(&rough, &f(off, 0.8)).x > shade(&rough, &f(off, own)).x);
+        let specular_only = LitTerms { ambient: Vec3::ZERO, diffuse: Vec3::ZERO, ..rough };
+        assert_eq!(shade(&specular_only, &f(off, own)), shade(&specular_only, &flat(Vec3::Z, off)));
+    }
+
+    #[test]
+    fn the_made_roughness_texture_holds_the_surfaces_own_roughness_where_the_normals_agree() {
+        use bumpmap_math::{Rgba8Image, Rgba8Mips};
+        let flat_map = Rgba8Mips::with_box_mipmaps(Rgba8Image::new(4, 4, vec![[128, 128, 255, 255]; 16]));
+        let rough = roughness_texture(&flat_map, 32.0);
+        assert_eq!(rough.levels().len(), flat_map.levels().len());
+        let own = bumpmap_math::roughness::unorm8(perceptual_roughness(32.0));
+        assert!(rough.levels().iter().all(|l| l.texels.iter().all(|&t| t == [own, own, own, 255])));
     }
 
     #[test]

@@ -7,6 +7,7 @@
 
 use std::sync::Arc;
 
+use bumpmap_core::shading::RoughnessTextures;
 use bumpmap_core::technique::{Binding as CoreBinding, Gloss, Normalize, Program, SpecularFilter, Technique};
 use bumpmap_core::{Scene, vertex::Vertex};
 use bumpmap_math::{Encoding, LeanMips, NormalizationCubeMap, Rgba8Mips};
@@ -29,6 +30,8 @@ pub struct CpuRenderer {
     textures: Vec<(Arc<Rgba8Mips>, Arc<Texture2d>)>,
     /// LEAN moments, keyed by the normal map they were made from.
     moments: Vec<(Arc<Rgba8Mips>, Arc<MomentTexture>)>,
+    /// Roughness maps made for the roughness-map filter.
+    roughness: RoughnessTextures,
     cubes: Vec<((usize, Encoding), Arc<TextureCube>)>,
 }
 
@@ -83,6 +86,14 @@ impl CpuRenderer {
                         moments: (program.terms.specular_filter == SpecularFilter::Lean)
                             .then(|| self.moments(&program.normal_map))
                             .transpose()?,
+                        roughness: match (program.terms.specular_filter, &program.roughness_map) {
+                            (SpecularFilter::RoughnessMap, Some(given)) => Some(self.texture(given)?),
+                            (SpecularFilter::RoughnessMap, None) => {
+                                let made = self.roughness.get(&program.normal_map, program.terms.shininess);
+                                Some(self.texture(&made)?)
+                            }
+                            _ => None,
+                        },
                         decal: program.decal.as_ref().map(|d| self.texture(d)).transpose()?,
                         gloss: match &program.gloss {
                             Gloss::Map(g) => Some(self.texture(g)?),

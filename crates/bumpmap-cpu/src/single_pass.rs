@@ -34,6 +34,9 @@ pub(crate) struct SinglePass<'a> {
     pub normal_map: Arc<Texture2d>,
     /// The normal map's LEAN moments, for [`SpecularFilter::Lean`].
     pub moments: Option<Arc<MomentTexture>>,
+    /// The roughness map (perceptual roughness in red, the normal map's size), for
+    /// [`SpecularFilter::RoughnessMap`].
+    pub roughness: Option<Arc<Texture2d>>,
     pub decal: Option<Arc<Texture2d>>,
     pub gloss: Option<Arc<Texture2d>>,
     pub pattern: Option<Arc<Texture2d>>,
@@ -51,6 +54,8 @@ pub struct Scratch {
     gloss: [Lanes; 4],
     /// The filtered LEAN moments (Bx, By, Mxx, Myy, Mxy, J), when the filter reads them.
     moments: [Lanes; 6],
+    /// The filtered roughness map (roughness in red), when the filter reads it.
+    roughness: [Lanes; 4],
     /// L and H after per-fragment normalization, and vectors being packed or normalized.
     l: [Lanes; 3],
     h: [Lanes; 3],
@@ -81,6 +86,7 @@ impl Scratch {
             decal: [z; 4],
             gloss: [z; 4],
             moments: [z; 6],
+            roughness: [z; 4],
             l: [z; 3],
             h: [z; 3],
             v: [z; 3],
@@ -247,6 +253,11 @@ impl FragmentShader for SinglePass<'_> {
             // Same size and levels as the normal map: the coordinates just packed.
             moments.sample_lanes(&self.program.sampler, &sc.coords, live_n, &mut sc.moments);
         }
+        if let Some(roughness) = &self.roughness {
+            // Same size as the normal map (the core checks a given one): the same coordinates.
+            let [s, t, lambda] = &sc.coords;
+            sample_2d_lanes(roughness, &self.program.sampler, s, t, lambda, live_n, &mut sc.roughness);
+        }
         match o.normal_texels {
             NormalTexels::UnitVector => {}
             NormalTexels::Offset { range } => {
@@ -327,10 +338,28 @@ impl FragmentShader for SinglePass<'_> {
 }
 
 /// The lane copy of `bumpmap_core::shading::shade` over lanes `0..n` (a multiple of 8): reads
-/// `normal`, `decal`, `gloss`, `l`, `h`, `light` and, in object space, `l_n` and `h_n` (in
-/// tangent space L_z and H_z); uses the other fields of `sc` as scratch.
+/// `normal`, `decal`, `gloss`, `l`, `h`, `light`, the filter's `moments` or `roughness` and, in
+/// object space, `l_n` and `h_n` (in tangent space L_z and H_z); uses the other fields of `sc`
+/// as scratch.
 fn lighting_lanes(terms: &LitTerms, sc: &mut Scratch, object_space: bool, n: usize, out: &mut [Lanes; 4]) {
-    let Scratch { normal, decal, gloss, moments, l, h, l_n, h_n, light, s_self, n_dot_l, h_dot_n, gate, acc, .. } = sc;
+    let Scratch {
+        normal,
+        decal,
+        gloss,
+        moments,
+        roughness,
+        l,
+        h,
+        l_n,
+        h_n,
+        light,
+        s_self,
+        n_dot_l,
+        h_dot_n,
+        gate,
+        acc,
+        ..
+    } = sc;
     let (l_n, h_n) = if object_space { (&*l_n, &*h_n) } else { (&l[2], &h[2]) };
     match terms.self_shadow {
         SelfShadow::Ramp => (0..n).for_each(|j| s_self[j] = clamp_lo(8.0 * l_n[j], 0.0, 1.0)),
@@ -358,11 +387,19 @@ fn lighting_lanes(terms: &LitTerms, sc: &mut Scratch, object_space: bool, n: usi
             h_dot_n[..n].iter_mut().for_each(|x| *x = x.powf(terms.shininess));
             h_dot_n
         }
-        // A per-fragment exponent from the filtered normal's length: the scalar model per lane.
+        // A per-fragment exponent from the filtered normal's length or the filtered roughness:
+        // the scalar model per lane.
         filter @ (SpecularFilter::Toksvig | SpecularFilter::RoughnessMap) => {
             for j in 0..n {
-                h_dot_n[j] =
-                    filtered_specular(h_dot_n[j], terms.shininess, filter, normal[3][j], Vec3::Z, LeanMoments::FLAT);
+                h_dot_n[j] = filtered_specular(
+                    h_dot_n[j],
+                    terms.shininess,
+                    filter,
+                    normal[3][j],
+                    roughness[0][j],
+                    Vec3::Z,
+                    LeanMoments::FLAT,
+                );
             }
             h_dot_n
         }
@@ -440,6 +477,7 @@ mod tests {
                     sc.decal[c][j] = next();
                 }
                 sc.gloss[0][j] = next();
+                sc.roughness[0][j] = next();
                 // Slopes in [−2, 2] and second moments at least their squares (a spread).
                 let b = [next() * 4.0 - 2.0, next() * 4.0 - 2.0];
                 let spread = [next(), next() * 0.2 - 0.1, next()];
@@ -474,6 +512,7 @@ mod tests {
                     h_n: if object_space { input.h_n[j] } else { h.z },
                     light: input.light[j],
                     moments: LeanMoments::from_array(std::array::from_fn(|c| input.moments[c][j])),
+                    roughness: input.roughness[0][j],
                 };
                 let expected = shade(&terms, &f);
                 for c in 0..3 {

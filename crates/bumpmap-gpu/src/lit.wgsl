@@ -1,7 +1,7 @@
 // The single pass's fragment program: the texture lookups, per-fragment renormalization,
 // attenuation and spotlight that make a Fragment, then shading.wgsl's shade(). Texture units:
 // the normal map, the decal, the gloss map (white 1x1 textures where absent), the spotlight
-// pattern, the normalization cube map and LEAN's two moment textures.
+// pattern, the normalization cube map, LEAN's two moment textures and the roughness map.
 
 struct Lit {
     ambient: vec4<f32>,
@@ -34,6 +34,8 @@ struct Lit {
 // LEAN's moments (Bx, By, Mxx, Myy) and (Mxy, J), at the normal map's size (white where unused).
 @group(0) @binding(8) var lean_b_m: texture_2d<f32>;
 @group(0) @binding(9) var lean_m_xy: texture_2d<f32>;
+// The roughness map (perceptual roughness in red), at the normal map's size (white where unused).
+@group(0) @binding(10) var roughness_map: texture_2d<f32>;
 
 // normalize(v), or +Z where v has no direction.
 fn normalize_or_z(v: vec3<f32>) -> vec3<f32> {
@@ -152,6 +154,10 @@ fn fs_lit(f: Varyings) -> @location(0) vec4<f32> {
         lean_m = vec3<f32>(bm.z, xy_j.r, bm.w);
         lean_j = xy_j.g;
     }
-    let frag = Fragment(normal, decal.rgb, gloss, l, h, l_n, h_n, light, lean_b, lean_m, lean_j);
+    var roughness = 1.0;
+    if SPECULAR_FILTER == SPECULAR_FILTER_ROUGHNESS_MAP {
+        roughness = textureSample(roughness_map, material_sampler, st * u.normal_scale.xy).r;
+    }
+    let frag = Fragment(normal, decal.rgb, gloss, l, h, l_n, h_n, light, lean_b, lean_m, lean_j, roughness);
     return vec4<f32>(shade(t, frag), 1.0);
 }

@@ -165,6 +165,7 @@ impl Pipelines {
                 sampler_entry(7),
                 texture_entry(8, D2),
                 texture_entry(9, D2),
+                texture_entry(10, D2),
             ],
         });
         let mut entries = Vec::new();

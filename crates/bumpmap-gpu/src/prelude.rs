@@ -6,7 +6,8 @@
 //! - each varying slot of [`bumpmap_core::vertex::var`] as a constant (`VAR_L`, `VAR_H`, …);
 //! - the lit program's switches: their override constants (named by
 //!   `crate::lit::LitVariant::overrides`) and a constant per value (`SELF_SHADOW_RAMP`, …)
-//!   whose number is the one [`crate::lit::LitVariant::of`] passes.
+//!   whose number is the one [`crate::lit::LitVariant::of`] passes;
+//! - the model's own numbers (`MIN_PERCEPTUAL_ROUGHNESS`).
 //!
 //! `lit.wgsl` and `shading.wgsl` use these names and declare no constant of their own (this
 //! module's tests check both, and that the compiled program's constants equal Rust's).
@@ -33,6 +34,10 @@ pub(crate) const SLOTS: [(&str, usize); 13] = [
     ("VAR_PARAM_FRAME", var::PARAM_FRAME),
     ("VAR_COUNT", var::COUNT),
 ];
+
+/// The model's numbers `shading.wgsl` reads, by their Rust names.
+pub(crate) const MODEL_CONSTANTS: [(&str, f32); 1] =
+    [("MIN_PERCEPTUAL_ROUGHNESS", bumpmap_core::shading::MIN_PERCEPTUAL_ROUGHNESS)];
 
 /// vec4 locations carrying the varyings.
 pub(crate) const LOCATIONS: usize = MAX_VARYINGS / 4;
@@ -83,6 +88,9 @@ pub(crate) fn switches() -> String {
     for (name, code) in lit::named_values() {
         let _ = writeln!(s, "const {name}: u32 = {code}u;");
     }
+    for (name, value) in MODEL_CONSTANTS {
+        let _ = writeln!(s, "const {name}: f32 = {value:?};");
+    }
     s
 }
 
@@ -125,6 +133,13 @@ mod tests {
         }
         for (name, code) in lit::named_values() {
             assert_eq!(constant(&module, name), code, "{name}");
+        }
+        for (name, value) in MODEL_CONSTANTS {
+            let (_, c) = module.constants.iter().find(|(_, c)| c.name.as_deref() == Some(name)).expect(name);
+            match module.global_expressions[c.init] {
+                naga::Expression::Literal(naga::Literal::F32(v)) => assert_eq!(v, value, "{name}"),
+                ref other => panic!("{name} is {other:?}"),
+            }
         }
         let overrides: Vec<&str> = module.overrides.iter().filter_map(|(_, o)| o.name.as_deref()).collect();
         for (name, _) in LitVariant::default().constants() {

@@ -257,6 +257,14 @@ impl GpuRenderer {
             SpecularFilter::Lean => t.moments(ctx, &p.normal_map)?,
             _ => [t.white_2d(ctx), t.white_2d(ctx)],
         };
+        let roughness = match (p.terms.specular_filter, &p.roughness_map) {
+            (SpecularFilter::RoughnessMap, Some(given)) => t.mips(ctx, given)?,
+            (SpecularFilter::RoughnessMap, None) => {
+                let made = t.roughness.get(&p.normal_map, p.terms.shininess);
+                t.mips(ctx, &made)?
+            }
+            _ => t.white_2d(ctx),
+        };
         let material = t.sampler(ctx, p.sampler);
         let clamp = t.sampler(ctx, bumpmap_core::state::Sampler::LINEAR_CLAMP);
         let uniforms = ctx.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
@@ -276,6 +284,7 @@ impl GpuRenderer {
             wgpu::BindGroupEntry { binding: 7, resource: Sampler(&clamp) },
             wgpu::BindGroupEntry { binding: 8, resource: TextureView(&lean_b_m) },
             wgpu::BindGroupEntry { binding: 9, resource: TextureView(&lean_m_xy) },
+            wgpu::BindGroupEntry { binding: 10, resource: TextureView(&roughness) },
         ];
         Ok(ctx.device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("lit"),

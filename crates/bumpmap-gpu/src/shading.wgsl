@@ -34,6 +34,8 @@ struct Fragment {
     lean_m: vec3<f32>,
     // And the mean slope-to-direction Jacobian J = 1/Nz^3.
     lean_j: f32,
+    // The filtered roughness map's perceptual roughness.
+    roughness: f32,
 };
 
 // x^k for a whole k by binary powering (the order of f32::powi).
@@ -69,20 +71,11 @@ fn toksvig(length: f32, s: f32) -> vec2<f32> {
     return vec2<f32>(e, (1.0 + e) / (1.0 + s));
 }
 
-// bumpmap_core::shading::roughness_map, with bumpmap_math::roughness::filament_roughness
-// written out: the exponent as GGX alpha, roughened by Filament's prefilter, and back.
-fn roughness_map(length: f32, s: f32) -> vec2<f32> {
-    let base = sqrt(sqrt(2.0 / (s + 2.0)));
-    let alpha = min(base, 1.0) * min(base, 1.0);
-    let r = clamp(length, 0.0, 1.0);
-    var variance = 0.0;
-    if r < 1.0 {
-        // Rust divides by 0 at r = 0 and gets infinity; WGSL may not: a huge number instead,
-        // which the min below makes the same roughness, 1.
-        variance = 2.0 * (1.0 - r * r) / max(3.0 * r - r * r * r, 1e-30);
-    }
-    let rough = min(sqrt(sqrt(alpha * alpha + variance)), 1.0);
-    let alpha2 = (rough * rough) * (rough * rough);
+// bumpmap_core::shading::roughness_exponent: a roughness texel as GGX alpha^2 = r^4 and the
+// Blinn-Phong exponent and energy of that alpha.
+fn roughness_exponent(roughness: f32, s: f32) -> vec2<f32> {
+    let r = clamp(roughness, MIN_PERCEPTUAL_ROUGHNESS, 1.0);
+    let alpha2 = (r * r) * (r * r);
     let e = max(2.0 / alpha2 - 2.0, 0.0);
     return vec2<f32>(e, (e + 2.0) / (s + 2.0));
 }
@@ -104,13 +97,13 @@ fn lean_specular(b: vec2<f32>, m: vec3<f32>, j: f32, h: vec3<f32>, s: f32) -> f3
     return exp(-0.5 * e) / ((s + 1.0) * sqrt(det)) / (h.z * h.z * h.z);
 }
 
-fn filtered_specular(h_dot_n: f32, s: f32, lobe_filter: u32, length: f32) -> f32 {
+fn filtered_specular(h_dot_n: f32, s: f32, lobe_filter: u32, length: f32, roughness: f32) -> f32 {
     if lobe_filter == SPECULAR_FILTER_TOKSVIG {
         let k = toksvig(length, s);
         return specular_power(h_dot_n, k.x) * k.y;
     }
     if lobe_filter == SPECULAR_FILTER_ROUGHNESS_MAP {
-        let k = roughness_map(length, s);
+        let k = roughness_exponent(roughness, s);
         return specular_power(h_dot_n, k.x) * k.y;
     }
     return specular_power(h_dot_n, s);
@@ -136,7 +129,7 @@ fn shade(t: Terms, f: Fragment) -> vec3<f32> {
     if t.specular_filter == SPECULAR_FILTER_LEAN {
         power = lean_specular(f.lean_b, f.lean_m, f.lean_j, f.h, t.shininess);
     } else {
-        power = filtered_specular(h_dot_n, t.shininess, t.specular_filter, f.normal.a);
+        power = filtered_specular(h_dot_n, t.shininess, t.specular_filter, f.normal.a, f.roughness);
     }
     let diffuse = min(t.ambient + t.diffuse * (f.light * s_self * max(n_dot_l, 0.0) * f.normal.a), vec3<f32>(1.0));
     let specular = t.specular * (f.light * gate * f.gloss * power);

@@ -23,6 +23,8 @@ pub struct Textures {
     mips: Vec<(Arc<Rgba8Mips>, wgpu::TextureView)>,
     /// LEAN moments, keyed by the normal map they were made from.
     moments: Vec<(Arc<Rgba8Mips>, [wgpu::TextureView; 2])>,
+    /// Roughness maps made for the roughness-map filter (uploaded as any other chain).
+    pub roughness: bumpmap_core::shading::RoughnessTextures,
     cubes: Vec<((usize, Encoding), wgpu::TextureView)>,
     samplers: Vec<(Sampler, wgpu::Sampler)>,
     white_2d: Option<wgpu::TextureView>,

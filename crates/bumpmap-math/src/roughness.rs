@@ -11,12 +11,13 @@
 //! (Toksvig's variance folded into a Blinn–Phong power) gives nearly the same roughness for
 //! small variances.
 //!
-//! What this module does not do: pick the texels (any chain with the length in alpha will do)
-//! or lay the roughness out in channels (a file convention: the command line's).
+//! What this module does not do: pick the texels (any chain with the length in alpha will do),
+//! lay the roughness out in an engine's channels (a file convention: the command line's; the
+//! one layout here, [`roughness_mips`]'s gray, is the form the renderers sample), or turn
+//! roughness into a shader's exponent (`bumpmap_core::shading::roughness_exponent`).
 
 use crate::encoding::{Encoding, Texel};
-use crate::image::Image;
-use crate::mip::MipChain;
+use crate::image::{Image, Rgba8Image, Rgba8Mips};
 
 /// The roughness a surface of perceptual roughness `perceptual` (in [0, 1]) takes on where the
 /// normals it averages have mean length `length` (in [0, 1]): Filament's prefilter, clamped to
@@ -42,11 +43,10 @@ pub fn filament_roughness(perceptual: f32, length: f32) -> f32 {
     (alpha * alpha + variance).sqrt().sqrt().min(1.0)
 }
 
-/// The perceptual roughness of every texel of every level of `chain` (whose alpha is the length
-/// of the averaged normal), for a surface of roughness `perceptual`.
-pub fn roughness_levels<T: Texel>(chain: &MipChain<T>, perceptual: f32) -> Vec<Image<f32>> {
-    chain
-        .levels
+/// The perceptual roughness of every texel of every level of a chain (`levels`, whose alpha is
+/// the length of the averaged normal), for a surface of roughness `perceptual`.
+pub fn roughness_levels<T: Texel>(levels: &[Image<T>], perceptual: f32) -> Vec<Image<f32>> {
+    levels
         .iter()
         .map(|level| Image {
             width: level.width,
@@ -54,6 +54,43 @@ pub fn roughness_levels<T: Texel>(chain: &MipChain<T>, perceptual: f32) -> Vec<I
             texels: level.texels.iter().map(|t| filament_roughness(perceptual, t.unpack(Encoding::Unorm)[3])).collect(),
         })
         .collect()
+}
+
+/// `v` in [0, 1] as an 8-bit unorm channel (rounded to nearest; outside [0, 1] clamped).
+///
+/// ```
+/// use bumpmap_math::roughness::unorm8;
+/// assert_eq!((unorm8(0.0), unorm8(0.5), unorm8(1.0), unorm8(2.0)), (0, 128, 255, 255));
+/// ```
+pub fn unorm8(v: f32) -> u8 {
+    (v.clamp(0.0, 1.0) * 255.0).round() as u8
+}
+
+/// The roughness map of an 8-bit normal-map chain (alpha the averaged normal's length), every
+/// level its own (not box-filtered from level 0: a level's roughness is its own normals'
+/// spread), gray: the perceptual roughness in R, G and B, A 255 — what `bumpmap normalmap
+/// --roughness-out` writes for the default layout, and what the renderers sample.
+///
+/// ```
+/// use bumpmap_math::{Rgba8Image, Rgba8Mips, roughness::roughness_mips};
+/// // A flat level 0 over a level whose normals averaged to length 0.8 (alpha 204).
+/// let normal = Rgba8Mips::from_levels(vec![
+///     Rgba8Image::new(2, 1, vec![[128, 128, 255, 255]; 2]),
+///     Rgba8Image::new(1, 1, vec![[128, 128, 230, 204]]),
+/// ]);
+/// let rough = roughness_mips(&normal, 0.5);
+/// assert_eq!(rough.levels()[0].texels[0], [128, 128, 128, 255], "level 0: the surface's own");
+/// assert!(rough.levels()[1].texels[0][0] > 128, "the spread makes level 1 rougher");
+/// ```
+pub fn roughness_mips(normal_map: &Rgba8Mips, perceptual: f32) -> Rgba8Mips {
+    let levels = roughness_levels(normal_map.levels(), perceptual)
+        .into_iter()
+        .map(|level| {
+            let texels = level.texels.iter().map(|&r| [unorm8(r), unorm8(r), unorm8(r), 255]).collect();
+            Rgba8Image::new(level.width, level.height, texels)
+        })
+        .collect();
+    Rgba8Mips::from_levels(levels)
 }
 
 #[cfg(test)]

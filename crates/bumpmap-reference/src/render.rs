@@ -211,6 +211,7 @@ fn shade_sample(
             h_n: h.z,
             light: factor,
             moments: bumpmap_core::shading::LeanMoments::FLAT,
+            roughness: bumpmap_core::shading::perceptual_roughness(terms.shininess),
         };
         color += shade(&terms, &fragment).clamp(Vec3::ZERO, Vec3::ONE);
     }

@@ -52,7 +52,7 @@ impl Backend {
 
 /// The backend's state, kept between frames so buffers, textures and pipelines are reused.
 enum Inner {
-    Cpu { renderer: CpuRenderer, framebuffer: Option<Framebuffer> },
+    Cpu { renderer: Box<CpuRenderer>, framebuffer: Option<Framebuffer> },
     Gpu(Box<GpuRenderer>),
 }
 
@@ -101,7 +101,7 @@ impl Renderer {
     /// Opens the backend `choice` names. [`BackendChoice::Gpu`] without an adapter is an error;
     /// [`BackendChoice::Auto`] falls back to the CPU and keeps the reason.
     pub fn new(choice: BackendChoice) -> Result<Self, Error> {
-        let cpu = || Inner::Cpu { renderer: CpuRenderer::new(), framebuffer: None };
+        let cpu = || Inner::Cpu { renderer: Box::new(CpuRenderer::new()), framebuffer: None };
         let (inner, fallback) = match choice {
             BackendChoice::Cpu => (cpu(), None),
             BackendChoice::Gpu => (Inner::Gpu(Box::new(GpuRenderer::new()?)), None),

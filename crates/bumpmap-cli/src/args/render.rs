@@ -117,6 +117,12 @@ pub struct MaterialGroup {
     /// single-pass: gloss map scaling the specular: decal-alpha, bricks (shiny bricks, dull mortar) or an image (red channel, same size as the decal)
     #[arg(long)]
     pub gloss: Option<String>,
+    /// With --technique roughness-map (or --specular-filter roughness-map): read this roughness map instead of making one from the normal map's mips — `normalmap --mips --roughness-out`'s file (.ktx2 or .dds with every level, or R.png with R.mip1.png … beside it), at the normal map's size. Its roughness sets the exponent; --shininess stays the brightness of a texel of that roughness
+    #[arg(long = "roughness-map", value_name = "FILE")]
+    pub roughness_map: Option<std::path::PathBuf>,
+    /// Channels --roughness-map holds its roughness in, as `normalmap --roughness-layout` writes them
+    #[arg(long = "roughness-layout", value_enum, default_value = "gray", requires = "roughness_map")]
+    pub roughness_layout: crate::args::RoughnessLayoutArg,
 }
 
 /// How it is drawn.
@@ -156,7 +162,7 @@ pub struct TechniqueGroup {
     /// single-pass: geometric self-shadowing of the specular term
     #[arg(long = "specular-shadow", value_enum, default_value = "kilgard")]
     pub specular_shadow: SpecularShadowArg,
-    /// single-pass: how the specular lobe answers the bumps a pixel averages (toksvig and roughness-map: the exponent from the mip chain's |N|; lean: the slopes' moments; a distant bumpy surface's highlight widens and dims; `--technique toksvig` or `lean` sets it)
+    /// single-pass: how the specular lobe answers the bumps a pixel averages (toksvig: the exponent from the mip chain's |N|; roughness-map: from a roughness map made of it, or --roughness-map FILE; lean: the slopes' moments; a distant bumpy surface's highlight widens and dims; `--technique toksvig` or `lean` sets it)
     #[arg(long = "specular-filter", value_enum, default_value = "none")]
     pub specular_filter: SpecularFilterArg,
 }
@@ -363,7 +369,7 @@ pub enum SpecularFilterArg {
     None,
     /// Toksvig 2005: exponent s·|N|/(|N| + s(1 − |N|)), with its energy factor
     Toksvig,
-    /// The roughness `normalmap --roughness-out` exports (Filament's prefilter of |N|), as a Blinn–Phong exponent
+    /// A roughness map sampled as an engine samples it, turned into a Blinn–Phong exponent: the one `normalmap --roughness-out` exports (Filament's prefilter of each level's |N|), made from the normal map, or --roughness-map FILE
     RoughnessMap,
     /// LEAN mapping (Olano & Baker 2010): the slopes' first and second moments, filtered, make an anisotropic Gaussian lobe (tangent-space maps of unit normals)
     Lean,

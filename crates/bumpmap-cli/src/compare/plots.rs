@@ -156,8 +156,11 @@ fn convergence_plot(r: &Results) -> String {
 fn specular_plot(r: &Results, which: usize) -> String {
     let pick = |v: (f64, f64)| if which == 0 { v.0 } else { v.1 };
     let values = r.specular.iter().flat_map(|row| std::iter::once(pick(row.reference)).chain(row.filters.map(pick)));
-    let hi = values.fold(0.0f64, f64::max) * 1.15 + 1e-3;
+    // The energies start at 0: room above them for the legend, which would cross the lines
+    // in the lower left. The widths leave the lower left free.
+    let hi = values.fold(0.0f64, f64::max) * if which == 0 { 1.7 } else { 1.15 } + 1e-3;
     let dmax = r.specular.last().map_or(16.0, |row| row.distance as f64 * 1.3);
+    let distances: Vec<f64> = r.specular.iter().map(|row| row.distance as f64).collect();
     let labels = Labels {
         caption: if which == 0 {
             "Golf ball's highlight by distance: specular energy"
@@ -166,9 +169,9 @@ fn specular_plot(r: &Results, which: usize) -> String {
         },
         x: "distance (× nearest)",
         y: if which == 0 { "specular energy" } else { "highlight width" },
-        legend: Some(SeriesLabelPosition::LowerLeft),
+        legend: Some(if which == 0 { SeriesLabelPosition::UpperRight } else { SeriesLabelPosition::LowerLeft }),
     };
-    svg_plot(labels, (0.8f64..dmax).log_scale(), 0.0..hi, |chart| {
+    svg_plot(labels, (0.8f64..dmax).log_scale().with_key_points(distances), 0.0..hi, |chart| {
         let line = |row: &super::studies::SpecularRow, k: Option<usize>| {
             (row.distance as f64, pick(k.map_or(row.reference, |k| row.filters[k])))
         };

@@ -133,6 +133,20 @@ pub fn specular_study(backend: &mut Renderer) -> Result<Vec<SpecularRow>, CliErr
         shininess: 32.0,
         ..Default::default()
     };
+    // The roughness column reads the map `normalmap --mips --roughness-out` writes for this ball
+    // (gray layout, 8 bits, every level), at the roughness of shininess 32.
+    let exported = {
+        let BumpSource::Heights(field) = &base.bumps else { unreachable!("the ball's bumps are heights") };
+        let perceptual = bumpmap_core::shading::perceptual_roughness(base.shininess);
+        let chain = crate::normalmap::roughness_chain(
+            field,
+            &base.normal_map,
+            perceptual,
+            crate::args::RoughnessLayoutArg::Gray,
+            "dimples",
+        )?;
+        Arc::new(bumpmap_math::Rgba8Mips::from_levels(chain.levels))
+    };
     let mut rows = Vec::new();
     for distance in SPECULAR_DISTANCES {
         let params = SceneParams { eye: Some(near * distance), ..base.clone() };
@@ -143,7 +157,12 @@ pub fn specular_study(backend: &mut Renderer) -> Result<Vec<SpecularRow>, CliErr
         let mut filtered = |mode, filter| -> Result<(f64, f64), CliError> {
             let scene = scenes::build(&SceneKind::Sphere, &SceneParams { mip_mode: mode, ..params.clone() })
                 .map_err(core_err)?;
-            let technique = Technique::SinglePass(SinglePassOptions { specular_filter: filter, ..Default::default() });
+            let roughness_map = (filter == SpecularFilter::RoughnessMap).then(|| exported.clone());
+            let technique = Technique::SinglePass(SinglePassOptions {
+                specular_filter: filter,
+                roughness_map,
+                ..Default::default()
+            });
             let frame = draw(backend, &scene, &technique, SIZE, SIZE, false)?;
             Ok(measure(&metrics::linear(&frame.image)))
         };

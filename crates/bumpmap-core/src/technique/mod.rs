@@ -171,6 +171,10 @@ pub struct LitProgram {
     pub decal: Option<Arc<Rgba8Mips>>,
     /// Where the gloss comes from.
     pub gloss: Gloss,
+    /// The roughness map given for [`SpecularFilter::RoughnessMap`]; `None` with that filter:
+    /// the backend samples [`crate::shading::roughness_texture`] of the normal map and the
+    /// terms' shininess. Read with the normal map's coordinates and sampler.
+    pub roughness_map: Option<Arc<Rgba8Mips>>,
     /// The filtering of the normal map, decal and gloss map.
     pub sampler: Sampler,
     /// The lighting coefficients and switches, per pass.

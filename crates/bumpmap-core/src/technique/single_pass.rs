@@ -72,6 +72,11 @@ pub struct SinglePassOptions {
     pub cube_size: usize,
     /// How the specular exponent answers the filtered normal's length (Toksvig, or none).
     pub specular_filter: SpecularFilter,
+    /// The roughness map [`SpecularFilter::RoughnessMap`] reads: perceptual roughness in red,
+    /// at the normal map's size, every level its own (a file `bumpmap normalmap --roughness-out`
+    /// wrote, say). `None`: the renderers make it from each normal map's levels and the
+    /// material's shininess as that command does ([`crate::shading::roughness_texture`]).
+    pub roughness_map: Option<Arc<Rgba8Mips>>,
 }
 
 impl Default for SinglePassOptions {
@@ -85,6 +90,7 @@ impl Default for SinglePassOptions {
             gloss: Gloss::None,
             cube_size: 32,
             specular_filter: SpecularFilter::None,
+            roughness_map: None,
         }
     }
 }
@@ -114,6 +120,17 @@ pub fn validate(scene: &Scene, options: &SinglePassOptions) -> Result<(), CoreEr
             && (m.normal_space.is_object() || m.normal_texels != crate::scene::NormalTexels::UnitVector)
         {
             return Err(CoreError::Unsupported { technique: "single-pass", feature: Feature::LeanFilter });
+        }
+        if options.specular_filter == SpecularFilter::RoughnessMap {
+            if m.normal_texels != crate::scene::NormalTexels::UnitVector {
+                return Err(CoreError::Unsupported { technique: "single-pass", feature: Feature::RoughnessFilter });
+            }
+            let size = |t: &Rgba8Mips| (t.width(), t.height());
+            if let Some(r) = &options.roughness_map
+                && size(r) != size(&m.normal_map)
+            {
+                return Err(CoreError::RoughnessSize { roughness: size(r), normal_map: size(&m.normal_map) });
+            }
         }
     }
     for light in &scene.lights {
@@ -179,6 +196,10 @@ pub fn passes(scene: &Scene, options: &SinglePassOptions) -> Result<Vec<Pass>, C
                 normal_texels: m.normal_texels,
                 decal: m.decal.clone(),
                 gloss: options.gloss.clone(),
+                roughness_map: match options.specular_filter {
+                    SpecularFilter::RoughnessMap => options.roughness_map.clone(),
+                    _ => None,
+                },
                 sampler: options.sampler,
                 terms,
                 normalize: options.normalize,
