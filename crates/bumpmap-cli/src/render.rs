@@ -248,7 +248,7 @@ pub fn core_err(e: CoreError) -> CliError {
     };
     match e {
         CoreError::Unsupported { feature: Feature::LeanFilter, .. } => CliError::Render(
-            "--specular-filter lean (or --technique lean) reads the slopes of a tangent-space map of unit normals; \
+            "--specular-filter lean or clean (or --technique lean or clean) reads the slopes of a tangent-space map of unit normals; \
              the object-space, offset-map and peercy-blinn techniques' maps have none: use --specular-filter toksvig"
                 .into(),
         ),

@@ -486,6 +486,7 @@ fn technique_options(s: &SceneSetup, name: TechniqueName) -> Result<TechniqueOpt
                 SpecularFilterArg::Toksvig => bumpmap::SpecularFilter::Toksvig,
                 SpecularFilterArg::RoughnessMap => bumpmap::SpecularFilter::RoughnessMap,
                 SpecularFilterArg::Lean => bumpmap::SpecularFilter::Lean,
+                SpecularFilterArg::Clean => bumpmap::SpecularFilter::Clean,
             },
             roughness_map,
         },

@@ -69,6 +69,34 @@ fn record_refuses_what_it_cannot_do_before_any_work() {
 }
 
 #[test]
+fn fewer_frames_than_the_keys_need_is_a_usage_error() {
+    // Three keys take three frames and show in a fourth: --frames 3 would drop the last one's
+    // effect, --frames 2 a key. Refused before a display is looked for (none here).
+    let dir = scratch("view_frames_keys");
+    let shot = dir.join("s.png");
+    for frames in ["2", "3"] {
+        let o = std::process::Command::new(env!("CARGO_BIN_EXE_bumpmap"))
+            .args(["view", "--keys", "t,t,g", "--frames", frames, "--screenshot", shot.to_str().unwrap()])
+            .env_remove("DISPLAY")
+            .env_remove("WAYLAND_DISPLAY")
+            .output()
+            .unwrap();
+        assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+        let err = stderr(&o);
+        assert!(err.contains(&format!("--frames {frames}")) && err.contains("--frames 4 or more"), "{err}");
+    }
+    assert!(!shot.exists());
+    // Enough frames gets as far as the display (none here: exit 1, not 2).
+    let o = std::process::Command::new(env!("CARGO_BIN_EXE_bumpmap"))
+        .args(["view", "--keys", "t,t,g", "--frames", "4"])
+        .env_remove("DISPLAY")
+        .env_remove("WAYLAND_DISPLAY")
+        .output()
+        .unwrap();
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+}
+
+#[test]
 fn without_a_display_the_window_says_what_to_do() {
     let o = std::process::Command::new(env!("CARGO_BIN_EXE_bumpmap"))
         .args(["view", "--backend", "cpu"])

@@ -44,6 +44,8 @@ pub enum TechniqueName {
     RoughnessMap,
     /// The single pass with LEAN mapping's specular lobe.
     Lean,
+    /// The single pass with CLEAN mapping's (isotropic LEAN) specular lobe.
+    Clean,
     /// The single pass without bumps.
     NoBump,
     /// Peercy's surface-independent map (Figure 7).
@@ -119,7 +121,7 @@ pub struct TechniqueOptions {
 
 impl TechniqueName {
     /// Every name, in catalogue order.
-    pub const ALL: [TechniqueName; 16] = [
+    pub const ALL: [TechniqueName; 17] = [
         TechniqueName::Kilgard,
         TechniqueName::SinglePass,
         TechniqueName::SinglePassCube,
@@ -128,6 +130,7 @@ impl TechniqueName {
         TechniqueName::Toksvig,
         TechniqueName::RoughnessMap,
         TechniqueName::Lean,
+        TechniqueName::Clean,
         TechniqueName::NoBump,
         TechniqueName::PeercyIndependent,
         TechniqueName::PeercyDependent,
@@ -149,6 +152,7 @@ impl TechniqueName {
             TechniqueName::Toksvig => "toksvig",
             TechniqueName::RoughnessMap => "roughness-map",
             TechniqueName::Lean => "lean",
+            TechniqueName::Clean => "clean",
             TechniqueName::NoBump => "no-bump",
             TechniqueName::PeercyIndependent => "peercy-independent",
             TechniqueName::PeercyDependent => "peercy-dependent",
@@ -187,6 +191,9 @@ impl TechniqueName {
             TechniqueName::Lean => {
                 "the single pass with LEAN mapping (Olano & Baker 2010): the slopes' first and second moments mip-filtered linearly, the highlight a Gaussian of their covariance plus 1/s, anisotropic"
             }
+            TechniqueName::Clean => {
+                "the single pass with CLEAN mapping (Olano & Baker 2010, §5): LEAN's moments with the slopes' spread shared out equally in x and y, ½(Mxx + Myy − |B|²), one texture of four channels instead of two: a round highlight"
+            }
             TechniqueName::NoBump => "the single pass on a flat height field: the surface without bumps",
             TechniqueName::PeercyIndependent => {
                 "Peercy's surface-independent map (Eq. 8–11, Figure 7): tangent-space normals from the 7×7 derivative of a Gaussian, lit per pixel in the interpolated frame"
@@ -223,6 +230,7 @@ impl TechniqueName {
             | TechniqueName::Toksvig
             | TechniqueName::RoughnessMap
             | TechniqueName::Lean
+            | TechniqueName::Clean
             | TechniqueName::NoBump => &[],
             TechniqueName::ObjectSpace => &[BuiltInSurface],
             TechniqueName::PeercyIndependent | TechniqueName::OffsetMap => &[HeightField],
@@ -284,6 +292,7 @@ impl TechniqueName {
             | TechniqueName::Toksvig
             | TechniqueName::RoughnessMap
             | TechniqueName::Lean
+            | TechniqueName::Clean
             | TechniqueName::Emboss
             | TechniqueName::EmbossUnforced
             | TechniqueName::Reference => {}
@@ -308,6 +317,9 @@ impl TechniqueName {
             }
             TechniqueName::Lean => {
                 Technique::SinglePass(SinglePassOptions { specular_filter: SpecularFilter::Lean, ..single })
+            }
+            TechniqueName::Clean => {
+                Technique::SinglePass(SinglePassOptions { specular_filter: SpecularFilter::Clean, ..single })
             }
             TechniqueName::SinglePass
             | TechniqueName::ObjectSpace

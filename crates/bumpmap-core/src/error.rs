@@ -37,7 +37,8 @@ pub enum Feature {
     /// A tangent-space map made for one surface, addressed across the whole surface rather
     /// than with the repeating texture coordinates.
     SurfaceMap,
-    /// The LEAN filter on a map that has no tangent-space slopes (object space, or offsets).
+    /// The LEAN or CLEAN filter on a map that has no tangent-space slopes (object space, or
+    /// offsets).
     LeanFilter,
     /// The roughness-map filter made from a map whose alpha is not a normal's length (offsets
     /// or derivatives).
@@ -61,7 +62,7 @@ impl std::fmt::Display for Feature {
             Feature::HeightMap => f.write_str("a material without its height field (a normal map given as it is)"),
             Feature::OffsetMap => f.write_str("an offset map (its combiners cannot renormalize N + D per pixel)"),
             Feature::LeanFilter => f.write_str(
-                "the LEAN specular filter on an object-space or offset map (its moments are the slopes of a tangent-space map of unit normals)",
+                "the LEAN or CLEAN specular filter on an object-space or offset map (its moments are the slopes of a tangent-space map of unit normals)",
             ),
             Feature::RoughnessFilter => f.write_str(
                 "the roughness-map specular filter on an offset or derivative map (its roughness comes from the lengths a map of unit normals keeps in alpha)",

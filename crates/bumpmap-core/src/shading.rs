@@ -60,6 +60,9 @@ pub enum SpecularFilter {
     /// ([`bumpmap_math::lean::LeanMoments::specular`]); it reads [`Fragment::moments`], not
     /// |Nₐ|, and needs a tangent-space map of unit normals.
     Lean,
+    /// CLEAN mapping (Olano & Baker 2010, §5): LEAN with the slopes' spread made isotropic
+    /// ([`LeanMoments::isotropic`]), what a texture of one channel fewer holds.
+    Clean,
 }
 
 /// Toksvig's filtered exponent and energy factor for a filtered normal of length `length` and
@@ -181,6 +184,7 @@ pub fn filtered_specular(
             specular_power(h_dot_n, s) * energy
         }
         SpecularFilter::Lean => moments.specular(h, shininess),
+        SpecularFilter::Clean => moments.isotropic().specular(h, shininess),
     }
 }
 
@@ -245,7 +249,8 @@ pub struct Fragment {
     pub h_n: f32,
     /// Attenuation × spotlight, in [0, 1].
     pub light: f32,
-    /// The filtered LEAN moments of the slopes (read only by [`SpecularFilter::Lean`];
+    /// The filtered LEAN moments of the slopes (read only by [`SpecularFilter::Lean`] and
+    /// [`SpecularFilter::Clean`], which reads only their Mxx + Myy of the second moments;
     /// [`LeanMoments::FLAT`] otherwise).
     pub moments: LeanMoments,
     /// The filtered roughness map's perceptual roughness in [0, 1] (read only by

@@ -83,7 +83,7 @@ impl CpuRenderer {
                         cube: (program.normalize == Normalize::Cube)
                             .then(|| self.cube(program.cube_size, Encoding::Unorm)),
                         normal_map: self.texture(&program.normal_map)?,
-                        moments: (program.terms.specular_filter == SpecularFilter::Lean)
+                        moments: matches!(program.terms.specular_filter, SpecularFilter::Lean | SpecularFilter::Clean)
                             .then(|| self.moments(&program.normal_map))
                             .transpose()?,
                         roughness: match (program.terms.specular_filter, &program.roughness_map) {

@@ -32,7 +32,9 @@ pub(crate) struct SinglePass<'a> {
     pub cube: Option<Arc<TextureCube>>,
     /// The program's textures as texture units hold them.
     pub normal_map: Arc<Texture2d>,
-    /// The normal map's LEAN moments, for [`SpecularFilter::Lean`].
+    /// The normal map's LEAN moments, for [`SpecularFilter::Lean`] and [`SpecularFilter::Clean`]
+    /// (which reads their Mxx + Myy only: the same texture, not CLEAN's smaller one, which saves
+    /// memory traffic a GPU has and this sampler, one lane at a time, does not).
     pub moments: Option<Arc<MomentTexture>>,
     /// The roughness map (perceptual roughness in red, the normal map's size), for
     /// [`SpecularFilter::RoughnessMap`].
@@ -403,11 +405,12 @@ fn lighting_lanes(terms: &LitTerms, sc: &mut Scratch, object_space: bool, n: usi
             }
             h_dot_n
         }
-        // LEAN's lobe from the filtered moments and H, per lane.
-        SpecularFilter::Lean => {
+        // LEAN's or CLEAN's lobe from the filtered moments and H: the scalar model per lane.
+        filter @ (SpecularFilter::Lean | SpecularFilter::Clean) => {
             for j in 0..n {
                 let m = LeanMoments::from_array(std::array::from_fn(|c| moments[c][j]));
-                h_dot_n[j] = m.specular(Vec3::new(h[0][j], h[1][j], h[2][j]), terms.shininess);
+                let h = Vec3::new(h[0][j], h[1][j], h[2][j]);
+                h_dot_n[j] = filtered_specular(h_dot_n[j], terms.shininess, filter, 1.0, 1.0, h, m);
             }
             h_dot_n
         }
@@ -440,7 +443,8 @@ mod tests {
                 Just(SpecularFilter::None),
                 Just(SpecularFilter::Toksvig),
                 Just(SpecularFilter::RoughnessMap),
-                Just(SpecularFilter::Lean)
+                Just(SpecularFilter::Lean),
+                Just(SpecularFilter::Clean)
             ],
         )
     }

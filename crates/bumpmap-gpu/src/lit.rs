@@ -45,6 +45,7 @@ const SPECULAR_FILTER: Switch = Switch {
         "SPECULAR_FILTER_TOKSVIG",
         "SPECULAR_FILTER_ROUGHNESS_MAP",
         "SPECULAR_FILTER_LEAN",
+        "SPECULAR_FILTER_CLEAN",
     ],
 };
 const GLOSS: Switch = Switch { name: "GLOSS", values: &["GLOSS_NONE", "GLOSS_DECAL_ALPHA", "GLOSS_MAP"] };
@@ -82,6 +83,7 @@ pub fn specular_filter_name(filter: SpecularFilter) -> &'static str {
         SpecularFilter::Toksvig => "SPECULAR_FILTER_TOKSVIG",
         SpecularFilter::RoughnessMap => "SPECULAR_FILTER_ROUGHNESS_MAP",
         SpecularFilter::Lean => "SPECULAR_FILTER_LEAN",
+        SpecularFilter::Clean => "SPECULAR_FILTER_CLEAN",
     }
 }
 

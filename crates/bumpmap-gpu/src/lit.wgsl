@@ -31,7 +31,8 @@ struct Lit {
 @group(0) @binding(5) var cube_map: texture_cube<f32>;
 @group(0) @binding(6) var material_sampler: sampler;
 @group(0) @binding(7) var clamp_sampler: sampler;
-// LEAN's moments (Bx, By, Mxx, Myy) and (Mxy, J), at the normal map's size (white where unused).
+// LEAN's moments (Bx, By, Mxx, Myy) and (Mxy, J), at the normal map's size (white where unused);
+// for CLEAN, (Bx, By, Mxx + Myy, J) in the first and nothing in the second.
 @group(0) @binding(8) var lean_b_m: texture_2d<f32>;
 @group(0) @binding(9) var lean_m_xy: texture_2d<f32>;
 // The roughness map (perceptual roughness in red), at the normal map's size (white where unused).
@@ -153,6 +154,12 @@ fn fs_lit(f: Varyings) -> @location(0) vec4<f32> {
         lean_b = bm.xy;
         lean_m = vec3<f32>(bm.z, xy_j.r, bm.w);
         lean_j = xy_j.g;
+    } else if SPECULAR_FILTER == SPECULAR_FILTER_CLEAN {
+        // shade() reads only Mxx + Myy for CLEAN: the sum goes where Mxx would.
+        let c = textureSample(lean_b_m, material_sampler, st * u.normal_scale.xy);
+        lean_b = c.xy;
+        lean_m = vec3<f32>(c.z, 0.0, 0.0);
+        lean_j = c.w;
     }
     var roughness = 1.0;
     if SPECULAR_FILTER == SPECULAR_FILTER_ROUGHNESS_MAP {

@@ -255,6 +255,8 @@ impl GpuRenderer {
         };
         let [lean_b_m, lean_m_xy] = match p.terms.specular_filter {
             SpecularFilter::Lean => t.moments(ctx, &p.normal_map)?,
+            // CLEAN's one texture where LEAN's first is.
+            SpecularFilter::Clean => [t.clean_moments(ctx, &p.normal_map)?, t.white_2d(ctx)],
             _ => [t.white_2d(ctx), t.white_2d(ctx)],
         };
         let roughness = match (p.terms.specular_filter, &p.roughness_map) {

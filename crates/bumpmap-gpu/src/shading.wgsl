@@ -13,7 +13,7 @@ struct Terms {
     // L_z > 0) or SPECULAR_SHADOW_OFF.
     specular_shadow: u32,
     // SPECULAR_FILTER_NONE, _TOKSVIG or _ROUGHNESS_MAP (the exponent from |N'|, SPECS.md 9), or
-    // _LEAN (the lobe from the moments).
+    // _LEAN or _CLEAN (the lobe from the moments).
     specular_filter: u32,
 };
 
@@ -82,6 +82,15 @@ fn roughness_exponent(roughness: f32, s: f32) -> vec2<f32> {
 
 // bumpmap_math::lean::LeanMoments::specular: the Gaussian of the slopes' covariance plus J/(s+1) at
 // H's slope, widened by the mean Jacobian J, over Hz^3 (slopes to directions at H).
+// bumpmap_math::lean::LeanMoments::isotropic (CLEAN): the second moments with the spread
+// shared out, half of Mxx + Myy - |B|^2 along each axis.
+fn clean_moments(b: vec2<f32>, m: vec3<f32>) -> vec3<f32> {
+    let bx2 = b.x * b.x;
+    let by2 = b.y * b.y;
+    let half = 0.5 * ((m.x + m.z) - (bx2 + by2));
+    return vec3<f32>(bx2 + half, b.x * b.y, by2 + half);
+}
+
 fn lean_specular(b: vec2<f32>, m: vec3<f32>, j: f32, h: vec3<f32>, s: f32) -> f32 {
     if h.z <= 1e-4 {
         return 0.0;
@@ -128,6 +137,8 @@ fn shade(t: Terms, f: Fragment) -> vec3<f32> {
     var power = 0.0;
     if t.specular_filter == SPECULAR_FILTER_LEAN {
         power = lean_specular(f.lean_b, f.lean_m, f.lean_j, f.h, t.shininess);
+    } else if t.specular_filter == SPECULAR_FILTER_CLEAN {
+        power = lean_specular(f.lean_b, clean_moments(f.lean_b, f.lean_m), f.lean_j, f.h, t.shininess);
     } else {
         power = filtered_specular(h_dot_n, t.shininess, t.specular_filter, f.normal.a, f.roughness);
     }

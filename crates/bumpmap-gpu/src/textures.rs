@@ -23,6 +23,8 @@ pub struct Textures {
     mips: Vec<(Arc<Rgba8Mips>, wgpu::TextureView)>,
     /// LEAN moments, keyed by the normal map they were made from.
     moments: Vec<(Arc<Rgba8Mips>, [wgpu::TextureView; 2])>,
+    /// CLEAN moments, likewise.
+    clean: Vec<(Arc<Rgba8Mips>, wgpu::TextureView)>,
     /// Roughness maps made for the roughness-map filter (uploaded as any other chain).
     pub roughness: bumpmap_core::shading::RoughnessTextures,
     cubes: Vec<((usize, Encoding), wgpu::TextureView)>,
@@ -62,6 +64,60 @@ fn write_level(ctx: &Context, texture: &wgpu::Texture, level: u32, layer: u32, i
     );
 }
 
+/// The moments of `normal_map`'s level 0, every level; refused when larger than the adapter
+/// allows.
+fn lean_mips(ctx: &Context, normal_map: &Rgba8Mips) -> Result<LeanMips, GpuError> {
+    let max = ctx.max_texture_side();
+    let (width, height) = (normal_map.width(), normal_map.height());
+    if width > max as usize || height > max as usize {
+        return Err(GpuError::TooLarge { what: "a texture", width, height, max });
+    }
+    Ok(LeanMips::from_normal_map(normal_map, Encoding::Unorm).map_err(bumpmap_core::CoreError::from)?)
+}
+
+/// A half-float texture of every level of `lean`, each texel's channels `texel` (2 or 4 of
+/// them: `Rg16Float` or `Rgba16Float`).
+fn half_texture(
+    ctx: &Context,
+    label: &str,
+    lean: &LeanMips,
+    texel: impl Fn(&bumpmap_math::lean::LeanMoments) -> Vec<f32>,
+) -> wgpu::TextureView {
+    let level0 = &lean.levels[0];
+    let channels = texel(&level0.texels[0]).len() as u32;
+    let format = if channels == 2 { wgpu::TextureFormat::Rg16Float } else { wgpu::TextureFormat::Rgba16Float };
+    let texture = ctx.device.create_texture(&wgpu::TextureDescriptor {
+        label: Some(label),
+        size: wgpu::Extent3d { width: level0.width as u32, height: level0.height as u32, depth_or_array_layers: 1 },
+        mip_level_count: lean.levels.len() as u32,
+        sample_count: 1,
+        dimension: wgpu::TextureDimension::D2,
+        format,
+        usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
+        view_formats: &[],
+    });
+    for (k, level) in lean.levels.iter().enumerate() {
+        let bytes: Vec<u8> =
+            level.texels.iter().flat_map(&texel).flat_map(|x| half::f16::from_f32(x).to_le_bytes()).collect();
+        ctx.queue.write_texture(
+            wgpu::TexelCopyTextureInfo {
+                texture: &texture,
+                mip_level: k as u32,
+                origin: wgpu::Origin3d::ZERO,
+                aspect: wgpu::TextureAspect::All,
+            },
+            &bytes,
+            wgpu::TexelCopyBufferLayout {
+                offset: 0,
+                bytes_per_row: Some(2 * channels * level.width as u32),
+                rows_per_image: Some(level.height as u32),
+            },
+            wgpu::Extent3d { width: level.width as u32, height: level.height as u32, depth_or_array_layers: 1 },
+        );
+    }
+    texture.create_view(&wgpu::TextureViewDescriptor::default())
+}
+
 impl Textures {
     /// The device's copy of `mips`, every level; refused when larger than the adapter allows.
     pub fn mips(&mut self, ctx: &Context, mips: &Arc<Rgba8Mips>) -> Result<wgpu::TextureView, GpuError> {
@@ -92,55 +148,31 @@ impl Textures {
         if let Some((_, v)) = self.moments.iter().find(|(m, _)| Arc::ptr_eq(m, normal_map)) {
             return Ok(v.clone());
         }
-        let max = ctx.max_texture_side();
-        let (width, height) = (normal_map.width(), normal_map.height());
-        if width > max as usize || height > max as usize {
-            return Err(GpuError::TooLarge { what: "a texture", width, height, max });
-        }
-        let lean = LeanMips::from_normal_map(normal_map, Encoding::Unorm).map_err(bumpmap_core::CoreError::from)?;
-        let levels = lean.levels.len() as u32;
-        let make = |label, format| {
-            ctx.device.create_texture(&wgpu::TextureDescriptor {
-                label: Some(label),
-                size: wgpu::Extent3d { width: width as u32, height: height as u32, depth_or_array_layers: 1 },
-                mip_level_count: levels,
-                sample_count: 1,
-                dimension: wgpu::TextureDimension::D2,
-                format,
-                usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
-                view_formats: &[],
-            })
-        };
-        let b_m = make("LEAN B, Mxx, Myy", wgpu::TextureFormat::Rgba16Float);
-        let m_xy = make("LEAN Mxy, J", wgpu::TextureFormat::Rg16Float);
-        let half = |x: f32| half::f16::from_f32(x).to_le_bytes();
-        for (k, level) in lean.levels.iter().enumerate() {
-            let four: Vec<u8> = level.texels.iter().flat_map(|t| [t.b.x, t.b.y, t.m.x, t.m.z]).flat_map(half).collect();
-            let two: Vec<u8> = level.texels.iter().flat_map(|t| [t.m.y, t.j]).flat_map(half).collect();
-            for (texture, bytes, texel_bytes) in [(&b_m, four, 8), (&m_xy, two, 4)] {
-                ctx.queue.write_texture(
-                    wgpu::TexelCopyTextureInfo {
-                        texture,
-                        mip_level: k as u32,
-                        origin: wgpu::Origin3d::ZERO,
-                        aspect: wgpu::TextureAspect::All,
-                    },
-                    &bytes,
-                    wgpu::TexelCopyBufferLayout {
-                        offset: 0,
-                        bytes_per_row: Some(texel_bytes * level.width as u32),
-                        rows_per_image: Some(level.height as u32),
-                    },
-                    wgpu::Extent3d { width: level.width as u32, height: level.height as u32, depth_or_array_layers: 1 },
-                );
-            }
-        }
-        let views = [&b_m, &m_xy].map(|t| t.create_view(&wgpu::TextureViewDescriptor::default()));
+        let lean = lean_mips(ctx, normal_map)?;
+        let views = [
+            half_texture(ctx, "LEAN B, Mxx, Myy", &lean, |t| vec![t.b.x, t.b.y, t.m.x, t.m.z]),
+            half_texture(ctx, "LEAN Mxy, J", &lean, |t| vec![t.m.y, t.j]),
+        ];
         if self.moments.len() >= MAX_CACHED {
             self.moments.clear();
         }
         self.moments.push((normal_map.clone(), views.clone()));
         Ok(views)
+    }
+
+    /// CLEAN's moments of `normal_map` (`bumpmap_math::lean::LeanMoments::isotropic`), every
+    /// level, as one `Rgba16Float` texture: (Bx, By, Mxx + Myy, J), where LEAN needs two.
+    pub fn clean_moments(&mut self, ctx: &Context, normal_map: &Arc<Rgba8Mips>) -> Result<wgpu::TextureView, GpuError> {
+        if let Some((_, v)) = self.clean.iter().find(|(m, _)| Arc::ptr_eq(m, normal_map)) {
+            return Ok(v.clone());
+        }
+        let lean = lean_mips(ctx, normal_map)?;
+        let view = half_texture(ctx, "CLEAN B, Mxx + Myy, J", &lean, |t| vec![t.b.x, t.b.y, t.m.x + t.m.z, t.j]);
+        if self.clean.len() >= MAX_CACHED {
+            self.clean.clear();
+        }
+        self.clean.push((normal_map.clone(), view.clone()));
+        Ok(view)
     }
 
     /// The normalization cube map of face size `size` (faces +X, −X, +Y, −Y, +Z, −Z: wgpu's

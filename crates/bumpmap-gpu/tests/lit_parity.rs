@@ -1,6 +1,6 @@
 //! `shading.wgsl`'s `shade()` against its definition, `bumpmap_core::shading::shade`, on random
 //! fragments for every self-shadowing and specular-gate mode, whole and fractional shininess,
-//! without a specular filter, with Toksvig's, the roughness map's and LEAN's, on a compute
+//! without a specular filter, with Toksvig's, the roughness map's, LEAN's and CLEAN's, on a compute
 //! shader.
 //!
 //! Tolerance: 2e-4 per channel (a twentieth of one 8-bit step, 1/255 ≈ 3.9e-3). Both sides
@@ -81,8 +81,14 @@ fn wgsl_shade_is_the_lighting_model() {
             // The modes by the prelude's names, as lit.wgsl passes them.
             let (ss, sg) = (self_shadow_name(self_shadow), specular_shadow_name(specular_shadow));
             for (shininess, specular_filter) in [8.0f32, 1.0, 33.0, 7.5, 100.0].into_iter().flat_map(|s| {
-                [SpecularFilter::None, SpecularFilter::Toksvig, SpecularFilter::RoughnessMap, SpecularFilter::Lean]
-                    .map(|f| (s, f))
+                [
+                    SpecularFilter::None,
+                    SpecularFilter::Toksvig,
+                    SpecularFilter::RoughnessMap,
+                    SpecularFilter::Lean,
+                    SpecularFilter::Clean,
+                ]
+                .map(|f| (s, f))
             }) {
                 let sf = specular_filter_name(specular_filter);
                 let terms = LitTerms {

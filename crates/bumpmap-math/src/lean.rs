@@ -93,6 +93,29 @@ impl LeanMoments {
         Self { b: Vec2::new(a[0], a[1]), m: Vec3::new(a[2], a[4], a[3]), j: a[5] }
     }
 
+    /// CLEAN mapping (Olano & Baker 2010, §5): these moments with the slopes' spread made
+    /// isotropic — σ² = ½(Mxx + Myy − |B|²) along both axes, no correlation — which is all a
+    /// texture of Bx, By and Mxx + Myy (and J) can say: four channels where LEAN needs six
+    /// (three and five in the paper, which has no J). The spread's total (the covariance's
+    /// trace) is kept; its direction is lost, so a texel whose bumps run one way gets a round
+    /// highlight. Only Mxx + Myy is read: filtering that sum is filtering the moments.
+    ///
+    /// ```
+    /// use bumpmap_math::lean::LeanMoments;
+    /// use glam::{Vec2, Vec3};
+    ///
+    /// // Slopes spread along x only (variance 0.09): CLEAN shares it out, 0.045 each way.
+    /// let lean = LeanMoments { b: Vec2::new(0.1, 0.0), m: Vec3::new(0.01 + 0.09, 0.0, 0.0), j: 1.2 };
+    /// let c = lean.isotropic().covariance(f32::INFINITY);
+    /// assert!((c - Vec3::new(0.045, 0.0, 0.045)).abs().max_element() < 1e-6);
+    /// assert_eq!(LeanMoments::FLAT.isotropic(), LeanMoments::FLAT);
+    /// ```
+    pub fn isotropic(self) -> Self {
+        let (bx2, by2) = (self.b.x * self.b.x, self.b.y * self.b.y);
+        let half = 0.5 * ((self.m.x + self.m.z) - (bx2 + by2));
+        Self { b: self.b, m: Vec3::new(bx2 + half, self.b.x * self.b.y, by2 + half), j: self.j }
+    }
+
     /// Σ = M − BBᵀ + I·J/(s + 1) as (Σxx, Σxy, Σyy): the spread of the slopes plus a
     /// Blinn–Phong lobe of exponent `shininess` read as a Gaussian in slope space (Olano & Baker
     /// §3.2 with the errata, whose variance is 1/s; 1/(s + 1) here, see the module's docs),
@@ -272,6 +295,32 @@ mod tests {
                     prop_assert!(c.x >= -1e-5 && c.z >= -1e-5 && c.x * c.z - c.y * c.y >= -1e-5, "{:?}", c);
                 }
             }
+        }
+    }
+
+    proptest! {
+        /// CLEAN keeps the mean slope, J and the spread's total, loses its direction, and
+        /// draws LEAN's lobe wherever the spread was round already.
+        #[test]
+        fn clean_is_lean_with_the_spread_shared_out(
+            b in (-2.0f32..2.0, -2.0f32..2.0),
+            spread in (0.0f32..1.0, -0.3f32..0.3, 0.0f32..1.0),
+            j in 1.0f32..10.0,
+            h in (-0.6f32..0.6, -0.6f32..0.6),
+        ) {
+            let b = Vec2::new(b.0, b.1);
+            let lean = LeanMoments { b, m: Vec3::new(b.x * b.x + spread.0, b.x * b.y + spread.1, b.y * b.y + spread.2), j };
+            let clean = lean.isotropic();
+            let (cl, cc) = (lean.covariance(f32::INFINITY), clean.covariance(f32::INFINITY));
+            prop_assert_eq!((clean.b, clean.j), (lean.b, lean.j));
+            prop_assert!(((cl.x + cl.z) - (cc.x + cc.z)).abs() < 1e-4, "{cl} vs {cc}");
+            prop_assert!((cc.x - cc.z).abs() < 1e-4 && cc.y.abs() < 1e-4, "{cc}");
+            let twice = clean.isotropic();
+            prop_assert!((twice.m - clean.m).abs().max_element() < 1e-5, "idempotent: {:?} vs {:?}", twice, clean);
+            let round = LeanMoments { m: Vec3::new(b.x * b.x + spread.0, b.x * b.y, b.y * b.y + spread.0), ..lean };
+            let h = Vec3::new(h.0, h.1, 1.0).normalize();
+            let (a, c) = (round.specular(h, 16.0), round.isotropic().specular(h, 16.0));
+            prop_assert!((a - c).abs() <= 1e-4 * a.max(1.0), "{a} vs {c}");
         }
     }
 

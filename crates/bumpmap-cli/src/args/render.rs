@@ -162,7 +162,7 @@ pub struct TechniqueGroup {
     /// single-pass: geometric self-shadowing of the specular term
     #[arg(long = "specular-shadow", value_enum, default_value = "kilgard")]
     pub specular_shadow: SpecularShadowArg,
-    /// single-pass: how the specular lobe answers the bumps a pixel averages (toksvig: the exponent from the mip chain's |N|; roughness-map: from a roughness map made of it, or --roughness-map FILE; lean: the slopes' moments; a distant bumpy surface's highlight widens and dims; `--technique toksvig` or `lean` sets it)
+    /// single-pass: how the specular lobe answers the bumps a pixel averages (toksvig: the exponent from the mip chain's |N|; roughness-map: from a roughness map made of it, or --roughness-map FILE; lean and clean: the slopes' moments; a distant bumpy surface's highlight widens and dims; `--technique toksvig` or `lean` sets it)
     #[arg(long = "specular-filter", value_enum, default_value = "none")]
     pub specular_filter: SpecularFilterArg,
 }
@@ -369,10 +369,12 @@ pub enum SpecularFilterArg {
     None,
     /// Toksvig 2005: exponent s·|N|/(|N| + s(1 − |N|)), with its energy factor
     Toksvig,
-    /// A roughness map sampled as an engine samples it, turned into a Blinn–Phong exponent: the one `normalmap --roughness-out` exports (Filament's prefilter of each level's |N|), made from the normal map, or --roughness-map FILE
+    /// a roughness map sampled as an engine samples it, turned into a Blinn–Phong exponent: the one `normalmap --roughness-out` exports (Filament's prefilter of each level's |N|), made from the normal map, or --roughness-map FILE
     RoughnessMap,
     /// LEAN mapping (Olano & Baker 2010): the slopes' first and second moments, filtered, make an anisotropic Gaussian lobe (tangent-space maps of unit normals)
     Lean,
+    /// CLEAN mapping (Olano & Baker 2010, §5): LEAN with the spread shared out equally in x and y, one moment texture instead of two: a round lobe
+    Clean,
 }
 
 /// Texture filtering.

@@ -28,7 +28,7 @@ pub struct ViewArgs {
     /// Square frames of this size instead of --width and --height
     #[arg(long, value_parser = parse_side, conflicts_with_all = ["width", "height"])]
     pub size: Option<usize>,
-    /// Draw this many frames, then exit (with --screenshot, write the last one); with --record, the frames of one orbit [default: the keys given plus one; 48 for --record]
+    /// Draw this many frames, then exit (with --screenshot, write the last one); with --record, the frames of one orbit [default, and the fewest with --keys: the keys given plus one; 48 for --record]
     #[arg(long, value_parser = clap::value_parser!(u32).range(1..=100_000))]
     pub frames: Option<u32>,
     /// Write the last frame, as the window shows it, to this PNG and exit

@@ -177,7 +177,7 @@ fn specular_plot(r: &Results, which: usize) -> String {
         };
         let reference = r.specular.iter().map(|row| line(row, None)).collect();
         labelled_line(chart, "reference", BLACK, reference);
-        let colors = [RED, BLUE, GREEN, MAGENTA, CYAN];
+        let colors = [RED, BLUE, GREEN, MAGENTA, CYAN, RGBColor(230, 140, 0)];
         for (k, name) in super::studies::SPECULAR_FILTERS.iter().enumerate() {
             labelled_line(chart, name, colors[k], r.specular.iter().map(|row| line(row, Some(k))).collect());
         }

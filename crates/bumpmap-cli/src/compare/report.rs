@@ -161,9 +161,10 @@ pub fn html(r: &Results) -> String {
         .specular
         .iter()
         .map(|row| {
-            let [renormalized, _, toksvig, roughness, lean] = row.energy_errors();
+            let [renormalized, _, toksvig, roughness, lean, clean] = row.energy_errors();
             let ratio = |e: f64| e.abs() / renormalized.abs().max(1e-9);
-            format!("{}×: {:.2}, {:.2} and {:.2}", row.distance, ratio(toksvig), ratio(roughness), ratio(lean))
+            let (t, r, l, c) = (ratio(toksvig), ratio(roughness), ratio(lean), ratio(clean));
+            format!("{}×: {t:.2}, {r:.2}, {l:.2} and {c:.2}", row.distance)
         })
         .collect::<Vec<_>>()
         .join(", ");
@@ -249,10 +250,10 @@ figcaption {{ font-size: 0.85em; max-width: {size}px; }}
 <table><tr><th>distance</th><th>reference</th><th>length factor</th><th>renormalized</th></tr>{golf_side}</table>
 <h2>The golf ball's highlight at a distance: specular filtering (Kilgard §2.5.3)</h2>
 <p>The same ball, 160×160 pixels, specular alone (ambient and diffuse 0, k_s 1, shininess 32), a directional light behind the eye, at five distances over a 16× range; every variant is the single pass. Specular energy is the frame's summed brightness over the pixels the reference's ball touches; width is the brightness-weighted RMS distance from the highlight's centre, as a fraction of the ball's radius. The mips average the dimples' normals into one, so the single pass keeps a highlight as tight as a smooth ball's while the reference's spreads and dims. The length in alpha does not reach the specular term (it is the same as renormalized mips here); Toksvig's filter widens the lobe by it, s′ = s·|N|/(|N| + s(1 − |N|)), with the energy factor (1 + s′)/(1 + s).</p>
-<table><tr><th rowspan="2">distance</th><th colspan="2">reference</th><th colspan="2">renormalized mips</th><th colspan="2">length factor</th><th colspan="2">Toksvig</th><th colspan="2">roughness map</th><th colspan="2">LEAN</th></tr>
-<tr><th>energy</th><th>width</th><th>energy (error)</th><th>width</th><th>energy (error)</th><th>width</th><th>energy (error)</th><th>width</th><th>energy (error)</th><th>width</th><th>energy (error)</th><th>width</th></tr>
+<table><tr><th rowspan="2">distance</th><th colspan="2">reference</th><th colspan="2">renormalized mips</th><th colspan="2">length factor</th><th colspan="2">Toksvig</th><th colspan="2">roughness map</th><th colspan="2">LEAN</th><th colspan="2">CLEAN</th></tr>
+<tr><th>energy</th><th>width</th><th>energy (error)</th><th>width</th><th>energy (error)</th><th>width</th><th>energy (error)</th><th>width</th><th>energy (error)</th><th>width</th><th>energy (error)</th><th>width</th><th>energy (error)</th><th>width</th></tr>
 {specular_rows}</table>
-<p>The roughness map is the file <code>bumpmap normalmap --mips --roughness-out</code> writes for this ball (Filament's prefilter of each level's mean normal length, 8 bits, every level, at shininess 32's roughness (2/34)<sup>¼</sup>), sampled by its own texture unit and read as an engine's Blinn–Phong shader reads roughness: GGX α² = roughness⁴, exponent s′ = 2/α² − 2, with the normalized lobes' ratio (s′ + 2)/(s + 2). LEAN mapping (Olano &amp; Baker 2010) filters the slopes' first and second moments, made from the normal map's level 0, and draws the highlight as a Gaussian of their covariance plus 1/s, scaled to Blinn–Phong's peak for a flat texel. Toksvig's, the roughness map's and LEAN's energy error as a fraction of renormalized mips', by distance: {specular_summary}.</p>
+<p>The roughness map is the file <code>bumpmap normalmap --mips --roughness-out</code> writes for this ball (Filament's prefilter of each level's mean normal length, 8 bits, every level, at shininess 32's roughness (2/34)<sup>¼</sup>), sampled by its own texture unit and read as an engine's Blinn–Phong shader reads roughness: GGX α² = roughness⁴, exponent s′ = 2/α² − 2, with the normalized lobes' ratio (s′ + 2)/(s + 2). LEAN mapping (Olano &amp; Baker 2010) filters the slopes' first and second moments, made from the normal map's level 0, and draws the highlight as a Gaussian of their covariance plus 1/s, scaled to Blinn–Phong's peak for a flat texel; CLEAN (their §5) shares the slopes' spread out equally in x and y, from one texture of (Bx, By, Mxx + Myy, J). Toksvig's, the roughness map's, LEAN's and CLEAN's energy error as a fraction of renormalized mips', by distance: {specular_summary}.</p>
 <p><img src="specular_energy.svg" alt="specular energy by distance"> <img src="specular_width.svg" alt="highlight width by distance"></p>
 <h2>Embossing (Kilgard §3.1)</h2>
 <p>The brick wall without specular (embossing is diffuse only), 96×96 pixels, a directional light at each angle from the wall's normal. Contrast is the standard deviation of the wall's brightness, as a fraction of the reference's. With the light along the normal the shift is zero, the two fetches agree, and embossing is flat (contrast near 0) and too bright (positive bias): it shows L_z = 1 where the bumps should turn the normal away from the light.</p>

@@ -87,8 +87,9 @@ pub const SPECULAR_DISTANCES: [f32; 5] = [1.0, 2.0, 4.0, 8.0, 16.0];
 
 /// The specular filters the study measures, in its columns' order: renormalized mips, the
 /// length in alpha (which the single pass's specular does not read), Toksvig's filter, the
-/// exported roughness map read by a Blinn–Phong shader, and LEAN mapping.
-pub const SPECULAR_FILTERS: [&str; 5] = ["renormalized mips", "length factor", "Toksvig", "roughness map", "LEAN"];
+/// exported roughness map read by a Blinn–Phong shader, LEAN mapping and CLEAN mapping.
+pub const SPECULAR_FILTERS: [&str; 6] =
+    ["renormalized mips", "length factor", "Toksvig", "roughness map", "LEAN", "CLEAN"];
 
 /// One distance of [`specular_study`]: the reference's and each filter's `(energy, width)`.
 #[derive(Clone, Debug, PartialEq)]
@@ -98,12 +99,12 @@ pub struct SpecularRow {
     /// The reference.
     pub reference: (f64, f64),
     /// Each of [`SPECULAR_FILTERS`].
-    pub filters: [(f64, f64); 5],
+    pub filters: [(f64, f64); 6],
 }
 
 impl SpecularRow {
     /// Each filter's energy error against the reference, relative (−0.1: 10 % too little).
-    pub fn energy_errors(&self) -> [f64; 5] {
+    pub fn energy_errors(&self) -> [f64; 6] {
         self.filters.map(|(e, _)| e / self.reference.0 - 1.0)
     }
 }
@@ -172,6 +173,7 @@ pub fn specular_study(backend: &mut Renderer) -> Result<Vec<SpecularRow>, CliErr
             filtered(MipMode::LengthInAlpha, SpecularFilter::Toksvig)?,
             filtered(MipMode::LengthInAlpha, SpecularFilter::RoughnessMap)?,
             filtered(MipMode::LengthInAlpha, SpecularFilter::Lean)?,
+            filtered(MipMode::LengthInAlpha, SpecularFilter::Clean)?,
         ];
         rows.push(SpecularRow { distance, reference: measure(&reference.pixels), filters });
     }

@@ -27,7 +27,8 @@ pub enum Action {
     Normalize,
     /// The textures' filter: trilinear or nearest.
     Filter,
-    /// The specular filter: none, Toksvig's, the roughness map's, LEAN (single-pass techniques).
+    /// The specular filter: none, Toksvig's, the roughness map's, LEAN, CLEAN (single-pass
+    /// techniques).
     SpecularFilter,
     /// A larger bump scale, the normal map rebuilt.
     BumpsUp,
@@ -137,7 +138,7 @@ impl Action {
             Action::MipMode => "mips: length factor, renormalized, none",
             Action::Normalize => "normalize by cube map / math",
             Action::Filter => "texture filter: trilinear / nearest",
-            Action::SpecularFilter => "spec. filter: none/Toksvig/rough. map/LEAN",
+            Action::SpecularFilter => "spec. filter: off/Toksvig/rough/LEAN/CLEAN",
             Action::BumpsUp => "bumps higher (normal map rebuilt)",
             Action::BumpsDown => "bumps lower",
             Action::ShininessUp => "shininess up",

@@ -35,6 +35,16 @@ pub fn run(args: &ViewArgs) -> Result<(), CliError> {
     for out in [&args.record, &args.screenshot].into_iter().flatten() {
         bumpmap_io::atomic::ensure_not_input(out, &inputs)?;
     }
+    // --keys presses one key a frame, and the last key's effect shows in the frame after it.
+    if let (None, Some(frames), Some(keys)) = (&args.record, args.frames, &args.keys)
+        && (frames as usize) <= keys.0.len()
+    {
+        let need = keys.0.len() + 1;
+        return Err(CliError::Usage(format!(
+            "--frames {frames} would leave keys of --keys unpressed: its {} keys take one frame each and the last shows in the frame after, {need} frames; give --frames {need} or more, or leave --frames out",
+            keys.0.len()
+        )));
+    }
     match &args.record {
         Some(out) => record::run(args, setup, out, &inputs),
         None => window::run(args, setup, &inputs),

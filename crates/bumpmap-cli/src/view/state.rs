@@ -73,7 +73,8 @@ pub struct Choices {
     pub cube: bool,
     /// Nearest texels rather than trilinear filtering.
     pub nearest: bool,
-    /// The specular filter (the single pass): none, Toksvig's, the roughness map's, LEAN.
+    /// The specular filter (the single pass): none, Toksvig's, the roughness map's, LEAN,
+    /// CLEAN.
     pub specular_filter: SpecularFilter,
     /// The bump scale: a height field's step height, or a normal map's slope factor.
     pub bump_scale: f32,
@@ -319,7 +320,8 @@ impl Viewer {
                     SpecularFilter::None => SpecularFilter::Toksvig,
                     SpecularFilter::Toksvig => SpecularFilter::RoughnessMap,
                     SpecularFilter::RoughnessMap => SpecularFilter::Lean,
-                    SpecularFilter::Lean => SpecularFilter::None,
+                    SpecularFilter::Lean => SpecularFilter::Clean,
+                    SpecularFilter::Clean => SpecularFilter::None,
                 }
             }
             Action::BumpsUp => c.bump_scale *= 1.25,
@@ -479,6 +481,7 @@ impl Viewer {
                 SpecularFilter::Toksvig => " | toksvig",
                 SpecularFilter::RoughnessMap => " | roughness map",
                 SpecularFilter::Lean => " | LEAN",
+                SpecularFilter::Clean => " | CLEAN",
             },
             if off.is_empty() { String::new() } else { format!(" | off: {}", off.join(", ")) },
         )

@@ -116,7 +116,7 @@ pub fn validate(scene: &Scene, options: &SinglePassOptions) -> Result<(), CoreEr
         if options.gloss == Gloss::DecalAlpha && m.decal.is_none() {
             return Err(CoreError::GlossNeedsDecal);
         }
-        if options.specular_filter == SpecularFilter::Lean
+        if matches!(options.specular_filter, SpecularFilter::Lean | SpecularFilter::Clean)
             && (m.normal_space.is_object() || m.normal_texels != crate::scene::NormalTexels::UnitVector)
         {
             return Err(CoreError::Unsupported { technique: "single-pass", feature: Feature::LeanFilter });
