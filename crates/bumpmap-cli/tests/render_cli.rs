@@ -340,6 +340,38 @@ fn an_exported_roughness_map_is_read_as_the_one_made_from_the_normal_map() {
         assert!(gpu.0 < 0.1 && gpu.1 <= 40, "GPU vs CPU: {gpu:?}");
     }
 
+    // A lone image (no .mipK files beside it): its levels box-filtered, with a warning; the
+    // gloss layout read as 1 − roughness. Level 0 agrees, so the picture changes only where the
+    // small levels are read.
+    let lone = path("lone.png");
+    ok(&[
+        "normalmap",
+        "dimples@256",
+        "-o",
+        &path("l.png"),
+        "--mips",
+        "--roughness-out",
+        &path("g.png"),
+        "--roughness",
+        "0.5",
+        "--roughness-layout",
+        "gloss",
+    ]);
+    std::fs::copy(dir.join("g.png"), &lone).unwrap();
+    let (o, out) =
+        run("cpu", &["--technique", "roughness-map", "--roughness-map", &lone, "--roughness-layout", "gloss"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(stderr(&o).contains("lone.png: one level") && stderr(&o).contains("--roughness-out"), "{}", stderr(&o));
+    let boxed = diff(&file, &read_png(&out));
+    eprintln!("file vs its level 0 box-filtered: {boxed:?}");
+    assert!(boxed.0 > file_vs_made.0, "box-filtered levels lose the spread: {boxed:?}");
+    let gloss = draw(
+        "cpu",
+        &["--technique", "roughness-map", "--roughness-map", &path("g.png"), "--roughness-layout", "gloss"],
+    );
+    let (mean, most) = diff(&file, &gloss);
+    assert!(mean < 0.01 && most <= 1, "the gray PNG set and the gloss PNG set: {mean}, {most}");
+
     // Refusals: without the filter that reads it; another size than the normal map's; a mip
     // file of the wrong size; a layout without a map.
     let o = bumpmap(&["render", "--technique", "single-pass", "--roughness-map", &gray, "-o", &path("x.png")]);
