@@ -307,14 +307,16 @@ fn load_roughness_map(path: &Path, layout: RoughnessLayoutArg) -> Result<Rgba8Mi
             bumpmap_io::StoredLevels::Rgba16(levels) => levels
                 .into_iter()
                 .map(|l| {
-                    let texels = l.texels.iter().map(|t| t.map(|c| ((c as u32 * 255 + 32767) / 65535) as u8)).collect();
-                    Rgba8Image::new(l.width, l.height, texels)
+                    use bumpmap::bumpmap_math::Texel as _;
+                    Rgba8Image::new(l.width, l.height, l.texels.into_iter().map(|t| t.to_rgba8()).collect())
                 })
                 .collect(),
         }
     };
     let mut levels = to_rgba8(bumpmap_io::load_texture(path)?);
-    if levels.len() == 1 {
+    let ext = path.extension().map(|e| e.to_string_lossy().to_ascii_lowercase());
+    let container = matches!(ext.as_deref(), Some("dds" | "ktx2"));
+    if levels.len() == 1 && !container {
         for k in 1.. {
             let mip = crate::normalmap::level_path(path, k);
             if !mip.is_file() {
