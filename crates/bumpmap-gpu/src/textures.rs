@@ -75,17 +75,18 @@ fn lean_mips(ctx: &Context, normal_map: &Rgba8Mips) -> Result<LeanMips, GpuError
     Ok(LeanMips::from_normal_map(normal_map, Encoding::Unorm).map_err(bumpmap_core::CoreError::from)?)
 }
 
-/// A half-float texture of every level of `lean`, each texel's channels `texel` (2 or 4 of
-/// them: `Rg16Float` or `Rgba16Float`).
-fn half_texture(
+/// A half-float texture of every level of `lean`, each texel's `N` channels `texel` (2 or 4:
+/// `Rg16Float` or `Rgba16Float`).
+fn half_texture<const N: usize>(
     ctx: &Context,
     label: &str,
     lean: &LeanMips,
-    texel: impl Fn(&bumpmap_math::lean::LeanMoments) -> Vec<f32>,
+    texel: impl Fn(&bumpmap_math::lean::LeanMoments) -> [f32; N],
 ) -> wgpu::TextureView {
+    const { assert!(N == 2 || N == 4, "half-float moment textures hold 2 or 4 channels") };
     let level0 = &lean.levels[0];
-    let channels = texel(&level0.texels[0]).len() as u32;
-    let format = if channels == 2 { wgpu::TextureFormat::Rg16Float } else { wgpu::TextureFormat::Rgba16Float };
+    let channels = N as u32;
+    let format = if N == 2 { wgpu::TextureFormat::Rg16Float } else { wgpu::TextureFormat::Rgba16Float };
     let texture = ctx.device.create_texture(&wgpu::TextureDescriptor {
         label: Some(label),
         size: wgpu::Extent3d { width: level0.width as u32, height: level0.height as u32, depth_or_array_layers: 1 },
@@ -150,8 +151,8 @@ impl Textures {
         }
         let lean = lean_mips(ctx, normal_map)?;
         let views = [
-            half_texture(ctx, "LEAN B, Mxx, Myy", &lean, |t| vec![t.b.x, t.b.y, t.m.x, t.m.z]),
-            half_texture(ctx, "LEAN Mxy, J", &lean, |t| vec![t.m.y, t.j]),
+            half_texture(ctx, "LEAN B, Mxx, Myy", &lean, |t| [t.b.x, t.b.y, t.m.x, t.m.z]),
+            half_texture(ctx, "LEAN Mxy, J", &lean, |t| [t.m.y, t.j]),
         ];
         if self.moments.len() >= MAX_CACHED {
             self.moments.clear();
@@ -167,7 +168,7 @@ impl Textures {
             return Ok(v.clone());
         }
         let lean = lean_mips(ctx, normal_map)?;
-        let view = half_texture(ctx, "CLEAN B, Mxx + Myy, J", &lean, |t| vec![t.b.x, t.b.y, t.m.x + t.m.z, t.j]);
+        let view = half_texture(ctx, "CLEAN B, Mxx + Myy, J", &lean, |t| [t.b.x, t.b.y, t.m.x + t.m.z, t.j]);
         if self.clean.len() >= MAX_CACHED {
             self.clean.clear();
         }
