@@ -18,7 +18,8 @@ use bumpmap_core::combiners::Precision;
 use bumpmap_core::scene::{Attenuation, SceneLight, Spot};
 use bumpmap_core::scenes::{self, SceneKind, SceneParams};
 use bumpmap_core::technique::{
-    Gloss, HalfAngle, KilgardOptions, Normalize, SelfShadow, SinglePassOptions, SpecularShadow, Technique,
+    Gloss, HalfAngle, KilgardOptions, Normalize, SelfShadow, SinglePassOptions, SpecularFilter, SpecularShadow,
+    Technique,
 };
 use bumpmap_core::{BumpMap, BumpSource};
 use bumpmap_gpu::GpuRenderer;
@@ -158,6 +159,13 @@ fn the_single_pass_model_matches_the_cpu_feature_by_feature() {
     for (name, options) in variants {
         let params = SceneParams { shininess: 13.5, ..Default::default() };
         check(&mut gpu, &format!("gpu_sp_{name}"), SceneKind::Torus, params, single(options));
+    }
+    // The specular filters, each with its own textures on the GPU (a roughness map; LEAN's two
+    // half-float moment textures; CLEAN's one), at a shininess where they act.
+    for filter in [SpecularFilter::Toksvig, SpecularFilter::RoughnessMap, SpecularFilter::Lean, SpecularFilter::Clean] {
+        let params = SceneParams { shininess: 32.0, ..Default::default() };
+        let options = SinglePassOptions { specular_filter: filter, ..Default::default() };
+        check(&mut gpu, &format!("gpu_sp_{filter:?}"), SceneKind::Torus, params, single(options));
     }
 }
 
