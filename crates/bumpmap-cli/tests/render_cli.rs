@@ -387,6 +387,14 @@ fn an_exported_roughness_map_is_read_as_the_one_made_from_the_normal_map() {
     let (o, _) = run("cpu", &["--technique", "roughness-map", "--roughness-map", &gray]);
     assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
     assert!(stderr(&o).contains("r.mip1.png") && stderr(&o).contains("is 16x16, but level 1"), "{}", stderr(&o));
+    // A file that is not there, and one that is not an image.
+    std::fs::write(dir.join("junk.png"), b"not a PNG at all").unwrap();
+    for (name, expect) in [("missing.png", "missing.png"), ("junk.png", "junk.png")] {
+        let (o, out) = run("cpu", &["--technique", "roughness-map", "--roughness-map", &path(name)]);
+        assert_eq!(o.status.code(), Some(1), "{name}: {}", stderr(&o));
+        assert!(stderr(&o).contains(expect) && !stderr(&o).contains("panicked"), "{name}: {}", stderr(&o));
+        assert!(!out.exists());
+    }
     let o = bumpmap(&["render", "--roughness-layout", "gltf", "-o", &path("x.png")]);
     assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
     assert!(!dir.join("x.png").exists());
