@@ -196,7 +196,8 @@ fn golf_ball_plot(r: &Results) -> String {
         y: "mean brightness",
         legend: Some(SeriesLabelPosition::UpperRight),
     };
-    svg_plot(labels, (0.8f64..dmax).log_scale(), (lo - pad)..(hi + pad), |chart| {
+    let distances: Vec<f64> = r.golf_ball.iter().map(|row| row.0 as f64).collect();
+    svg_plot(labels, (0.8f64..dmax).log_scale().with_key_points(distances), (lo - pad)..(hi + pad), |chart| {
         let series = [("reference", 1usize, BLACK), ("length factor in alpha", 2, BLUE), ("renormalized mips", 3, RED)];
         for (label, column, color) in series {
             let points = r.golf_ball.iter().map(|row| (row.0 as f64, [row.1, row.2, row.3][column - 1])).collect();
