@@ -245,14 +245,7 @@ fn make_texels<T: Texel>(
     }
 }
 
-/// The file name of level `k` for a PNG output: `n.png`, `n.mip1.png`, `n.mip2.png`, …
-pub fn level_path(out: &Path, k: usize) -> PathBuf {
-    if k == 0 {
-        return out.to_path_buf();
-    }
-    let stem = out.file_stem().unwrap_or_default().to_string_lossy();
-    out.with_file_name(format!("{stem}.mip{k}.png"))
-}
+pub use bumpmap_io::image_file::level_path;
 
 /// Writes a chain by the output's extension: PNG files, or one DDS / KTX2 file.
 pub fn write(out: &Path, chain: MipChain) -> Result<(), CliError> {

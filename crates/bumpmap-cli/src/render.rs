@@ -244,6 +244,7 @@ pub fn core_err(e: CoreError) -> CliError {
         Feature::SurfaceMap => "a normal map made for one surface (its passes read every texture with the repeating coordinates)".into(),
         Feature::LeanFilter => "--specular-filter lean on this map".into(),
         Feature::RoughnessFilter => "--specular-filter roughness-map on this map".into(),
+        Feature::Parallax => "heights as geometry on this map".into(),
     }
     };
     match e {
@@ -258,6 +259,15 @@ pub fn core_err(e: CoreError) -> CliError {
                 .into(),
         ),
         e @ CoreError::RoughnessSize { .. } => CliError::Render(format!("--roughness-map: {e}")),
+        CoreError::Unsupported { technique, feature: Feature::Parallax } => CliError::Render(format!(
+            "--technique {technique} with heights as geometry reads a tangent-space map of unit normals at each hit; \
+             the object-space, offset-map and peercy techniques' maps are made otherwise: use --technique pom (or another parallax technique) on its own"
+        )),
+        e @ CoreError::HeightsSize { .. } => CliError::Render(format!("--height-map: {e}")),
+        CoreError::NoMinMax { technique } => CliError::Render(format!(
+            "--technique {technique} walks the heights' min–max levels, and --height-map has none beside it \
+             (H.minmax.png or H.minmax.ktx2 / .dds): write the heights again with `bumpmap normalmap --mips --height-out H`, or use --technique pom"
+        )),
         CoreError::Unsupported { technique, feature } => CliError::Render(format!(
             "--technique {technique} cannot do {}: the paper's combiners have no room for it; use --technique single-pass",
             flag(&feature)
@@ -293,6 +303,9 @@ pub fn reference_err(e: bumpmap_reference::ReferenceError) -> String {
             "--technique reference needs a height field (--height-field), not a normal map given as it is".into()
         }
         ReferenceError::SpotPattern { .. } => "--technique reference does not sample --spot-pattern".into(),
+        ReferenceError::NoDisplacement { .. } => {
+            "--technique reference-displaced needs heights: a height field (--height-field) or --height-map with a --normal-map".into()
+        }
         other => other.to_string(),
     }
 }

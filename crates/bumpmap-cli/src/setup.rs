@@ -11,6 +11,7 @@ use std::sync::Arc;
 
 use bumpmap::assets::{MeshLoad, load_mesh, load_normal_map};
 use bumpmap::bumpmap_core::combiners::Precision;
+use bumpmap::bumpmap_core::parallax::ParallaxOptions;
 use bumpmap::bumpmap_core::scenes;
 use bumpmap::bumpmap_core::state::Sampler;
 use bumpmap::bumpmap_core::technique::single_pass;
@@ -65,6 +66,10 @@ pub fn named_inputs(s: &SceneSetup) -> Vec<PathBuf> {
         files.push(PathBuf::from(d));
     }
     files.extend(s.material.roughness_map.clone());
+    if let Some(h) = &s.heights.height_map {
+        files.push(h.clone());
+        files.push(bumpmap_io::height_file::minmax_path(h));
+    }
     for spec in [&s.lights.spot_pattern, &s.material.gloss].into_iter().flatten() {
         if let Some(p) =
             HeightSource::parse(spec).path().filter(|_| !matches!(spec.as_str(), "bricks" | "decal-alpha" | "none"))
@@ -179,6 +184,35 @@ pub fn setup(s: &SceneSetup) -> Result<Setup, CliError> {
         }
         None => {}
     }
+
+    // Heights as geometry: a file's, and how deep.
+    if let Some(path) = &s.heights.height_map {
+        let heights = bumpmap_io::height_file::load_heights(path)?;
+        let (hs, ns) = ((heights.width(), heights.height()), spec.params.bumps.size());
+        if hs != ns {
+            return Err(CliError::Path {
+                path: path.clone(),
+                reason: format!(
+                    "is {}x{}, but the normal map is {}x{}: heights are read at the normal map's texture coordinates and levels",
+                    hs.0, hs.1, ns.0, ns.1
+                ),
+            });
+        }
+        notes.push(format!(
+            "{}: heights as geometry, {}x{}, {} levels, {}",
+            path.display(),
+            hs.0,
+            hs.1,
+            heights.levels().len(),
+            if heights.minmax().is_some() {
+                "with min–max levels"
+            } else {
+                "without min–max levels (height-exact needs them)"
+            }
+        ));
+        spec.params.height_mips = Some(Arc::new(heights));
+    }
+    spec.params.depth = s.heights.depth;
 
     let p = &mut spec.params;
     p.eye = camera.eye;
@@ -483,6 +517,7 @@ fn technique_options(s: &SceneSetup, name: TechniqueName) -> Result<TechniqueOpt
             specular_shadow: specular_shadow(t),
             gloss,
             cube_size,
+            parallax: None,
             specular_filter: match t.specular_filter {
                 SpecularFilterArg::None => bumpmap::SpecularFilter::None,
                 SpecularFilterArg::Toksvig => bumpmap::SpecularFilter::Toksvig,
@@ -497,6 +532,13 @@ fn technique_options(s: &SceneSetup, name: TechniqueName) -> Result<TechniqueOpt
             samples_per_pixel: t.spp as usize,
             self_shadow: self_shadow(t),
             specular_shadow: specular_shadow(t),
+            ..Default::default()
+        },
+        parallax: ParallaxOptions {
+            layers: s.heights.layers,
+            shadow: s.heights.parallax_shadow.into(),
+            silhouettes: s.heights.silhouettes,
+            write_depth: s.heights.write_depth,
         },
     })
 }

@@ -17,6 +17,7 @@ use bumpmap_math::{Kernel, MipMode};
 
 use crate::bump_maps::BumpMap;
 use crate::error::CoreError;
+use crate::parallax::{Parallax, ParallaxMethod, ParallaxOptions, ParallaxShadow};
 use crate::scene::Scene;
 use crate::scenes::{BumpSource, SceneParams, SceneSpec};
 use crate::technique::{
@@ -60,8 +61,20 @@ pub enum TechniqueName {
     OffsetMap,
     /// Peercy's Figure 2 hardware (Figure 5).
     PeercyBlinn,
+    /// Parallax mapping with offset limiting (Kaneko et al. 2001, Welsh 2004).
+    Parallax,
+    /// Steep parallax mapping (McGuire & McGuire 2005).
+    SteepParallax,
+    /// Parallax occlusion mapping (Tatarchuk 2006).
+    Pom,
+    /// Relief mapping (Policarpo, Oliveira & Comba 2005).
+    Relief,
+    /// The min–max walk of the exact surface per pixel (Tevs et al. 2008).
+    HeightExact,
     /// Ground truth.
     Reference,
+    /// Ground truth for heights as geometry: the displaced surface.
+    ReferenceDisplaced,
 }
 
 /// What a technique needs of a scene.
@@ -75,6 +88,8 @@ pub enum Requirement {
     HeightField,
     /// One light: its passes have room for one.
     OneLight,
+    /// Heights to take as geometry: a height field, or heights given beside a normal map.
+    Heights,
 }
 
 impl Requirement {
@@ -84,6 +99,7 @@ impl Requirement {
             Requirement::BuiltInSurface => "a built-in surface",
             Requirement::HeightField => "a height field",
             Requirement::OneLight => "one light",
+            Requirement::Heights => "heights",
         }
     }
 }
@@ -100,6 +116,9 @@ impl fmt::Display for Requirement {
                 "a height field: it differentiates the heights itself, and a normal map given as it is has none",
             ),
             Requirement::OneLight => f.write_str("exactly one light"),
+            Requirement::Heights => f.write_str(
+                "heights to take as geometry: a height field, or heights given with the normal map (the file `normalmap --height-out` writes)",
+            ),
         }
     }
 }
@@ -117,11 +136,14 @@ pub struct TechniqueOptions {
     pub emboss: EmbossOptions,
     /// For `reference`.
     pub reference: ReferenceOptions,
+    /// For the techniques that take heights as geometry (`parallax` … `height-exact`), and the
+    /// displaced reference's shadow rays (cast where `shadow` is not off).
+    pub parallax: ParallaxOptions,
 }
 
 impl TechniqueName {
     /// Every name, in catalogue order.
-    pub const ALL: [TechniqueName; 17] = [
+    pub const ALL: [TechniqueName; 23] = [
         TechniqueName::Kilgard,
         TechniqueName::SinglePass,
         TechniqueName::SinglePassCube,
@@ -138,7 +160,13 @@ impl TechniqueName {
         TechniqueName::EmbossUnforced,
         TechniqueName::OffsetMap,
         TechniqueName::PeercyBlinn,
+        TechniqueName::Parallax,
+        TechniqueName::SteepParallax,
+        TechniqueName::Pom,
+        TechniqueName::Relief,
+        TechniqueName::HeightExact,
         TechniqueName::Reference,
+        TechniqueName::ReferenceDisplaced,
     ];
 
     /// The name as the papers and the command line spell it.
@@ -160,7 +188,13 @@ impl TechniqueName {
             TechniqueName::EmbossUnforced => "emboss-unforced",
             TechniqueName::OffsetMap => "offset-map",
             TechniqueName::PeercyBlinn => "peercy-blinn",
+            TechniqueName::Parallax => "parallax",
+            TechniqueName::SteepParallax => "steep-parallax",
+            TechniqueName::Pom => "pom",
+            TechniqueName::Relief => "relief",
+            TechniqueName::HeightExact => "height-exact",
             TechniqueName::Reference => "reference",
+            TechniqueName::ReferenceDisplaced => "reference-displaced",
         }
     }
 
@@ -213,8 +247,26 @@ impl TechniqueName {
             TechniqueName::PeercyBlinn => {
                 "Peercy's Figure 2 hardware (Figure 5): the height derivatives from the same 7×7 kernel in a texture, Blinn's normal made per pixel from them and the interpolated ∂P/∂u, ∂P/∂v"
             }
+            TechniqueName::Parallax => {
+                "parallax mapping (Kaneko et al. 2001) with Welsh's offset limiting (2004): the maps read one height's offset along the view ray from where it enters"
+            }
+            TechniqueName::SteepParallax => {
+                "steep parallax mapping (McGuire & McGuire 2005): the view ray stepped down through --layers layers of height, the maps read at the first layer under the heights"
+            }
+            TechniqueName::Pom => {
+                "parallax occlusion mapping (Tatarchuk 2006): layers from a quarter of --layers looking straight on to all of them at grazing angles, the hit interpolated between the last two samples"
+            }
+            TechniqueName::Relief => {
+                "relief mapping (Policarpo, Oliveira & Comba 2005): the layers' linear search, then eight halvings of the layer it ends in"
+            }
+            TechniqueName::HeightExact => {
+                "the exact hit per pixel: the reference's min–max walk (Tevs et al. 2008) of the heights' C¹ interpolant, shaded with the interpolant's own normal"
+            }
             TechniqueName::Reference => {
                 "ground truth: Blinn's perturbed normal on the exact surface from a C¹ height interpolant, many samples per pixel, on the CPU"
+            }
+            TechniqueName::ReferenceDisplaced => {
+                "ground truth for heights as geometry: the surface carved by the heights' C¹ interpolant times --depth, rays cast exactly (flat surfaces) or to a micro-tessellation (curved ones), shadow rays with --parallax-shadow, many samples per pixel, on the CPU"
             }
         }
     }
@@ -238,6 +290,12 @@ impl TechniqueName {
                 &[BuiltInSurface, HeightField]
             }
             TechniqueName::Emboss | TechniqueName::EmbossUnforced => &[HeightField, OneLight],
+            TechniqueName::Parallax
+            | TechniqueName::SteepParallax
+            | TechniqueName::Pom
+            | TechniqueName::Relief
+            | TechniqueName::HeightExact => &[Heights],
+            TechniqueName::ReferenceDisplaced => &[BuiltInSurface, Heights],
         }
     }
 
@@ -261,6 +319,9 @@ impl TechniqueName {
                 Requirement::BuiltInSurface => spec.kind.is_surface(),
                 Requirement::HeightField => matches!(spec.params.bumps, BumpSource::Heights(_)),
                 Requirement::OneLight => spec.params.lights.len() <= 1,
+                Requirement::Heights => {
+                    matches!(spec.params.bumps, BumpSource::Heights(_)) || spec.params.height_mips.is_some()
+                }
             };
             if !met {
                 return Err(CoreError::Needs { technique: self.name(), requirement });
@@ -274,6 +335,7 @@ impl TechniqueName {
     pub fn scene_params(self, base: &SceneParams) -> SceneParams {
         let mut params = base.clone();
         params.height_map = matches!(self, TechniqueName::Emboss | TechniqueName::EmbossUnforced);
+        params.displacement = self.parallax_method().is_some() || self == TechniqueName::ReferenceDisplaced;
         let peercy = |params: &mut SceneParams, map| {
             params.normal_map.kernel = Kernel::Gaussian7;
             params.bump_map = map;
@@ -295,9 +357,27 @@ impl TechniqueName {
             | TechniqueName::Clean
             | TechniqueName::Emboss
             | TechniqueName::EmbossUnforced
-            | TechniqueName::Reference => {}
+            | TechniqueName::Parallax
+            | TechniqueName::SteepParallax
+            | TechniqueName::Pom
+            | TechniqueName::Relief
+            | TechniqueName::HeightExact
+            | TechniqueName::Reference
+            | TechniqueName::ReferenceDisplaced => {}
         }
         params
+    }
+
+    /// The march of a technique that takes heights as geometry, `None` for the others.
+    pub fn parallax_method(self) -> Option<ParallaxMethod> {
+        match self {
+            TechniqueName::Parallax => Some(ParallaxMethod::Offset),
+            TechniqueName::SteepParallax => Some(ParallaxMethod::Steep),
+            TechniqueName::Pom => Some(ParallaxMethod::Occlusion),
+            TechniqueName::Relief => Some(ParallaxMethod::Relief),
+            TechniqueName::HeightExact => Some(ParallaxMethod::Exact),
+            _ => None,
+        }
     }
 
     /// The technique that draws this name, with `options`' settings for its family and the
@@ -335,7 +415,20 @@ impl TechniqueName {
             TechniqueName::EmbossUnforced => {
                 Technique::Emboss(EmbossOptions { back_facing: BackFacing::Unforced, ..options.emboss.clone() })
             }
+            TechniqueName::Parallax
+            | TechniqueName::SteepParallax
+            | TechniqueName::Pom
+            | TechniqueName::Relief
+            | TechniqueName::HeightExact => Technique::SinglePass(SinglePassOptions {
+                parallax: self.parallax_method().map(|method| Parallax { method, options: options.parallax }),
+                ..single
+            }),
             TechniqueName::Reference => Technique::Reference(options.reference),
+            TechniqueName::ReferenceDisplaced => Technique::Reference(ReferenceOptions {
+                displaced: true,
+                shadow_rays: options.parallax.shadow != ParallaxShadow::Off,
+                ..options.reference
+            }),
         }
     }
 
@@ -419,6 +512,9 @@ mod tests {
             let result = t.prepare(&given, &TechniqueOptions::default());
             if t.requirements().contains(&Requirement::HeightField) {
                 assert!(matches!(result, Err(CoreError::Needs { requirement: Requirement::HeightField, .. })), "{t}");
+            } else if t.requirements().contains(&Requirement::Heights) {
+                // Heights as geometry: a normal map without heights given beside it has none.
+                assert!(matches!(result, Err(CoreError::Needs { requirement: Requirement::Heights, .. })), "{t}");
             } else {
                 assert!(result.is_ok(), "{t}: {:?}", result.err());
             }

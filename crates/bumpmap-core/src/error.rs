@@ -43,6 +43,8 @@ pub enum Feature {
     /// The roughness-map filter made from a map whose alpha is not a normal's length (offsets
     /// or derivatives).
     RoughnessFilter,
+    /// Heights as geometry under a map that is not a tangent-space map of unit normals.
+    Parallax,
 }
 
 impl std::fmt::Display for Feature {
@@ -67,6 +69,9 @@ impl std::fmt::Display for Feature {
             Feature::RoughnessFilter => f.write_str(
                 "the roughness-map specular filter on an offset or derivative map (its roughness comes from the lengths a map of unit normals keeps in alpha)",
             ),
+            Feature::Parallax => f.write_str(
+                "heights as geometry with an object-space, offset or derivative map (the marches read a tangent-space map of unit normals at the hit)",
+            ),
             Feature::SurfaceMap => f.write_str(
                 "a normal map made for one surface (its passes read every texture with the repeating coordinates)",
             ),
@@ -80,6 +85,26 @@ pub enum CoreError {
     /// The height field could not become a normal map.
     #[error("height field: {0}")]
     HeightField(#[from] NormalMapError),
+    /// Heights that cannot be geometry.
+    #[error("heights: {0}")]
+    HeightMips(#[from] bumpmap_math::HeightMipsError),
+    /// Heights as geometry are read with the normal map's texture coordinates and levels, so
+    /// their sizes must agree.
+    #[error("the heights are {}x{} but the normal map is {}x{}: they are read at the same texture coordinates and levels and must be the same size", .heights.0, .heights.1, .normal_map.0, .normal_map.1)]
+    HeightsSize {
+        /// The heights' size.
+        heights: (usize, usize),
+        /// The normal map's size.
+        normal_map: (usize, usize),
+    },
+    /// The exact walk without the min–max levels it walks.
+    #[error(
+        "{technique} walks the heights' min–max levels, and these heights have none (a height map written without them)"
+    )]
+    NoMinMax {
+        /// The technique's name.
+        technique: &'static str,
+    },
     /// A buffer sized by the scene (the vertex stage's outputs) is more than the machine gives.
     #[error(transparent)]
     OutOfMemory(#[from] bumpmap_math::buffer::OutOfMemory),

@@ -15,6 +15,8 @@
 //! - [`combiners`]: NV_register_combiners setups and their validation; [`setups`]: the
 //!   paper's (Kilgard Appendices G and H);
 //! - [`shading`]: the lighting model (Kilgard Eq. 11, 12, 16), once;
+//! - [`parallax`]: heights as geometry: the marches that find where a view ray meets the
+//!   heights (parallax, steep parallax, POM, relief, the exact walk) and their shadows, once;
 //! - [`technique`]: techniques as passes, with their capability checks;
 //! - [`lane_math`]: max, min and clamp where a NaN takes the bound;
 //! - [`error`]: what can go wrong, as values.
@@ -26,6 +28,7 @@ pub mod catalogue;
 pub mod combiners;
 pub mod error;
 pub mod lane_math;
+pub mod parallax;
 pub mod scene;
 pub mod scenes;
 pub mod setups;

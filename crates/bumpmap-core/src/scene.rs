@@ -12,7 +12,7 @@ use glam::{Mat4, Vec3};
 use bumpmap_math::lighting::Light;
 use bumpmap_math::mesh::Mesh;
 use bumpmap_math::surface::Surface;
-use bumpmap_math::{HeightField, NormalMapOptions, Rgba8Mips};
+use bumpmap_math::{HeightField, HeightMips, NormalMapOptions, Rgba8Mips};
 
 /// A perspective camera (`gluLookAt` + `gluPerspective`).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -234,6 +234,12 @@ pub struct Material {
     pub height_map: Option<Arc<Rgba8Mips>>,
     /// The bump scale the normal map was made with (the height of a unit step, in texels).
     pub bump_scale: f32,
+    /// The heights as geometry, carved below the surface (the parallax techniques and the
+    /// displaced reference read them), or `None` where no technique asked for them.
+    pub heights: Option<Arc<HeightMips>>,
+    /// Object units along the normal per unit of height: how deep the heights carve
+    /// ([`crate::scenes::SceneParams::depth`]).
+    pub depth: f32,
 }
 
 /// A mesh placed in the world. The mesh must have normals, texture coordinates and tangents.
@@ -248,6 +254,9 @@ pub struct SceneObject {
     /// What the mesh and the normal map were made from, where they were made from an analytic
     /// surface: what a reference renderer evaluates instead. `None` for a loaded mesh.
     pub source: Option<SurfaceSource>,
+    /// A loaded mesh's ∂P/∂s and ∂P/∂t per vertex (`Mesh::st_derivatives`), where its material
+    /// has heights as geometry; a built-in surface's come from the surface itself.
+    pub st_derivatives: Option<Arc<Vec<[glam::Vec3; 2]>>>,
 }
 
 /// The exact surface and height field behind a built-in object (Peercy §2, Kilgard Eq. 5).

@@ -5,10 +5,11 @@ use std::sync::Arc;
 
 use glam::{Mat4, Vec2, Vec3};
 
+use bumpmap_math::blinn::displacement_per_unit_height;
 use bumpmap_math::lighting::Light;
 use bumpmap_math::mesh::Mesh;
 use bumpmap_math::surface::{BicubicPatch, Surface};
-use bumpmap_math::{HeightField, MipChain, MipMode, NormalMapOptions, Rgba8Image, Rgba8Mips, bricks_decal};
+use bumpmap_math::{HeightField, HeightMips, MipChain, MipMode, NormalMapOptions, Rgba8Image, Rgba8Mips, bricks_decal};
 
 use crate::bump_maps::{BumpMap, offset_map, surface_material};
 use crate::error::CoreError;
@@ -204,6 +205,19 @@ pub struct SceneParams {
     /// four bytes a texel: 1.3 GiB for a 16384² field), which only embossing reads. On by
     /// default; the technique catalogue turns it off for every other technique.
     pub height_map: bool,
+    /// How deep the heights carve below the surface where they are geometry, in object units per
+    /// unit of height (finite, > 0). `None`: the depth the bump scale stands for, `normal_map.scale`
+    /// texels of the object's mean texel side (`bumpmap_math::blinn::displacement_per_unit_height`),
+    /// so the normal map's slopes are the geometry's. Clamped to the surface's
+    /// [`Surface::max_depth`] (a loaded mesh: a tenth of its bounding radius).
+    pub depth: Option<f32>,
+    /// Heights as geometry given as they are (the file `normalmap --height-out` writes), the
+    /// normal map's size, instead of the height field's: what a normal map given as it is needs
+    /// for the parallax techniques.
+    pub height_mips: Option<Arc<HeightMips>>,
+    /// Whether the material carries the heights as geometry ([`crate::scene::Material::heights`]);
+    /// the technique catalogue turns it on for the techniques that read them.
+    pub displacement: bool,
 }
 
 impl Default for SceneParams {
@@ -230,6 +244,9 @@ impl Default for SceneParams {
             bump_map: BumpMap::Tangent,
             mip_mode: MipMode::LengthInAlpha,
             height_map: true,
+            depth: None,
+            height_mips: None,
+            displacement: false,
         }
     }
 }
@@ -337,7 +354,29 @@ pub fn build(kind: &SceneKind, params: &SceneParams) -> Result<Scene, CoreError>
             Arc::new(Rgba8Mips::with_box_mipmaps(Rgba8Image::from_gray(field.width(), field.height(), &field.to_u8())))
         }),
         bump_scale: params.normal_map.scale,
+        heights: None,
+        depth: 0.0,
     };
+    if params.displacement {
+        if let Some(d) = params.depth
+            && !(d.is_finite() && d > 0.0)
+        {
+            return Err(CoreError::out_of_range("the depth", d, "a positive number of object units"));
+        }
+        let mips = match (&params.height_mips, heights) {
+            (Some(given), _) => Some(given.clone()),
+            (None, Some(field)) => Some(Arc::new(HeightMips::from_field(field)?)),
+            // A normal map given without heights: the catalogue's requirement names what is missing.
+            (None, None) => None,
+        };
+        if let Some(h) = &mips {
+            let (hs, ns) = ((h.width(), h.height()), (material.normal_map.width(), material.normal_map.height()));
+            if hs != ns {
+                return Err(CoreError::HeightsSize { heights: hs, normal_map: ns });
+            }
+        }
+        material.heights = mips;
+    }
     if let (BumpMap::Offset | BumpMap::Derivatives, Some(field)) = (params.bump_map, heights) {
         let (map, range) = offset_map(field, &params.normal_map)?;
         material.normal_map = Arc::new(map);
@@ -345,7 +384,15 @@ pub fn build(kind: &SceneKind, params: &SceneParams) -> Result<Scene, CoreError>
     }
     let object = |surface: Surface, tess: (usize, usize), repeat: Vec2, world_from_object: Mat4| {
         let repeat = params.repeat.unwrap_or(repeat);
-        let material = surface_material(params, &material, &surface, repeat, encoding);
+        let mut material = surface_material(params, &material, &surface, repeat, encoding);
+        if let Some(h) = &material.heights {
+            let made = || {
+                displacement_per_unit_height(&surface, repeat, (h.width(), h.height()), params.normal_map.scale.abs())
+            };
+            // Never zero (a bump scale of 0): a ray's descent per unit of height must be finite.
+            let limit = surface.max_depth();
+            material.depth = params.depth.unwrap_or_else(made).min(limit).max(limit * 1e-6);
+        }
         SceneObject {
             mesh: Arc::new(surface.tessellate(
                 params.tessellation.unwrap_or(tess).0,
@@ -359,6 +406,7 @@ pub fn build(kind: &SceneKind, params: &SceneParams) -> Result<Scene, CoreError>
                 repeat,
                 heights: heights.map(|field| SurfaceHeights { field: field.clone(), options: params.normal_map }),
             }),
+            st_derivatives: None,
         }
     };
     let (objects, eye, target, up) = match kind {
@@ -403,11 +451,24 @@ pub fn build(kind: &SceneKind, params: &SceneParams) -> Result<Scene, CoreError>
         SceneKind::Mesh(mesh) => {
             // The mesh stays in its own units and axes; the default camera frames its bounds.
             let frame = MeshFrame::new(mesh, params.up.unwrap_or(Vec3::Y));
+            let mut material = material.clone();
+            let st_derivatives = match &material.heights {
+                Some(h) => {
+                    let made = || {
+                        let side = mesh.mean_texel_side((h.width(), h.height())).unwrap_or(frame.radius / 1024.0);
+                        side * params.normal_map.scale.abs()
+                    };
+                    material.depth = params.depth.unwrap_or_else(made).min(0.1 * frame.radius).max(frame.radius * 1e-7);
+                    Some(Arc::new(mesh.st_derivatives()))
+                }
+                None => None,
+            };
             let object = SceneObject {
                 mesh: mesh.clone(),
                 world_from_object: Mat4::IDENTITY,
-                material: material.clone(),
+                material,
                 source: None,
+                st_derivatives,
             };
             (vec![object], frame.eye(params.fov_y_degrees), frame.centre, frame.up)
         }

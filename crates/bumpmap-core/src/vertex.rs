@@ -5,12 +5,13 @@
 //! Clipping, the perspective divide and interpolation are the backends' work, not this
 //! module's.
 
-use glam::{Vec3, Vec4};
+use glam::{Vec2, Vec3, Vec4};
 
 use bumpmap_math::buffer::OutOfMemory;
 use bumpmap_math::lighting::{Light, ObjectLighting, TangentFrame, Viewer};
 
 use crate::error::CoreError;
+use crate::parallax::TextureFrame;
 use crate::scene::{NormalSpace, Scene, SceneLight, SceneObject, ViewerModel};
 
 /// Varying slots the vertex stage fills.
@@ -43,12 +44,23 @@ pub mod var {
     /// The surface's derivatives in the tangent frame (3 slots): `|∂P/∂u|`, `∂P/∂v · T`,
     /// `∂P/∂v · B`, for Peercy Figure 2's per-pixel Blinn (objects with an exact surface only).
     pub const PARAM_FRAME: usize = 25;
+    /// Heights as geometry (materials with heights only, `crate::parallax`): the vector toward
+    /// the eye in texture space (s, t, h), unnormalized (3 slots). Affine in the position on
+    /// a flat surface, so interpolation keeps it exact there.
+    pub const TEX_VIEW: usize = 28;
+    /// The vector toward the light (or its direction) in texture space (3 slots).
+    pub const TEX_LIGHT: usize = 31;
+    /// `∂(x, y)/∂(s, t)` in the tangent plane, `[P_s·T, P_t·T, P_s·B, P_t·B]` (4 slots).
+    pub const TANGENT_FROM_TEX: usize = 34;
+    /// How far the surface falls below its tangent plane, in heights per unit of s² and t²
+    /// (2 slots): `−½ N·∂²P/∂s² / depth`, likewise for t; zero on flat surfaces and meshes.
+    pub const CURVATURE: usize = 38;
     /// Slots in use.
-    pub const COUNT: usize = 28;
+    pub const COUNT: usize = 40;
 }
 
-/// Varyings per vertex (texture coordinates, light and half-angle vectors, …): seven vec4s.
-pub const MAX_VARYINGS: usize = 28;
+/// Varyings per vertex (texture coordinates, light and half-angle vectors, …): ten vec4s.
+pub const MAX_VARYINGS: usize = 40;
 
 /// A vertex after the vertex stage: clip-space position and its varyings.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -57,6 +69,41 @@ pub struct Vertex {
     pub clip: Vec4,
     /// The slots of [`var`]; the rest are zero.
     pub varyings: [f32; MAX_VARYINGS],
+}
+
+/// Vertex `i`'s texture-space varyings ([`var::TEX_VIEW`] to [`var::CURVATURE`]) from the
+/// vectors toward the eye and the light (object space) and its tangent frame.
+fn texture_space(
+    object: &SceneObject,
+    i: usize,
+    frame: &TangentFrame,
+    to_eye: Vec3,
+    to_light: Vec3,
+    varyings: &mut [f32; MAX_VARYINGS],
+) {
+    let depth = object.material.depth;
+    let (p_s, p_t, curvature) = match (&object.source, &object.st_derivatives) {
+        (Some(source), _) => {
+            let st = object.mesh.texcoords[i];
+            let (u, v) = (st.x / source.repeat.x, st.y / source.repeat.y);
+            let p = source.surface.eval(u, v);
+            let (k_u, k_v) = source.surface.normal_curvature(u, v);
+            let r = source.repeat;
+            // Per unit of s = repeat.x · u: ∂P/∂s = ∂P/∂u / repeat.x, ∂²P/∂s² = ∂²P/∂u² / repeat.x².
+            let fall = Vec2::new(-0.5 * k_u / (r.x * r.x), -0.5 * k_v / (r.y * r.y)) / depth;
+            (p.dp_du / r.x, p.dp_dv / r.y, fall)
+        }
+        (None, Some(d)) => (d[i][0], d[i][1], Vec2::ZERO),
+        // Not built by `scenes::build` (which gives meshes their derivatives): unit texels.
+        (None, None) => (frame.t, frame.b, Vec2::ZERO),
+    };
+    let tex = TextureFrame::new(p_s, p_t, frame, depth);
+    let to_eye = tex.to_texture(frame.tangent_from_object(to_eye));
+    let to_light = tex.to_texture(frame.tangent_from_object(to_light));
+    varyings[var::TEX_VIEW..var::TEX_VIEW + 3].copy_from_slice(&to_eye.to_array());
+    varyings[var::TEX_LIGHT..var::TEX_LIGHT + 3].copy_from_slice(&to_light.to_array());
+    varyings[var::TANGENT_FROM_TEX..var::TANGENT_FROM_TEX + 4].copy_from_slice(&tex.jacobian);
+    varyings[var::CURVATURE..var::CURVATURE + 2].copy_from_slice(&curvature.to_array());
 }
 
 impl Scene {
@@ -70,7 +117,7 @@ impl Scene {
 
     /// The vertex stage for one object and one light: clip position, texture coordinates and
     /// the tangent-space L, H and V of every vertex. Fails, rather than aborting, when the
-    /// machine cannot hold the outputs (128 bytes a vertex).
+    /// machine cannot hold the outputs (176 bytes a vertex).
     pub fn vertices(&self, object: &SceneObject, light: &SceneLight, aspect: f32) -> Result<Vec<Vertex>, CoreError> {
         use rayon::prelude::*;
         let mesh = &object.mesh;
@@ -81,6 +128,8 @@ impl Scene {
         let clip_from_object = self.camera.clip_from_world(aspect) * object.world_from_object;
         let lighting = ObjectLighting::new(object.world_from_object, light.light, self.viewer());
         let object_from_world = object.world_from_object.inverse();
+        // The eye the rays through the heights come from: the camera's, whatever the viewer model.
+        let eye = object_from_world.transform_point3(self.camera.eye);
         out.par_extend((0..mesh.positions.len()).into_par_iter().map(|i| {
             let p = mesh.positions[i];
             let n = mesh.normals[i];
@@ -106,6 +155,9 @@ impl Scene {
                 let sp = source.surface.eval(st.x / source.repeat.x, st.y / source.repeat.y);
                 let frame = [sp.dp_du.length(), sp.dp_dv.dot(frame.t), sp.dp_dv.dot(frame.b)];
                 varyings[var::PARAM_FRAME..var::PARAM_FRAME + 3].copy_from_slice(&frame);
+            }
+            if object.material.heights.is_some() {
+                texture_space(object, i, &frame, eye - p, lighting.to_light(p), &mut varyings);
             }
             if let Some(heights) = &object.material.height_map {
                 // One texel of the height map's level 0 per unit of L_x, L_y.

@@ -597,22 +597,63 @@ pub fn save_apng_into(
 /// Stages a 16-bit RGBA PNG into `set`, a row at a time (PNG stores each channel big-endian),
 /// so no second copy of the image is made.
 pub fn save_png16_into(set: &mut FileSet, path: &Path, image: &bumpmap_math::Rgba16Image) -> Result<(), IoError> {
+    save_png16_samples_into(set, path, image.width, image.height, Png16::Rgba, image.texels.as_flattened())
+}
+
+/// The colour types [`save_png16_samples_into`] writes.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Png16 {
+    /// One channel.
+    Gray,
+    /// Three channels.
+    Rgb,
+    /// Four channels.
+    Rgba,
+}
+
+/// Stages a 16-bit PNG of `width`×`height` pixels of `color`'s channels (`samples`, row 0
+/// first) into `set`, a row at a time.
+pub fn save_png16_samples_into(
+    set: &mut FileSet,
+    path: &Path,
+    width: usize,
+    height: usize,
+    color: Png16,
+    samples: &[u16],
+) -> Result<(), IoError> {
+    let (color, channels) = match color {
+        Png16::Gray => (png::ColorType::Grayscale, 1),
+        Png16::Rgb => (png::ColorType::Rgb, 3),
+        Png16::Rgba => (png::ColorType::Rgba, 4),
+    };
+    debug_assert_eq!(samples.len(), width * height * channels);
     set.write(path, |w| {
-        let mut encoder = png::Encoder::new(w, image.width as u32, image.height as u32);
-        encoder.set_color(png::ColorType::Rgba);
+        let mut encoder = png::Encoder::new(w, width as u32, height as u32);
+        encoder.set_color(color);
         encoder.set_depth(png::BitDepth::Sixteen);
         encoder.set_compression(png::Compression::Fast);
         encoder.set_filter(png::Filter::Adaptive);
         let mut writer = encoder.write_header().map_err(std::io::Error::other)?;
         let mut stream = writer.stream_writer_with_size(1 << 20).map_err(std::io::Error::other)?;
-        let mut row = Vec::with_capacity(image.width * 8);
-        for texels in image.texels.chunks_exact(image.width.max(1)) {
+        let mut row = Vec::with_capacity(width * channels * 2);
+        for texels in samples.chunks_exact((width * channels).max(1)) {
             row.clear();
-            row.extend(texels.iter().flatten().flat_map(|c| c.to_be_bytes()));
+            row.extend(texels.iter().flat_map(|c| c.to_be_bytes()));
             std::io::Write::write_all(&mut stream, &row)?;
         }
         stream.finish().map_err(std::io::Error::other)
     })
+}
+
+/// The file of level `k` of a PNG output `out`: `out` itself for level 0, then `n.mip1.png`,
+/// `n.mip2.png`, … beside it (`n` its stem): how `bumpmap normalmap` writes a mip chain as
+/// PNG files and how its readers find the levels.
+pub fn level_path(out: &Path, k: usize) -> std::path::PathBuf {
+    if k == 0 {
+        return out.to_path_buf();
+    }
+    let stem = out.file_stem().unwrap_or_default().to_string_lossy();
+    out.with_file_name(format!("{stem}.mip{k}.png"))
 }
 
 #[cfg(test)]

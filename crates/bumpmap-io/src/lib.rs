@@ -4,6 +4,7 @@
 //!   limits checked before decoding), PNG out;
 //! - [`texture_file`]: DDS and KTX2 containers out, for mip chains and cube maps;
 //! - [`texture_read`]: normal maps in with the levels they carry (PNG, DDS, KTX2, BC5/BC7);
+//! - [`height_file`]: heights as geometry out and in, every level, with their min–max levels;
 //! - [`mesh_file`]: OBJ and glTF meshes in (with a glTF's material textures), glTF out —
 //!   `obj_read`, `gltf_read`, `gltf_mesh` and `gltf_write` behind it;
 //! - [`atomic`]: every write goes to a temporary file in the destination folder and is renamed
@@ -21,6 +22,7 @@ pub mod error;
 mod gltf_mesh;
 mod gltf_read;
 mod gltf_write;
+pub mod height_file;
 pub mod image_file;
 pub mod mesh_file;
 mod obj_read;

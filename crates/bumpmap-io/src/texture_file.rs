@@ -1,13 +1,16 @@
 //! DDS and KTX2 containers: a whole mip chain, or a cube map, in one file an engine loads.
 //!
-//! Four formats, all linear (never sRGB: normal maps are data), rows in memory order, row 0
-//! first, exactly as `glTexImage2D` takes them:
+//! These formats, all linear (never sRGB: normal maps and heights are data), rows in memory
+//! order, row 0 first, exactly as `glTexImage2D` takes them:
 //! - [`TextureFormat::Rgba8`]: uncompressed (`DXGI R8G8B8A8_UNORM` / `VK_FORMAT_R8G8B8A8_UNORM`);
 //! - [`TextureFormat::Rgba16`]: uncompressed, 16 bits a channel (`R16G16B16A16_UNORM`, little
 //!   endian), for bakers' 16-bit normal maps;
 //! - [`TextureFormat::Bc5`]: red and green only, 8 bits per texel (`BC5_UNORM`), Z rebuilt in
 //!   the shader as √(1 − x² − y²) — blue and alpha (the mip chain's length factor) are dropped;
-//! - [`TextureFormat::Bc7`]: all four channels, 8 bits per texel (`BC7_UNORM`).
+//! - [`TextureFormat::Bc7`]: all four channels, 8 bits per texel (`BC7_UNORM`);
+//! - [`TextureFormat::Rgba32Float`]: LEAN's moments (`R32G32B32A32_FLOAT`);
+//! - [`TextureFormat::R8`], [`TextureFormat::R16`], [`TextureFormat::Rg16`]: heights and their
+//!   min–max bounds (`R8_UNORM`, `R16_UNORM`, `R16G16_UNORM`).
 //!
 //! Every level is compressed on its own from the chain given (the chain's own mips, not the
 //! encoder's), by Intel's ISPC texture compressor through `image_dds`; a 16-bit level is
@@ -38,6 +41,12 @@ pub enum Level<'a> {
     Rgba16(&'a Rgba16Image),
     /// 32-bit floats (LEAN's moments: slopes and their squares, not colours).
     Rgba32F(&'a Image<[f32; 4]>),
+    /// One 8-bit channel (heights).
+    Gray8(&'a Image<u8>),
+    /// One 16-bit channel (heights).
+    Gray16(&'a Image<u16>),
+    /// Two 16-bit channels (heights' min–max bounds).
+    Rg16(&'a Image<[u16; 2]>),
 }
 
 impl Level<'_> {
@@ -47,6 +56,9 @@ impl Level<'_> {
             Level::Rgba8(l) => (l.width, l.height),
             Level::Rgba16(l) => (l.width, l.height),
             Level::Rgba32F(l) => (l.width, l.height),
+            Level::Gray8(l) => (l.width, l.height),
+            Level::Gray16(l) => (l.width, l.height),
+            Level::Rg16(l) => (l.width, l.height),
         }
     }
 }
@@ -77,6 +89,12 @@ pub enum TextureFormat {
     Bc7,
     /// 32-bit float RGBA, uncompressed (for [`Level::Rgba32F`] only).
     Rgba32Float,
+    /// One 8-bit channel (for [`Level::Gray8`]).
+    R8,
+    /// One 16-bit channel (for [`Level::Gray16`], or [`Level::Gray8`] widened).
+    R16,
+    /// Two 16-bit channels (for [`Level::Rg16`]).
+    Rg16,
 }
 
 impl TextureFormat {
@@ -88,6 +106,9 @@ impl TextureFormat {
             TextureFormat::Bc5 => "BC5_UNORM",
             TextureFormat::Bc7 => "BC7_UNORM",
             TextureFormat::Rgba32Float => "R32G32B32A32_FLOAT",
+            TextureFormat::R8 => "R8_UNORM",
+            TextureFormat::R16 => "R16_UNORM",
+            TextureFormat::Rg16 => "R16G16_UNORM",
         }
     }
 
@@ -98,6 +119,9 @@ impl TextureFormat {
             TextureFormat::Bc5 => 83,
             TextureFormat::Bc7 => 98,
             TextureFormat::Rgba32Float => 2,
+            TextureFormat::R8 => 61,
+            TextureFormat::R16 => 56,
+            TextureFormat::Rg16 => 35,
         }
     }
 
@@ -108,6 +132,9 @@ impl TextureFormat {
             TextureFormat::Bc5 => 141,
             TextureFormat::Bc7 => 145,
             TextureFormat::Rgba32Float => 109,
+            TextureFormat::R8 => 9,
+            TextureFormat::R16 => 70,
+            TextureFormat::Rg16 => 77,
         }
     }
 
@@ -119,7 +146,9 @@ impl TextureFormat {
     /// Bytes of one texel block (1×1 uncompressed, 4×4 for BC).
     fn block_bytes(self) -> usize {
         match self {
-            TextureFormat::Rgba8 => 4,
+            TextureFormat::R8 => 1,
+            TextureFormat::R16 => 2,
+            TextureFormat::Rgba8 | TextureFormat::Rg16 => 4,
             TextureFormat::Rgba16 => 8,
             TextureFormat::Bc5 | TextureFormat::Bc7 | TextureFormat::Rgba32Float => 16,
         }
@@ -134,7 +163,24 @@ const BAND_ROWS: usize = 64;
 fn encode_level(path: &Path, level: Level, format: TextureFormat) -> Result<Vec<u8>, IoError> {
     use rayon::prelude::*;
     let narrowed;
+    let le16 = |v: &[u16]| v.iter().flat_map(|c| c.to_le_bytes()).collect::<Vec<u8>>();
     let level = match (level, format) {
+        (Level::Gray8(l), TextureFormat::R8) => return Ok(l.texels.clone()),
+        (Level::Gray8(l), TextureFormat::R16) => {
+            return Ok(l.texels.iter().flat_map(|&b| (b as u16 * 257).to_le_bytes()).collect());
+        }
+        (Level::Gray16(l), TextureFormat::R16) => return Ok(le16(&l.texels)),
+        (Level::Rg16(l), TextureFormat::Rg16) => return Ok(le16(l.texels.as_flattened())),
+        (Level::Gray8(_) | Level::Gray16(_) | Level::Rg16(_), _)
+        | (_, TextureFormat::R8 | TextureFormat::R16 | TextureFormat::Rg16) => {
+            return Err(IoError::Write {
+                path: path.to_path_buf(),
+                source: std::io::Error::other(format!(
+                    "one- and two-channel levels are stored as R8_UNORM, R16_UNORM or R16G16_UNORM and only they are, not as {}",
+                    format.name()
+                )),
+            });
+        }
         (Level::Rgba32F(l), TextureFormat::Rgba32Float) => {
             return Ok(l.texels.iter().flatten().flat_map(|v| v.to_le_bytes()).collect());
         }
@@ -159,7 +205,11 @@ fn encode_level(path: &Path, level: Level, format: TextureFormat) -> Result<Vec<
     };
     let target = match format {
         TextureFormat::Rgba8 => return Ok(level.as_bytes().to_vec()),
-        TextureFormat::Rgba16 | TextureFormat::Rgba32Float => unreachable!("handled above"),
+        TextureFormat::Rgba16
+        | TextureFormat::Rgba32Float
+        | TextureFormat::R8
+        | TextureFormat::R16
+        | TextureFormat::Rg16 => unreachable!("handled above"),
         TextureFormat::Bc5 => image_dds::ImageFormat::BC5RgUnorm,
         TextureFormat::Bc7 => image_dds::ImageFormat::BC7RgbaUnorm,
     };
@@ -318,8 +368,9 @@ pub fn write_ktx2_into(
     let dfd = linear_dfd(format);
     let dfd_offset = 12 + 9 * 4 + 4 * 4 + 2 * 8 + 24 * levels;
     let mut offset = dfd_offset + dfd.len();
-    // Level data, smallest level first; each level starts at a multiple of lcm(block size, 4).
-    let align = format.block_bytes();
+    // Level data, smallest level first; each level starts at a multiple of lcm(block size, 4)
+    // (block sizes are powers of two).
+    let align = format.block_bytes().max(4);
     let mut index = vec![(0u64, 0u64); levels];
     for level in (0..levels).rev() {
         offset = offset.next_multiple_of(align);
@@ -330,7 +381,7 @@ pub fn write_ktx2_into(
     let mut head = Vec::with_capacity(dfd_offset + dfd.len());
     head.extend_from_slice(&IDENTIFIER);
     let type_size = match format {
-        TextureFormat::Rgba16 => 2,
+        TextureFormat::Rgba16 | TextureFormat::R16 | TextureFormat::Rg16 => 2,
         TextureFormat::Rgba32Float => 4,
         _ => 1,
     };
@@ -385,6 +436,9 @@ fn linear_dfd(format: TextureFormat) -> Vec<u8> {
             8,
             &[(0, 15, 0, 0, 65535), (16, 15, 1, 0, 65535), (32, 15, 2, 0, 65535), (48, 15, 15, 0, 65535)],
         ),
+        TextureFormat::R8 => (1, [0, 0, 0, 0], 1, &[(0, 7, 0, 0, 255)]),
+        TextureFormat::R16 => (1, [0, 0, 0, 0], 2, &[(0, 15, 0, 0, 65535)]),
+        TextureFormat::Rg16 => (1, [0, 0, 0, 0], 4, &[(0, 15, 0, 0, 65535), (16, 15, 1, 0, 65535)]),
         TextureFormat::Bc5 => (132, [3, 3, 0, 0], 16, &[(0, 63, 0, 0, u32::MAX), (64, 63, 1, 0, u32::MAX)]),
         TextureFormat::Bc7 => (134, [3, 3, 0, 0], 16, &[(0, 127, 0, 0, u32::MAX)]),
         TextureFormat::Rgba32Float => (
@@ -413,111 +467,4 @@ fn linear_dfd(format: TextureFormat) -> Vec<u8> {
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-
-    fn chain() -> Vec<Rgba8Image> {
-        // 4×2 → 2×1 → 1×1 with distinct bytes per level.
-        vec![
-            Rgba8Image::new(4, 2, vec![[10; 4]; 8]),
-            Rgba8Image::new(2, 1, vec![[20; 4]; 2]),
-            Rgba8Image::new(1, 1, vec![[30; 4]]),
-        ]
-    }
-
-    fn layout(data: &[Rgba8Image], faces: usize) -> TextureLayout<'_> {
-        TextureLayout { faces: vec![data.iter().map(Level::from).collect(); faces] }
-    }
-
-    fn tmp(name: &str) -> std::path::PathBuf {
-        std::env::temp_dir().join(format!("bumpmap-{}-{name}", std::process::id()))
-    }
-
-    #[test]
-    fn ktx2_parses_with_an_independent_reader() {
-        let data = chain();
-        for faces in [1, 6] {
-            let path = tmp(&format!("t{faces}.ktx2"));
-            write_ktx2(&path, &layout(&data, faces), TextureFormat::Rgba8).unwrap();
-            let bytes = std::fs::read(&path).unwrap();
-            let reader = ktx2::Reader::new(&bytes[..]).expect("valid KTX2");
-            let h = reader.header();
-            assert_eq!((h.pixel_width, h.pixel_height, h.face_count, h.level_count), (4, 2, faces as u32, 3));
-            assert_eq!(h.format, Some(ktx2::Format::R8G8B8A8_UNORM));
-            for (k, level) in reader.levels().enumerate() {
-                assert_eq!(level.data, data[k].as_bytes().repeat(faces).as_slice(), "level {k}");
-            }
-            std::fs::remove_file(path).unwrap();
-        }
-    }
-
-    #[test]
-    fn float_levels_parse_with_independent_readers_and_refuse_other_formats() {
-        let data: Vec<Image<[f32; 4]>> = vec![
-            Image::new(2, 2, vec![[-1.5, 0.25, 2.25, 1e-3], [0.0, -0.0, 7.0, 1.0], [3.5, 1.0, 0.5, 2.0], [1.0; 4]]),
-            Image::new(1, 1, vec![[0.5, -0.5, 1.25, 9.0]]),
-        ];
-        let tex = TextureLayout { faces: vec![data.iter().map(Level::Rgba32F).collect()] };
-        let floats = |l: &Image<[f32; 4]>| l.texels.iter().flatten().flat_map(|v| v.to_le_bytes()).collect::<Vec<u8>>();
-        let path = tmp("tf.ktx2");
-        write_ktx2(&path, &tex, TextureFormat::Rgba32Float).unwrap();
-        let bytes = std::fs::read(&path).unwrap();
-        let reader = ktx2::Reader::new(&bytes[..]).expect("valid KTX2");
-        assert_eq!(reader.header().format, Some(ktx2::Format::R32G32B32A32_SFLOAT));
-        assert_eq!(reader.header().type_size, 4);
-        for (k, level) in reader.levels().enumerate() {
-            assert_eq!(level.data, floats(&data[k]).as_slice(), "level {k}");
-        }
-        std::fs::remove_file(path).unwrap();
-        let path = tmp("tf.dds");
-        write_dds(&path, &tex, TextureFormat::Rgba32Float).unwrap();
-        let dds = ddsfile::Dds::read(std::fs::File::open(&path).unwrap()).expect("valid DDS");
-        assert_eq!(dds.get_dxgi_format(), Some(ddsfile::DxgiFormat::R32G32B32A32_Float));
-        assert_eq!(dds.get_num_mipmap_levels(), 2);
-        assert_eq!(dds.data, [floats(&data[0]), floats(&data[1])].concat());
-        std::fs::remove_file(path).unwrap();
-        // Floats are not squeezed into bytes, nor bytes passed off as floats.
-        assert!(write_dds(&tmp("tf8.dds"), &tex, TextureFormat::Rgba8).is_err());
-        let eight = chain();
-        assert!(write_ktx2(&tmp("t8f.ktx2"), &layout(&eight, 1), TextureFormat::Rgba32Float).is_err());
-    }
-
-    #[test]
-    fn sixteen_bit_levels_parse_with_independent_readers() {
-        let data: Vec<Rgba16Image> = vec![
-            Rgba16Image::new(4, 2, (0..8).map(|i| [i * 1000, 65535 - i, 257, 65535]).collect()),
-            Rgba16Image::new(2, 1, vec![[1, 2, 3, 4]; 2]),
-            Rgba16Image::new(1, 1, vec![[40000; 4]]),
-        ];
-        let tex = TextureLayout { faces: vec![data.iter().map(Level::from).collect()] };
-        let path = tmp("t16.ktx2");
-        write_ktx2(&path, &tex, TextureFormat::Rgba16).unwrap();
-        let bytes = std::fs::read(&path).unwrap();
-        let reader = ktx2::Reader::new(&bytes[..]).expect("valid KTX2");
-        assert_eq!(reader.header().format, Some(ktx2::Format::R16G16B16A16_UNORM));
-        assert_eq!(reader.header().type_size, 2);
-        for (k, level) in reader.levels().enumerate() {
-            assert_eq!(level.data, data[k].to_le_bytes().as_slice(), "level {k}");
-        }
-        std::fs::remove_file(&path).unwrap();
-
-        let path = tmp("t16.dds");
-        write_dds(&path, &tex, TextureFormat::Rgba16).unwrap();
-        let dds = ddsfile::Dds::read(&mut std::fs::File::open(&path).unwrap()).expect("valid DDS");
-        assert_eq!(dds.get_dxgi_format(), Some(ddsfile::DxgiFormat::R16G16B16A16_UNorm));
-        assert_eq!((dds.get_width(), dds.get_height(), dds.get_num_mipmap_levels()), (4, 2, 3));
-        assert_eq!(dds.data, data.iter().flat_map(|l| l.to_le_bytes()).collect::<Vec<u8>>());
-        std::fs::remove_file(path).unwrap();
-    }
-
-    #[test]
-    fn dds_parses_with_an_independent_reader() {
-        let data = chain();
-        let path = tmp("t.dds");
-        write_dds(&path, &layout(&data, 1), TextureFormat::Rgba8).unwrap();
-        let dds = ddsfile::Dds::read(&mut std::fs::File::open(&path).unwrap()).expect("valid DDS");
-        assert_eq!((dds.get_width(), dds.get_height(), dds.get_num_mipmap_levels()), (4, 2, 3));
-        assert_eq!(dds.data, data.iter().flat_map(|l| l.as_bytes().to_vec()).collect::<Vec<u8>>());
-        std::fs::remove_file(path).unwrap();
-    }
-}
+mod tests;

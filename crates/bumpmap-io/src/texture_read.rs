@@ -1,6 +1,8 @@
 //! Texture files in: a normal map made elsewhere (or by `bumpmap normalmap`) with the levels it
 //! carries — a PNG or other image (one level, 8 or 16 bits), or a DDS or KTX2 container (every
-//! level, uncompressed RGBA8/BGRA8/RGBA16 or BC5/BC7 blocks decoded by `image_dds`'s decoder).
+//! level, uncompressed RGBA8/BGRA8/RGBA16 or BC5/BC7 blocks decoded by `image_dds`'s decoder) —
+//! and heights (R8, R16, and R16G16 for their min–max bounds, widened to RGBA as a texture
+//! unit's register mapping would: red repeated, or red and green with blue 0).
 //!
 //! Headers are checked before anything is decoded: the size against [`MAX_DIMENSION`], one 2D
 //! face (no cube map, array or volume), a linear format (an sRGB normal map is a broken one),
@@ -139,13 +141,21 @@ enum Layout {
     Rgba16,
     Bc5,
     Bc7,
+    /// One 8-bit channel, read as (r, r, r, 255).
+    R8,
+    /// One 16-bit channel, read as (r, r, r, 65535).
+    R16,
+    /// Two 16-bit channels, read as (r, g, 0, 65535).
+    Rg16,
 }
 
 impl Layout {
     /// The bytes of a `w`×`h` level, or `None` if that overflows.
     fn level_bytes(self, w: usize, h: usize) -> Option<usize> {
         match self {
-            Layout::Rgba8 | Layout::Bgra8 => w.checked_mul(h)?.checked_mul(4),
+            Layout::R8 => w.checked_mul(h),
+            Layout::R16 => w.checked_mul(h)?.checked_mul(2),
+            Layout::Rgba8 | Layout::Bgra8 | Layout::Rg16 => w.checked_mul(h)?.checked_mul(4),
             Layout::Rgba16 => w.checked_mul(h)?.checked_mul(8),
             Layout::Bc5 | Layout::Bc7 => w.div_ceil(4).checked_mul(h.div_ceil(4))?.checked_mul(16),
         }
@@ -157,7 +167,15 @@ impl Layout {
             Layout::Rgba16 => TextureFormat::Rgba16,
             Layout::Bc5 => TextureFormat::Bc5,
             Layout::Bc7 => TextureFormat::Bc7,
+            Layout::R8 => TextureFormat::R8,
+            Layout::R16 => TextureFormat::R16,
+            Layout::Rg16 => TextureFormat::Rg16,
         }
+    }
+
+    /// Whether levels decode to 16 bits a channel.
+    fn sixteen(self) -> bool {
+        matches!(self, Layout::Rgba16 | Layout::R16 | Layout::Rg16)
     }
 }
 
@@ -205,6 +223,22 @@ fn decode_level(path: &Path, layout: Layout, (w, h): (usize, usize), data: &[u8]
                 w,
                 h,
                 data.chunks_exact(8).map(|p| [c(&p[0..]), c(&p[2..]), c(&p[4..]), c(&p[6..])]).collect(),
+            ))
+        }
+        Layout::R8 => Level::Rgba8(Rgba8Image::new(w, h, data.iter().map(|&r| [r, r, r, 255]).collect())),
+        Layout::R16 => {
+            let texels = data.chunks_exact(2).map(|p| {
+                let r = u16::from_le_bytes([p[0], p[1]]);
+                [r, r, r, 65535]
+            });
+            Level::Rgba16(Rgba16Image::new(w, h, texels.collect()))
+        }
+        Layout::Rg16 => {
+            let c = |b: &[u8]| u16::from_le_bytes([b[0], b[1]]);
+            Level::Rgba16(Rgba16Image::new(
+                w,
+                h,
+                data.chunks_exact(4).map(|p| [c(&p[0..]), c(&p[2..]), 0, 65535]).collect(),
             ))
         }
         Layout::Bc5 | Layout::Bc7 => {
@@ -259,7 +293,7 @@ fn decode_levels<'a>(
             Level::Rgba16(l) => sixteen.push(l),
         }
     }
-    let levels = if layout == Layout::Rgba16 { StoredLevels::Rgba16(sixteen) } else { StoredLevels::Rgba8(eight) };
+    let levels = if layout.sixteen() { StoredLevels::Rgba16(sixteen) } else { StoredLevels::Rgba8(eight) };
     Ok(StoredTexture { levels, format: layout.format() })
 }
 
@@ -298,6 +332,9 @@ fn read_dds(bytes: &[u8], path: &Path) -> Result<StoredTexture, IoError> {
         Some(F::R16G16B16A16_UNorm) => Layout::Rgba16,
         Some(F::BC5_UNorm) => Layout::Bc5,
         Some(F::BC7_UNorm) => Layout::Bc7,
+        Some(F::R8_UNorm) => Layout::R8,
+        Some(F::R16_UNorm) => Layout::R16,
+        Some(F::R16G16_UNorm) => Layout::Rg16,
         Some(f @ (F::R8G8B8A8_UNorm_sRGB | F::B8G8R8A8_UNorm_sRGB | F::BC7_UNorm_sRGB)) if dds.header10.is_some() => {
             return Err(refuse_srgb(path, f));
         }
@@ -323,7 +360,7 @@ fn read_dds(bytes: &[u8], path: &Path) -> Result<StoredTexture, IoError> {
                 return Err(bad(
                     path,
                     format!(
-                        "stores {named}; normal maps are read as R8G8B8A8, B8G8R8A8, R16G16B16A16, BC5 or BC7 (UNORM)"
+                        "stores {named}; normal maps are read as R8G8B8A8, B8G8R8A8, R16G16B16A16, BC5 or BC7, heights as R8, R16 or R16G16 (UNORM)"
                     ),
                 ));
             }
@@ -378,12 +415,15 @@ fn read_ktx2(bytes: &[u8], path: &Path) -> Result<StoredTexture, IoError> {
         Some(F::R16G16B16A16_UNORM) => Layout::Rgba16,
         Some(F::BC5_UNORM_BLOCK) => Layout::Bc5,
         Some(F::BC7_UNORM_BLOCK) => Layout::Bc7,
+        Some(F::R8_UNORM) => Layout::R8,
+        Some(F::R16_UNORM) => Layout::R16,
+        Some(F::R16G16_UNORM) => Layout::Rg16,
         Some(f @ (F::R8G8B8A8_SRGB | F::B8G8R8A8_SRGB | F::BC7_SRGB_BLOCK)) => return Err(refuse_srgb(path, f)),
         other => {
             return Err(bad(
                 path,
                 format!(
-                    "stores {other:?}; normal maps are read as R8G8B8A8, B8G8R8A8, R16G16B16A16, BC5 or BC7 (UNORM)"
+                    "stores {other:?}; normal maps are read as R8G8B8A8, B8G8R8A8, R16G16B16A16, BC5 or BC7, heights as R8, R16 or R16G16 (UNORM)"
                 ),
             ));
         }

@@ -148,6 +148,60 @@ impl Mesh {
         let t = self.tangents[i];
         t.w * self.normals[i].cross(t.truncate())
     }
+
+    /// The mean side of a texel of a `width`×`height` texture mapped by the texture
+    /// coordinates, in the mesh's units: `√(area / (texture area · width · height))`, the
+    /// triangles' areas in space and in texture space summed. `None` without texture
+    /// coordinates or where either area is zero.
+    pub fn mean_texel_side(&self, (width, height): (usize, usize)) -> Option<f32> {
+        if self.texcoords.len() != self.positions.len() {
+            return None;
+        }
+        let (mut area, mut uv_area) = (0.0f64, 0.0f64);
+        for t in &self.indices {
+            let [a, b, c] = t.map(|i| self.positions[i as usize]);
+            let [p, q, r] = t.map(|i| self.texcoords[i as usize]);
+            area += 0.5 * (b - a).cross(c - a).length() as f64;
+            uv_area += 0.5 * ((q - p).perp_dot(r - p)).abs() as f64;
+        }
+        let texels = uv_area * width as f64 * height as f64;
+        (area > 0.0 && texels > 0.0).then(|| (area / texels).sqrt() as f32)
+    }
+
+    /// ∂P/∂s and ∂P/∂t at every vertex: each triangle's (from its positions and texture
+    /// coordinates) averaged over the triangles around the vertex, weighted by their area in
+    /// texture space; zero at a vertex whose triangles have no texture area. Empty without
+    /// texture coordinates.
+    pub fn st_derivatives(&self) -> Vec<[Vec3; 2]> {
+        if self.texcoords.len() != self.positions.len() {
+            return Vec::new();
+        }
+        let mut sums = vec![[Vec3::ZERO; 2]; self.positions.len()];
+        let mut weights = vec![0.0f32; self.positions.len()];
+        for t in &self.indices {
+            let [a, b, c] = t.map(|i| self.positions[i as usize]);
+            let [p, q, r] = t.map(|i| self.texcoords[i as usize]);
+            let (e1, e2, d1, d2) = (b - a, c - a, q - p, r - p);
+            let det = d1.perp_dot(d2);
+            if det == 0.0 || !det.is_finite() {
+                continue;
+            }
+            // Solve [d1 d2]ᵀ-wise: e1 = P_s·d1.x + P_t·d1.y, e2 = P_s·d2.x + P_t·d2.y.
+            let p_s = (e1 * d2.y - e2 * d1.y) / det;
+            let p_t = (e2 * d1.x - e1 * d2.x) / det;
+            let w = 0.5 * det.abs();
+            for &i in t {
+                let s = &mut sums[i as usize];
+                s[0] += p_s * w;
+                s[1] += p_t * w;
+                weights[i as usize] += w;
+            }
+        }
+        sums.into_iter()
+            .zip(weights)
+            .map(|(s, w)| if w > 0.0 { [s[0] / w, s[1] / w] } else { [Vec3::ZERO; 2] })
+            .collect()
+    }
 }
 
 /// The tangent benchmark's mesh, the same as the MikkTSpace peer's: an `nx`×`ny`-quad grid over
@@ -172,4 +226,33 @@ pub fn wavy_grid(nx: usize, ny: usize) -> Mesh {
         }
     }
     m
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::surface::Surface;
+
+    #[test]
+    fn a_tessellated_surface_has_its_texture_derivatives_and_texel_side() {
+        // A 4×4 wall with the texture twice along each side: ∂P/∂s = 2·X, ∂P/∂t = 2·Y, and a
+        // 256² texture's texels are 1/128 a side.
+        let wall = Surface::Wall { width: 4.0, height: 4.0 }.tessellate(3, 2, Vec2::splat(2.0));
+        assert!((wall.mean_texel_side((256, 256)).unwrap() - 1.0 / 128.0).abs() < 1e-7);
+        for [p_s, p_t] in wall.st_derivatives() {
+            assert!((p_s - 2.0 * Vec3::X).length() < 1e-5 && (p_t - 2.0 * Vec3::Y).length() < 1e-5, "{p_s} {p_t}");
+        }
+        // The torus: ∂P/∂s along its rings, its length 2π(R + r cos v)/6 at vertex rows.
+        let torus = Surface::default_torus();
+        let mesh = torus.tessellate(64, 32, Vec2::new(6.0, 2.0));
+        let d = mesh.st_derivatives();
+        let p = torus.eval(0.25, 0.0);
+        let i = 16; // row 0, u = 16/64
+        let want = p.dp_du / 6.0;
+        // Chords of a 64-gon and triangles that lean across the row: within 3 %.
+        assert!((d[i][0] - want).length() < 0.03 * want.length(), "{} vs {want}", d[i][0]);
+        let mut no_uv = mesh.clone();
+        no_uv.texcoords.clear();
+        assert!(no_uv.st_derivatives().is_empty() && no_uv.mean_texel_side((8, 8)).is_none());
+    }
 }

@@ -136,6 +136,33 @@ impl Surface {
         }
     }
 
+    /// The deepest displacement along the normal that keeps a carved surface within the base
+    /// surface's bounds: a quarter of a flat rectangle's shorter side, half the torus's tube
+    /// radius or the sphere's radius, a quarter of the patch's narrower side (about 0.25).
+    pub fn max_depth(&self) -> f32 {
+        match self {
+            Surface::Wall { width, height } => 0.25 * width.min(*height),
+            Surface::Floor { width, depth } => 0.25 * width.min(*depth),
+            Surface::Torus { minor, .. } => 0.5 * minor,
+            Surface::Sphere { radius } => 0.5 * radius,
+            Surface::Patch(_) => {
+                let p = self.eval(0.5, 0.5);
+                0.25 * p.dp_du.length().min(p.dp_dv.length())
+            }
+        }
+    }
+
+    /// How the surface bends along u and along v at (u, v): `N·∂²P/∂u²` and `N·∂²P/∂v²`
+    /// (negative where it curves away from its normal, as a sphere does outward), from central
+    /// differences of the first derivatives.
+    pub fn normal_curvature(&self, u: f32, v: f32) -> (f32, f32) {
+        const E: f32 = 1e-3;
+        let p = self.eval(u, v);
+        let d_uu = (self.eval(u + E, v).dp_du - self.eval(u - E, v).dp_du) / (2.0 * E);
+        let d_vv = (self.eval(u, v + E).dp_dv - self.eval(u, v - E).dp_dv) / (2.0 * E);
+        (p.normal.dot(d_uu), p.normal.dot(d_vv))
+    }
+
     /// Tessellates into `nu`×`nv` quads (two triangles each) with texture coordinates
     /// `repeat ⊙ (u, v)` and analytic frames. Closed surfaces repeat their seam vertices so the
     /// texture coordinates can run to `repeat`. Panics if `nu` or `nv` is zero.
@@ -273,6 +300,21 @@ mod tests {
             assert!((t - tangent).length() < 1e-6 && (nn - normal).length() < 1e-6);
             assert!((b - normal.cross(tangent)).length() < 1e-6);
         }
+    }
+
+    #[test]
+    fn curvature_is_zero_on_planes_and_one_over_the_radius_on_a_sphere() {
+        let wall = Surface::Wall { width: 4.0, height: 3.0 };
+        assert_eq!(wall.normal_curvature(0.3, 0.6), (0.0, 0.0));
+        assert_eq!(wall.max_depth(), 0.75);
+        // Sphere of radius r: along v (a meridian, |∂P/∂v| = πr) N·P_vv = −(πr)²/r.
+        let r = 1.5;
+        let (_, kv) = Surface::Sphere { radius: r }.normal_curvature(0.2, 0.4);
+        let want = -(std::f32::consts::PI * r).powi(2) / r;
+        assert!((kv - want).abs() < 1e-2 * want.abs(), "{kv} vs {want}");
+        // The torus's outer equator curves away along u, its inner one toward the normal.
+        let torus = Surface::default_torus();
+        assert!(torus.normal_curvature(0.1, 0.0).0 < 0.0 && torus.normal_curvature(0.1, 0.5).0 > 0.0);
     }
 
     #[test]

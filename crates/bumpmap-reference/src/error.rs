@@ -19,6 +19,35 @@ pub enum ReferenceError {
         /// Index into the scene's objects.
         object: usize,
     },
+    /// The displaced reference of an object without heights as geometry.
+    #[error("object {object} has no heights as geometry: the displaced reference carves the surface by them")]
+    NoDisplacement {
+        /// Index into the scene's objects.
+        object: usize,
+    },
+    /// Heights whose min–max levels could not be made.
+    #[error("object {object}'s heights: {error}")]
+    Heights {
+        /// Index into the scene's objects.
+        object: usize,
+        /// Why.
+        error: bumpmap_math::HeightMipsError,
+    },
+    /// A curved surface whose tessellation (a vertex per texel corner) would not fit.
+    #[error(
+        "object {object}'s carved surface is {texels} texels, {}: the displaced reference tessellates curved surfaces a vertex per texel, at most {max} texels (use a smaller height field or fewer repeats)",
+        bumpmap_math::buffer::Bytes(*bytes)
+    )]
+    Tessellation {
+        /// Index into the scene's objects.
+        object: usize,
+        /// Texels it would have.
+        texels: u64,
+        /// Bytes they would need.
+        bytes: u64,
+        /// The most allowed.
+        max: usize,
+    },
     /// A spotlight that projects a pattern.
     #[error("light {light} projects a spotlight pattern, which the reference does not sample")]
     SpotPattern {

@@ -68,6 +68,9 @@ pub fn render(
     if let Some(light) = scene.lights.iter().position(|l| l.spot.as_ref().is_some_and(|s| s.pattern.is_some())) {
         return Err(ReferenceError::SpotPattern { light });
     }
+    if options.displaced {
+        return crate::render_displaced::render(scene, width, height, options, progress);
+    }
     let prepared: Vec<Prepared> = scene
         .objects
         .iter()
@@ -138,6 +141,12 @@ pub fn render(
         })
         .collect();
 
+    Ok(assemble(&tiles, width, height))
+}
+
+/// The image from its tiles of [`TILE`]² pixels (row-major within a tile, tiles row-major).
+pub(crate) fn assemble(tiles: &[Vec<Vec3>], width: usize, height: usize) -> LinearImage {
+    let tiles_x = width.div_ceil(TILE);
     let mut pixels = vec![Vec3::ZERO; width * height];
     for (index, tile) in tiles.iter().enumerate() {
         let (x0, y0) = ((index % tiles_x) * TILE, (index / tiles_x) * TILE);
@@ -146,11 +155,10 @@ pub fn render(
             pixels[(y0 + i / tw) * width + x0 + i % tw] = c;
         }
     }
-    Ok(LinearImage { width, height, pixels })
+    LinearImage { width, height, pixels }
 }
 
-/// The colour one sample sees: every light's [`shade`], each clamped to [0, 1] as a pass into
-/// an 8-bit framebuffer is, summed and clamped as additive blending does.
+/// The colour one sample sees on the base surface: Blinn's normal there, lit by [`light`].
 fn shade_sample(
     scene: &Scene,
     prepared: &[Prepared],
@@ -171,7 +179,7 @@ fn shade_sample(
     // F's derivatives come per texel, so ∂d/∂u = k · repeat.x · width · ∂F/∂x.
     let field = &heights.field;
     let local = st - st.floor();
-    let f = crate::heights::sample(field, heights.options.wrap, local.x, local.y);
+    let f = bumpmap_math::interpolant::sample(field.as_ref(), heights.options.wrap, local.x, local.y);
     let d_u = displacement * source.repeat.x * field.width() as f32 * f.dx;
     let d_v = displacement * source.repeat.y * field.height() as f32 * f.dy;
     let bumped = perturbed_normal(&point, d_u, d_v);
@@ -179,18 +187,49 @@ fn shade_sample(
     // Any orthonormal frame will do: the model reads only dot products and L·N, H·N.
     let (t, b, n) = point.frame();
     let frame = TangentFrame { t, b, n };
-    let normal = frame.tangent_from_object(bumped);
-    let decal = object.material.decal.as_deref().map_or(Vec3::ONE, |d| bilinear_repeat(d, local));
-    let world = object.world_from_object.transform_point3(point.position);
+    let surfel = Surfel {
+        position: point.position,
+        frame,
+        normal: frame.tangent_from_object(bumped),
+        decal: object.material.decal.as_deref().map_or(Vec3::ONE, |d| bilinear_repeat(d, local)),
+    };
+    light(scene, object, lighting, &surfel, options, |_, _| true)
+}
+
+/// A point to light: where it is (object space), a frame there, the normal in that frame, and
+/// the decal's colour.
+pub(crate) struct Surfel {
+    pub position: Vec3,
+    pub frame: TangentFrame,
+    pub normal: Vec3,
+    pub decal: Vec3,
+}
+
+/// Every light's [`shade`] of `surfel` on `object`, each clamped to [0, 1] as a pass into an
+/// 8-bit framebuffer is, summed and clamped as additive blending does; light `i` counts where
+/// `reaches(i, to_light)` (object space) says it reaches the point.
+pub(crate) fn light(
+    scene: &Scene,
+    object: &SceneObject,
+    lighting: &[ObjectLighting],
+    surfel: &Surfel,
+    options: &ReferenceOptions,
+    reaches: impl Fn(usize, Vec3) -> bool,
+) -> Vec3 {
+    let n = surfel.normal;
+    let world = object.world_from_object.transform_point3(surfel.position);
     let mut color = Vec3::ZERO;
     for (i, light) in scene.lights.iter().enumerate() {
-        let (l, h) = lighting[i].tangent_space(point.position, &frame);
+        let (l, h) = lighting[i].tangent_space(surfel.position, &surfel.frame);
         let mut factor = 1.0;
         if let Light::Positional(at) = light.light {
             factor *= light.attenuation.factor((at - world).length());
             if let Some(spot) = &light.spot {
                 factor *= spot_cone(spot, at - world, spot.direction);
             }
+        }
+        if factor > 0.0 && !reaches(i, lighting[i].to_light(surfel.position)) {
+            factor = 0.0;
         }
         // The reference samples the exact surface: nothing to filter.
         let terms = LitTerms::of(
@@ -202,8 +241,8 @@ fn shade_sample(
             SpecularFilter::None,
         );
         let fragment = Fragment {
-            normal: Vec4::new(normal.x * 0.5 + 0.5, normal.y * 0.5 + 0.5, normal.z * 0.5 + 0.5, 1.0),
-            decal,
+            normal: Vec4::new(n.x * 0.5 + 0.5, n.y * 0.5 + 0.5, n.z * 0.5 + 0.5, 1.0),
+            decal: surfel.decal,
             gloss: 1.0,
             l,
             h,
@@ -220,7 +259,7 @@ fn shade_sample(
 
 /// Level 0 of `texture` at (s, t) ∈ [0, 1)², bilinear with repeat: the decal as the surface
 /// carries it (the samples of a pixel do the filtering).
-fn bilinear_repeat(texture: &Rgba8Mips, st: Vec2) -> Vec3 {
+pub(crate) fn bilinear_repeat(texture: &Rgba8Mips, st: Vec2) -> Vec3 {
     let level = &texture.levels()[0];
     let (w, h) = (level.width, level.height);
     let x = st.x * w as f32 - 0.5;

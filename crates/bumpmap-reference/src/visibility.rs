@@ -3,7 +3,7 @@
 //!
 //! Samples are a 2D low-discrepancy sequence (Roberts' R2) of `K` points in the pixel, shifted
 //! per pixel by a hash (Cranley–Patterson rotation): stratified for any K, different in every
-//! pixel, the same from run to run. Coverage is the edge-function test at the sample itself and
+//! pixel, the same from run to run; a single sample sits at the pixel's centre. Coverage is the edge-function test at the sample itself and
 //! depth is GL's `z/w` with `GL_LESS`; attributes come back as perspective-correct barycentric
 //! weights. Triangles with a vertex at or behind the eye plane are skipped (the built-in scenes
 //! have none). What this module does not do: shade, filter, or reproduce the backends' fixed-point
@@ -14,9 +14,13 @@ use glam::{Mat4, Vec2, Vec3};
 /// Pixels per tile side: the unit of parallel work and of the progress callback.
 pub const TILE: usize = 16;
 
-/// Offset in [0, 1)² of sample `k` of pixel (x, y).
+/// Offset in [0, 1)² of sample `k` of `spp` of pixel (x, y): the pixel's centre for a single
+/// sample (where a rasterizer samples), else the sequence below.
 #[inline]
-pub fn sample_offset(k: usize, x: usize, y: usize) -> Vec2 {
+pub fn sample_offset(k: usize, spp: usize, x: usize, y: usize) -> Vec2 {
+    if spp == 1 {
+        return Vec2::splat(0.5);
+    }
     // R2: the plastic number's powers; a 2D sequence with good stratification for any K.
     const A1: f64 = 0.754_877_666_246_692_8;
     const A2: f64 = 0.569_840_290_998_053_3;
@@ -141,7 +145,7 @@ pub fn resolve_tile(
             for x in bx0.max(x0)..bx1.min(x0 + tw) {
                 let base = ((y - y0) * tw + (x - x0)) * spp;
                 for k in 0..spp {
-                    let q = Vec2::new(x as f32, y as f32) + sample_offset(k, x, y);
+                    let q = Vec2::new(x as f32, y as f32) + sample_offset(k, spp, x, y);
                     if let Some((z, weights)) = tri.hit(q)
                         && z < depth[base + k]
                     {
@@ -165,13 +169,14 @@ mod tests {
         for (x, y) in [(0, 0), (17, 3), (400, 311)] {
             let mut strata = [0; 16];
             for k in 0..64 {
-                let o = sample_offset(k, x, y);
+                let o = sample_offset(k, 64, x, y);
                 assert!((0.0..1.0).contains(&o.x) && (0.0..1.0).contains(&o.y));
                 strata[(o.y * 4.0) as usize * 4 + (o.x * 4.0) as usize] += 1;
             }
             assert!(strata.iter().all(|&n| (2..=6).contains(&n)), "{strata:?}");
         }
-        assert_ne!(sample_offset(0, 1, 0), sample_offset(0, 0, 1), "rotated per pixel");
+        assert_ne!(sample_offset(0, 4, 1, 0), sample_offset(0, 4, 0, 1), "rotated per pixel");
+        assert_eq!(sample_offset(0, 1, 7, 9), Vec2::splat(0.5), "one sample: the centre");
     }
 
     #[test]

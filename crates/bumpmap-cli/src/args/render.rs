@@ -196,6 +196,63 @@ impl ValueEnum for TechniqueArg {
     }
 }
 
+/// Heights as geometry: how deep, from which file, and how the marches run.
+#[derive(Args, Debug, Clone)]
+#[command(
+    next_help_heading = "Heights as geometry (parallax, steep-parallax, pom, relief, height-exact, reference-displaced)"
+)]
+pub struct HeightsGroup {
+    /// How deep the heights carve below the surface, in the scene's units per unit of height (heights are 1 on the surface, 0 at this depth) [default: what --bump-scale stands for: that many texels of the surface's mean texel side, so the normal map's slopes are the geometry's]. Clamped to a quarter of a wall's side, half a torus's tube radius or a sphere's radius
+    #[arg(long, value_parser = parse_depth)]
+    pub depth: Option<f32>,
+    /// The heights as a file, the normal map's size: what `normalmap --height-out` writes (H.png with H.mip1.png … and H.minmax.png …, or H.ktx2 / H.dds with H.minmax.ktx2 / .dds beside it); what a --normal-map needs for these techniques. height-exact needs the min–max files
+    #[arg(long = "height-map", value_name = "FILE")]
+    pub height_map: Option<PathBuf>,
+    /// Layers of a march: steep-parallax and relief step through this many, pom through a quarter of it looking straight on up to all of it at grazing angles; a shadow march steps this many over the depth
+    #[arg(long, default_value_t = bumpmap::bumpmap_core::parallax::DEFAULT_LAYERS, value_parser = clap::value_parser!(u32).range(1..=256))]
+    pub layers: u32,
+    /// Self-shadowing by the heights: off; hard (dark where a height rises above the ray toward the light); soft (darker the higher a blocker rises and the nearer it is: Tatarchuk's engine-style penumbra). height-exact and reference-displaced cast exact shadow rays for hard and soft alike
+    #[arg(long = "parallax-shadow", value_enum, default_value = "off")]
+    pub parallax_shadow: ParallaxShadowArg,
+    /// On curved surfaces, drop pixels whose ray leaves the surface without meeting the heights, so bumps cut the silhouette (the surface's curvature bends the ray, Oliveira & Policarpo 2005)
+    #[arg(long)]
+    pub silhouettes: bool,
+    /// Write the depth where the ray met the heights instead of the polygon's, so two bumpy surfaces intersect where their bumps do
+    #[arg(long = "write-depth")]
+    pub write_depth: bool,
+}
+
+/// Self-shadowing by the heights.
+#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ParallaxShadowArg {
+    /// none: the lighting model's own terms only
+    Off,
+    /// dark where any height along the way to the light rises above the ray
+    Hard,
+    /// darker the higher and nearer a blocker (an engine-style penumbra)
+    Soft,
+}
+
+impl From<ParallaxShadowArg> for bumpmap::bumpmap_core::parallax::ParallaxShadow {
+    fn from(a: ParallaxShadowArg) -> Self {
+        use bumpmap::bumpmap_core::parallax::ParallaxShadow;
+        match a {
+            ParallaxShadowArg::Off => ParallaxShadow::Off,
+            ParallaxShadowArg::Hard => ParallaxShadow::Hard,
+            ParallaxShadowArg::Soft => ParallaxShadow::Soft,
+        }
+    }
+}
+
+/// A depth: a positive, finite number of the scene's units.
+pub fn parse_depth(s: &str) -> Result<f32, String> {
+    let v = parse_f32(s)?;
+    if !(v.is_finite() && v > 0.0) {
+        return Err(format!("'{s}' is not a depth: give a positive number of the scene's units"));
+    }
+    Ok(v)
+}
+
 /// What draws it.
 #[derive(Args, Debug, Clone)]
 #[command(next_help_heading = "Backend")]
@@ -226,6 +283,9 @@ pub struct SceneSetup {
     /// How it is drawn.
     #[command(flatten)]
     pub technique: TechniqueGroup,
+    /// Heights as geometry.
+    #[command(flatten)]
+    pub heights: HeightsGroup,
     /// What draws it.
     #[command(flatten)]
     pub backend: BackendGroup,
@@ -243,7 +303,11 @@ bumpmap render --backend gpu --technique single-pass   # the same on the GPU (wg
 bumpmap render --technique peercy-blinn --scene patch --height-field pinwheel\n  \
 bumpmap render --normal-map rock.png --scene sphere    # your own normal map (green up)\n  \
 bumpmap render --normal-map rock.dds --y-convention directx   # …one made for Unreal\n  \
-bumpmap render --scene mesh:model.glb                  # a glTF with its own material\n\n\
+bumpmap render --scene mesh:model.glb                  # a glTF with its own material\n  \
+bumpmap render --technique pom --scene wall --eye 0,-3,1.2   # parallax occlusion mapping, grazing\n  \
+bumpmap render --technique reference-displaced --scene wall --eye 0,-3,1.2 --spp 16   # its ground truth\n  \
+bumpmap render --technique relief --parallax-shadow hard --layers 64 --light 3,0,0.6\n  \
+bumpmap render --normal-map n.png --height-map h.png --technique height-exact   # normalmap --height-out's files\n\n\
 Lights are [dir:]X,Y,Z[@R,G,B] in world space (a mesh's own units and axes): a point light's \
 position, or with dir: the direction toward a light at infinity.")]
 pub struct RenderArgs {

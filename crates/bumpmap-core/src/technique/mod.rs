@@ -19,10 +19,11 @@ pub mod single_pass;
 
 use std::sync::Arc;
 
-use bumpmap_math::{Encoding, Rgba8Mips};
+use bumpmap_math::{Encoding, HeightMips, Rgba8Mips};
 
 use crate::combiners::{CombinerSetup, Precision};
 use crate::error::CoreError;
+use crate::parallax::Parallax;
 use crate::scene::{NormalSpace, Scene, SceneLight};
 use crate::state::{PassState, Sampler};
 use crate::vertex::var;
@@ -187,12 +188,31 @@ pub struct LitProgram {
     pub half_angle: HalfAngle,
     /// The light: attenuation, spotlight (its colour is already in `terms`).
     pub light: SceneLight,
+    /// Heights as geometry: where the maps are read is where the view ray meets the heights
+    /// (`crate::parallax`), or `None` for the entry point itself.
+    pub parallax: Option<ParallaxProgram>,
+}
+
+/// What a single pass with heights as geometry reads besides the lit program's maps.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ParallaxProgram {
+    /// The march and its options.
+    pub parallax: Parallax,
+    /// The heights, the normal map's size (with their min–max levels for the exact walk).
+    pub heights: Arc<HeightMips>,
+    /// Object units per unit of height.
+    pub depth: f32,
+    /// The camera's `far / (far − near)`: what a hit's window depth is computed with
+    /// ([`crate::parallax::displaced_depth`]).
+    pub depth_range: f32,
 }
 
 impl LitProgram {
     /// How many varyings (from slot 0) the program reads.
     pub fn varyings_read(&self) -> usize {
-        if matches!(self.normal_texels, crate::scene::NormalTexels::Derivatives { .. }) {
+        if self.parallax.is_some() {
+            var::COUNT
+        } else if matches!(self.normal_texels, crate::scene::NormalTexels::Derivatives { .. }) {
             var::PARAM_FRAME + 3
         } else if self.normal_space.is_object() {
             var::N + 3

@@ -20,11 +20,23 @@ pub struct ReferenceOptions {
     pub self_shadow: SelfShadow,
     /// The specular term's gating.
     pub specular_shadow: SpecularShadow,
+    /// Heights as geometry: the surface displaced by the material's heights and depth, rays
+    /// traced to it, instead of the base surface shaded with Blinn's normal.
+    pub displaced: bool,
+    /// With `displaced`: a shadow ray from every sample toward each light, against the same
+    /// displaced surface.
+    pub shadow_rays: bool,
 }
 
 impl Default for ReferenceOptions {
-    /// 64 samples per pixel; the paper's Eq. 12 ramp and specular gating.
+    /// 64 samples per pixel; the paper's Eq. 12 ramp and specular gating; the base surface.
     fn default() -> Self {
-        Self { samples_per_pixel: 64, self_shadow: SelfShadow::Ramp, specular_shadow: SpecularShadow::Kilgard }
+        Self {
+            samples_per_pixel: 64,
+            self_shadow: SelfShadow::Ramp,
+            specular_shadow: SpecularShadow::Kilgard,
+            displaced: false,
+            shadow_rays: false,
+        }
     }
 }

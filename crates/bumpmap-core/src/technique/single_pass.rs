@@ -11,11 +11,12 @@ use std::sync::Arc;
 use bumpmap_math::Rgba8Mips;
 
 use crate::error::{CoreError, Feature};
+use crate::parallax::{MAX_LAYERS, Parallax, ParallaxMethod};
 use crate::scene::{Attenuation, Scene, SceneLight};
 use crate::shading::LitTerms;
 pub use crate::shading::{SelfShadow, SpecularFilter, SpecularShadow};
 use crate::state::{Blend, PassState, Sampler};
-use crate::technique::{LitProgram, Pass, Program};
+use crate::technique::{LitProgram, ParallaxProgram, Pass, Program};
 
 /// The technique's name.
 pub const NAME: &str = "single-pass";
@@ -77,6 +78,9 @@ pub struct SinglePassOptions {
     /// wrote, say). `None`: the renderers make it from each normal map's levels and the
     /// material's shininess as that command does ([`crate::shading::roughness_texture`]).
     pub roughness_map: Option<Arc<Rgba8Mips>>,
+    /// Heights as geometry: the march that finds where each pixel's ray meets the material's
+    /// heights, or `None` to read the maps where the ray enters the polygon.
+    pub parallax: Option<Parallax>,
 }
 
 impl Default for SinglePassOptions {
@@ -91,6 +95,7 @@ impl Default for SinglePassOptions {
             cube_size: 32,
             specular_filter: SpecularFilter::None,
             roughness_map: None,
+            parallax: None,
         }
     }
 }
@@ -133,8 +138,34 @@ pub fn validate(scene: &Scene, options: &SinglePassOptions) -> Result<(), CoreEr
             }
         }
     }
+    if let Some(p) = &options.parallax {
+        validate_parallax(scene, p)?;
+    }
     for light in &scene.lights {
         validate_light(light)?;
+    }
+    Ok(())
+}
+
+/// Checks heights as geometry: every material has heights (with min–max levels for the exact
+/// walk) under a tangent-space map of unit normals, and the layer count is in range.
+pub fn validate_parallax(scene: &Scene, p: &Parallax) -> Result<(), CoreError> {
+    if !(1..=MAX_LAYERS).contains(&p.options.layers) {
+        return Err(CoreError::out_of_range("the layer count", p.options.layers, "in 1..=256"));
+    }
+    for object in &scene.objects {
+        let m = &object.material;
+        if m.normal_space != crate::scene::NormalSpace::Tangent
+            || m.normal_texels != crate::scene::NormalTexels::UnitVector
+        {
+            return Err(CoreError::Unsupported { technique: NAME, feature: Feature::Parallax });
+        }
+        let Some(heights) = &m.heights else {
+            return Err(CoreError::Needs { technique: NAME, requirement: crate::catalogue::Requirement::Heights });
+        };
+        if p.method == ParallaxMethod::Exact && heights.minmax().is_none() {
+            return Err(CoreError::NoMinMax { technique: "height-exact" });
+        }
     }
     Ok(())
 }
@@ -206,6 +237,12 @@ pub fn passes(scene: &Scene, options: &SinglePassOptions) -> Result<Vec<Pass>, C
                 cube_size: options.cube_size,
                 half_angle: options.half_angle,
                 light: light.clone(),
+                parallax: options.parallax.map(|parallax| ParallaxProgram {
+                    parallax,
+                    heights: m.heights.clone().expect("validated: every material has heights"),
+                    depth: m.depth,
+                    depth_range: scene.camera.far / (scene.camera.far - scene.camera.near),
+                }),
             };
             let state = if l == 0 { PassState::OPAQUE } else { PassState::equal(Blend::ADD) };
             passes.push(Pass { object: o, light: l, snapshot: None, state, program: Program::Lit(Box::new(program)) });

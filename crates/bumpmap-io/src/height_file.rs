@@ -1,0 +1,296 @@
+//! Heights as geometry in files: the heights the parallax techniques read, every level, and
+//! the min–max levels the exact walk reads (`bumpmap_math::height_mips`), as one set.
+//!
+//! - `.png`: `H.png` (8- or 16-bit gray), `H.mip1.png`, … beside it; `H.minmax.png` (16-bit
+//!   RGB: R the lower bound, G the upper, B 0) and `H.minmax.mip1.png`, …;
+//! - `.ktx2` / `.dds`: `H.ktx2` (`R8_UNORM` or `R16_UNORM`, every level) and `H.minmax.ktx2`
+//!   (`R16G16_UNORM`, every level).
+//!
+//! Heights are stored rounded to the nearest step; bounds are rounded outward (the lower down,
+//! the upper up), so they still bound the interpolant of the stored heights. What this module
+//! does not do: make the heights or their bounds (`bumpmap_math`), or decide what a missing
+//! min–max file means (the techniques that need one say so).
+
+use std::path::{Path, PathBuf};
+
+use bumpmap_math::height_mips::{HeightLevel, MinMaxLevel};
+use bumpmap_math::{HeightMips, Image};
+
+use crate::atomic::FileSet;
+use crate::error::IoError;
+use crate::image_file::{Png16, PngLayout, level_path, save_png_into, save_png16_samples_into};
+use crate::texture_file::{Level, TextureFormat, TextureLayout, write_dds_into, write_ktx2_into};
+use crate::texture_read::{StoredLevels, load_texture};
+
+/// Bits a stored height has.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum HeightBits {
+    /// 8 bits (`R8_UNORM`, 8-bit gray PNG).
+    Eight,
+    /// 16 bits (`R16_UNORM`, 16-bit gray PNG).
+    Sixteen,
+}
+
+/// The container a heights file is, by its extension.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Container {
+    Png,
+    Ktx2,
+    Dds,
+}
+
+fn container(path: &Path) -> Result<Container, IoError> {
+    match path.extension().map(|e| e.to_string_lossy().to_ascii_lowercase()).as_deref() {
+        Some("png") => Ok(Container::Png),
+        Some("ktx2") => Ok(Container::Ktx2),
+        Some("dds") => Ok(Container::Dds),
+        _ => Err(IoError::UnsupportedOutput { path: path.to_path_buf(), expected: ".png, .dds or .ktx2" }),
+    }
+}
+
+/// The min–max file beside heights `path`: `H.minmax.EXT`.
+pub fn minmax_path(path: &Path) -> PathBuf {
+    let stem = path.file_stem().unwrap_or_default().to_string_lossy();
+    let ext = path.extension().map(|e| e.to_string_lossy().into_owned()).unwrap_or_default();
+    path.with_file_name(format!("{stem}.minmax.{ext}"))
+}
+
+/// Every file [`write_heights_into`] writes for `path` and `levels` levels, level 0 first.
+pub fn heights_files(path: &Path, levels: usize) -> Result<Vec<PathBuf>, IoError> {
+    let minmax = minmax_path(path);
+    Ok(match container(path)? {
+        Container::Png => {
+            (0..levels).map(|k| level_path(path, k)).chain((0..levels).map(|k| level_path(&minmax, k))).collect()
+        }
+        Container::Ktx2 | Container::Dds => vec![path.to_path_buf(), minmax],
+    })
+}
+
+/// `v` in [0, 1] rounded to 8 bits.
+fn unorm8(v: f32) -> u8 {
+    (v.clamp(0.0, 1.0) * 255.0).round() as u8
+}
+
+/// `v` in [0, 1] rounded to 16 bits.
+fn unorm16(v: f32) -> u16 {
+    (v.clamp(0.0, 1.0) * 65535.0).round() as u16
+}
+
+/// Stages `heights` at `bits` and their min–max levels (16 bits, rounded outward) into `set`, by
+/// `path`'s extension (`.png`, `.ktx2`, `.dds`). Heights without min–max levels get none.
+pub fn write_heights_into(
+    set: &mut FileSet,
+    path: &Path,
+    heights: &HeightMips,
+    bits: HeightBits,
+) -> Result<(), IoError> {
+    let kind = container(path)?;
+    let gray8: Vec<Image<u8>>;
+    let gray16: Vec<Image<u16>>;
+    let levels: Vec<Level> = match bits {
+        HeightBits::Eight => {
+            gray8 = heights
+                .levels()
+                .iter()
+                .map(|l| Image::new(l.width, l.height, l.texels.iter().map(|&v| unorm8(v)).collect()))
+                .collect();
+            gray8.iter().map(Level::Gray8).collect()
+        }
+        HeightBits::Sixteen => {
+            gray16 = heights
+                .levels()
+                .iter()
+                .map(|l| Image::new(l.width, l.height, l.texels.iter().map(|&v| unorm16(v)).collect()))
+                .collect();
+            gray16.iter().map(Level::Gray16).collect()
+        }
+    };
+    let format = if bits == HeightBits::Eight { TextureFormat::R8 } else { TextureFormat::R16 };
+    write_levels(set, path, kind, levels, format)?;
+    if let Some(minmax) = heights.minmax() {
+        let bounds: Vec<Image<[u16; 2]>> = minmax
+            .iter()
+            .map(|l| {
+                let outward = |[lo, hi]: [f32; 2]| {
+                    [(lo.clamp(0.0, 1.0) * 65535.0).floor() as u16, (hi.clamp(0.0, 1.0) * 65535.0).ceil() as u16]
+                };
+                Image::new(l.width, l.height, l.texels.iter().map(|&b| outward(b)).collect())
+            })
+            .collect();
+        write_levels(set, &minmax_path(path), kind, bounds.iter().map(Level::Rg16).collect(), TextureFormat::Rg16)?;
+    }
+    Ok(())
+}
+
+/// One set of levels into `path`: PNG files a level each, or one container.
+fn write_levels(
+    set: &mut FileSet,
+    path: &Path,
+    kind: Container,
+    levels: Vec<Level>,
+    format: TextureFormat,
+) -> Result<(), IoError> {
+    match kind {
+        Container::Png => {
+            for (k, level) in levels.iter().enumerate() {
+                let file = level_path(path, k);
+                match *level {
+                    Level::Gray8(l) => save_png_into(set, &file, l.width, l.height, PngLayout::Gray8, &l.texels)?,
+                    Level::Gray16(l) => save_png16_samples_into(set, &file, l.width, l.height, Png16::Gray, &l.texels)?,
+                    Level::Rg16(l) => {
+                        let rgb: Vec<u16> = l.texels.iter().flat_map(|&[lo, hi]| [lo, hi, 0]).collect();
+                        save_png16_samples_into(set, &file, l.width, l.height, Png16::Rgb, &rgb)?
+                    }
+                    _ => unreachable!("heights are gray, bounds two-channel"),
+                }
+            }
+            Ok(())
+        }
+        Container::Ktx2 => write_ktx2_into(set, path, &TextureLayout { faces: vec![levels] }, format),
+        Container::Dds => write_dds_into(set, path, &TextureLayout { faces: vec![levels] }, format),
+    }
+}
+
+/// Every level a heights file holds, channels `channels` of each texel as floats in [0, 1]: a
+/// container's own levels, or a PNG and the `NAME.mipK.png` files beside it (as many as there
+/// are, each the next size).
+fn read_levels(path: &Path, channels: usize) -> Result<Vec<(usize, usize, Vec<[f32; 2]>)>, IoError> {
+    let kind = container(path)?;
+    let decode = |stored: StoredLevels| -> Vec<(usize, usize, Vec<[f32; 2]>)> {
+        match stored {
+            StoredLevels::Rgba8(levels) => levels
+                .into_iter()
+                .map(|l| {
+                    let t = l.texels.iter().map(|p| [p[0] as f32 / 255.0, p[channels - 1] as f32 / 255.0]).collect();
+                    (l.width, l.height, t)
+                })
+                .collect(),
+            StoredLevels::Rgba16(levels) => levels
+                .into_iter()
+                .map(|l| {
+                    let t =
+                        l.texels.iter().map(|p| [p[0] as f32 / 65535.0, p[channels - 1] as f32 / 65535.0]).collect();
+                    (l.width, l.height, t)
+                })
+                .collect(),
+        }
+    };
+    let mut levels = decode(load_texture(path)?.levels);
+    if kind == Container::Png {
+        for k in 1.. {
+            let file = level_path(path, k);
+            if !file.is_file() {
+                break;
+            }
+            levels.extend(decode(load_texture(&file)?.levels));
+            let (w, h, _) = levels[k - 1];
+            if (w, h) == (1, 1) {
+                break;
+            }
+        }
+    }
+    Ok(levels)
+}
+
+/// Heights `normalmap --height-out` wrote (or any gray image, `.ktx2` or `.dds` of R8/R16, with
+/// its levels or alone), with the min–max levels from `H.minmax.EXT` where that file is there.
+/// Level counts and sizes are checked, naming the file.
+pub fn load_heights(path: &Path) -> Result<HeightMips, IoError> {
+    let bad = |file: &Path, reason: String| IoError::Texture { path: file.to_path_buf(), reason };
+    let levels: Vec<HeightLevel> = read_levels(path, 1)?
+        .into_iter()
+        .map(|(width, height, t)| HeightLevel { width, height, texels: t.into_iter().map(|[v, _]| v).collect() })
+        .collect();
+    let minmax_file = minmax_path(path);
+    let minmax = if minmax_file.is_file() {
+        Some(
+            read_levels(&minmax_file, 2)?
+                .into_iter()
+                .map(|(width, height, texels)| MinMaxLevel { width, height, texels })
+                .collect::<Vec<_>>(),
+        )
+    } else {
+        None
+    };
+    let size = levels.first().map(|l| (l.width, l.height));
+    if let (Some(m), Some((w, h))) = (&minmax, size)
+        && m.first().map(|l| (l.width, l.height)) != Some((w, h))
+    {
+        let (mw, mh) = m.first().map_or((0, 0), |l| (l.width, l.height));
+        return Err(bad(&minmax_file, format!("is {mw}x{mh}, but the heights {} are {w}x{h}", path.display())));
+    }
+    HeightMips::from_levels(levels, minmax).map_err(|e| {
+        let file = if e.to_string().starts_with("min–max") { &minmax_file } else { path };
+        bad(file, e.to_string())
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn tmp(name: &str) -> PathBuf {
+        let dir = std::env::temp_dir().join(format!("bumpmap-heights-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        dir.join(name)
+    }
+
+    #[test]
+    fn heights_and_bounds_read_back_as_written_in_every_container() {
+        let field = bumpmap_math::HeightPreset::Bricks.render(12, 8);
+        let heights = HeightMips::from_field(&field).unwrap();
+        for name in ["h.png", "h.ktx2", "h.dds"] {
+            let path = tmp(name);
+            let mut set = FileSet::new(&[]);
+            write_heights_into(&mut set, &path, &heights, HeightBits::Sixteen).unwrap();
+            let written = set.commit().unwrap();
+            assert_eq!(written, heights_files(&path, heights.levels().len()).unwrap(), "{name}");
+            let back = load_heights(&path).unwrap();
+            assert_eq!(back.levels().len(), heights.levels().len());
+            for (a, b) in back.levels().iter().zip(heights.levels()) {
+                let worst = a.texels.iter().zip(&b.texels).map(|(x, y)| (x - y).abs()).fold(0.0, f32::max);
+                assert!(worst <= 0.5 / 65535.0 + 1e-7, "{name}: {worst}");
+            }
+            // Rounded outward: still bounds of the heights read back.
+            for (a, b) in back.minmax().unwrap().iter().zip(heights.minmax().unwrap()) {
+                for (x, y) in a.texels.iter().zip(&b.texels) {
+                    assert!(x[0] <= y[0] && x[1] >= y[1] && y[0] - x[0] < 2.0 / 65535.0, "{name}: {x:?} vs {y:?}");
+                }
+            }
+            for f in written {
+                std::fs::remove_file(f).unwrap();
+            }
+        }
+    }
+
+    #[test]
+    fn a_missing_bounds_file_leaves_none_and_a_short_chain_is_named() {
+        let field = bumpmap_math::HeightPreset::Dimples.render(8, 8);
+        let heights = HeightMips::from_field(&field).unwrap();
+        let path = tmp("alone.png");
+        let mut set = FileSet::new(&[]);
+        write_heights_into(&mut set, &path, &heights, HeightBits::Eight).unwrap();
+        let written = set.commit().unwrap();
+        assert_eq!(written.len(), 8, "8×8: four levels of heights, four of bounds");
+        // The bounds' last level lost: named, with what it should have.
+        std::fs::remove_file(&written[7]).unwrap();
+        let err = load_heights(&path).unwrap_err().to_string();
+        assert!(
+            err.contains("alone.minmax.png") && err.contains("min–max has 3 levels; a 8x8 level 0 takes all 4"),
+            "{err}"
+        );
+        // No bounds file at all: heights without bounds.
+        for f in &written[4..7] {
+            std::fs::remove_file(f).unwrap();
+        }
+        assert!(load_heights(&path).unwrap().minmax().is_none());
+        // Heights' level 0 alone: its chain is made.
+        for f in &written[1..4] {
+            std::fs::remove_file(f).unwrap();
+        }
+        let back = load_heights(&path).unwrap();
+        assert_eq!(back.levels().len(), 4);
+        std::fs::remove_file(&written[0]).unwrap();
+        assert!(load_heights(&tmp("h.tga")).unwrap_err().to_string().contains(".png, .dds or .ktx2"));
+    }
+}
