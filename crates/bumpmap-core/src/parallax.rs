@@ -264,7 +264,8 @@ pub fn steep(ray: &TextureRay, layers: u32, sample: &mut impl FnMut(Vec2) -> f32
 pub fn occlusion_layers(layers: u32, cos_view: f32) -> u32 {
     let max = layers.max(1) as f32;
     let min = (layers.max(1) as f32 / 4.0).ceil();
-    (max + (min - max) * cos_view.clamp(0.0, 1.0)).round().max(1.0) as u32
+    // Rounded half up (floor(x + ½)), as WGSL can say it too.
+    (max + (min - max) * cos_view.clamp(0.0, 1.0) + 0.5).floor().max(1.0) as u32
 }
 
 /// Parallax occlusion mapping: [`occlusion_layers`] layers, the hit where the straight line
@@ -439,11 +440,17 @@ pub fn fragment(
     let moved = Vec3::new(hit.st.x - rays.st.x, hit.st.y - rays.st.y, -hit.descent);
     let to_light = if positional { rays.to_light - moved } else { rays.to_light };
     let to_eye = rays.to_eye - moved;
-    let height = 1.0 - hit.descent;
     let light = match (parallax.method, exact_heights) {
         (_, _) if parallax.options.shadow == ParallaxShadow::Off => 1.0,
-        (ParallaxMethod::Exact, Some((level0, minmax))) => exact_shadow(hit.st, height, to_light, level0, minmax),
-        _ => shadow(hit.st, height, to_light, layers, parallax.options.shadow, sample),
+        (ParallaxMethod::Exact, Some((level0, minmax))) => {
+            exact_shadow(hit.st, 1.0 - hit.descent, to_light, level0, minmax)
+        }
+        // From the heights where the march ended (a layer's hit lies up to a layer inside them,
+        // and would shadow itself).
+        _ => {
+            let surface = sample(hit.st);
+            shadow(hit.st, surface, to_light, layers, parallax.options.shadow, sample)
+        }
     };
     let normal = match (parallax.method, exact_heights) {
         (ParallaxMethod::Exact, Some((level0, _))) => {
@@ -464,6 +471,15 @@ pub fn fragment(
         kappa: if rays.to_eye.z > 0.0 { hit.descent / rays.to_eye.z } else { 0.0 },
         normal,
     })
+}
+
+/// The level of the heights a march reads for a fragment of footprint λ (the normal map's,
+/// GL 1.2 Eq. 3.14) under the material's `sampler`: the level nearest the footprint when the
+/// sampler has mipmaps (what `*_MIPMAP_NEAREST` reads), else level 0. The march then reads it
+/// with GL's LINEAR filter.
+#[inline]
+pub fn height_level(sampler: &crate::state::Sampler, lambda: f32, levels: usize) -> usize {
+    if sampler.has_mipmaps() { crate::state::Sampler::nearest_level(lambda, levels - 1) } else { 0 }
 }
 
 /// The window depth of a hit `kappa` ([`ParallaxFragment::kappa`]) past an entry point at

@@ -220,6 +220,23 @@ impl Sampler {
         wrap_t: WrapMode::ClampToEdge,
     };
 
+    /// The level `*_MIPMAP_NEAREST` reads at λ (GL 1.2 §3.8.9): 0 for λ ≤ ½, else ⌈λ + ½⌉ − 1,
+    /// at most `last` (and `last` for a NaN λ).
+    ///
+    /// ```
+    /// use bumpmap_core::state::Sampler;
+    /// assert_eq!([0.3, 0.51, 1.49, 1.51, 9.0].map(|l| Sampler::nearest_level(l, 4)), [0, 1, 1, 2, 4]);
+    /// ```
+    #[inline(always)]
+    pub fn nearest_level(lambda: f32, last: usize) -> usize {
+        if lambda <= 0.5 { 0 } else { ((lambda + 0.5).ceil() - 1.0).min(last as f32) as usize }
+    }
+
+    /// Whether the minification filter reads mip levels.
+    pub fn has_mipmaps(&self) -> bool {
+        !matches!(self.min, MinFilter::Nearest | MinFilter::Linear)
+    }
+
     /// The magnification/minification switch-over point c (GL 1.2 §3.8.8): λ ≤ c magnifies.
     pub fn switch_over(&self) -> f32 {
         let nearest_mip = matches!(self.min, MinFilter::NearestMipmapNearest | MinFilter::NearestMipmapLinear);

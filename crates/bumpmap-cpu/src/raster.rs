@@ -185,6 +185,18 @@ pub trait FragmentShader: Sync {
     fn scratch(&self) -> Self::Scratch;
     /// Writes the RGBA of live fragment j (lane `batch.live()[j]`) into `out[..][j]`.
     fn shade(&self, batch: &FragmentBatch, scratch: &mut Self::Scratch, out: &mut [Lanes; 4]);
+    /// Whether [`FragmentShader::depth`] gives each fragment's depth (`gl_FragDepth`): the depth
+    /// test then runs after shading, on that depth. Such a shader's depth is never nearer than
+    /// the triangle's, so a fragment the triangle's depth already fails under LESS or LEQUAL is
+    /// dropped before shading.
+    fn writes_depth(&self) -> bool {
+        false
+    }
+    /// After [`FragmentShader::shade`]: live fragment j's window depth, NaN for a fragment
+    /// discarded; `None` when the shader does not write depth.
+    fn depth<'a>(&self, _scratch: &'a Self::Scratch) -> Option<&'a Lanes> {
+        None
+    }
 }
 
 const SUBPIXEL_BITS: u32 = 8;
@@ -667,7 +679,14 @@ fn raster_triangle<S: FragmentShader>(
             let last = tile.depth.len() - 1;
             let stored = |k: usize| tile.depth[(idx + (k >> 1) * tile.width + (k & 1)).min(last)];
             let stored = Vec4::new(stored(0), stored(1), stored(2), stored(3));
-            let passes = depth_test_quad(state.pass.depth_func, z, stored);
+            // A shader that writes its depth is tested after shading; before it, only LESS and
+            // LEQUAL can drop what its depth (never nearer than the triangle's) would fail too.
+            let passes =
+                if shader.writes_depth() && !matches!(state.pass.depth_func, DepthFunc::Less | DepthFunc::LEqual) {
+                    0b1111
+                } else {
+                    depth_test_quad(state.pass.depth_func, z, stored)
+                };
             let live = covered & passes;
             if live == 0 {
                 continue;
@@ -713,6 +732,13 @@ fn flush<S: FragmentShader>(tile: &mut Tile, state: &DrawState, shader: &S, task
     }
     batch.list_live(tile.width);
     shader.shade(batch, scratch, colors);
+    if let Some(depth) = shader.depth(scratch) {
+        // The late depth test on the shader's depth; discarded fragments (NaN) fail it.
+        write_tested(tile, state, batch, colors, depth);
+        batch.quads = 0;
+        *pending = [0; TILE];
+        return;
+    }
     // The blend equation is chosen once per batch; the common ones get their own loop.
     use BlendFactor as F;
     let all = state.pass.color_mask == [true; 4];
@@ -754,6 +780,23 @@ pub(crate) mod fast_blend {
     #[inline(always)]
     pub fn add(s: Vec4, d: Vec4) -> Vec4 {
         s + d
+    }
+}
+
+/// Writes the live fragments whose shader depth passes the depth test (and is a number): depth
+/// if enabled, colour blended as the pass says.
+fn write_tested(tile: &mut Tile, state: &DrawState, batch: &FragmentBatch, colors: &[Lanes; 4], depth: &Lanes) {
+    let (blend, mask) = (state.pass.blend, state.pass.color_mask);
+    for (j, &idx) in batch.pixel[..batch.live_count].iter().enumerate() {
+        let (idx, z) = (idx as usize, depth[j]);
+        if z.is_nan() || !state.pass.depth_func.passes(z, tile.depth[idx]) {
+            continue;
+        }
+        if state.pass.depth_write {
+            tile.depth[idx] = z;
+        }
+        let src = [colors[0][j], colors[1][j], colors[2][j], colors[3][j]];
+        tile.color[idx] = blend_pixel(&blend, src, tile.color[idx], mask);
     }
 }
 

@@ -24,6 +24,8 @@ use crate::fixed_function::pack_2d_coords;
 use crate::raster::{FragmentBatch, FragmentShader};
 use crate::texture::{MomentTexture, Sampler, Texture2d, TextureCube, sample_2d, sample_2d_lanes, sample_cube_lanes};
 
+mod parallax;
+
 /// The per-light fragment program.
 pub(crate) struct SinglePass<'a> {
     /// What the core asked for.
@@ -77,6 +79,16 @@ pub struct Scratch {
     h_dot_n: Lanes,
     gate: Lanes,
     acc: Lanes,
+    /// Heights as geometry (`parallax`): the texture-space varyings (to the eye 3, to the light
+    /// 3, the Jacobian 4, the curvature 2), and what the march found: where to read the maps,
+    /// L and V there, the light let through, the exact walk's normal, the window depth.
+    tex: [Lanes; 12],
+    hit: [Lanes; 2],
+    par_l: [Lanes; 3],
+    par_v: [Lanes; 3],
+    par_n: [Lanes; 3],
+    par_light: Lanes,
+    depth: Lanes,
 }
 
 impl Scratch {
@@ -102,6 +114,13 @@ impl Scratch {
             h_dot_n: z,
             gate: z,
             acc: z,
+            tex: [z; 12],
+            hit: [z; 2],
+            par_l: [z; 3],
+            par_v: [z; 3],
+            par_n: [z; 3],
+            par_light: z,
+            depth: z,
         })
     }
 }
@@ -165,6 +184,14 @@ impl SinglePass<'_> {
     ) {
         if !same_coords {
             pack_2d_coords(tex, batch, [var::S, var::T], scale, &mut sc.coords);
+            if self.program.parallax.is_some() {
+                // Where the view ray met the heights, at the footprint where it entered (as
+                // `textureGrad` reads a texture with the entry point's derivatives).
+                let m = n.next_multiple_of(8).min(LANES);
+                for c in 0..2 {
+                    sc.coords[c][..m].copy_from_slice(&sc.hit[c][..m]);
+                }
+            }
         }
         let out = match which {
             Tex::Normal => &mut sc.normal,
@@ -250,6 +277,9 @@ impl FragmentShader for SinglePass<'_> {
         let n = live_n.next_multiple_of(8);
         let (scale, object_space) = (o.normal_space.texcoord_scale().to_array(), o.normal_space.is_object());
         let size = |t: &Texture2d| (t.width(), t.height());
+        if let Some(p) = &o.parallax {
+            self.parallax(p, batch, sc, live_n);
+        }
         self.sample(&self.normal_map, batch, scale, sc, live_n, Tex::Normal, false);
         if let Some(moments) = &self.moments {
             // Same size and levels as the normal map: the coordinates just packed.
@@ -282,6 +312,15 @@ impl FragmentShader for SinglePass<'_> {
                     (nm[0][j], nm[1][j], nm[2][j], nm[3][j]) = (v.x, v.y, v.z, v.w);
                 }
             }
+        }
+        if o.parallax.as_ref().is_some_and(|p| p.parallax.method == bumpmap_core::parallax::ParallaxMethod::Exact) {
+            // The exact walk's own normal, from the interpolant it walked (A = 1: one surface).
+            for c in 0..3 {
+                for j in 0..n {
+                    sc.normal[c][j] = sc.par_n[c][j] * 0.5 + 0.5;
+                }
+            }
+            sc.normal[3][..n].fill(1.0);
         }
         let mut last = (size(&self.normal_map), scale);
         match &self.decal {
@@ -325,6 +364,21 @@ impl FragmentShader for SinglePass<'_> {
             }
         }
         self.unit(&sc.v, &mut sc.cube, n, &mut sc.h);
+        if o.parallax.is_some() {
+            // L and V where the ray met the heights; H from them per fragment.
+            normalize_lanes(&mut sc.par_l, n);
+            normalize_lanes(&mut sc.par_v, n);
+            for k in 0..3 {
+                sc.l[k][..n].copy_from_slice(&sc.par_l[k][..n]);
+                for j in 0..n {
+                    sc.v[k][j] = sc.par_l[k][j] + sc.par_v[k][j];
+                }
+            }
+            normalize_lanes(&mut sc.v, n);
+            for k in 0..3 {
+                sc.h[k][..n].copy_from_slice(&sc.v[k][..n]);
+            }
+        }
         // L·N and H·N with the unperturbed normal: L_z and H_z in tangent space.
         if object_space {
             for k in 0..3 {
@@ -335,7 +389,20 @@ impl FragmentShader for SinglePass<'_> {
             dot_lanes(&sc.h, &sc.v, n, &mut sc.h_n);
         }
         self.light_factor(batch, sc, live_n);
+        if o.parallax.is_some() {
+            for j in 0..n {
+                sc.light[j] *= sc.par_light[j];
+            }
+        }
         lighting_lanes(&o.terms, sc, object_space, n, out);
+    }
+
+    fn writes_depth(&self) -> bool {
+        self.program.parallax.as_ref().is_some_and(|p| p.parallax.options.write_depth || p.parallax.options.silhouettes)
+    }
+
+    fn depth<'a>(&self, sc: &'a Self::Scratch) -> Option<&'a Lanes> {
+        self.writes_depth().then_some(&sc.depth)
     }
 }
 

@@ -274,8 +274,8 @@ pub(crate) fn sample_levels<L: Filter>(levels: &[L], sampler: &Sampler, s: f32, 
         MinFilter::Nearest => base.nearest(s, t, sampler),
         MinFilter::Linear => base.linear(s, t, sampler),
         MinFilter::NearestMipmapNearest | MinFilter::LinearMipmapNearest => {
-            let d = if lambda <= 0.5 { 0.0 } else { ((lambda + 0.5).ceil() - 1.0).min(q) };
-            pick(d).filter(s, t, sampler.min == MinFilter::LinearMipmapNearest, sampler)
+            let d = Sampler::nearest_level(lambda, levels.len() - 1);
+            levels[d].filter(s, t, sampler.min == MinFilter::LinearMipmapNearest, sampler)
         }
         MinFilter::NearestMipmapLinear | MinFilter::LinearMipmapLinear => {
             let linear = sampler.min == MinFilter::LinearMipmapLinear;

@@ -10,6 +10,7 @@
 //! It does not hold the model itself: that is `shading.wgsl` (tested against
 //! `bumpmap_core::shading::shade`).
 
+use bumpmap_core::parallax::{ParallaxMethod, ParallaxShadow};
 use bumpmap_core::scene::{Attenuation, NormalTexels};
 use bumpmap_core::shading::LitTerms;
 use bumpmap_core::technique::{Gloss, HalfAngle, LitProgram, Normalize, SelfShadow, SpecularFilter, SpecularShadow};
@@ -57,6 +58,42 @@ const NORMAL_TEXELS: Switch = Switch {
     name: "NORMAL_TEXELS",
     values: &["NORMAL_TEXELS_UNIT_VECTOR", "NORMAL_TEXELS_OFFSET", "NORMAL_TEXELS_DERIVATIVES"],
 };
+const PARALLAX: Switch = Switch {
+    name: "PARALLAX",
+    values: &[
+        "PARALLAX_NONE",
+        "PARALLAX_OFFSET",
+        "PARALLAX_STEEP",
+        "PARALLAX_OCCLUSION",
+        "PARALLAX_RELIEF",
+        "PARALLAX_EXACT",
+    ],
+};
+const PARALLAX_SHADOW: Switch = Switch {
+    name: "PARALLAX_SHADOW",
+    values: &["PARALLAX_SHADOW_OFF", "PARALLAX_SHADOW_HARD", "PARALLAX_SHADOW_SOFT"],
+};
+
+/// The WGSL name of a parallax method's constant (`PARALLAX_NONE` for none).
+pub fn parallax_name(method: Option<ParallaxMethod>) -> &'static str {
+    match method {
+        None => "PARALLAX_NONE",
+        Some(ParallaxMethod::Offset) => "PARALLAX_OFFSET",
+        Some(ParallaxMethod::Steep) => "PARALLAX_STEEP",
+        Some(ParallaxMethod::Occlusion) => "PARALLAX_OCCLUSION",
+        Some(ParallaxMethod::Relief) => "PARALLAX_RELIEF",
+        Some(ParallaxMethod::Exact) => "PARALLAX_EXACT",
+    }
+}
+
+/// The WGSL name of a parallax shadow's constant (`PARALLAX_SHADOW_OFF`, …).
+pub fn parallax_shadow_name(shadow: ParallaxShadow) -> &'static str {
+    match shadow {
+        ParallaxShadow::Off => "PARALLAX_SHADOW_OFF",
+        ParallaxShadow::Hard => "PARALLAX_SHADOW_HARD",
+        ParallaxShadow::Soft => "PARALLAX_SHADOW_SOFT",
+    }
+}
 
 /// The WGSL name of a self-shadowing mode's constant (`SELF_SHADOW_RAMP`, …).
 pub fn self_shadow_name(mode: SelfShadow) -> &'static str {
@@ -114,7 +151,7 @@ fn normal_texels_name(t: &NormalTexels) -> &'static str {
 
 /// Every named value of every switch with its code: the prelude's constants.
 pub(crate) fn named_values() -> impl Iterator<Item = (&'static str, u32)> {
-    [SELF_SHADOW, SPECULAR_SHADOW, SPECULAR_FILTER, GLOSS, ATTENUATION, NORMAL_TEXELS]
+    [SELF_SHADOW, SPECULAR_SHADOW, SPECULAR_FILTER, GLOSS, ATTENUATION, NORMAL_TEXELS, PARALLAX, PARALLAX_SHADOW]
         .into_iter()
         .flat_map(|s| s.values.iter().enumerate().map(|(i, &v)| (v, i as u32)))
 }
@@ -135,6 +172,12 @@ pub struct LitVariant {
     /// The shininess's bits (a constant, so whole exponents become a fixed product).
     shininess: u32,
     normal_texels: u32,
+    parallax: u32,
+    parallax_shadow: u32,
+    silhouettes: bool,
+    write_depth: bool,
+    height_mipmaps: bool,
+    positional_light: bool,
 }
 
 impl Default for LitVariant {
@@ -153,6 +196,12 @@ impl Default for LitVariant {
             spot_pattern: false,
             shininess: 8.0f32.to_bits(),
             normal_texels: 0,
+            parallax: 0,
+            parallax_shadow: 0,
+            silhouettes: false,
+            write_depth: false,
+            height_mipmaps: false,
+            positional_light: false,
         }
     }
 }
@@ -173,12 +222,25 @@ impl LitVariant {
             spot_pattern: p.light.spot.as_ref().is_some_and(|s| s.pattern.is_some()),
             shininess: p.terms.shininess.to_bits(),
             normal_texels: NORMAL_TEXELS.code(normal_texels_name(&p.normal_texels)),
+            parallax: PARALLAX.code(parallax_name(p.parallax.as_ref().map(|x| x.parallax.method))),
+            parallax_shadow: PARALLAX_SHADOW.code(parallax_shadow_name(
+                p.parallax.as_ref().map_or(ParallaxShadow::Off, |x| x.parallax.options.shadow),
+            )),
+            silhouettes: p.parallax.as_ref().is_some_and(|x| x.parallax.options.silhouettes),
+            write_depth: p.parallax.as_ref().is_some_and(|x| x.parallax.options.write_depth),
+            height_mipmaps: p.parallax.is_some() && p.sampler.has_mipmaps(),
+            positional_light: matches!(p.light.light, bumpmap_math::lighting::Light::Positional(_)),
         }
+    }
+
+    /// The fragment entry point: `fs_lit_depth` where the program writes its depth.
+    pub fn entry_point(&self) -> &'static str {
+        if self.write_depth { "fs_lit_depth" } else { "fs_lit" }
     }
 
     /// The override constants by their names in `lit.wgsl`, with their values: the one list
     /// the pipeline's constants and the prelude's declarations are made from.
-    pub(crate) fn overrides(&self) -> [(&'static str, Override); 12] {
+    pub(crate) fn overrides(&self) -> [(&'static str, Override); 18] {
         use Override::{Code, Flag, Float};
         [
             (SELF_SHADOW.name, Code(self.self_shadow)),
@@ -193,6 +255,12 @@ impl LitVariant {
             ("SPOT_PATTERN", Flag(self.spot_pattern)),
             ("SHININESS", Float(f32::from_bits(self.shininess))),
             (NORMAL_TEXELS.name, Code(self.normal_texels)),
+            (PARALLAX.name, Code(self.parallax)),
+            (PARALLAX_SHADOW.name, Code(self.parallax_shadow)),
+            ("SILHOUETTES", Flag(self.silhouettes)),
+            ("WRITE_DEPTH", Flag(self.write_depth)),
+            ("HEIGHT_MIPMAPS", Flag(self.height_mipmaps)),
+            ("POSITIONAL_LIGHT", Flag(self.positional_light)),
         ]
     }
 
@@ -241,7 +309,11 @@ pub fn uniforms(p: &LitProgram) -> Vec<u8> {
         NormalTexels::Offset { range } => [range, 0.0, 0.0, 0.0],
         NormalTexels::Derivatives { range, scale } => [range, scale.x, scale.y, 0.0],
     };
-    let block: [[f32; 4]; 7] = [
+    let parallax = match &p.parallax {
+        Some(x) => [x.parallax.options.layers as f32, x.depth, x.depth_range, 0.0],
+        None => [0.0; 4],
+    };
+    let block: [[f32; 4]; 8] = [
         ambient.extend(0.0).to_array(),
         diffuse.extend(0.0).to_array(),
         specular.extend(0.0).to_array(),
@@ -249,6 +321,7 @@ pub fn uniforms(p: &LitProgram) -> Vec<u8> {
         spot,
         [scale[0], scale[1], 0.0, 0.0],
         texels,
+        parallax,
     ];
     block.iter().flatten().flat_map(|x| x.to_le_bytes()).collect()
 }

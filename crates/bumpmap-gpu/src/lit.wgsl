@@ -1,7 +1,8 @@
-// The single pass's fragment program: the texture lookups, per-fragment renormalization,
-// attenuation and spotlight that make a Fragment, then shading.wgsl's shade(). Texture units:
-// the normal map, the decal, the gloss map (white 1x1 textures where absent), the spotlight
-// pattern, the normalization cube map, LEAN's two moment textures and the roughness map.
+// The single pass's fragment program: heights as geometry (parallax.wgsl) where asked, the
+// texture lookups, per-fragment renormalization, attenuation and spotlight that make a
+// Fragment, then shading.wgsl's shade(). Texture units: the normal map, the decal, the gloss
+// map (white 1x1 textures where absent), the spotlight pattern, the normalization cube map,
+// LEAN's two moment textures, the roughness map, the heights and their min-max bounds.
 
 struct Lit {
     ambient: vec4<f32>,
@@ -17,6 +18,9 @@ struct Lit {
     normal_scale: vec4<f32>,
     // x: an offset map's range; yz: the derivatives' scale (NormalTexels::Derivatives).
     texels: vec4<f32>,
+    // Heights as geometry: x the layers, y the depth (object units per unit of height),
+    // z the camera's far / (far - near).
+    parallax: vec4<f32>,
 };
 
 // The model's switches are override constants, one pipeline per combination, declared with
@@ -37,6 +41,45 @@ struct Lit {
 @group(0) @binding(9) var lean_m_xy: texture_2d<f32>;
 // The roughness map (perceptual roughness in red), at the normal map's size (white where unused).
 @group(0) @binding(10) var roughness_map: texture_2d<f32>;
+// Heights as geometry: the heights (R32Float, every level) and their min-max bounds (Rg32Float,
+// every level), read texel by texel by parallax.wgsl (1x1 stand-ins where unused).
+@group(0) @binding(11) var heights: texture_2d<f32>;
+@group(0) @binding(12) var height_bounds: texture_2d<f32>;
+
+fn height_texel(x: i32, y: i32, level: u32) -> f32 {
+    return textureLoad(heights, vec2<i32>(x, y), i32(level)).r;
+}
+
+// A level's size from level 0's: floor(n / 2^k), at least 1, as the chains are made (not
+// textureDimensions(t, k), which lavapipe, Mesa 25.0, answered with wrong sizes for k > 0 here).
+fn level_size(size: vec2<u32>, level: u32) -> vec2<u32> {
+    return max(size >> vec2<u32>(level), vec2<u32>(1u));
+}
+
+fn height_size(level: u32) -> vec2<u32> {
+    return level_size(textureDimensions(heights, 0u), level);
+}
+
+fn minmax_texel(x: i32, y: i32, level: u32) -> vec2<f32> {
+    return textureLoad(height_bounds, vec2<i32>(x, y), i32(level)).rg;
+}
+
+fn minmax_size(level: u32) -> vec2<u32> {
+    return level_size(textureDimensions(height_bounds, 0u), level);
+}
+
+fn minmax_levels() -> u32 {
+    return textureNumLevels(height_bounds);
+}
+
+// A map at uv: with heights as geometry at the hit, with the entry point's derivatives (as
+// textureGrad reads it after a march); else as the hardware's implicit derivatives say.
+fn sample_map(map: texture_2d<f32>, uv: vec2<f32>, dx: vec2<f32>, dy: vec2<f32>) -> vec4<f32> {
+    if PARALLAX == PARALLAX_NONE {
+        return textureSample(map, material_sampler, uv);
+    }
+    return textureSampleGrad(map, material_sampler, uv, dx, dy);
+}
 
 // normalize(v), or +Z where v has no direction.
 fn normalize_or_z(v: vec3<f32>) -> vec3<f32> {
@@ -114,28 +157,79 @@ fn blinn_from_derivatives(t: vec4<f32>, range: f32, scale: vec2<f32>, pf: vec3<f
     return vec4<f32>(n * 0.5 + 0.5, 1.0);
 }
 
-@fragment
-fn fs_lit(f: Varyings) -> @location(0) vec4<f32> {
-    let st = vec2<f32>(vary(f, VAR_S), vary(f, VAR_T));
-    var normal = textureSample(normal_map, material_sampler, st * u.normal_scale.xy);
+struct LitOut {
+    color: vec4<f32>,
+    depth: f32,
+};
+
+fn lit(f: Varyings) -> LitOut {
+    let entry = vec2<f32>(vary(f, VAR_S), vary(f, VAR_T));
+    // Heights as geometry: where the view ray meets them, and L and V there.
+    var st = entry;
+    var dx = vec2<f32>(0.0);
+    var dy = vec2<f32>(0.0);
+    var par = ParallaxFragment(entry, vec3<f32>(0.0), vec3<f32>(0.0), 1.0, 0.0, vec3<f32>(0.0, 0.0, 1.0), true);
+    if PARALLAX != PARALLAX_NONE {
+        dx = dpdxCoarse(entry);
+        dy = dpdyCoarse(entry);
+        // GL 1.2 Eq. 3.14 at the entry point: the footprint of the normal map, the heights' size.
+        let size = vec2<f32>(height_size(0u));
+        let rho2 = max(dot(dx * size, dx * size), dot(dy * size, dy * size));
+        var level = 0u;
+        if HEIGHT_MIPMAPS {
+            level = nearest_level(0.5 * log2(rho2), textureNumLevels(heights) - 1u);
+        }
+        let jacobian = vec4<f32>(
+            vary(f, VAR_TANGENT_FROM_TEX),
+            vary(f, VAR_TANGENT_FROM_TEX + 1u),
+            vary(f, VAR_TANGENT_FROM_TEX + 2u),
+            vary(f, VAR_TANGENT_FROM_TEX + 3u),
+        );
+        let curvature = vec2<f32>(vary(f, VAR_CURVATURE), vary(f, VAR_CURVATURE + 1u));
+        par = parallax_fragment(
+            entry,
+            vary3(f, VAR_TEX_VIEW),
+            vary3(f, VAR_TEX_LIGHT),
+            jacobian,
+            curvature,
+            u.parallax.y,
+            u32(u.parallax.x),
+            POSITIONAL_LIGHT,
+            level,
+        );
+        if !par.ok {
+            discard;
+        }
+        st = par.st;
+    }
+    let scale = u.normal_scale.xy;
+    var normal = sample_map(normal_map, st * scale, dx * scale, dy * scale);
     if NORMAL_TEXELS == NORMAL_TEXELS_OFFSET {
         normal = offset_to_normal(normal, u.texels.x);
     } else if NORMAL_TEXELS == NORMAL_TEXELS_DERIVATIVES {
         normal = blinn_from_derivatives(normal, u.texels.x, u.texels.yz, vary3(f, VAR_PARAM_FRAME));
     }
-    let decal = textureSample(decal_map, material_sampler, st);
+    if PARALLAX == PARALLAX_EXACT {
+        // The exact walk's own normal, from the interpolant it walked.
+        normal = vec4<f32>(par.normal * 0.5 + 0.5, 1.0);
+    }
+    let decal = sample_map(decal_map, st, dx, dy);
     var gloss = 1.0;
     if GLOSS == GLOSS_DECAL_ALPHA {
         gloss = decal.a;
     } else if GLOSS == GLOSS_MAP {
-        gloss = textureSample(gloss_map, material_sampler, st).r;
+        gloss = sample_map(gloss_map, st, dx, dy).r;
     }
-    let l = unit(vary3(f, VAR_L));
+    var l = unit(vary3(f, VAR_L));
     var h_in = vary3(f, VAR_H);
     if FRAGMENT_HALF_ANGLE {
         h_in = normalize_or_z(normalize_or_z(vary3(f, VAR_L)) + normalize_or_z(vary3(f, VAR_V)));
     }
-    let h = unit(h_in);
+    var h = unit(h_in);
+    if PARALLAX != PARALLAX_NONE {
+        l = normalize_or_z(par.l);
+        h = normalize_or_z(l + normalize_or_z(par.v));
+    }
     var l_n = l.z;
     var h_n = h.z;
     if OBJECT_SPACE {
@@ -143,28 +237,49 @@ fn fs_lit(f: Varyings) -> @location(0) vec4<f32> {
         l_n = dot(l, n);
         h_n = dot(h, n);
     }
-    let light = attenuation(vary(f, VAR_LIGHT_DISTANCE)) * spot_factor(f);
+    let light = attenuation(vary(f, VAR_LIGHT_DISTANCE)) * spot_factor(f) * par.light;
     let t = Terms(u.ambient.rgb, u.diffuse.rgb, u.specular.rgb, SHININESS, SELF_SHADOW, SPECULAR_SHADOW, SPECULAR_FILTER);
     var lean_b = vec2<f32>(0.0);
     var lean_m = vec3<f32>(0.0);
     var lean_j = 1.0;
     if SPECULAR_FILTER == SPECULAR_FILTER_LEAN {
-        let bm = textureSample(lean_b_m, material_sampler, st * u.normal_scale.xy);
-        let xy_j = textureSample(lean_m_xy, material_sampler, st * u.normal_scale.xy);
+        let bm = sample_map(lean_b_m, st * scale, dx * scale, dy * scale);
+        let xy_j = sample_map(lean_m_xy, st * scale, dx * scale, dy * scale);
         lean_b = bm.xy;
         lean_m = vec3<f32>(bm.z, xy_j.r, bm.w);
         lean_j = xy_j.g;
     } else if SPECULAR_FILTER == SPECULAR_FILTER_CLEAN {
         // shade() reads only Mxx + Myy for CLEAN: the sum goes where Mxx would.
-        let c = textureSample(lean_b_m, material_sampler, st * u.normal_scale.xy);
+        let c = sample_map(lean_b_m, st * scale, dx * scale, dy * scale);
         lean_b = c.xy;
         lean_m = vec3<f32>(c.z, 0.0, 0.0);
         lean_j = c.w;
     }
     var roughness = 1.0;
     if SPECULAR_FILTER == SPECULAR_FILTER_ROUGHNESS_MAP {
-        roughness = textureSample(roughness_map, material_sampler, st * u.normal_scale.xy).r;
+        roughness = sample_map(roughness_map, st * scale, dx * scale, dy * scale).r;
     }
     let frag = Fragment(normal, decal.rgb, gloss, l, h, l_n, h_n, light, lean_b, lean_m, lean_j, roughness);
-    return vec4<f32>(shade(t, frag), 1.0);
+    var depth = f.position.z;
+    if WRITE_DEPTH {
+        depth = displaced_depth(f.position.z, par.kappa, u.parallax.z);
+    }
+    return LitOut(vec4<f32>(shade(t, frag), 1.0), depth);
+}
+
+@fragment
+fn fs_lit(f: Varyings) -> @location(0) vec4<f32> {
+    return lit(f).color;
+}
+
+struct LitDepthOut {
+    @location(0) color: vec4<f32>,
+    @builtin(frag_depth) depth: f32,
+};
+
+// The same program writing the depth where the view ray met the heights (WRITE_DEPTH).
+@fragment
+fn fs_lit_depth(f: Varyings) -> LitDepthOut {
+    let o = lit(f);
+    return LitDepthOut(o.color, o.depth);
 }

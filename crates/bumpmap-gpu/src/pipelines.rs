@@ -29,6 +29,9 @@ pub(crate) const LIT_WGSL: &str = include_str!("lit.wgsl");
 /// `bumpmap_core::shading::shade` in WGSL (with its `Terms` and `Fragment`); it reads the
 /// prelude's switch constants (`crate::prelude::shading_wgsl`).
 pub(crate) const SHADING_WGSL: &str = include_str!("shading.wgsl");
+/// `bumpmap_core::parallax` in WGSL; it reads the prelude's switches and constants, and the
+/// includer's height functions (`crate::prelude::parallax_wgsl`).
+pub(crate) const PARALLAX_WGSL: &str = include_str!("parallax.wgsl");
 
 /// Which fragment program a pipeline runs.
 #[derive(Clone, Debug, PartialEq, Eq, Hash)]
@@ -103,6 +106,19 @@ fn texture_entry(binding: u32, dimension: wgpu::TextureViewDimension) -> wgpu::B
     }
 }
 
+fn unfiltered_entry(binding: u32) -> wgpu::BindGroupLayoutEntry {
+    wgpu::BindGroupLayoutEntry {
+        binding,
+        visibility: wgpu::ShaderStages::FRAGMENT,
+        ty: wgpu::BindingType::Texture {
+            sample_type: wgpu::TextureSampleType::Float { filterable: false },
+            view_dimension: wgpu::TextureViewDimension::D2,
+            multisampled: false,
+        },
+        count: None,
+    }
+}
+
 fn sampler_entry(binding: u32) -> wgpu::BindGroupLayoutEntry {
     wgpu::BindGroupLayoutEntry {
         binding,
@@ -166,6 +182,10 @@ impl Pipelines {
                 texture_entry(8, D2),
                 texture_entry(9, D2),
                 texture_entry(10, D2),
+                // Heights as geometry: R32Float heights and Rg32Float min–max bounds, every
+                // level, read texel by texel (textureLoad), so unfiltered.
+                unfiltered_entry(11),
+                unfiltered_entry(12),
             ],
         });
         let mut entries = Vec::new();
@@ -220,7 +240,7 @@ impl Pipelines {
             })
             .clone();
         let (layout, entry) = match shader {
-            Shader::Lit(_) => (&self.lit_pipeline_layout, "fs_lit"),
+            Shader::Lit(v) => (&self.lit_pipeline_layout, v.entry_point()),
             Shader::Combiners(_) => (&self.combiner_pipeline_layout, "fs_combiners"),
         };
         // The clip position and the prelude's varying locations, one vec4 each.

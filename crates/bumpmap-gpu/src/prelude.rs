@@ -19,7 +19,7 @@ use bumpmap_core::vertex::{MAX_VARYINGS, var};
 use crate::lit::{self, LitVariant, Override};
 
 /// The varying slots by the names WGSL uses.
-pub(crate) const SLOTS: [(&str, usize); 13] = [
+pub(crate) const SLOTS: [(&str, usize); 17] = [
     ("VAR_S", var::S),
     ("VAR_T", var::T),
     ("VAR_L", var::L),
@@ -32,12 +32,29 @@ pub(crate) const SLOTS: [(&str, usize); 13] = [
     ("VAR_EMBOSS", var::EMBOSS),
     ("VAR_EMBOSS_UNFORCED", var::EMBOSS_UNFORCED),
     ("VAR_PARAM_FRAME", var::PARAM_FRAME),
+    ("VAR_TEX_VIEW", var::TEX_VIEW),
+    ("VAR_TEX_LIGHT", var::TEX_LIGHT),
+    ("VAR_TANGENT_FROM_TEX", var::TANGENT_FROM_TEX),
+    ("VAR_CURVATURE", var::CURVATURE),
     ("VAR_COUNT", var::COUNT),
 ];
 
-/// The model's numbers `shading.wgsl` reads, by their Rust names.
-pub(crate) const MODEL_CONSTANTS: [(&str, f32); 1] =
-    [("MIN_PERCEPTUAL_ROUGHNESS", bumpmap_core::shading::MIN_PERCEPTUAL_ROUGHNESS)];
+/// The model's numbers `shading.wgsl` and `parallax.wgsl` read, by their Rust names (and
+/// `F32_INFINITY`, `f32::MAX`, where Rust says infinity: WGSL has no literal for it).
+pub(crate) const MODEL_CONSTANTS: [(&str, f32); 5] = [
+    ("MIN_PERCEPTUAL_ROUGHNESS", bumpmap_core::shading::MIN_PERCEPTUAL_ROUGHNESS),
+    ("SHADOW_BIAS", bumpmap_core::parallax::SHADOW_BIAS),
+    ("SOFT_SHADOW_SHARPNESS", bumpmap_core::parallax::SOFT_SHADOW_SHARPNESS),
+    ("EXACT_SHADOW_LIFT", bumpmap_core::parallax::EXACT_SHADOW_LIFT),
+    ("F32_INFINITY", f32::MAX),
+];
+
+/// The marches' counts `parallax.wgsl` reads, by their Rust names.
+pub(crate) const MODEL_COUNTS: [(&str, u32); 3] = [
+    ("RELIEF_BISECTIONS", bumpmap_core::parallax::RELIEF_BISECTIONS),
+    ("SAMPLES_PER_CELL", bumpmap_math::height_trace::SAMPLES_PER_CELL as u32),
+    ("BISECTIONS", bumpmap_math::height_trace::BISECTIONS as u32),
+];
 
 /// vec4 locations carrying the varyings.
 pub(crate) const LOCATIONS: usize = MAX_VARYINGS / 4;
@@ -91,7 +108,16 @@ pub(crate) fn switches() -> String {
     for (name, value) in MODEL_CONSTANTS {
         let _ = writeln!(s, "const {name}: f32 = {value:?};");
     }
+    for (name, value) in MODEL_COUNTS {
+        let _ = writeln!(s, "const {name}: u32 = {value}u;");
+    }
     s
+}
+
+/// `bumpmap_core::parallax`'s marches in WGSL with the constants they read; the includer
+/// defines how heights are read (`parallax.wgsl`'s head says which functions).
+pub fn parallax_wgsl() -> String {
+    format!("{}\n{}", switches(), crate::pipelines::PARALLAX_WGSL)
 }
 
 /// `bumpmap_core::shading::shade` in WGSL with the constants it reads: what the lit program
@@ -100,9 +126,15 @@ pub fn shading_wgsl() -> String {
     format!("{}\n{}", switches(), crate::pipelines::SHADING_WGSL)
 }
 
-/// The whole lit program: the vertex stage, the switches, the model and `lit.wgsl`.
+/// The whole lit program: the vertex stage, the switches, the model, the marches and `lit.wgsl`.
 pub(crate) fn lit_program() -> String {
-    format!("{}\n{}\n{}", vertex_stage(), shading_wgsl(), crate::pipelines::LIT_WGSL)
+    format!(
+        "{}\n{}\n{}\n{}",
+        vertex_stage(),
+        shading_wgsl(),
+        crate::pipelines::PARALLAX_WGSL,
+        crate::pipelines::LIT_WGSL
+    )
 }
 
 #[cfg(test)]
@@ -110,7 +142,7 @@ mod tests {
     use wgpu::naga;
 
     use super::*;
-    use crate::pipelines::{LIT_WGSL, SHADING_WGSL};
+    use crate::pipelines::{LIT_WGSL, PARALLAX_WGSL, SHADING_WGSL};
 
     /// The value of the `u32` constant `name` in `module`.
     fn constant(module: &naga::Module, name: &str) -> u32 {
@@ -141,6 +173,9 @@ mod tests {
                 ref other => panic!("{name} is {other:?}"),
             }
         }
+        for (name, value) in MODEL_COUNTS {
+            assert_eq!(constant(&module, name), value, "{name}");
+        }
         let overrides: Vec<&str> = module.overrides.iter().filter_map(|(_, o)| o.name.as_deref()).collect();
         for (name, _) in LitVariant::default().constants() {
             assert!(overrides.contains(&name), "the pipeline sets {name}, which the program does not declare");
@@ -153,7 +188,8 @@ mod tests {
         // A slot or a switch value written as a number here would not follow a change in Rust:
         // slots are read by their VAR_* names, switches compared with their values' names.
         let switches: Vec<&str> = LitVariant::default().constants().iter().map(|(n, _)| *n).collect();
-        for (file, source) in [("lit.wgsl", LIT_WGSL), ("shading.wgsl", SHADING_WGSL)] {
+        for (file, source) in [("lit.wgsl", LIT_WGSL), ("shading.wgsl", SHADING_WGSL), ("parallax.wgsl", PARALLAX_WGSL)]
+        {
             for (i, line) in source.lines().enumerate() {
                 let code = line.split("//").next().unwrap_or_default().trim();
                 let at = format!("{file}:{}: {code}", i + 1);

@@ -267,6 +267,10 @@ impl GpuRenderer {
             }
             _ => t.white_2d(ctx),
         };
+        let [heights, height_bounds] = match &p.parallax {
+            Some(x) => t.heights(ctx, &x.heights)?,
+            None => t.no_heights(ctx),
+        };
         let material = t.sampler(ctx, p.sampler);
         let clamp = t.sampler(ctx, bumpmap_core::state::Sampler::LINEAR_CLAMP);
         let uniforms = ctx.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
@@ -287,6 +291,8 @@ impl GpuRenderer {
             wgpu::BindGroupEntry { binding: 8, resource: TextureView(&lean_b_m) },
             wgpu::BindGroupEntry { binding: 9, resource: TextureView(&lean_m_xy) },
             wgpu::BindGroupEntry { binding: 10, resource: TextureView(&roughness) },
+            wgpu::BindGroupEntry { binding: 11, resource: TextureView(&heights) },
+            wgpu::BindGroupEntry { binding: 12, resource: TextureView(&height_bounds) },
         ];
         Ok(ctx.device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("lit"),

@@ -1,7 +1,7 @@
 //! Textures on the device: a scene's RGBA8 mip chains (every level uploaded, linear
 //! `Rgba8Unorm`, never sRGB), normalization cube maps (Kilgard Appendix D) as cube textures,
-//! white 1×1 stand-ins for absent units, LEAN moments as half floats, and GL sampler state as
-//! wgpu samplers.
+//! white 1×1 stand-ins for absent units, LEAN moments as half floats, heights as geometry as
+//! 32-bit floats, and GL sampler state as wgpu samplers.
 //!
 //! Uploads are cached by the scene's `Arc`s, so a texture crosses the bus once however many
 //! passes and frames read it.
@@ -9,7 +9,7 @@
 use std::sync::Arc;
 
 use bumpmap_core::state::{MagFilter, MinFilter, Sampler, WrapMode};
-use bumpmap_math::{Encoding, LeanMips, NormalizationCubeMap, Rgba8Image, Rgba8Mips};
+use bumpmap_math::{Encoding, HeightMips, LeanMips, NormalizationCubeMap, Rgba8Image, Rgba8Mips};
 
 use crate::context::Context;
 use crate::error::GpuError;
@@ -31,6 +31,46 @@ pub struct Textures {
     samplers: Vec<(Sampler, wgpu::Sampler)>,
     white_2d: Option<wgpu::TextureView>,
     white_cube: Option<wgpu::TextureView>,
+    /// Heights as geometry: (heights, bounds) by the scene's `Arc`.
+    heights: Vec<(Arc<HeightMips>, [wgpu::TextureView; 2])>,
+    no_heights: Option<[wgpu::TextureView; 2]>,
+}
+
+/// A float texture of `levels` (each `(width, height, texels as f32s, N a texel)`): `R32Float`
+/// for one channel, `Rg32Float` for two; read with `textureLoad`, never filtered.
+fn float_texture<const N: usize>(ctx: &Context, label: &str, levels: &[(usize, usize, &[f32])]) -> wgpu::TextureView {
+    const { assert!(N == 1 || N == 2, "heights are one channel, their bounds two") };
+    let format = if N == 1 { wgpu::TextureFormat::R32Float } else { wgpu::TextureFormat::Rg32Float };
+    let (w0, h0, _) = levels[0];
+    let texture = ctx.device.create_texture(&wgpu::TextureDescriptor {
+        label: Some(label),
+        size: wgpu::Extent3d { width: w0 as u32, height: h0 as u32, depth_or_array_layers: 1 },
+        mip_level_count: levels.len() as u32,
+        sample_count: 1,
+        dimension: wgpu::TextureDimension::D2,
+        format,
+        usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
+        view_formats: &[],
+    });
+    for (k, &(w, h, texels)) in levels.iter().enumerate() {
+        let bytes: Vec<u8> = texels.iter().flat_map(|v| v.to_le_bytes()).collect();
+        ctx.queue.write_texture(
+            wgpu::TexelCopyTextureInfo {
+                texture: &texture,
+                mip_level: k as u32,
+                origin: wgpu::Origin3d::ZERO,
+                aspect: wgpu::TextureAspect::All,
+            },
+            &bytes,
+            wgpu::TexelCopyBufferLayout {
+                offset: 0,
+                bytes_per_row: Some(4 * N as u32 * w as u32),
+                rows_per_image: Some(h as u32),
+            },
+            wgpu::Extent3d { width: w as u32, height: h as u32, depth_or_array_layers: 1 },
+        );
+    }
+    texture.create_view(&wgpu::TextureViewDescriptor::default())
 }
 
 fn texture(ctx: &Context, label: &str, width: usize, height: usize, layers: u32, levels: u32) -> wgpu::Texture {
@@ -196,6 +236,49 @@ impl Textures {
         });
         self.cubes.push(((size, encoding), view.clone()));
         view
+    }
+
+    /// Heights as geometry on the device: the heights (`R32Float`) and their min–max bounds
+    /// (`Rg32Float`), every level, read with `textureLoad` as `parallax.wgsl` walks them
+    /// (heights without bounds get a 1×1 stand-in, which only the exact walk would read, and the
+    /// core refuses it there); refused when larger than the adapter allows.
+    pub fn heights(&mut self, ctx: &Context, heights: &Arc<HeightMips>) -> Result<[wgpu::TextureView; 2], GpuError> {
+        if let Some((_, v)) = self.heights.iter().find(|(h, _)| Arc::ptr_eq(h, heights)) {
+            return Ok(v.clone());
+        }
+        let max = ctx.max_texture_side() as usize;
+        let (width, height) = (heights.width(), heights.height());
+        if width > max || height > max {
+            return Err(GpuError::TooLarge { what: "the heights", width, height, max: max as u32 });
+        }
+        let levels: Vec<(usize, usize, &[f32])> =
+            heights.levels().iter().map(|l| (l.width, l.height, l.texels.as_slice())).collect();
+        let bounds = match heights.minmax() {
+            Some(m) => {
+                let levels: Vec<(usize, usize, &[f32])> =
+                    m.iter().map(|l| (l.width, l.height, l.texels.as_flattened())).collect();
+                float_texture::<2>(ctx, "height bounds", &levels)
+            }
+            None => self.no_heights(ctx)[1].clone(),
+        };
+        let views = [float_texture::<1>(ctx, "heights", &levels), bounds];
+        if self.heights.len() >= MAX_CACHED {
+            self.heights.clear();
+        }
+        self.heights.push((heights.clone(), views.clone()));
+        Ok(views)
+    }
+
+    /// 1×1 heights and bounds for programs without heights as geometry.
+    pub fn no_heights(&mut self, ctx: &Context) -> [wgpu::TextureView; 2] {
+        self.no_heights
+            .get_or_insert_with(|| {
+                [
+                    float_texture::<1>(ctx, "no heights", &[(1, 1, &[1.0])]),
+                    float_texture::<2>(ctx, "no height bounds", &[(1, 1, &[0.0, 1.0])]),
+                ]
+            })
+            .clone()
     }
 
     /// A white 1×1 texture: an absent decal or gloss map reads 1.

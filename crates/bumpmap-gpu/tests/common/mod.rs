@@ -44,6 +44,17 @@ pub fn bytes<T: Copy>(v: &[T]) -> &[u8] {
 /// Runs `wgsl`'s compute entry `main` (workgroup size 64, one invocation per output) with
 /// `input` at binding 0 (read-only storage) and `n` vec4 outputs at binding 1; returns them.
 pub fn run_compute(ctx: &Context, wgsl: &str, input: &[u8], n: usize) -> Result<Vec<[f32; 4]>, String> {
+    run_compute_with(ctx, wgsl, input, n, &[])
+}
+
+/// [`run_compute`] with the pipeline's override constants set.
+pub fn run_compute_with(
+    ctx: &Context,
+    wgsl: &str,
+    input: &[u8],
+    n: usize,
+    constants: &[(&str, f64)],
+) -> Result<Vec<[f32; 4]>, String> {
     let d = &ctx.device;
     let scope = d.push_error_scope(wgpu::ErrorFilter::Validation);
     let module = d.create_shader_module(wgpu::ShaderModuleDescriptor {
@@ -55,7 +66,7 @@ pub fn run_compute(ctx: &Context, wgsl: &str, input: &[u8], n: usize) -> Result<
         layout: None,
         module: &module,
         entry_point: Some("main"),
-        compilation_options: Default::default(),
+        compilation_options: wgpu::PipelineCompilationOptions { constants, ..Default::default() },
         cache: None,
     });
     if let Some(e) = pollster::block_on(scope.pop()) {

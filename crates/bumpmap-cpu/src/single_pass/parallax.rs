@@ -1,0 +1,72 @@
+//! Heights as geometry on the CPU pipeline: [`bumpmap_core::parallax::fragment`] for each live
+//! fragment, its heights read by GL's LINEAR filter from the level nearest the fragment's
+//! footprint ([`bumpmap_core::parallax::height_level`]; the footprint is the normal map's at
+//! the entry point, λ once per quad).
+//!
+//! Not vectorized: each lane runs the core's march as it is written (one home for every march;
+//! BENCHMARKS.md says what that costs).
+
+use glam::{Vec2, Vec3};
+
+use bumpmap_core::parallax::{FragmentRays, displaced_depth, fragment, height_level};
+use bumpmap_core::technique::ParallaxProgram;
+use bumpmap_core::vertex::var;
+use bumpmap_math::lighting::Light;
+
+use super::{Scratch, SinglePass};
+use crate::fixed_function::pack_2d_coords;
+use crate::raster::FragmentBatch;
+
+impl SinglePass<'_> {
+    /// Marches every live fragment (lanes `0..n`) into the heights: fills the scratch's hit
+    /// coordinates, L and V there, the light let through, the exact walk's normal and the window
+    /// depth (NaN where a silhouette discards the fragment). Leaves the normal map's packed
+    /// coordinates and λ of the entry points in `sc.coords`.
+    pub(super) fn parallax(&self, p: &ParallaxProgram, batch: &FragmentBatch, sc: &mut Scratch, n: usize) {
+        pack_2d_coords(&self.normal_map, batch, [var::S, var::T], [1.0, 1.0], &mut sc.coords);
+        let slots = (var::TEX_VIEW..var::TEX_VIEW + 3)
+            .chain(var::TEX_LIGHT..var::TEX_LIGHT + 3)
+            .chain(var::TANGENT_FROM_TEX..var::TANGENT_FROM_TEX + 4)
+            .chain(var::CURVATURE..var::CURVATURE + 2);
+        for (k, slot) in slots.enumerate() {
+            batch.pack(slot, &mut sc.tex[k]);
+        }
+        batch.pack_lanes(&batch.depth, &mut sc.depth);
+        let levels = p.heights.levels();
+        let exact = p.heights.minmax().map(|m| (&levels[0], m));
+        let positional = matches!(self.program.light.light, Light::Positional(_));
+        let sampler = self.program.sampler;
+        let t = &sc.tex;
+        for j in 0..n {
+            let level = &levels[height_level(&sampler, sc.coords[2][j], levels.len())];
+            let mut sample = |st: Vec2| level.bilinear(st.x, st.y);
+            let rays = FragmentRays {
+                st: Vec2::new(sc.coords[0][j], sc.coords[1][j]),
+                to_eye: Vec3::new(t[0][j], t[1][j], t[2][j]),
+                to_light: Vec3::new(t[3][j], t[4][j], t[5][j]),
+                jacobian: [t[6][j], t[7][j], t[8][j], t[9][j]],
+                curvature: Vec2::new(t[10][j], t[11][j]),
+            };
+            let (hit, l, v, light, normal, depth) =
+                match fragment(&rays, &p.parallax, p.depth, positional, &mut sample, exact) {
+                    Some(f) => {
+                        let depth = if p.parallax.options.write_depth {
+                            displaced_depth(sc.depth[j], f.kappa, p.depth_range)
+                        } else {
+                            sc.depth[j]
+                        };
+                        (f.st, f.l, f.v, f.light, f.normal.unwrap_or(Vec3::Z), depth)
+                    }
+                    None => (rays.st, Vec3::Z, Vec3::Z, 0.0, Vec3::Z, f32::NAN),
+                };
+            (sc.hit[0][j], sc.hit[1][j]) = (hit.x, hit.y);
+            for c in 0..3 {
+                sc.par_l[c][j] = l[c];
+                sc.par_v[c][j] = v[c];
+                sc.par_n[c][j] = normal[c];
+            }
+            sc.par_light[j] = light;
+            sc.depth[j] = depth;
+        }
+    }
+}
