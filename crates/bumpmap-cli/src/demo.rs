@@ -288,6 +288,7 @@ fn write_demo(out: &Path, args: &DemoArgs) -> Result<(), CliError> {
         spp: 64,
         backend: BackendArg::Cpu,
         techniques: Vec::new(),
+        studies: vec![crate::args::StudyArg::All],
         output: out.join("compare"),
     };
     let (results, _) = crate::compare::measure(&compare, true)?;

@@ -3,6 +3,7 @@
 use std::path::{Path, PathBuf};
 
 use bumpmap_io::atomic::{FileSet, ensure_not_input};
+use bumpmap_io::height_file::HeightBits;
 use bumpmap_io::image_file::{PngLayout, save_png_into, save_png16_into};
 use bumpmap_io::texture_file::{Level, TextureFormat, TextureLayout, write_dds_into, write_ktx2_into};
 use bumpmap_io::{Channel, HeightSource};
@@ -23,9 +24,10 @@ pub fn run(args: &NormalmapArgs) -> Result<(), CliError> {
     let channel: Channel = args.map.channel.into();
     let input = Path::new(&args.input);
     if input.is_dir() {
-        if args.roughness_out.is_some() || args.lean_out.is_some() {
+        if args.roughness_out.is_some() || args.lean_out.is_some() || args.height_out.is_some() {
             return Err(CliError::Usage(
-                "--roughness-out and --lean-out write one map: give one height field, not a folder".into(),
+                "--roughness-out, --lean-out and --height-out write one map: give one height field, not a folder"
+                    .into(),
             ));
         }
         return run_folder(input, args, &options, channel);
@@ -50,6 +52,25 @@ pub fn run(args: &NormalmapArgs) -> Result<(), CliError> {
     {
         return Err(CliError::Usage(format!("--roughness-out {} is the normal map's own file", rough.display())));
     }
+    let height_files = match &args.height_out {
+        Some(h) => {
+            let files = bumpmap_io::height_file::heights_files(h, 1)?;
+            for f in &files {
+                ensure_not_input(f, &inputs)?;
+            }
+            let others = [Some(level_path(&output, 0)), args.roughness_out.as_ref().map(|r| level_path(r, 0))];
+            if let Some(clash) = files.iter().find(|f| others.iter().flatten().any(|o| o == *f)) {
+                return Err(CliError::Usage(format!("--height-out: {} is another output's file", clash.display())));
+            }
+            files
+        }
+        None => Vec::new(),
+    };
+    if let Some(lean) = &lean_out
+        && let Some(clash) = lean.iter().find(|l| height_files.contains(l))
+    {
+        return Err(CliError::Usage(format!("--lean-out: {} is --height-out's file", clash.display())));
+    }
     let field = source.load(channel)?;
     let levels = make_chain(&field, &options, args.mips, args.mip_mode.into(), format, &args.input)?;
     let roughness = match &args.roughness_out {
@@ -58,6 +79,10 @@ pub fn run(args: &NormalmapArgs) -> Result<(), CliError> {
     };
     let lean = match &lean_out {
         Some(_) => Some(lean_levels(&field, &options, &levels, &args.input)?),
+        None => None,
+    };
+    let heights = match &args.height_out {
+        Some(_) => Some(height_levels(&field, args.bits, &args.input)?),
         None => None,
     };
     // The heights are not needed to write the chain: a 16384² field is 1 GiB of floats.
@@ -76,9 +101,35 @@ pub fn run(args: &NormalmapArgs) -> Result<(), CliError> {
             }
         }
     }
+    if let (Some(path), Some(heights)) = (&args.height_out, &heights) {
+        let bits = if args.bits == 16 { HeightBits::Sixteen } else { HeightBits::Eight };
+        bumpmap_io::height_file::write_heights_into(&mut set, path, heights, bits)?;
+    }
     let written = set.commit()?;
     eprintln!("wrote {}", describe(&written));
     Ok(())
+}
+
+/// `--height-out`'s heights: the field rounded to `bits` first, so the levels and the min–max
+/// bounds are those of the heights stored; a warning where the field leaves [0, 1].
+fn height_levels(field: &HeightField, bits: u8, name: &str) -> Result<bumpmap_math::HeightMips, CliError> {
+    let mut row = Vec::new();
+    let (mut lo, mut hi) = (f32::INFINITY, f32::NEG_INFINITY);
+    for y in 0..field.height() {
+        for &v in field.row(y, &mut row) {
+            (lo, hi) = (lo.min(v), hi.max(v));
+        }
+    }
+    if lo < 0.0 || hi > 1.0 {
+        eprintln!(
+            "warning: {name}: heights from {lo} to {hi} are clamped to [0, 1] for --height-out (1 on the surface, 0 at --depth below it)"
+        );
+    }
+    let steps = if bits == 16 { 65535 } else { 255 };
+    bumpmap_math::HeightMips::from_field_rounded(field, steps).map_err(|e| match e {
+        bumpmap_math::HeightMipsError::OutOfMemory(e) => CliError::OutOfMemory(e),
+        other => CliError::Path { path: name.into(), reason: other.to_string() },
+    })
 }
 
 /// `--roughness-out`'s levels for a surface of perceptual roughness `perceptual`: the lengths of

@@ -473,10 +473,26 @@ pub fn fragment(
     })
 }
 
-/// The level of the heights a march reads for a fragment of footprint λ (the normal map's,
-/// GL 1.2 Eq. 3.14) under the material's `sampler`: the level nearest the footprint when the
-/// sampler has mipmaps (what `*_MIPMAP_NEAREST` reads), else level 0. The march then reads it
-/// with GL's LINEAR filter.
+/// The most anisotropy the heights' level allows for: 16, as anisotropic filtering's usual
+/// maximum.
+pub const MAX_ANISOTROPY: f32 = 16.0;
+
+/// The level of detail a march reads the heights at, from the footprint of a pixel in texels
+/// along the screen's x and y (`rho2_x`, `rho2_y`: squared lengths of the texel-space
+/// derivatives, GL 1.2 Eq. 3.14's terms): the shorter side's, but no shorter than the longer
+/// one over [`MAX_ANISOTROPY`] — the level `EXT_texture_filter_anisotropic` reads at 16×, taken
+/// with one tap. At a grazing angle the footprint is long and thin; a march that read the level
+/// of its long side (isotropic filtering's) would walk heights flattened across it: on the
+/// wall the study views at 70°, that took POM's mean hit error from 0.05 to 0.34 texel.
+#[inline]
+pub fn height_lambda(rho2_x: f32, rho2_y: f32) -> f32 {
+    let (long, short) = (rho2_x.max(rho2_y), rho2_x.min(rho2_y));
+    0.5 * short.max(long / (MAX_ANISOTROPY * MAX_ANISOTROPY)).log2()
+}
+
+/// The level of the heights a march reads at [`height_lambda`] `lambda` under the material's
+/// `sampler`: the nearest (what `*_MIPMAP_NEAREST` reads) when the sampler has mipmaps, else
+/// level 0. The march then reads it with GL's LINEAR filter.
 #[inline]
 pub fn height_level(sampler: &crate::state::Sampler, lambda: f32, levels: usize) -> usize {
     if sampler.has_mipmaps() { crate::state::Sampler::nearest_level(lambda, levels - 1) } else { 0 }

@@ -172,12 +172,13 @@ fn lit(f: Varyings) -> LitOut {
     if PARALLAX != PARALLAX_NONE {
         dx = dpdxCoarse(entry);
         dy = dpdyCoarse(entry);
-        // GL 1.2 Eq. 3.14 at the entry point: the footprint of the normal map, the heights' size.
+        // The footprint at the entry point in texels of the heights (GL 1.2 Eq. 3.14's terms),
+        // and the level of its shorter side (bumpmap_core::parallax::height_lambda).
         let size = vec2<f32>(height_size(0u));
-        let rho2 = max(dot(dx * size, dx * size), dot(dy * size, dy * size));
         var level = 0u;
         if HEIGHT_MIPMAPS {
-            level = nearest_level(0.5 * log2(rho2), textureNumLevels(heights) - 1u);
+            let lambda = height_lambda(dot(dx * size, dx * size), dot(dy * size, dy * size));
+            level = nearest_level(lambda, textureNumLevels(heights) - 1u);
         }
         let jacobian = vec4<f32>(
             vary(f, VAR_TANGENT_FROM_TEX),

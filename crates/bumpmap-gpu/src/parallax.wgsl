@@ -301,6 +301,9 @@ fn trace_heights(origin: vec3<f32>, dir: vec3<f32>, tau_max: f32) -> f32 {
     if end >= F32_INFINITY || end < 0.0 {
         return -1.0;
     }
+    if dir.z > 0.0 && origin.z >= 1.0 {
+        return -1.0;
+    }
     let top = minmax_levels() - 1u;
     let o = origin - vec3<f32>(0.5, 0.5, 0.0);
     let d = dir;
@@ -504,6 +507,14 @@ fn parallax_fragment(
 // bumpmap_core::parallax::displaced_depth.
 fn displaced_depth(z: f32, kappa: f32, a: f32) -> f32 {
     return a + (z - a) / (1.0 + kappa);
+}
+
+// bumpmap_core::parallax::height_lambda: the level of detail of the footprint's shorter side,
+// at most MAX_ANISOTROPY times shorter than its longer one.
+fn height_lambda(rho2_x: f32, rho2_y: f32) -> f32 {
+    let long = max(rho2_x, rho2_y);
+    let short = min(rho2_x, rho2_y);
+    return 0.5 * log2(max(short, long / (MAX_ANISOTROPY * MAX_ANISOTROPY)));
 }
 
 // bumpmap_core::state::Sampler::nearest_level: the level *_MIPMAP_NEAREST reads at lambda.

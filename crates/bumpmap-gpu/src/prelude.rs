@@ -41,11 +41,12 @@ pub(crate) const SLOTS: [(&str, usize); 17] = [
 
 /// The model's numbers `shading.wgsl` and `parallax.wgsl` read, by their Rust names (and
 /// `F32_INFINITY`, `f32::MAX`, where Rust says infinity: WGSL has no literal for it).
-pub(crate) const MODEL_CONSTANTS: [(&str, f32); 5] = [
+pub(crate) const MODEL_CONSTANTS: [(&str, f32); 6] = [
     ("MIN_PERCEPTUAL_ROUGHNESS", bumpmap_core::shading::MIN_PERCEPTUAL_ROUGHNESS),
     ("SHADOW_BIAS", bumpmap_core::parallax::SHADOW_BIAS),
     ("SOFT_SHADOW_SHARPNESS", bumpmap_core::parallax::SOFT_SHADOW_SHARPNESS),
     ("EXACT_SHADOW_LIFT", bumpmap_core::parallax::EXACT_SHADOW_LIFT),
+    ("MAX_ANISOTROPY", bumpmap_core::parallax::MAX_ANISOTROPY),
     ("F32_INFINITY", f32::MAX),
 ];
 

@@ -151,12 +151,15 @@ fn write_levels(
     }
 }
 
+/// A level read back: width, height, and two channels of each texel.
+type PairLevel = (usize, usize, Vec<[f32; 2]>);
+
 /// Every level a heights file holds, channels `channels` of each texel as floats in [0, 1]: a
 /// container's own levels, or a PNG and the `NAME.mipK.png` files beside it (as many as there
 /// are, each the next size).
-fn read_levels(path: &Path, channels: usize) -> Result<Vec<(usize, usize, Vec<[f32; 2]>)>, IoError> {
+fn read_levels(path: &Path, channels: usize) -> Result<Vec<PairLevel>, IoError> {
     let kind = container(path)?;
-    let decode = |stored: StoredLevels| -> Vec<(usize, usize, Vec<[f32; 2]>)> {
+    let decode = |stored: StoredLevels| -> Vec<PairLevel> {
         match stored {
             StoredLevels::Rgba8(levels) => levels
                 .into_iter()

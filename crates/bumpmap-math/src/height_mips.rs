@@ -186,12 +186,6 @@ fn try_vec<T>(n: usize, what: &'static str) -> Result<Vec<T>, OutOfMemory> {
     Ok(v)
 }
 
-/// A height in [0, 1] rounded to 16 bits, as a float.
-#[inline]
-pub fn quantize16(h: f32) -> f32 {
-    (h.clamp(0.0, 1.0) * 65535.0).round() / 65535.0
-}
-
 /// Heights with their mip levels and, where made or given, their min–max levels.
 #[derive(Clone, Debug, PartialEq)]
 pub struct HeightMips {
@@ -203,11 +197,18 @@ impl HeightMips {
     /// The heights of `field` clamped to [0, 1] and rounded to 16 bits, every smaller level, and
     /// the min–max levels.
     pub fn from_field(field: &HeightField) -> Result<Self, HeightMipsError> {
+        Self::from_field_rounded(field, 65535)
+    }
+
+    /// [`HeightMips::from_field`] with level 0 rounded to `steps` steps instead (255: what an
+    /// 8-bit file holds), so that the levels and bounds made are those of the stored heights.
+    pub fn from_field_rounded(field: &HeightField, steps: u32) -> Result<Self, HeightMipsError> {
         let (w, h) = (field.width(), field.height());
         let mut texels = try_vec(w * h, "the heights' level 0")?;
         let mut row = Vec::new();
+        let n = steps.max(1) as f32;
         for y in 0..h {
-            texels.extend(field.row(y, &mut row).iter().map(|&v| quantize16(v)));
+            texels.extend(field.row(y, &mut row).iter().map(|&v| (v.clamp(0.0, 1.0) * n).round() / n));
         }
         Self::from_level0(HeightLevel { width: w, height: h, texels })
     }

@@ -72,6 +72,10 @@ pub fn trace(grid: &impl HeightGrid, minmax: &[MinMaxLevel], ray: &TexelRay, tau
     if !end.is_finite() || end < 0.0 || !ray.origin.is_finite() || !ray.dir.is_finite() {
         return None;
     }
+    if ray.dir.z > 0.0 && ray.origin.z >= 1.0 {
+        // Leaving through the top where it starts: a surface at the top only touches it.
+        return None;
+    }
     let top = minmax.len() - 1;
     // Cell coordinates: cell i spans texel coordinates [i + ½, i + 1½).
     let o = ray.origin - Vec3::new(0.5, 0.5, 0.0);
@@ -267,6 +271,9 @@ mod tests {
         assert!(trace(level, minmax, &away, f32::INFINITY).is_some());
         // …unless it stops first.
         assert_eq!(trace(level, minmax, &away, 2.0), None);
+        // From the ridge's top, going up: leaving, not blocked by the top it starts on.
+        let from_top = TexelRay { origin: Vec3::new(9.0, 2.0, 1.0), dir: Vec3::new(1.0, 0.0, 0.05) };
+        assert_eq!(trace(level, minmax, &from_top, f32::INFINITY), None);
     }
 
     #[test]

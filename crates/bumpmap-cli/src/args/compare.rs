@@ -11,16 +11,19 @@ use crate::args::{parse_f32, parse_side};
 #[command(after_help = "Examples:\n  \
 bumpmap compare                                    # the torus, out/compare/report.html\n  \
 bumpmap compare --scene patch --height-field pinwheel --spp 256\n  \
-bumpmap compare --techniques kilgard,single-pass --backend gpu\n\n\
+bumpmap compare --techniques kilgard,single-pass --backend gpu\n  \
+bumpmap compare --techniques pom,height-exact --studies parallax\n\n\
 Writes OUT/results.json (every score), OUT/report.html (images, FLIP heat maps, the table and \
 plots; relative links only, so the folder can be copied), one PNG per technique and its \
 FLIP heat map, and the plots as SVG. A technique that cannot render the scene is skipped, with \
 its reason on stderr and in the report.\n\n\
-Whatever the scene, the report also measures three claims the papers make in pictures, each on \
-its own scene: Kilgard §2.4.2's golf ball at a distance (the length factor against renormalized \
-mips), §3.1's embossing (flat head-on, lost at a distance, lit where the light is behind), and \
-Peercy's Figures 5–7 on his stretched patch (per-pixel Blinn, the surface-dependent and the \
-surface-independent map, at bump scales 1, 2 and 4).")]
+Whatever the scene, the report also makes studies (--studies), each on its own scene: Kilgard \
+§2.4.2's golf ball at a distance (the length factor against renormalized mips) and §2.5.3's \
+highlight at a distance (by specular filter), §3.1's embossing (flat head-on, lost at a distance, \
+lit where the light is behind), Peercy's Figures 5–7 on his stretched patch (per-pixel Blinn, the \
+surface-dependent and the surface-independent map, at bump scales 1, 2 and 4), and heights as \
+geometry (every parallax technique on a brick wall at 30° to 85°: hit error, shadows, FLIP and \
+cost against the displaced reference).")]
 pub struct CompareArgs {
     /// Built-in scene: torus, wall, floor, wall-floor, patch, sphere (the reference needs an exact surface)
     #[arg(long, default_value = "torus")]
@@ -40,10 +43,40 @@ pub struct CompareArgs {
     /// What draws the techniques (the reference always runs on the CPU)
     #[arg(long, value_enum, default_value = "cpu")]
     pub backend: crate::args::BackendArg,
-    /// Comma-separated techniques to run (default: all of kilgard, single-pass, single-pass-cube, object-space, mip-renormalized, no-bump, peercy-independent, peercy-dependent, emboss, emboss-unforced, offset-map, peercy-blinn)
+    /// Comma-separated techniques to run (default: every technique of the catalogue, `bumpmap render --help` lists them, but the two references they are measured against)
     #[arg(long, value_delimiter = ',')]
     pub techniques: Vec<String>,
+    /// The studies the report makes besides the table, comma-separated: golf-ball (Kilgard §2.4.2), specular (§2.5.3's highlight at a distance), emboss (§3.1), peercy (Figures 5–7), parallax (heights as geometry on the wall at grazing angles); all, or none for the table alone
+    #[arg(long, value_enum, value_delimiter = ',', default_value = "all")]
+    pub studies: Vec<StudyArg>,
     /// Output folder
     #[arg(short, long, default_value = "out/compare")]
     pub output: PathBuf,
+}
+
+/// A study of `compare`'s report.
+#[derive(clap::ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum StudyArg {
+    /// every study
+    All,
+    /// none: the table alone
+    None,
+    /// a dimpled sphere at a distance: the length factor against renormalized mips (Kilgard §2.4.2)
+    GolfBall,
+    /// the golf ball's highlight at a distance by specular filter (Kilgard §2.5.3)
+    Specular,
+    /// embossing head-on, at a distance and lit from behind (Kilgard §3.1)
+    Emboss,
+    /// Peercy's Figures 5–7 on his stretched patch
+    Peercy,
+    /// heights as geometry: every march against the displaced reference on a wall at 30°–85°
+    Parallax,
+}
+
+impl CompareArgs {
+    /// Whether `study` is asked for.
+    pub fn runs(&self, study: StudyArg) -> bool {
+        !self.studies.contains(&StudyArg::None)
+            && (self.studies.contains(&StudyArg::All) || self.studies.contains(&study))
+    }
 }

@@ -168,7 +168,8 @@ bumpmap normalmap heights.png -o normals.png --mips        # normals.png, normal
 bumpmap normalmap bricks@512 -o bricks.ktx2 --mips         # a preset, all levels in one file\n  \
 bumpmap normalmap textures/ -o normals/ --scale 8          # every image in a folder, in parallel\n  \
 bumpmap normalmap rock.png -o rock.dds --mips --format bc5  # BC5 for an engine (Z rebuilt in the shader)\n  \
-bumpmap normalmap scan16.png -o rock.png --bits 16         # 16-bit PNG, no banding on gentle slopes\n\n\
+bumpmap normalmap scan16.png -o rock.png --bits 16         # 16-bit PNG, no banding on gentle slopes\n  \
+bumpmap normalmap bricks -o n.png --mips --height-out h.png --bits 16   # + heights for --technique pom\n\n\
 IN is an image file (PNG, TGA, BMP, JPEG, TIFF, PNM at 8 or 16 bits; OpenEXR in float), a folder of them, or a \
 preset: bricks, pinwheel, dimples, noise:SEED, each optionally @SIZE (default 256). Green points \
 up the image as displayed (glTF, Blender, Unity) unless --y-convention directx.")]
@@ -206,6 +207,9 @@ pub struct NormalmapArgs {
     /// Also write LEAN mapping's moments (Olano & Baker 2010) for every level, as 32-bit floats in .ktx2 or .dds: L.ktx2 holds (Bx, By, Mxx, Myy), L.mxy-j.ktx2 holds (Mxy, J, 0, 0), with B = (Nx/Nz, Ny/Nz), M = (Bx², BxBy, By²), J = 1/Nz³, each level the mean over the level-0 texels it covers of the 8-bit normal map's; what `--specular-filter lean` renders from
     #[arg(long = "lean-out", requires = "mips")]
     pub lean_out: Option<PathBuf>,
+    /// Also write the heights as the parallax techniques read them (`render --height-map`), every level at --bits, with the min–max levels the exact walk reads: .png: H.png, H.mip1.png, … and H.minmax.png, H.minmax.mip1.png, … (16-bit RGB, R the lower bound, G the upper); .ktx2 or .dds: H (R8 or R16_UNORM) and H.minmax (R16G16_UNORM). Heights are clamped to [0, 1], 1 the surface
+    #[arg(long = "height-out", value_name = "H")]
+    pub height_out: Option<PathBuf>,
 }
 
 /// Where a roughness map puts its value.

@@ -3,6 +3,8 @@
 //!
 //! - this module: the technique catalogue and the renders, all files or none;
 //! - [`studies`]: the golf ball (Kilgard §2.4.2), embossing (§3.1) and Peercy's Figures 5–7;
+//! - [`parallax`]: heights as geometry, every march against the displaced reference on a wall
+//!   seen at grazing angles;
 //! - [`metrics`]: RMSE, PSNR, bias, FLIP and SSIM against the reference;
 //! - [`plots`]: the report's plots (SVG);
 //! - [`report`]: `results.json` and `report.html`.
@@ -11,6 +13,7 @@
 //! backends and the reference do).
 
 mod metrics;
+mod parallax;
 mod plots;
 mod report;
 mod studies;
@@ -28,7 +31,7 @@ use bumpmap_math::{NormalMapOptions, Rgba8Image};
 use bumpmap_reference::{LinearImage, ReferenceOptions};
 use indicatif::{ProgressBar, ProgressStyle};
 
-use crate::args::CompareArgs;
+use crate::args::{CompareArgs, StudyArg};
 use crate::error::CliError;
 use crate::render::{lib_err, reference_err, rgb};
 
@@ -36,10 +39,13 @@ pub use metrics::Scores;
 pub use report::json;
 pub use studies::{EmbossStudy, PEERCY, PeercyStudy};
 
-/// The techniques `compare` draws by default: the catalogue's, in its order, but the
-/// reference, which is what they are measured against.
+/// The techniques `compare` draws by default: the catalogue's, in its order, but the two
+/// references, which are what they are measured against.
 pub fn default_techniques() -> Vec<TechniqueName> {
-    TechniqueName::ALL.into_iter().filter(|&t| t != TechniqueName::Reference).collect()
+    TechniqueName::ALL
+        .into_iter()
+        .filter(|&t| !matches!(t, TechniqueName::Reference | TechniqueName::ReferenceDisplaced))
+        .collect()
 }
 
 /// One technique's outcome.
@@ -58,6 +64,8 @@ pub struct Rendered {
     pub image: Rgba8Image,
     /// Scores against the reference.
     pub scores: Scores,
+    /// Scores against the displaced reference (heights as geometry), where there is one.
+    pub displaced: Option<Scores>,
     /// FLIP's error map, magma-coloured RGB8.
     pub heat: Vec<u8>,
     /// Wall-clock milliseconds of the render.
@@ -78,21 +86,25 @@ pub struct Results {
     pub reference: LinearImage,
     /// The reference's milliseconds.
     pub reference_millis: f64,
+    /// The displaced reference (the surface carved by the heights, `--depth` the bump scale's)
+    /// and its milliseconds, or why there is none.
+    pub displaced: Result<(LinearImage, f64), String>,
     /// Each technique, in catalogue order (then unknown names).
     pub outcomes: Vec<Outcome>,
     /// `(K, RMSE between K and 4K samples per pixel)`.
     pub convergence: Vec<(usize, f64)>,
-    /// The golf ball at a distance, lit from behind the eye: `(distance factor, reference,
-    /// length factor, renormalized)` mean brightness over the ball.
-    pub golf_ball: Vec<(f32, f64, f64, f64)>,
-    /// The same with the sphere's own light, from the side.
-    pub golf_ball_side: Vec<(f32, f64, f64, f64)>,
+    /// The golf ball at a distance (`--studies golf-ball`): lit from behind the eye, then by the
+    /// sphere's own light from the side, each `(distance factor, reference, length factor,
+    /// renormalized)` mean brightness over the ball.
+    pub golf_ball: Option<[Vec<studies::GolfRow>; 2]>,
     /// The golf ball's highlight at a distance, by specular filter (Kilgard §2.5.3).
-    pub specular: Vec<studies::SpecularRow>,
+    pub specular: Option<Vec<studies::SpecularRow>>,
     /// Kilgard §3.1's embossing studies.
-    pub emboss: EmbossStudy,
+    pub emboss: Option<EmbossStudy>,
     /// Peercy's Figures 5–7 on his patch.
-    pub peercy: PeercyStudy,
+    pub peercy: Option<PeercyStudy>,
+    /// Heights as geometry on the wall at grazing angles.
+    pub parallax: Option<parallax::ParallaxStudy>,
     /// Total milliseconds of the command.
     pub total_millis: f64,
 }
@@ -172,8 +184,8 @@ pub fn measure(args: &CompareArgs, progress: bool) -> Result<(Results, Vec<PathB
         }
     }
     let mut backend = crate::render::renderer(args.backend)?;
-    // The reference, each technique, convergence and the three studies.
-    let steps = (wanted.len() + 6) as u64;
+    // The two references, each technique, convergence and the studies.
+    let steps = (wanted.len() + 8) as u64;
     let bar = if progress { ProgressBar::new(steps) } else { ProgressBar::hidden() }
         .with_style(ProgressStyle::with_template("{bar:40} {pos}/{len} {elapsed} {wide_msg}").expect("valid template"));
 
@@ -185,18 +197,33 @@ pub fn measure(args: &CompareArgs, progress: bool) -> Result<(Results, Vec<PathB
     let reference_millis = t.elapsed().as_secs_f64() * 1e3;
     bar.inc(1);
 
+    bar.set_message(format!("displaced reference, {spp} samples per pixel"));
+    let t = Instant::now();
+    let displaced = Prepared::new(&spec, TechniqueName::ReferenceDisplaced, &TechniqueOptions::default())
+        .map_err(|e| e.to_string())
+        .and_then(|p| parallax::displaced_reference(&p.scene, size, spp))
+        .map(|image| (image, t.elapsed().as_secs_f64() * 1e3));
+    let displaced_rgb = displaced.as_ref().ok().map(|(image, _)| metrics::reference_rgb8(image));
+    bar.inc(1);
+
     let ref_rgb = metrics::reference_rgb8(&reference);
     let mut outcomes = Vec::new();
     for name in &wanted {
         bar.set_message(name.clone());
         let technique = TechniqueName::parse(name).map_err(|e| e.to_string()).and_then(|t| match t {
-            TechniqueName::Reference => Err("the reference is what the techniques are measured against".to_string()),
+            TechniqueName::Reference | TechniqueName::ReferenceDisplaced => {
+                Err("the references are what the techniques are measured against".to_string())
+            }
             t => Ok(t),
         });
         let description = technique.as_ref().map_or("", |t| t.description()).to_string();
         let result = technique.and_then(|t| render_technique(t, &spec, &mut backend, size)).map(|(image, millis)| {
             let (scores, heat) = metrics::score(&reference, &ref_rgb, &image);
-            Rendered { image, scores, heat, millis }
+            let displaced = match (&displaced, &displaced_rgb) {
+                (Ok((d, _)), Some(rgb)) => Some(metrics::score(d, rgb, &image).0),
+                _ => None,
+            };
+            Rendered { image, scores, displaced, heat, millis }
         });
         if let Err(reason) = &result {
             bar.suspend(|| eprintln!("skipped {name}: {reason}"));
@@ -208,19 +235,39 @@ pub fn measure(args: &CompareArgs, progress: bool) -> Result<(Results, Vec<PathB
     bar.set_message("convergence of the reference");
     let convergence = convergence(&scene, size, spp, &reference)?;
     bar.inc(1);
-    bar.set_message("golf ball at a distance (Kilgard §2.4.2)");
-    let golf_ball = studies::golf_ball_study(&mut backend, true)?;
-    let golf_ball_side = studies::golf_ball_study(&mut backend, false)?;
-    bar.inc(1);
-    bar.set_message("specular filtering at a distance (Kilgard §2.5.3)");
-    let specular = studies::specular_study(&mut backend)?;
-    bar.inc(1);
-    bar.set_message("embossing (Kilgard §3.1)");
-    let emboss = studies::emboss_study(&mut backend)?;
-    bar.inc(1);
-    bar.set_message("Peercy's Figures 5–7 on the stretched patch");
-    let peercy = studies::peercy_study(&mut backend)?;
-    bar.inc(1);
+    let study = |which: StudyArg, what: &str, bar: &ProgressBar| {
+        let runs = args.runs(which);
+        if runs {
+            bar.set_message(what.to_string());
+        }
+        bar.inc(1);
+        runs
+    };
+    let golf_ball = if study(StudyArg::GolfBall, "golf ball at a distance (Kilgard §2.4.2)", &bar) {
+        Some([studies::golf_ball_study(&mut backend, true)?, studies::golf_ball_study(&mut backend, false)?])
+    } else {
+        None
+    };
+    let specular = if study(StudyArg::Specular, "specular filtering at a distance (Kilgard §2.5.3)", &bar) {
+        Some(studies::specular_study(&mut backend)?)
+    } else {
+        None
+    };
+    let emboss = if study(StudyArg::Emboss, "embossing (Kilgard §3.1)", &bar) {
+        Some(studies::emboss_study(&mut backend)?)
+    } else {
+        None
+    };
+    let peercy = if study(StudyArg::Peercy, "Peercy's Figures 5–7 on the stretched patch", &bar) {
+        Some(studies::peercy_study(&mut backend)?)
+    } else {
+        None
+    };
+    let parallax = if study(StudyArg::Parallax, "heights as geometry: the wall at grazing angles", &bar) {
+        Some(parallax::parallax_study(&mut backend)?)
+    } else {
+        None
+    };
     bar.finish_and_clear();
 
     let results = Results {
@@ -230,13 +277,14 @@ pub fn measure(args: &CompareArgs, progress: bool) -> Result<(Results, Vec<PathB
         backend: backend.describe(),
         reference,
         reference_millis,
+        displaced,
         outcomes,
         convergence,
         golf_ball,
-        golf_ball_side,
         specular,
         emboss,
         peercy,
+        parallax,
         total_millis: start.elapsed().as_secs_f64() * 1e3,
     };
     Ok((results, inputs))
@@ -293,22 +341,25 @@ pub fn write(out: &Path, results: &Results, inputs: &[&Path]) -> Result<Vec<std:
         save_png_into(set, &out.join(name), size, size, PngLayout::Rgb8, rgb)
     };
     png(&mut set, "reference.png", &rgb(&results.reference.to_rgba8()))?;
+    if let Ok((image, _)) = &results.displaced {
+        png(&mut set, "reference-displaced.png", &rgb(&image.to_rgba8()))?;
+    }
+    if let Some(p) = &results.parallax {
+        for (name, _, image) in &p.figure {
+            save_png_into(&mut set, &out.join(format!("{name}.png")), p.size, p.size, PngLayout::Rgb8, &rgb(image))?;
+        }
+    }
     for o in &results.outcomes {
         if let Ok(r) = &o.result {
             png(&mut set, &format!("{}.png", o.name), &rgb(&r.image))?;
             png(&mut set, &format!("{}.flip.png", o.name), &r.heat)?;
         }
     }
-    let study_size = results.peercy.size;
-    for (name, _, image) in &results.peercy.images {
-        save_png_into(
-            &mut set,
-            &out.join(format!("{name}.png")),
-            study_size,
-            study_size,
-            PngLayout::Rgb8,
-            &rgb(image),
-        )?;
+    if let Some(peercy) = &results.peercy {
+        for (name, _, image) in &peercy.images {
+            let file = out.join(format!("{name}.png"));
+            save_png_into(&mut set, &file, peercy.size, peercy.size, PngLayout::Rgb8, &rgb(image))?;
+        }
     }
     for (name, svg) in plots::plots(results) {
         set.write(&out.join(name), |w| std::io::Write::write_all(w, svg.as_bytes()))?;

@@ -11,14 +11,70 @@ use super::Results;
 
 /// `(file name, SVG)` of each plot.
 pub fn plots(r: &Results) -> Vec<(&'static str, String)> {
-    vec![
-        ("convergence.svg", convergence_plot(r)),
-        ("golf_ball.svg", golf_ball_plot(r)),
-        ("specular_energy.svg", specular_plot(r, 0)),
-        ("specular_width.svg", specular_plot(r, 1)),
-        ("emboss_angle.svg", emboss_plot(r)),
-        ("peercy.svg", peercy_plot(r)),
-    ]
+    let mut plots = vec![("convergence.svg", convergence_plot(r))];
+    if let Some([golf, _]) = &r.golf_ball {
+        plots.push(("golf_ball.svg", golf_ball_plot(golf)));
+    }
+    if let Some(specular) = &r.specular {
+        plots.push(("specular_energy.svg", specular_plot(specular, 0)));
+        plots.push(("specular_width.svg", specular_plot(specular, 1)));
+    }
+    if let Some(emboss) = &r.emboss {
+        plots.push(("emboss_angle.svg", emboss_plot(emboss)));
+    }
+    if let Some(peercy) = &r.peercy {
+        plots.push(("peercy.svg", peercy_plot(peercy)));
+    }
+    if let Some(p) = &r.parallax {
+        plots.push(("parallax_hits_bricks.svg", parallax_plot(p, "bricks", true)));
+        plots.push(("parallax_hits_dimples.svg", parallax_plot(p, "dimples", true)));
+        plots.push(("parallax_flip_bricks.svg", parallax_plot(p, "bricks", false)));
+        plots.push(("parallax_flip_dimples.svg", parallax_plot(p, "dimples", false)));
+    }
+    plots
+}
+
+/// Heights as geometry on `field`: each technique's mean hit error (`hits`, texels, log scale)
+/// or FLIP against the displaced reference by view angle.
+fn parallax_plot(p: &super::parallax::ParallaxStudy, field: &str, hits: bool) -> String {
+    let rows: Vec<_> = p.rows.iter().filter(|row| row.field == field).collect();
+    let value = |row: &super::parallax::ParallaxRow| if hits { row.hit_mean.max(1e-6) } else { row.flip };
+    let hi = rows.iter().map(|row| value(row)).fold(1e-3, f64::max);
+    let caption = if hits {
+        format!("{field}: mean distance of the hit from the exact one")
+    } else {
+        format!("{field}: FLIP against the displaced reference")
+    };
+    let labels = Labels {
+        caption: &caption,
+        x: "view angle from the normal (degrees)",
+        y: if hits { "hit error (texels)" } else { "FLIP mean" },
+        legend: Some(SeriesLabelPosition::UpperLeft),
+    };
+    let lines: Vec<(&str, Vec<(f64, f64)>)> = super::parallax::TECHNIQUES
+        .iter()
+        .map(|t| {
+            let points =
+                rows.iter().filter(|row| row.technique == *t).map(|row| (row.angle as f64, value(row))).collect();
+            (t.name(), points)
+        })
+        .collect();
+    fn draw_lines<DB: DrawingBackend, CT: CoordTranslate<From = (f64, f64)>>(
+        chart: &mut ChartContext<'_, DB, CT>,
+        lines: &[(&str, Vec<(f64, f64)>)],
+    ) {
+        let colors = [BLACK, RED, MAGENTA, BLUE, GREEN, RGBColor(230, 140, 0)];
+        for ((name, points), color) in lines.iter().zip(colors) {
+            labelled_line(chart, name, color, points.clone());
+        }
+    }
+    if hits {
+        // The exact walk's errors are rounding's, down to a millionth of a texel; room above the
+        // lines for the legend.
+        svg_plot(labels, 25f64..90.0, (1e-6f64..hi * 1e4).log_scale(), |c| draw_lines(c, &lines))
+    } else {
+        svg_plot(labels, 25f64..90.0, 0f64..hi * 1.6, |c| draw_lines(c, &lines))
+    }
 }
 
 /// The captions of one plot, and where its legend goes (none without a position).
@@ -65,26 +121,26 @@ where
 }
 
 /// Kilgard §3.1: embossing's and the single pass's RMSE by light angle.
-fn emboss_plot(r: &Results) -> String {
-    let emax = r.emboss.by_angle.iter().map(|row| row.1.max(row.3)).fold(0.01, f64::max) * 1.2;
+fn emboss_plot(emboss: &super::studies::EmbossStudy) -> String {
+    let emax = emboss.by_angle.iter().map(|row| row.1.max(row.3)).fold(0.01, f64::max) * 1.2;
     let labels = Labels {
         caption: "Embossing against the reference by light angle (Kilgard §3.1)",
         x: "light angle from the normal (degrees)",
         y: "RMSE",
         legend: Some(SeriesLabelPosition::UpperRight),
     };
+    let by_angle = &emboss.by_angle;
     svg_plot(labels, -5f64..80.0, 0f64..emax, |chart| {
         for (label, emboss, color) in [("emboss", true, RED), ("single-pass", false, BLUE)] {
-            let points =
-                r.emboss.by_angle.iter().map(|row| (row.0 as f64, if emboss { row.1 } else { row.3 })).collect();
+            let points = by_angle.iter().map(|row| (row.0 as f64, if emboss { row.1 } else { row.3 })).collect();
             labelled_line(chart, label, color, points);
         }
     })
 }
 
 /// Peercy Figures 5–7: each implementation's RMSE against the same-slopes reference by bump scale.
-fn peercy_plot(r: &Results) -> String {
-    let rows = &r.peercy.rows;
+fn peercy_plot(peercy: &super::studies::PeercyStudy) -> String {
+    let rows = &peercy.rows;
     let values = rows.iter().flat_map(|row| row.rmse_same_slopes);
     let (lo, hi) = values.fold((f64::MAX, 0.0f64), |(lo, hi), v| (lo.min(v), hi.max(v)));
     let (lo, hi) = (lo.min(hi) * 0.85, hi.max(1e-3) * 1.2);
@@ -153,14 +209,14 @@ fn convergence_plot(r: &Results) -> String {
 
 /// Kilgard §2.5.3: the golf ball's specular energy (`which` 0) or highlight width (1) by
 /// distance, the reference and each filter.
-fn specular_plot(r: &Results, which: usize) -> String {
+fn specular_plot(specular: &[super::studies::SpecularRow], which: usize) -> String {
     let pick = |v: (f64, f64)| if which == 0 { v.0 } else { v.1 };
-    let values = r.specular.iter().flat_map(|row| std::iter::once(pick(row.reference)).chain(row.filters.map(pick)));
+    let values = specular.iter().flat_map(|row| std::iter::once(pick(row.reference)).chain(row.filters.map(pick)));
     // The energies start at 0: room above them for the legend, which would cross the lines
     // in the lower left. The widths leave the lower left free.
     let hi = values.fold(0.0f64, f64::max) * if which == 0 { 1.7 } else { 1.15 } + 1e-3;
-    let dmax = r.specular.last().map_or(16.0, |row| row.distance as f64 * 1.3);
-    let distances: Vec<f64> = r.specular.iter().map(|row| row.distance as f64).collect();
+    let dmax = specular.last().map_or(16.0, |row| row.distance as f64 * 1.3);
+    let distances: Vec<f64> = specular.iter().map(|row| row.distance as f64).collect();
     let labels = Labels {
         caption: if which == 0 {
             "Golf ball's highlight by distance: specular energy"
@@ -175,32 +231,32 @@ fn specular_plot(r: &Results, which: usize) -> String {
         let line = |row: &super::studies::SpecularRow, k: Option<usize>| {
             (row.distance as f64, pick(k.map_or(row.reference, |k| row.filters[k])))
         };
-        let reference = r.specular.iter().map(|row| line(row, None)).collect();
+        let reference = specular.iter().map(|row| line(row, None)).collect();
         labelled_line(chart, "reference", BLACK, reference);
         let colors = [RED, BLUE, GREEN, MAGENTA, CYAN, RGBColor(230, 140, 0)];
         for (k, name) in super::studies::SPECULAR_FILTERS.iter().enumerate() {
-            labelled_line(chart, name, colors[k], r.specular.iter().map(|row| line(row, Some(k))).collect());
+            labelled_line(chart, name, colors[k], specular.iter().map(|row| line(row, Some(k))).collect());
         }
     })
 }
 
 /// Kilgard §2.4.2: the golf ball's mean brightness by distance.
-fn golf_ball_plot(r: &Results) -> String {
-    let values = r.golf_ball.iter().flat_map(|(_, a, b, c)| [*a, *b, *c]);
+fn golf_ball_plot(golf: &[(f32, f64, f64, f64)]) -> String {
+    let values = golf.iter().flat_map(|(_, a, b, c)| [*a, *b, *c]);
     let (lo, hi) = values.fold((f64::MAX, f64::MIN), |(lo, hi), v| (lo.min(v), hi.max(v)));
     let pad = ((hi - lo) * 0.15).max(0.01);
-    let dmax = r.golf_ball.last().map_or(8.0, |row| row.0 as f64 * 1.3);
+    let dmax = golf.last().map_or(8.0, |row| row.0 as f64 * 1.3);
     let labels = Labels {
         caption: "Golf ball at a distance: mean brightness (Kilgard §2.4.2)",
         x: "distance (× nearest)",
         y: "mean brightness",
         legend: Some(SeriesLabelPosition::UpperRight),
     };
-    let distances: Vec<f64> = r.golf_ball.iter().map(|row| row.0 as f64).collect();
+    let distances: Vec<f64> = golf.iter().map(|row| row.0 as f64).collect();
     svg_plot(labels, (0.8f64..dmax).log_scale().with_key_points(distances), (lo - pad)..(hi + pad), |chart| {
         let series = [("reference", 1usize, BLACK), ("length factor in alpha", 2, BLUE), ("renormalized mips", 3, RED)];
         for (label, column, color) in series {
-            let points = r.golf_ball.iter().map(|row| (row.0 as f64, [row.1, row.2, row.3][column - 1])).collect();
+            let points = golf.iter().map(|row| (row.0 as f64, [row.1, row.2, row.3][column - 1])).collect();
             labelled_line(chart, label, color, points);
         }
     })

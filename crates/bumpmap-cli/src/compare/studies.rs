@@ -35,6 +35,10 @@ pub struct EmbossStudy {
     pub facing_away: (f64, f64, f64),
 }
 
+/// One distance of [`golf_ball_study`]: `(distance factor, reference, length factor,
+/// renormalized)` mean brightness over the ball.
+pub type GolfRow = (f32, f64, f64, f64);
+
 /// Kilgard §2.4.2: a dimpled sphere (a golf ball) moving away. Averaging the dimples' normals
 /// shortens them; mips that keep the length in alpha dim the ball as the reference does, mips
 /// that renormalize stay too bright. The brightness of the whole frame divided by the number of

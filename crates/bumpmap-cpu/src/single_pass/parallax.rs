@@ -1,14 +1,14 @@
 //! Heights as geometry on the CPU pipeline: [`bumpmap_core::parallax::fragment`] for each live
-//! fragment, its heights read by GL's LINEAR filter from the level nearest the fragment's
-//! footprint ([`bumpmap_core::parallax::height_level`]; the footprint is the normal map's at
-//! the entry point, λ once per quad).
+//! fragment, its heights read by GL's LINEAR filter from the level of the footprint's shorter
+//! side ([`bumpmap_core::parallax::height_lambda`]; the footprint at the entry point, once per
+//! quad).
 //!
 //! Not vectorized: each lane runs the core's march as it is written (one home for every march;
 //! BENCHMARKS.md says what that costs).
 
 use glam::{Vec2, Vec3};
 
-use bumpmap_core::parallax::{FragmentRays, displaced_depth, fragment, height_level};
+use bumpmap_core::parallax::{FragmentRays, displaced_depth, fragment, height_lambda, height_level};
 use bumpmap_core::technique::ParallaxProgram;
 use bumpmap_core::vertex::var;
 use bumpmap_math::lighting::Light;
@@ -36,9 +36,16 @@ impl SinglePass<'_> {
         let exact = p.heights.minmax().map(|m| (&levels[0], m));
         let positional = matches!(self.program.light.light, Light::Positional(_));
         let sampler = self.program.sampler;
+        let size = Vec2::new(levels[0].width as f32, levels[0].height as f32);
+        let (s, t_) = (&batch.varyings[var::S], &batch.varyings[var::T]);
         let t = &sc.tex;
-        for j in 0..n {
-            let level = &levels[height_level(&sampler, sc.coords[2][j], levels.len())];
+        for (j, &lane) in batch.live().iter().enumerate().take(n) {
+            // The quad's derivatives along x and y (its pixels (1, 0) and (0, 1) from (0, 0)).
+            let q = (lane as usize) & !3;
+            let at = |k: usize| Vec2::new(s[q + k], t_[q + k]);
+            let (dx, dy) = ((at(1) - at(0)) * size, (at(2) - at(0)) * size);
+            let lambda = height_lambda(dx.length_squared(), dy.length_squared());
+            let level = &levels[height_level(&sampler, lambda, levels.len())];
             let mut sample = |st: Vec2| level.bilinear(st.x, st.y);
             let rays = FragmentRays {
                 st: Vec2::new(sc.coords[0][j], sc.coords[1][j]),

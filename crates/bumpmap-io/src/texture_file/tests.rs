@@ -116,7 +116,9 @@ fn one_and_two_channel_levels_parse_with_independent_readers() {
     ];
     let bytes8: Vec<Image<u8>> = vec![Image::new(3, 2, vec![0, 1, 2, 253, 254, 255]), Image::new(1, 1, vec![128])];
     let le = |v: &[u16]| v.iter().flat_map(|c| c.to_le_bytes()).collect::<Vec<u8>>();
-    let cases: Vec<(TextureLayout, TextureFormat, ktx2::Format, ddsfile::DxgiFormat, Vec<Vec<u8>>)> = vec![
+    // (levels, format, what the KTX2 and DDS readers should call it, each level's bytes)
+    type Case<'a> = (TextureLayout<'a>, TextureFormat, ktx2::Format, ddsfile::DxgiFormat, Vec<Vec<u8>>);
+    let cases: Vec<Case> = vec![
         (
             TextureLayout { faces: vec![bytes8.iter().map(Level::Gray8).collect()] },
             TextureFormat::R8,
