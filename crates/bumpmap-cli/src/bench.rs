@@ -240,11 +240,10 @@ fn bench_render(args: &BenchRenderArgs) -> Result<(), CliError> {
     let (size, frames, runs) = (args.size, args.frames, args.runs);
     bumpmap::Renderer::check_size(size, size).map_err(lib_err)?;
     let name = args.setup.technique.technique.0;
-    if name == bumpmap::TechniqueName::Reference {
-        return Err(CliError::Usage(
-            "bench render times frames of the pass-drawing techniques; the reference has its own: bench reference"
-                .into(),
-        ));
+    if name.is_reference() {
+        return Err(CliError::Usage(format!(
+            "bench render times frames of the pass-drawing techniques; {name} has its own: bench reference"
+        )));
     }
     let setup = crate::setup::setup(&args.setup)?;
     for note in &setup.notes {

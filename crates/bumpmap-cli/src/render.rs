@@ -9,7 +9,7 @@ use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
 use bumpmap::bumpmap_core::Feature;
-use bumpmap::{BackendChoice, CoreError, Prepared, Renderer, Rgba8Image, Scene, Technique, TechniqueName};
+use bumpmap::{BackendChoice, BumpSource, CoreError, Prepared, Renderer, Rgba8Image, Scene, Technique, TechniqueName};
 use bumpmap_io::atomic::{FileSet, ensure_not_input};
 use bumpmap_io::image_file::{PngLayout, save_png_into};
 
@@ -63,11 +63,7 @@ pub fn draw_args(args: &RenderArgs, progress: bool) -> Result<Drawn, CliError> {
     if args.passes && name != TechniqueName::Kilgard {
         return Err(CliError::Usage(format!(
             "--passes shows the three passes of --technique kilgard; {name} draws {}",
-            if name == TechniqueName::Reference {
-                "no passes (it samples the exact surface)"
-            } else {
-                "one pass per light"
-            }
+            if name.is_reference() { "no passes (it samples the exact surface)" } else { "one pass per light" }
         )));
     }
     let setup = crate::setup::setup(&args.setup)?;
@@ -79,7 +75,10 @@ pub fn draw_args(args: &RenderArgs, progress: bool) -> Result<Drawn, CliError> {
     let too_big = |e| too_big(e, &setup.spec, bumps.as_deref());
     ensure_room(&setup.spec, name).map_err(too_big)?;
     let prepared = Prepared::new(&setup.spec, name, &setup.options).map_err(|e| too_big(lib_err(e)))?;
-    let mut renderer = if name == TechniqueName::Reference {
+    for note in depth_notes(&args.setup, &setup.spec, &prepared) {
+        eprintln!("{note}");
+    }
+    let mut renderer = if name.is_reference() {
         // The reference runs on the CPU whatever the backend; no device need open for it.
         let mut r = Renderer::new(BackendChoice::Cpu).map_err(lib_err)?;
         if progress {
@@ -92,12 +91,37 @@ pub fn draw_args(args: &RenderArgs, progress: bool) -> Result<Drawn, CliError> {
     let frame =
         draw(&mut renderer, &prepared.scene, &prepared.technique, width, height, args.passes).map_err(too_big)?;
     ensure_drawn(frame.image.texels.iter().all(|&[r, g, b, _]| r == 0 && g == 0 && b == 0), &args.output)?;
-    let by = if name == TechniqueName::Reference {
+    let by = if name.is_reference() {
         format!("reference, {} samples per pixel", setup.options.reference.samples_per_pixel)
     } else {
         format!("{name}, {}", renderer.describe())
     };
     Ok(Drawn { frame, by, inputs: setup.inputs })
+}
+
+/// What `--depth` did, for stderr: clamped to what the surface allows, or a depth whose slopes
+/// the normal map `spec` makes from heights (with `--bump-scale`) does not share.
+pub fn depth_notes(s: &crate::args::SceneSetup, spec: &bumpmap::SceneSpec, prepared: &Prepared) -> Vec<String> {
+    let mut notes = Vec::new();
+    let Some(asked) = s.heights.depth else { return notes };
+    let Some(object) = prepared.scene.objects.iter().find(|o| o.material.heights.is_some()) else { return notes };
+    let used = object.material.depth;
+    if used < asked * (1.0 - 1e-6) {
+        notes.push(format!(
+            "note: --depth {asked} would carve past the surface's bounds; drawn at {used} (a quarter of a wall's side, half a torus's tube radius or a sphere's radius)"
+        ));
+    }
+    let size = object.material.heights.as_ref().map_or((1, 1), |h| (h.width(), h.height()));
+    if let (Some(side), BumpSource::Heights(_)) = (object.texel_side(size), &spec.params.bumps) {
+        let scale = spec.params.normal_map.scale;
+        let texels = used / side;
+        if (texels - scale).abs() > 0.01 * scale.abs().max(1e-6) {
+            notes.push(format!(
+                "note: --depth {used} is {texels:.3} texels of this surface's mean texel side ({side:.5}); the normal map keeps --bump-scale {scale}'s slopes: add --bump-scale {texels:.3} for the slopes of the geometry"
+            ));
+        }
+    }
+    notes
 }
 
 /// Refuses `output` for a frame that came out black (`black`: no pixel has any colour): nothing
@@ -129,8 +153,13 @@ fn ensure_room(spec: &bumpmap::SceneSpec, name: TechniqueName) -> Result<(), Cli
     let made = matches!(spec.params.bumps, bumpmap::bumpmap_core::scenes::BumpSource::Heights(_));
     let embossed = matches!(name, TechniqueName::Emboss | TechniqueName::EmbossUnforced);
     let mut bytes = if made { texels * 4 } else { 0 };
-    if name != TechniqueName::Reference {
+    if !name.is_reference() {
         bytes += bumpmap_cpu::texture_unit_bytes(texels);
+    }
+    if name.parallax_method().is_some() || name == TechniqueName::ReferenceDisplaced {
+        // Heights as geometry: the heights and their bounds, every level (a given file's are
+        // already loaded, but a texture unit or the GPU reads them as they are).
+        bytes += bumpmap::HeightMips::bytes_for(w, h);
     }
     if embossed {
         bytes += texels * 4 + bumpmap_cpu::texture_unit_bytes(texels);

@@ -368,6 +368,12 @@ impl TechniqueName {
         params
     }
 
+    /// Whether the name is one of the references (drawn by `bumpmap-reference` on the CPU, not
+    /// as passes).
+    pub fn is_reference(self) -> bool {
+        matches!(self, TechniqueName::Reference | TechniqueName::ReferenceDisplaced)
+    }
+
     /// The march of a technique that takes heights as geometry, `None` for the others.
     pub fn parallax_method(self) -> Option<ParallaxMethod> {
         match self {

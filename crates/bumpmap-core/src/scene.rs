@@ -259,6 +259,18 @@ pub struct SceneObject {
     pub st_derivatives: Option<Arc<Vec<[glam::Vec3; 2]>>>,
 }
 
+impl SceneObject {
+    /// The mean side of a texel of a `size` map on this object, in object units: the depth a
+    /// bump scale of 1 stands for (`bumpmap_math::blinn::displacement_per_unit_height`). `None`
+    /// for a mesh without texture coordinates or area.
+    pub fn texel_side(&self, size: (usize, usize)) -> Option<f32> {
+        match &self.source {
+            Some(s) => Some(bumpmap_math::blinn::displacement_per_unit_height(&s.surface, s.repeat, size, 1.0)),
+            None => self.mesh.mean_texel_side(size),
+        }
+    }
+}
+
 /// The exact surface and height field behind a built-in object (Peercy §2, Kilgard Eq. 5).
 ///
 /// The mesh is `surface` tessellated with texture coordinates `repeat ⊙ (u, v)`; the normal

@@ -42,6 +42,7 @@ pub mod renderer;
 pub use error::Error;
 pub use renderer::{Backend, BackendChoice, Prepared, Renderer, WindowSurface};
 
+pub use bumpmap_core::parallax::{Parallax, ParallaxMethod, ParallaxOptions, ParallaxShadow};
 pub use bumpmap_core::scene::{Attenuation, Camera, SceneLight, Spot, ViewerModel};
 pub use bumpmap_core::technique::{
     BackFacing, EmbossOptions, Gloss, HalfAngle, KilgardOptions, Normalize, ReferenceOptions, SelfShadow,
@@ -54,8 +55,8 @@ pub use bumpmap_core::{
 pub use bumpmap_math::imported::ImportOptions;
 pub use bumpmap_math::lighting::Light;
 pub use bumpmap_math::{
-    Encoding, HeightField, HeightPreset, Kernel, MipChain, MipMode, NormalMapOptions, Rgba8Image, Rgba8Mips, Wrap,
-    YConvention,
+    Encoding, HeightField, HeightMips, HeightPreset, Kernel, MipChain, MipMode, NormalMapOptions, Rgba8Image,
+    Rgba8Mips, Wrap, YConvention,
 };
 
 pub use bumpmap_core;

@@ -38,6 +38,16 @@ pub enum Action {
     ShininessUp,
     /// A smaller specular exponent.
     ShininessDown,
+    /// Heights as geometry carved deeper.
+    DepthUp,
+    /// Carved less deep.
+    DepthDown,
+    /// More layers for the marches.
+    LayersUp,
+    /// Fewer layers.
+    LayersDown,
+    /// The marches' self-shadowing: off, hard, soft.
+    ParallaxShadow,
     /// The other backend (CPU or GPU).
     Backend,
     /// The triangles' edges drawn over the image.
@@ -56,7 +66,7 @@ pub enum Action {
 
 impl Action {
     /// Every action, in the order the help overlay lists them.
-    pub const ALL: [Action; 23] = [
+    pub const ALL: [Action; 28] = [
         Action::Pause,
         Action::NextTechnique,
         Action::PreviousTechnique,
@@ -73,6 +83,11 @@ impl Action {
         Action::BumpsDown,
         Action::ShininessUp,
         Action::ShininessDown,
+        Action::DepthUp,
+        Action::DepthDown,
+        Action::LayersUp,
+        Action::LayersDown,
+        Action::ParallaxShadow,
         Action::Backend,
         Action::Wireframe,
         Action::FrameRate,
@@ -101,6 +116,11 @@ impl Action {
             Action::BumpsDown => '-',
             Action::ShininessUp => ']',
             Action::ShininessDown => '[',
+            Action::DepthUp => 'D',
+            Action::DepthDown => 'd',
+            Action::LayersUp => 'K',
+            Action::LayersDown => 'k',
+            Action::ParallaxShadow => 'p',
             Action::Backend => 'b',
             Action::Wireframe => 'w',
             Action::FrameRate => 'f',
@@ -143,6 +163,11 @@ impl Action {
             Action::BumpsDown => "bumps lower",
             Action::ShininessUp => "shininess up",
             Action::ShininessDown => "shininess down",
+            Action::DepthUp => "heights as geometry: deeper",
+            Action::DepthDown => "heights as geometry: shallower",
+            Action::LayersUp => "more layers (parallax marches)",
+            Action::LayersDown => "fewer layers",
+            Action::ParallaxShadow => "parallax shadows: off / hard / soft",
             Action::Backend => "switch backend (cpu / gpu)",
             Action::Wireframe => "wireframe on / off",
             Action::FrameRate => "frame rate on / off",

@@ -54,7 +54,7 @@ pub fn run(args: &ViewArgs, setup: SceneSetup, out: &Path, inputs: &[&Path]) -> 
             eprintln!("{}: {m}", action.name());
         }
     }
-    let reference = viewer.technique() == bumpmap::TechniqueName::Reference;
+    let reference = viewer.technique().is_reference();
     let mut renderer = if reference {
         bumpmap::Renderer::new(bumpmap::BackendChoice::Cpu).map_err(lib_err)?
     } else {

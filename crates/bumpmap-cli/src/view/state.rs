@@ -9,11 +9,12 @@
 
 use std::path::Path;
 
+use bumpmap::bumpmap_core::parallax::MAX_LAYERS;
 use bumpmap::bumpmap_core::state::Sampler;
 use bumpmap::motion::{LightOrbit, MAX_TILT, orbit_camera};
 use bumpmap::{
-    BumpSource, Camera, MipMode, Normalize, Prepared, ReferenceOptions, SceneKind, SelfShadow, SpecularFilter,
-    Technique, TechniqueName, TechniqueOptions,
+    BumpSource, Camera, MipMode, Normalize, ParallaxShadow, Prepared, ReferenceOptions, SceneKind, SelfShadow,
+    SpecularFilter, Technique, TechniqueName, TechniqueOptions,
 };
 use glam::Vec3;
 
@@ -80,6 +81,13 @@ pub struct Choices {
     pub bump_scale: f32,
     /// The specular exponent.
     pub shininess: f32,
+    /// Heights as geometry: how deep (object units), or `None` for the options' (`--depth`, or
+    /// the bump scale's).
+    pub depth: Option<f32>,
+    /// The marches' layers.
+    pub layers: u32,
+    /// The marches' self-shadowing.
+    pub parallax_shadow: ParallaxShadow,
 }
 
 /// Where the light and the camera are, and what is shown over the image: changes here only
@@ -198,6 +206,9 @@ impl Viewer {
                 BumpSource::NormalMap(_) => 1.0,
             }),
             shininess: base.spec.params.shininess,
+            depth: base.spec.params.depth,
+            layers: base.options.parallax.layers,
+            parallax_shadow: base.options.parallax.shadow,
         };
         let scenes = scenes_with(&base.spec.kind);
         let choices = Choices { scene: scenes.iter().position(|k| *k == base.spec.kind).unwrap_or(0), ..choices };
@@ -239,8 +250,7 @@ impl Viewer {
     /// Whether another frame would differ from the last: the light orbiting, or the reference
     /// still refining.
     pub fn animating(&self) -> bool {
-        !self.view.paused
-            || (self.technique() == TechniqueName::Reference && self.reference_step <= REFERENCE_STEPS.len())
+        !self.view.paused || (self.technique().is_reference() && self.reference_step <= REFERENCE_STEPS.len())
     }
 
     /// The next frame as if nothing had moved for a while: the reference at its full samples.
@@ -328,6 +338,19 @@ impl Viewer {
             Action::BumpsDown => c.bump_scale /= 1.25,
             Action::ShininessUp => c.shininess = (c.shininess * 1.5).min(1e4),
             Action::ShininessDown => c.shininess = (c.shininess / 1.5).max(0.5),
+            Action::DepthUp | Action::DepthDown => match self.depth() {
+                Some(d) => c.depth = Some(if action == Action::DepthUp { d * 1.25 } else { d / 1.25 }),
+                None => self.message = Some(format!("{} takes no heights as geometry", self.technique().name())),
+            },
+            Action::LayersUp => c.layers = (c.layers * 2).min(MAX_LAYERS),
+            Action::LayersDown => c.layers = (c.layers / 2).max(1),
+            Action::ParallaxShadow => {
+                c.parallax_shadow = match c.parallax_shadow {
+                    ParallaxShadow::Off => ParallaxShadow::Hard,
+                    ParallaxShadow::Hard => ParallaxShadow::Soft,
+                    ParallaxShadow::Soft => ParallaxShadow::Off,
+                }
+            }
         }
         self.moved();
         if c != self.choices {
@@ -455,6 +478,11 @@ impl Viewer {
         Ok(note)
     }
 
+    /// The depth of the heights as geometry drawn now, where the technique takes them.
+    pub fn depth(&self) -> Option<f32> {
+        self.prepared.scene.objects.iter().find(|o| o.material.heights.is_some()).map(|o| o.material.depth)
+    }
+
     /// One line saying what is drawn and with which options, for the overlay.
     pub fn status(&self) -> String {
         let c = &self.choices;
@@ -467,8 +495,24 @@ impl Viewer {
         if !c.self_shadow {
             off.push("self-shadow");
         }
+        let heights = match self.depth() {
+            Some(d) => {
+                let shadow = match c.parallax_shadow {
+                    ParallaxShadow::Off => "",
+                    ParallaxShadow::Hard => " | hard shadows",
+                    ParallaxShadow::Soft => " | soft shadows",
+                };
+                let layers = if self.technique().parallax_method().is_some() {
+                    format!(" | layers {}", c.layers)
+                } else {
+                    String::new()
+                };
+                format!(" | depth {d:.4}{layers}{shadow}")
+            }
+            None => String::new(),
+        };
         format!(
-            "{} | {} | bumps {:.2} | shininess {:.1} | mips {} | {}{}{}{}",
+            "{}{heights} | {} | bumps {:.2} | shininess {:.1} | mips {} | {}{}{}{}",
             self.technique().name(),
             self.scenes[c.scene].name(),
             c.bump_scale,
@@ -497,6 +541,7 @@ fn prepare(base: &Setup, scenes: &[SceneKind], c: &Choices) -> Result<Prepared, 
         params.normal_map.scale = c.bump_scale;
     }
     params.shininess = c.shininess;
+    params.depth = c.depth;
     if !c.decal {
         params.decal = None;
         params.default_decal = false;
@@ -514,6 +559,8 @@ fn prepare(base: &Setup, scenes: &[SceneKind], c: &Choices) -> Result<Prepared, 
         (false, _) => Sampler::TRILINEAR_REPEAT,
     };
     let mut options: TechniqueOptions = base.options.clone();
+    options.parallax.layers = c.layers;
+    options.parallax.shadow = c.parallax_shadow;
     options.kilgard.self_shadow = c.self_shadow;
     options.kilgard.sampler = sampler;
     options.emboss.sampler = sampler;
@@ -552,7 +599,9 @@ mod tests {
     #[test]
     fn every_key_changes_what_it_names_and_toggles_come_back() {
         for action in Action::ALL {
-            let mut v = viewer(&[]);
+            // The depth keys change heights as geometry, which the default technique has none of.
+            let depth_key = matches!(action, Action::DepthUp | Action::DepthDown);
+            let mut v = viewer(if depth_key { &["--technique", "pom"] } else { &[] });
             let (choices, view) = (v.choices.clone(), v.view);
             let effect = v.apply(action);
             match action {
@@ -585,6 +634,29 @@ mod tests {
                 assert_eq!((&v.choices, v.view), (&choices, view), "{action:?} twice");
             }
         }
+    }
+
+    #[test]
+    fn the_depth_and_layer_keys_reach_the_marches_and_the_status_line_names_them() {
+        let mut v = viewer(&["--technique", "pom", "--scene", "wall"]);
+        let depth = v.depth().expect("pom carves the wall");
+        // The bump scale's depth: 4 texels of the wall's 1/128.
+        assert!((depth - 4.0 / 128.0).abs() < 1e-6, "{depth}");
+        assert!(v.status().starts_with("pom | depth 0.0312 | layers 32 |"), "{}", v.status());
+        v.apply(Action::DepthUp);
+        assert!((v.depth().unwrap() - depth * 1.25).abs() < 1e-6);
+        v.apply(Action::LayersDown);
+        v.apply(Action::ParallaxShadow);
+        let Technique::SinglePass(o) = &v.prepared.technique else { panic!("pom is a single pass") };
+        let p = o.parallax.expect("pom marches");
+        assert_eq!((p.options.layers, p.options.shadow), (16, ParallaxShadow::Hard));
+        assert!(v.status().contains("layers 16 | hard shadows"), "{}", v.status());
+        // Kilgard's passes take no heights: the depth keys say so and change nothing.
+        let mut v = viewer(&[]);
+        let before = v.choices.clone();
+        v.apply(Action::DepthUp);
+        assert_eq!(v.choices, before);
+        assert!(v.message.as_deref().is_some_and(|m| m.contains("kilgard takes no heights")), "{:?}", v.message);
     }
 
     #[test]

@@ -12,7 +12,7 @@ use std::path::{Path, PathBuf};
 use std::sync::Arc;
 use std::time::Instant;
 
-use bumpmap::{Backend, BackendChoice, Renderer, Rgba8Image, TechniqueName, WindowSurface};
+use bumpmap::{Backend, BackendChoice, Renderer, Rgba8Image, WindowSurface};
 use bumpmap_io::atomic::FileSet;
 use bumpmap_io::image_file::{PngLayout, save_png_into};
 use winit::application::ApplicationHandler;
@@ -38,7 +38,7 @@ pub fn run(args: &ViewArgs, setup: SceneSetup, inputs: &[&Path]) -> Result<(), C
     ensure_display()?;
     let backend = setup.backend.backend;
     let viewer = Viewer::new(setup)?;
-    let reference_only = viewer.technique() == TechniqueName::Reference;
+    let reference_only = viewer.technique().is_reference();
     let renderer = if reference_only && backend == crate::args::BackendArg::Auto {
         Renderer::new(BackendChoice::Cpu).map_err(lib_err)?
     } else {
@@ -316,7 +316,7 @@ impl App {
                 Err(e) => self.viewer.message = Some(lib_err(e).to_string()),
             }
         } else {
-            let reference = self.viewer.technique() == TechniqueName::Reference;
+            let reference = self.viewer.technique().is_reference();
             // The reference samples the exact surface on the CPU whichever backend is open.
             let drawn = if reference && self.renderer.backend() == Backend::Gpu {
                 Renderer::new(BackendChoice::Cpu).and_then(|mut r| r.draw(&prepared, width, height))
