@@ -198,6 +198,17 @@ pub fn setup(s: &SceneSetup) -> Result<Setup, CliError> {
                 ),
             });
         }
+        let technique = s.technique.technique.0;
+        if technique.parallax_method() == Some(bumpmap::ParallaxMethod::Exact) && heights.minmax().is_none() {
+            return Err(CliError::Path {
+                path: path.clone(),
+                reason: format!(
+                    "has no min–max levels beside it ({} not found), and --technique {technique} walks them: \
+                     write the heights again with `bumpmap normalmap --mips --height-out H`, or use --technique pom",
+                    bumpmap_io::height_file::minmax_path(path).display()
+                ),
+            });
+        }
         notes.push(format!(
             "{}: heights as geometry, {}x{}, {} levels, {}",
             path.display(),
@@ -536,7 +547,7 @@ fn technique_options(s: &SceneSetup, name: TechniqueName) -> Result<TechniqueOpt
         },
         parallax: ParallaxOptions {
             layers: s.heights.layers,
-            shadow: s.heights.parallax_shadow.into(),
+            shadow: s.heights.parallax_shadow.0,
             silhouettes: s.heights.silhouettes,
             write_depth: s.heights.write_depth,
         },

@@ -88,6 +88,37 @@ pub enum ParallaxShadow {
     Soft,
 }
 
+impl ParallaxShadow {
+    /// Every mode, in the order the viewer's key cycles them.
+    pub const ALL: [ParallaxShadow; 3] = [ParallaxShadow::Off, ParallaxShadow::Hard, ParallaxShadow::Soft];
+
+    /// The name commands and the Python module take: `off`, `hard`, `soft`.
+    pub fn name(self) -> &'static str {
+        match self {
+            ParallaxShadow::Off => "off",
+            ParallaxShadow::Hard => "hard",
+            ParallaxShadow::Soft => "soft",
+        }
+    }
+
+    /// One line on what the mode does, for `--help` and the Python docstrings.
+    pub fn description(self) -> &'static str {
+        match self {
+            ParallaxShadow::Off => "none: the lighting model's own terms only",
+            ParallaxShadow::Hard => "dark where any height along the way to the light rises above the ray",
+            ParallaxShadow::Soft => {
+                "darker the higher and nearer a blocker (an engine-style penumbra, not a physical one)"
+            }
+        }
+    }
+
+    /// The next mode in [`ParallaxShadow::ALL`], after the last the first.
+    pub fn next(self) -> ParallaxShadow {
+        let i = Self::ALL.iter().position(|&m| m == self).expect("ALL holds every mode");
+        Self::ALL[(i + 1) % Self::ALL.len()]
+    }
+}
+
 /// The options every parallax technique shares.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ParallaxOptions {

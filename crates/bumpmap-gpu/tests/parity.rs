@@ -170,6 +170,47 @@ fn the_single_pass_model_matches_the_cpu_feature_by_feature() {
 }
 
 #[test]
+fn every_parallax_technique_matches_the_cpu() {
+    // The marches themselves agree exactly (parallax_parity.rs); here the whole pipeline: the
+    // texture-space varyings, the heights' textures and level choice, the late depth test.
+    use bumpmap_core::catalogue::{TechniqueName, TechniqueOptions};
+    use bumpmap_core::parallax::{ParallaxOptions, ParallaxShadow};
+    let Some(mut gpu) = common::renderer() else { return };
+    let grazing = Vec3::new(0.0, -75f32.to_radians().sin(), 75f32.to_radians().cos()) * 1.2;
+    let cases: Vec<(&str, SceneKind, SceneParams, ParallaxOptions)> = vec![
+        (
+            "wall_75_hard",
+            SceneKind::Wall,
+            SceneParams {
+                eye: Some(grazing),
+                depth: Some(0.06),
+                lights: vec![SceneLight::white(Light::Directional(Vec3::new(0.8, -0.3, 0.5).normalize()))],
+                ..Default::default()
+            },
+            ParallaxOptions { shadow: ParallaxShadow::Hard, ..Default::default() },
+        ),
+        (
+            "torus_silhouettes_soft",
+            SceneKind::Torus,
+            SceneParams { depth: Some(0.15), ..Default::default() },
+            ParallaxOptions { silhouettes: true, shadow: ParallaxShadow::Soft, ..Default::default() },
+        ),
+        (
+            "wall_floor_write_depth",
+            SceneKind::WallFloor,
+            SceneParams { depth: Some(0.1), ..Default::default() },
+            ParallaxOptions { write_depth: true, layers: 16, ..Default::default() },
+        ),
+    ];
+    for name in TechniqueName::ALL.into_iter().filter(|n| n.parallax_method().is_some()) {
+        for (case, kind, params, parallax) in &cases {
+            let technique = name.technique(&TechniqueOptions { parallax: *parallax, ..Default::default() });
+            check(&mut gpu, &format!("gpu_{}_{case}", name.name()), kind.clone(), name.scene_params(params), technique);
+        }
+    }
+}
+
+#[test]
 fn the_three_passes_match_the_cpu_in_every_variant() {
     let Some(mut gpu) = common::renderer() else { return };
     let fixed9 = Technique::Kilgard(KilgardOptions { precision: Precision::Fixed9, ..Default::default() });

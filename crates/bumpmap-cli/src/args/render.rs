@@ -4,7 +4,7 @@
 
 use std::path::PathBuf;
 
-use bumpmap::TechniqueName;
+use bumpmap::{ParallaxShadow, TechniqueName};
 use clap::builder::PossibleValue;
 use clap::{Args, ValueEnum};
 
@@ -203,15 +203,15 @@ impl ValueEnum for TechniqueArg {
 )]
 pub struct HeightsGroup {
     /// How deep the heights carve below the surface, in the scene's units per unit of height (heights are 1 on the surface, 0 at this depth) [default: what --bump-scale stands for: that many texels of the surface's mean texel side, so the normal map's slopes are the geometry's]. Clamped to a quarter of a wall's side, half a torus's tube radius or a sphere's radius
-    #[arg(long, value_parser = parse_depth)]
+    #[arg(long, value_parser = parse_depth, allow_negative_numbers = true)]
     pub depth: Option<f32>,
     /// The heights as a file, the normal map's size: what `normalmap --height-out` writes (H.png with H.mip1.png … and H.minmax.png …, or H.ktx2 / H.dds with H.minmax.ktx2 / .dds beside it); what a --normal-map needs for these techniques. height-exact needs the min–max files
     #[arg(long = "height-map", value_name = "FILE")]
     pub height_map: Option<PathBuf>,
     /// Layers of a march: steep-parallax and relief step through this many, pom through a quarter of it looking straight on up to all of it at grazing angles; a shadow march steps this many over the depth
-    #[arg(long, default_value_t = bumpmap::bumpmap_core::parallax::DEFAULT_LAYERS, value_parser = clap::value_parser!(u32).range(1..=256))]
+    #[arg(long, default_value_t = bumpmap::bumpmap_core::parallax::DEFAULT_LAYERS, value_parser = clap::value_parser!(u32).range(1..=bumpmap::bumpmap_core::parallax::MAX_LAYERS as i64), allow_negative_numbers = true)]
     pub layers: u32,
-    /// Self-shadowing by the heights: off; hard (dark where a height rises above the ray toward the light); soft (darker the higher a blocker rises and the nearer it is: Tatarchuk's engine-style penumbra). height-exact and reference-displaced cast exact shadow rays for hard and soft alike
+    /// Self-shadowing by the heights (soft is Tatarchuk's engine-style penumbra). height-exact and reference-displaced cast exact shadow rays for hard and soft alike
     #[arg(long = "parallax-shadow", value_enum, default_value = "off")]
     pub parallax_shadow: ParallaxShadowArg,
     /// On curved surfaces, drop pixels whose ray leaves the surface without meeting the heights, so bumps cut the silhouette (the surface's curvature bends the ray, Oliveira & Policarpo 2005)
@@ -222,25 +222,26 @@ pub struct HeightsGroup {
     pub write_depth: bool,
 }
 
-/// Self-shadowing by the heights.
-#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
-pub enum ParallaxShadowArg {
-    /// none: the lighting model's own terms only
-    Off,
-    /// dark where any height along the way to the light rises above the ray
-    Hard,
-    /// darker the higher and nearer a blocker (an engine-style penumbra)
-    Soft,
-}
+/// A parallax shadow mode (`bumpmap_core::parallax::ParallaxShadow`), by its name.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct ParallaxShadowArg(pub ParallaxShadow);
 
-impl From<ParallaxShadowArg> for bumpmap::bumpmap_core::parallax::ParallaxShadow {
-    fn from(a: ParallaxShadowArg) -> Self {
-        use bumpmap::bumpmap_core::parallax::ParallaxShadow;
-        match a {
-            ParallaxShadowArg::Off => ParallaxShadow::Off,
-            ParallaxShadowArg::Hard => ParallaxShadow::Hard,
-            ParallaxShadowArg::Soft => ParallaxShadow::Soft,
-        }
+impl ValueEnum for ParallaxShadowArg {
+    fn value_variants<'a>() -> &'a [Self] {
+        const ALL: [ParallaxShadowArg; ParallaxShadow::ALL.len()] = {
+            let mut all = [ParallaxShadowArg(ParallaxShadow::Off); ParallaxShadow::ALL.len()];
+            let mut i = 0;
+            while i < all.len() {
+                all[i] = ParallaxShadowArg(ParallaxShadow::ALL[i]);
+                i += 1;
+            }
+            all
+        };
+        &ALL
+    }
+
+    fn to_possible_value(&self) -> Option<PossibleValue> {
+        Some(PossibleValue::new(self.0.name()).help(self.0.description()))
     }
 }
 

@@ -344,13 +344,7 @@ impl Viewer {
             },
             Action::LayersUp => c.layers = (c.layers * 2).min(MAX_LAYERS),
             Action::LayersDown => c.layers = (c.layers / 2).max(1),
-            Action::ParallaxShadow => {
-                c.parallax_shadow = match c.parallax_shadow {
-                    ParallaxShadow::Off => ParallaxShadow::Hard,
-                    ParallaxShadow::Hard => ParallaxShadow::Soft,
-                    ParallaxShadow::Soft => ParallaxShadow::Off,
-                }
-            }
+            Action::ParallaxShadow => c.parallax_shadow = c.parallax_shadow.next(),
         }
         self.moved();
         if c != self.choices {
@@ -498,9 +492,8 @@ impl Viewer {
         let heights = match self.depth() {
             Some(d) => {
                 let shadow = match c.parallax_shadow {
-                    ParallaxShadow::Off => "",
-                    ParallaxShadow::Hard => " | hard shadows",
-                    ParallaxShadow::Soft => " | soft shadows",
+                    ParallaxShadow::Off => String::new(),
+                    s => format!(" | {} shadows", s.name()),
                 };
                 let layers = if self.technique().parallax_method().is_some() {
                     format!(" | layers {}", c.layers)

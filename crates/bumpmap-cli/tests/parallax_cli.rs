@@ -1,0 +1,261 @@
+//! Heights as geometry from the command line: the exact walk against the displaced reference,
+//! heights files that render as the built-in heights, the heights options doing what they say,
+//! and bad heights input failing cleanly.
+
+mod common;
+
+use std::path::Path;
+
+use common::*;
+
+type Rgb = Vec<[i32; 3]>;
+
+fn pixels(path: &Path) -> Rgb {
+    image::open(path).unwrap().to_rgb8().pixels().map(|p| p.0.map(i32::from)).collect()
+}
+
+/// The largest channel difference of each pixel.
+fn differences(a: &Rgb, b: &Rgb) -> Vec<i32> {
+    assert_eq!(a.len(), b.len());
+    a.iter().zip(b).map(|(p, q)| (0..3).map(|c| (p[c] - q[c]).abs()).max().unwrap()).collect()
+}
+
+fn mean(a: &Rgb) -> f64 {
+    a.iter().flatten().map(|&v| v as f64).sum::<f64>() / (3 * a.len()) as f64
+}
+
+/// `render ARGS… --size 64 -o DIR/NAME`, which must succeed; its pixels.
+fn render(dir: &Path, name: &str, args: &[&str]) -> Rgb {
+    let out = dir.join(name);
+    let mut all = vec!["render", "--size", "64", "-o", out.to_str().unwrap()];
+    all.extend_from_slice(args);
+    let o = bumpmap(&all);
+    assert!(o.status.success(), "{args:?}: {}", stderr(&o));
+    pixels(&out)
+}
+
+/// The wall seen from `degrees` off its normal, 1.2 from its centre (compare's study's camera).
+fn eye(degrees: f32) -> String {
+    let a = degrees.to_radians();
+    format!("0,{},{}", -a.sin() * 1.2, a.cos() * 1.2)
+}
+
+#[test]
+fn the_exact_walk_sees_what_the_displaced_reference_sees() {
+    let dir = scratch("parallax_exact_vs_displaced");
+    for degrees in [30.0, 60.0, 75.0, 85.0] {
+        let eye = eye(degrees);
+        // One sample at each pixel's centre and bilinear decals on both sides: the same rays
+        // through the same surface, so the images differ only where a pixel's centre lies on an
+        // edge of the heights (a brick's top edge seen edge-on), which rounding of the ray's
+        // entry point in the rasterizer sends either way: at 75° one row of 64 does.
+        let common = ["--scene", "wall", "--height-field", "bricks@64", "--eye", &eye, "--filter", "linear"];
+        let exact = render(&dir, "exact.png", &[&common[..], &["--technique", "height-exact"]].concat());
+        let truth =
+            render(&dir, "truth.png", &[&common[..], &["--technique", "reference-displaced", "--spp", "1"]].concat());
+        let normal = render(&dir, "normal.png", &[&common[..], &["--technique", "single-pass"]].concat());
+        assert!(mean(&truth) > 20.0, "{degrees}°: the reference is not blank (mean {})", mean(&truth));
+        let agree = |a: &Rgb| differences(a, &truth).iter().filter(|&&d| d <= 2).count() as f64 / truth.len() as f64;
+        let (exact, normal) = (agree(&exact), agree(&normal));
+        assert!(exact >= 0.98, "{degrees}°: height-exact agrees with the displaced reference at {exact:.4} of pixels");
+        assert!(normal < 0.6, "{degrees}°: normal mapping is not the displaced surface ({normal:.4} of pixels agree)");
+    }
+}
+
+#[test]
+fn heights_files_render_as_the_built_in_heights() {
+    let dir = scratch("parallax_heights_files");
+    let at = |name: &str| dir.join(name).to_str().unwrap().to_string();
+    // The heights in every format and both bit depths, each with its normal map.
+    let files = [
+        ("n16.png", "h.png", "16", 1),
+        ("n16.png", "h.ktx2", "16", 1),
+        ("n16.png", "h.dds", "16", 1),
+        ("n8.png", "h8.png", "8", 9),
+    ];
+    for (normals, heights, bits, _) in files {
+        let o = bumpmap(&[
+            "normalmap",
+            "bricks@64",
+            "-o",
+            &at(normals),
+            "--mips",
+            "--bits",
+            bits,
+            "--height-out",
+            &at(heights),
+        ]);
+        assert!(o.status.success(), "{heights}: {}", stderr(&o));
+    }
+    let view = ["--scene", "wall", "--eye", "0,-1,0.6"];
+    for technique in ["pom", "height-exact"] {
+        let built_in = render(
+            &dir,
+            "built_in.png",
+            &[&view[..], &["--height-field", "bricks@64", "--decal", "none", "--technique", technique]].concat(),
+        );
+        for (normals, heights, _, tolerance) in files {
+            let from_file = render(
+                &dir,
+                "from_file.png",
+                &[&view[..], &["--normal-map", &at(normals), "--height-map", &at(heights), "--technique", technique]]
+                    .concat(),
+            );
+            // 16 bits: the built-in levels are the same means, rounded to 16 bits only in the
+            // file (a level of 1/65535 moves a march's hit by a sliver): one level of 8 bits.
+            // 8 bits: heights in steps of 1/255, hits a little elsewhere.
+            let worst = *differences(&built_in, &from_file).iter().max().unwrap();
+            assert!(worst <= tolerance, "{technique} from {heights}: differs by {worst} > {tolerance}");
+        }
+    }
+}
+
+#[test]
+fn the_heights_options_change_what_they_say() {
+    let dir = scratch("parallax_options");
+    // Silhouettes: the torus's outline is cut by its bricks' mortar, so more background shows.
+    let background = |img: &Rgb| img.iter().filter(|p| p.iter().all(|&c| c == 0)).count();
+    let whole = render(&dir, "whole.png", &["--technique", "pom", "--depth", "0.15"]);
+    let cut = render(&dir, "cut.png", &["--technique", "pom", "--depth", "0.15", "--silhouettes"]);
+    assert!(mean(&whole) > 20.0, "the torus is drawn");
+    assert!(
+        background(&cut) > background(&whole) + 20,
+        "silhouettes cut the outline: {} background pixels, {} without",
+        background(&cut),
+        background(&whole)
+    );
+    // Shadows: a grazing light darkens the mortar beside the bricks; soft at most as dark as hard.
+    let lit = ["--scene", "wall", "--depth", "0.2", "--light", "dir:1,0,0.1"];
+    for technique in ["pom", "relief", "height-exact"] {
+        let off = mean(&render(&dir, "off.png", &[&lit[..], &["--technique", technique]].concat()));
+        let hard = mean(&render(
+            &dir,
+            "hard.png",
+            &[&lit[..], &["--technique", technique, "--parallax-shadow", "hard"]].concat(),
+        ));
+        let soft = mean(&render(
+            &dir,
+            "soft.png",
+            &[&lit[..], &["--technique", technique, "--parallax-shadow", "soft"]].concat(),
+        ));
+        assert!(off > 10.0 && hard < 0.95 * off, "{technique}: hard shadows darken ({hard} against {off})");
+        assert!(soft <= off && soft >= hard - 0.5, "{technique}: soft between hard and none ({hard} ≤ {soft} ≤ {off})");
+    }
+    // Writing the hit's depth: a wall standing through a floor meets it along a straight line
+    // unless each fragment's depth is where its ray met the heights; then the line follows the
+    // bricks of both.
+    let cross = dir.join("cross.obj");
+    std::fs::write(
+        &cross,
+        "v -1 0 -1\nv 1 0 -1\nv 1 0 1\nv -1 0 1\nv -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\n\
+         vt 0 0\nvt 4 0\nvt 4 4\nvt 0 4\nvn 0 1 0\nvn 0 0 1\n\
+         f 4/1/1 3/2/1 2/3/1 1/4/1\nf 5/1/2 6/2/2 7/3/2 8/4/2\n",
+    )
+    .unwrap();
+    let scene = format!("mesh:{}", cross.display());
+    let seam =
+        ["--scene", &scene, "--technique", "pom", "--depth", "0.08", "--eye", "0.3,1.2,2.4", "--target", "0,0,0"];
+    let polygon = render(&dir, "polygon.png", &seam);
+    let carved = render(&dir, "carved.png", &[&seam[..], &["--write-depth"]].concat());
+    assert!(mean(&polygon) > 20.0, "the crossing quads are drawn");
+    let changed = differences(&polygon, &carved).iter().filter(|&&d| d > 8).count();
+    assert!(changed > 10, "--write-depth moves the seam ({changed} pixels)");
+}
+
+#[test]
+fn bad_heights_input_fails_cleanly() {
+    let dir = scratch("parallax_bad_input");
+    let at = |name: &str| dir.join(name);
+    let s = |p: &Path| p.to_str().unwrap().to_string();
+    let o = bumpmap(&["normalmap", "bricks@64", "-o", &s(&at("n.png")), "--mips", "--height-out", &s(&at("h.png"))]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let o = bumpmap(&["normalmap", "bricks@32", "-o", &s(&at("n32.png")), "--height-out", &s(&at("h32.png"))]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    std::fs::copy(at("h.png"), at("alone.png")).unwrap();
+    let out = s(&at("out.png"));
+    let n = s(&at("n.png"));
+
+    // Values out of range: usage errors, exit 2, nothing written.
+    for (flag, value, expect) in [
+        ("--depth", "NaN", "'NaN' is not a depth"),
+        ("--depth", "0", "'0' is not a depth"),
+        ("--depth", "-1", "'-1' is not a depth"),
+        ("--depth", "inf", "'inf' is not a depth"),
+        ("--layers", "0", "0 is not in 1..=256"),
+        ("--layers", "-1", "-1 is not in 1..=256"),
+        ("--layers", "999", "999 is not in 1..=256"),
+        ("--parallax-shadow", "sharp", "possible values: off, hard, soft"),
+    ] {
+        let o = bumpmap(&["render", "--technique", "pom", "--size", "32", "-o", &out, flag, value]);
+        let err = stderr(&o);
+        assert_eq!(o.status.code(), Some(2), "{flag} {value}: {err}");
+        assert!(err.contains(expect), "{flag} {value}: message must say '{expect}': {err}");
+        assert!(!at("out.png").exists());
+    }
+
+    // Files that do not fit: exit 1, the file named, nothing written.
+    let render = ["render", "--size", "32", "-o", &out, "--normal-map", &n];
+    let other_size = at("h32.png");
+    fails_cleanly(
+        &dir,
+        &[&render[..], &["--technique", "pom", "--height-map", &s(&other_size)]].concat(),
+        &other_size,
+        "is 32x32, but the normal map is 64x64",
+    );
+    let alone = at("alone.png");
+    fails_cleanly(
+        &dir,
+        &[&render[..], &["--technique", "height-exact", "--height-map", &s(&alone)]].concat(),
+        &alone,
+        "has no min–max levels beside it",
+    );
+    let missing = at("missing.png");
+    fails_cleanly(
+        &dir,
+        &[&render[..], &["--technique", "pom", "--height-map", &s(&missing)]].concat(),
+        &missing,
+        "cannot read",
+    );
+    let not_image = at("notes.png");
+    std::fs::write(&not_image, b"these are not heights").unwrap();
+    fails_cleanly(
+        &dir,
+        &[&render[..], &["--technique", "pom", "--height-map", &s(&not_image)]].concat(),
+        &not_image,
+        "",
+    );
+    // A normal map alone has no heights to take as geometry.
+    let before = listing(&dir);
+    let o = bumpmap(&[&render[..], &["--technique", "pom"]].concat());
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    assert!(stderr(&o).contains("--technique pom needs heights to take as geometry"), "{}", stderr(&o));
+    assert_eq!(listing(&dir), before);
+    // Heights read wherever asked, but nothing else is: the input files are untouched.
+    assert!(at("h.png").exists() && at("h.minmax.png").exists());
+}
+
+#[test]
+fn a_depth_past_the_surface_is_clamped_with_a_note_and_still_renders() {
+    let dir = scratch("parallax_clamped");
+    let out = dir.join("deep.png");
+    let o = bumpmap(&[
+        "render",
+        "--scene",
+        "wall",
+        "--technique",
+        "pom",
+        "--depth",
+        "1000",
+        "--size",
+        "48",
+        "-o",
+        out.to_str().unwrap(),
+    ]);
+    let err = stderr(&o);
+    assert!(o.status.success(), "{err}");
+    assert!(
+        err.contains("--depth 1000 would carve past the surface's bounds; drawn at 1 "),
+        "a note says how deep it was drawn: {err}"
+    );
+    assert!(mean(&pixels(&out)) > 10.0, "the clamped wall is drawn");
+}
