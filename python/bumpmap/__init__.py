@@ -10,6 +10,8 @@ and they make the same bytes the command writes from the same options:
   (``bumpmap normalmap``);
 - ``mip_chain(heights, **options)``: the same with every smaller level, the length of the
   averaged normal in alpha (Kilgard §2.4.2);
+- ``height_mips(heights, **options)``: the heights as the parallax techniques read them: their
+  levels and min–max levels (``bumpmap normalmap --height-out``);
 - ``read_height_field(path, **options)``: an image file or a preset (``"bricks@512"``);
 - ``write_texture(path, levels, **options)``: PNG (``.mip1.png``, ... beside level 0), DDS or
   KTX2, BC5/BC7 included;
@@ -39,6 +41,7 @@ __version__ = _bumpmap.__version__
 __all__ = [
     "normal_map",
     "mip_chain",
+    "height_mips",
     "read_height_field",
     "write_texture",
     "tangents",
@@ -107,6 +110,20 @@ def mip_chain(heights, **options):
     return _bumpmap.mip_chain(heights, options)
 
 
+def height_mips(heights, **options):
+    """The heights as the parallax techniques (``pom``, ``height-exact``, ...) read them, as
+    ``bumpmap normalmap IN --height-out H`` stores them.
+
+    heights: as for ``normal_map``, 1 on the surface and 0 at ``depth`` below it (values outside
+    [0, 1] are clamped, with a warning on stderr). Returns ``(levels, minmax)``: ``levels`` a list
+    of (H, W) float32 arrays, level 0 the heights rounded to ``bits``, each smaller level the mean
+    of the texels it covers; ``minmax`` a list of (H, W, 2) float32 arrays, level 0 one texel per
+    cell of the heights' C1 interpolant with its lower and upper bound, each smaller level the
+    bounds of the cells it covers: what ``technique="height-exact"`` walks.
+    """
+    return _bumpmap.height_mips(heights, options)
+
+
 def read_height_field(path, **options):
     """A height field from an image file (PNG, TGA, BMP, JPEG, TIFF, PNM at 8 or 16 bits;
     OpenEXR in float) or a preset (``"bricks"``, ``"pinwheel"``, ``"dimples"``,
@@ -168,8 +185,10 @@ def compare(output=None, **options):
     spp=4``).
 
     Returns the results as a dict (what ``results.json`` holds: each technique's RMSE, PSNR,
-    bias, FLIP and SSIM, the skipped ones with their reason, and the golf-ball, embossing and
-    Peercy studies). With ``output`` (a folder), also writes the report there: images, FLIP heat
+    bias, FLIP and SSIM against the reference and, for the techniques that take heights as
+    geometry, against the displaced reference; the skipped ones with their reason; and the
+    studies ``studies`` asks for: golf ball, specular filtering, embossing, Peercy's figures, and
+    heights as geometry on a wall at grazing angles). With ``output`` (a folder), also writes the report there: images, FLIP heat
     maps, plots, ``results.json`` and ``report.html``, all files or none.
     """
     return _bumpmap.compare(output, options)
@@ -182,6 +201,6 @@ def techniques():
     return _bumpmap.techniques()
 
 
-for _f in (normal_map, mip_chain, read_height_field, write_texture, tangents, render, compare):
+for _f in (normal_map, mip_chain, height_mips, read_height_field, write_texture, tangents, render, compare):
     _f.__doc__ = inspect.cleandoc(_f.__doc__ or "") + _options_doc(_f.__name__)
 del _f

@@ -42,6 +42,9 @@ def mip_chain(
     bits: Literal[8, 16] = 8,
     mip_mode: _MipMode = "length-in-alpha",
 ) -> list[_Levels]: ...
+def height_mips(
+    heights: _Heights, *, bits: Literal[8, 16] = 8
+) -> tuple[list[npt.NDArray[np.float32]], list[npt.NDArray[np.float32]]]: ...
 def read_height_field(path: _Path, *, channel: _Channel = "luminance") -> _Heights: ...
 def write_texture(path: _Path, levels: Union[_Levels, Sequence[_Levels]], *, format: _Format = "rgba8") -> list[str]: ...
 
@@ -95,6 +98,12 @@ def render(
     shininess: float = 8.0,
     spp: int = 64,
     filter: str = "trilinear",
+    depth: Optional[float] = None,
+    height_map: Optional[_Path] = None,
+    layers: int = 32,
+    parallax_shadow: Literal["off", "hard", "soft"] = "off",
+    silhouettes: bool = False,
+    write_depth: bool = False,
     **options: Any,
 ) -> npt.NDArray[np.uint8]: ...
 def compare(
@@ -107,5 +116,6 @@ def compare(
     spp: int = 64,
     backend: _Backend = "cpu",
     techniques: Optional[Sequence[str]] = None,
+    studies: Union[str, Sequence[str]] = "all",
 ) -> dict[str, Any]: ...
 def techniques() -> list[tuple[str, str, list[str]]]: ...

@@ -96,6 +96,25 @@ pub fn from_height_field<'py>(py: Python<'py>, field: &HeightField) -> PyResult<
     array.map_err(|e| PyValueError::new_err(e.to_string()))
 }
 
+/// An (H, W) float32 array of `texels`, row 0 first.
+pub fn from_plane<'py>(py: Python<'py>, height: usize, width: usize, texels: &[f32]) -> PyResult<Bound<'py, PyAny>> {
+    Array2::from_shape_vec((height, width), texels.to_vec())
+        .map(|a| a.into_pyarray(py).into_any())
+        .map_err(|e| PyValueError::new_err(e.to_string()))
+}
+
+/// An (H, W, 2) float32 array of `texels`, row 0 first.
+pub fn from_pairs<'py>(
+    py: Python<'py>,
+    height: usize,
+    width: usize,
+    texels: &[[f32; 2]],
+) -> PyResult<Bound<'py, PyAny>> {
+    Array3::from_shape_vec((height, width, 2), texels.as_flattened().to_vec())
+        .map(|a| a.into_pyarray(py).into_any())
+        .map_err(|e| PyValueError::new_err(e.to_string()))
+}
+
 /// One level as an (H, W, 4) array.
 fn level_array<'py, T: Element + Copy>(py: Python<'py>, level: Image<[T; 4]>) -> PyResult<Bound<'py, PyAny>> {
     let shape = (level.height, level.width, 4);

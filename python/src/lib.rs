@@ -92,6 +92,31 @@ fn mip_chain<'py>(
     PyList::new(py, chain_of(py, &options::MIP_CHAIN, true, heights, options)?)
 }
 
+/// Heights → what the parallax techniques read: the levels (float32 (H, W), level 0 first)
+/// and the min–max levels (float32 (H, W, 2): lower, upper bound), as `normalmap --height-out`
+/// stores them.
+#[pyfunction]
+#[pyo3(signature = (heights, options = None))]
+fn height_mips<'py>(
+    py: Python<'py>,
+    heights: &Bound<'py, PyAny>,
+    options: Option<&Bound<'py, PyDict>>,
+) -> PyResult<(Bound<'py, PyList>, Bound<'py, PyList>)> {
+    let args = normalmap_args(&options::HEIGHT_MIPS, false, options)?;
+    let field = arrays::height_field(heights)?;
+    let mips = interrupt::run(py, move |_| commands::heights(&args, &field, "heights"))?
+        .map_err(|e| to_py("height_mips", e))?;
+    let levels: Vec<_> =
+        mips.levels().iter().map(|l| arrays::from_plane(py, l.height, l.width, &l.texels)).collect::<PyResult<_>>()?;
+    let minmax: Vec<_> = mips
+        .minmax()
+        .unwrap_or_default()
+        .iter()
+        .map(|l| arrays::from_pairs(py, l.height, l.width, &l.texels))
+        .collect::<PyResult<_>>()?;
+    Ok((PyList::new(py, levels)?, PyList::new(py, minmax)?))
+}
+
 /// A height field from an image file or a preset (`bricks@512`), as the command line reads it.
 #[pyfunction]
 #[pyo3(signature = (path, options = None))]
@@ -296,6 +321,7 @@ fn _bumpmap(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     m.add_function(wrap_pyfunction!(normal_map, m)?)?;
     m.add_function(wrap_pyfunction!(mip_chain, m)?)?;
+    m.add_function(wrap_pyfunction!(height_mips, m)?)?;
     m.add_function(wrap_pyfunction!(read_height_field, m)?)?;
     m.add_function(wrap_pyfunction!(write_texture, m)?)?;
     m.add_function(wrap_pyfunction!(tangents, m)?)?;

@@ -44,6 +44,8 @@ pub const MIP_CHAIN: Function = Function {
     command: "normalmap",
     taken: Taken::Only(&["scale", "kernel", "wrap", "encoding", "y-convention", "bits", "mip-mode"]),
 };
+/// `height_mips`: the bits the heights are stored in.
+pub const HEIGHT_MIPS: Function = Function { name: "height_mips", command: "normalmap", taken: Taken::Only(&["bits"]) };
 /// `read_height_field`: the channel.
 pub const READ_HEIGHT_FIELD: Function =
     Function { name: "read_height_field", command: "normalmap", taken: Taken::Only(&["channel"]) };
@@ -60,8 +62,8 @@ pub const RENDER: Function =
 pub const COMPARE: Function = Function { name: "compare", command: "compare", taken: Taken::AllBut(&["output"]) };
 
 /// Every function that takes options, by Python name.
-pub const FUNCTIONS: [&Function; 7] =
-    [&NORMAL_MAP, &MIP_CHAIN, &READ_HEIGHT_FIELD, &WRITE_TEXTURE, &TANGENTS, &RENDER, &COMPARE];
+pub const FUNCTIONS: [&Function; 8] =
+    [&NORMAL_MAP, &MIP_CHAIN, &HEIGHT_MIPS, &READ_HEIGHT_FIELD, &WRITE_TEXTURE, &TANGENTS, &RENDER, &COMPARE];
 
 /// A keyword's name for an option's long name: `bump-scale` → `bump_scale`.
 fn keyword(long: &str) -> String {

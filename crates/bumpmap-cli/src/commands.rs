@@ -29,6 +29,12 @@ pub fn normal_map(args: &NormalmapArgs, field: &HeightField, name: &str) -> Resu
     crate::normalmap::make_chain(field, &args.map.options(), args.mips, args.mip_mode.into(), format, name)
 }
 
+/// The heights as `normalmap --height-out` stores them (level 0 rounded to `args.bits`, the mean
+/// levels and the min–max levels): what the parallax techniques read from a height map.
+pub fn heights(args: &NormalmapArgs, field: &HeightField, name: &str) -> Result<bumpmap_math::HeightMips, CliError> {
+    crate::normalmap::height_levels(field, args.bits, name)
+}
+
 /// The texel format `normalmap`'s `--format` and `--bits` ask for together.
 pub fn texel_format(args: &NormalmapArgs) -> Result<TextureFormat, CliError> {
     crate::normalmap::texel_format(args)

@@ -112,7 +112,7 @@ pub fn run(args: &NormalmapArgs) -> Result<(), CliError> {
 
 /// `--height-out`'s heights: the field rounded to `bits` first, so the levels and the min–max
 /// bounds are those of the heights stored; a warning where the field leaves [0, 1].
-fn height_levels(field: &HeightField, bits: u8, name: &str) -> Result<bumpmap_math::HeightMips, CliError> {
+pub(crate) fn height_levels(field: &HeightField, bits: u8, name: &str) -> Result<bumpmap_math::HeightMips, CliError> {
     let mut row = Vec::new();
     let (mut lo, mut hi) = (f32::INFINITY, f32::NEG_INFINITY);
     for y in 0..field.height() {

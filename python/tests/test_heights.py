@@ -1,0 +1,115 @@
+"""Heights as geometry from Python: height_mips against `normalmap --height-out`'s files read by
+pypng, its min–max levels against a Catmull-Rom interpolant written here in NumPy, and render's
+heights options against `bumpmap render`, byte for byte."""
+
+import numpy as np
+import pytest
+
+import bumpmap
+from conftest import read_png
+
+
+def catmull_rom(t):
+    """The four Catmull-Rom weights at t in [0, 1), written out independently of bumpmap."""
+    t2, t3 = t * t, t * t * t
+    return np.array([(-t3 + 2 * t2 - t) / 2, (3 * t3 - 5 * t2 + 2) / 2, (-3 * t3 + 4 * t2 + t) / 2, (t3 - t2) / 2])
+
+
+def interpolant(heights, i, j, fx, fy):
+    """The C1 interpolant in cell (i, j) (between the texel centres i+1/2 and i+3/2, j likewise)
+    at the fraction (fx, fy) across it; the heights repeat."""
+    h, w = heights.shape
+    rows = [(j - 1 + b) % h for b in range(4)]
+    cols = [(i - 1 + a) % w for a in range(4)]
+    patch = heights[np.ix_(rows, cols)].astype(np.float64)
+    return catmull_rom(fy) @ patch @ catmull_rom(fx)
+
+
+@pytest.fixture(scope="module")
+def bricks():
+    return bumpmap.read_height_field("bricks@32")
+
+
+def test_height_mips_are_what_height_out_writes(tmp_path, cli, bricks):
+    cli("normalmap", "bricks@32", "-o", tmp_path / "n.png", "--mips", "--bits", "16", "--height-out", tmp_path / "h.png")
+    levels, minmax = bumpmap.height_mips(bricks, bits=16)
+    assert [l.shape for l in levels] == [(32 >> k, 32 >> k) for k in range(6)]
+    assert [m.shape for m in minmax] == [(32 >> k, 32 >> k, 2) for k in range(6)]
+    assert all(l.dtype == np.float32 for l in levels + minmax)
+    for k, level in enumerate(levels):
+        stored = read_png(tmp_path / ("h.png" if k == 0 else f"h.mip{k}.png"))
+        assert stored.dtype == np.uint16 and stored.shape == level.shape + (1,)
+        # Rounded to the nearest of 65535 steps (in float32, whose own rounding at 0.5 is ±0.005).
+        assert np.abs(level.astype(np.float64) * 65535 - stored[..., 0]).max() <= 0.505, f"level {k}"
+        # Each smaller level is the mean of the four texels it covers.
+        if k > 0:
+            below = levels[k - 1]
+            means = (below[0::2, 0::2] + below[1::2, 0::2] + below[0::2, 1::2] + below[1::2, 1::2]) / 4
+            assert np.allclose(level, means, atol=1e-6), f"level {k}"
+    for k, bounds in enumerate(minmax):
+        stored = read_png(tmp_path / ("h.minmax.png" if k == 0 else f"h.minmax.mip{k}.png")).astype(np.float64) / 65535
+        assert stored.shape == bounds.shape[:2] + (3,)
+        # Rounded outward: the file's bounds hold ours.
+        assert (stored[..., 0] <= bounds[..., 0] + 1e-7).all() and (stored[..., 1] >= bounds[..., 1] - 1e-7).all()
+        assert np.abs(stored[..., :2] - bounds).max() <= 1 / 65535 + 1e-7
+        if k > 0:
+            below = minmax[k - 1]
+            blocks = [below[y::2, x::2] for y in (0, 1) for x in (0, 1)]
+            assert np.array_equal(bounds[..., 0], np.minimum.reduce([b[..., 0] for b in blocks]))
+            assert np.array_equal(bounds[..., 1], np.maximum.reduce([b[..., 1] for b in blocks]))
+
+
+def test_the_min_max_bounds_hold_the_interpolant(bricks):
+    levels, minmax = bumpmap.height_mips(bricks)
+    level0, bounds = levels[0], minmax[0]
+    fractions = np.linspace(0, 1, 7, endpoint=False)
+    tight = 0
+    for j in range(level0.shape[0]):
+        for i in range(level0.shape[1]):
+            values = np.clip([interpolant(level0, i, j, fx, fy) for fy in fractions for fx in fractions], 0, 1)
+            lo, hi = bounds[j, i]
+            assert lo - 1e-5 <= values.min() and values.max() <= hi + 1e-5, f"cell ({i}, {j})"
+            tight += hi - lo < 1e-6
+    # Not vacuous: the bricks' flat tops and mortar give cells whose bounds are one height.
+    assert 0 < tight < level0.size
+    assert (bounds[..., 1] - bounds[..., 0]).max() > 0.1
+
+
+def test_render_with_heights_equals_the_cli(tmp_path, cli):
+    out = tmp_path / "r.png"
+    flags = ["--scene", "wall", "--technique", "pom", "--size", "48", "--eye", "0,-1.1,0.5", "--depth", "0.05",
+             "--layers", "16", "--parallax-shadow", "hard", "--light", "dir:1,0,0.3"]
+    cli("render", "-o", out, *flags)
+    got = bumpmap.render(scene="wall", technique="pom", size=48, eye=(0, -1.1, 0.5), depth=0.05, layers=16,
+                         parallax_shadow="hard", light="dir:1,0,0.3")
+    assert np.array_equal(got[..., :3], read_png(out))
+    assert (got[..., :3].max(axis=2) > 40).mean() > 0.2
+    unshadowed = bumpmap.render(scene="wall", technique="pom", size=48, eye=(0, -1.1, 0.5), depth=0.05, layers=16,
+                                light="dir:1,0,0.3")
+    assert got[..., :3].mean() < unshadowed[..., :3].mean()
+
+
+def test_a_height_map_file_renders(tmp_path, cli):
+    cli("normalmap", "dimples@64", "-o", tmp_path / "n.png", "--mips", "--height-out", tmp_path / "h.ktx2")
+    flags = ["--scene", "wall", "--technique", "height-exact", "--size", "40", "--normal-map", tmp_path / "n.png",
+             "--height-map", tmp_path / "h.ktx2"]
+    cli("render", "-o", tmp_path / "r.png", *flags)
+    got = bumpmap.render(scene="wall", technique="height-exact", size=40, normal_map=tmp_path / "n.png",
+                         height_map=tmp_path / "h.ktx2")
+    assert np.array_equal(got[..., :3], read_png(tmp_path / "r.png"))
+
+
+def test_heights_errors_are_exceptions(tmp_path):
+    with pytest.raises(ValueError, match=r"'0' is not a depth"):
+        bumpmap.render(technique="pom", depth=0)
+    with pytest.raises(ValueError, match=r"layers.*999 is not in 1..=256"):
+        bumpmap.render(technique="pom", layers=999)
+    with pytest.raises(ValueError, match=r"parallax_shadow.*possible values: off, hard, soft"):
+        bumpmap.render(technique="pom", parallax_shadow="sharp")
+    (normals,) = bumpmap.write_texture(tmp_path / "n.png", bumpmap.normal_map(bumpmap.read_height_field("bricks@16")))
+    with pytest.raises(FileNotFoundError, match=r"missing\.png"):
+        bumpmap.render(technique="pom", normal_map=normals, height_map=tmp_path / "missing.png")
+    with pytest.raises(ValueError, match=r"heights must be a 2-D array"):
+        bumpmap.height_mips(np.zeros((4, 4, 3), np.float32))
+    with pytest.raises(ValueError, match=r"bits"):
+        bumpmap.height_mips(np.zeros((4, 4), np.float32), bits=12)
