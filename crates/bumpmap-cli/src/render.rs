@@ -108,7 +108,7 @@ pub fn depth_notes(s: &crate::args::SceneSetup, spec: &bumpmap::SceneSpec, prepa
     let used = object.material.depth;
     if used < asked * (1.0 - 1e-6) {
         notes.push(format!(
-            "note: --depth {asked} would carve past the surface's bounds; drawn at {used} (a quarter of a wall's side, half a torus's tube radius or a sphere's radius)"
+            "note: --depth {asked} would carve past the surface's bounds; drawn at {used} (a quarter of a wall's or floor's shorter side, half a torus's tube radius or a sphere's radius, a quarter of the patch's narrower side)"
         ));
     }
     let size = object.material.heights.as_ref().map_or((1, 1), |h| (h.width(), h.height()));

@@ -202,7 +202,7 @@ impl ValueEnum for TechniqueArg {
     next_help_heading = "Heights as geometry (parallax, steep-parallax, pom, relief, height-exact, reference-displaced)"
 )]
 pub struct HeightsGroup {
-    /// How deep the heights carve below the surface, in the scene's units per unit of height (heights are 1 on the surface, 0 at this depth) [default: what --bump-scale stands for: that many texels of the surface's mean texel side, so the normal map's slopes are the geometry's]. Clamped to a quarter of a wall's side, half a torus's tube radius or a sphere's radius
+    /// How deep the heights carve below the surface, in the scene's units per unit of height (heights are 1 on the surface, 0 at this depth) [default: what --bump-scale stands for: that many texels of the surface's mean texel side, so the normal map's slopes are the geometry's]. Clamped to a quarter of a wall's or floor's shorter side, half a torus's tube radius or a sphere's radius, a quarter of the patch's narrower side
     #[arg(long, value_parser = parse_depth, allow_negative_numbers = true)]
     pub depth: Option<f32>,
     /// The heights as a file, the normal map's size: what `normalmap --height-out` writes (H.png with H.mip1.png … and H.minmax.png …, or H.ktx2 / H.dds with H.minmax.ktx2 / .dds beside it); what a --normal-map needs for these techniques. height-exact needs the min–max files

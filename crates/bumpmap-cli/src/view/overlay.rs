@@ -28,11 +28,14 @@ pub fn layer(width: usize, height: usize) -> Rgba8Image {
 }
 
 /// Draws `lines` in white on a box that darkens what is behind it to a quarter, glyphs at up to
-/// `max_scale` times their 8 pixels: the largest scale at which the box fits the layer.
+/// `max_scale` times their 8 pixels: the largest scale at which the box fits the layer. A line
+/// too long for the layer's width even at the smallest scale is wrapped ([`wrap`]).
 pub fn text(image: &mut Rgba8Image, lines: &[String], corner: Corner, max_scale: usize) {
     if lines.is_empty() {
         return;
     }
+    let wrapped = wrap(lines, image.width.saturating_sub(8) / 8);
+    let lines = wrapped.as_slice();
     let columns = lines.iter().map(|l| l.chars().count()).max().unwrap_or(0);
     let fits = |s: usize| (columns * 8 + 8) * s <= image.width && (lines.len() * 10 + 8) * s <= image.height;
     let scale = (1..=max_scale.max(1)).rev().find(|&s| fits(s)).unwrap_or(1);
@@ -71,6 +74,32 @@ pub fn text(image: &mut Rgba8Image, lines: &[String], corner: Corner, max_scale:
             }
         }
     }
+}
+
+/// `lines` with each longer than `columns` characters broken before its last `" | "` (else its
+/// last space) that leaves the piece within `columns`, the continuations indented by two spaces;
+/// a piece with neither is cut at `columns`.
+pub fn wrap(lines: &[String], columns: usize) -> Vec<String> {
+    let columns = columns.max(8);
+    let mut out = Vec::new();
+    for line in lines {
+        let mut rest: Vec<char> = line.chars().collect();
+        let mut indent = "";
+        while indent.len() + rest.len() > columns {
+            let room = columns - indent.len();
+            let head: String = rest[..room].iter().collect();
+            let cut = head.rfind(" | ").map(|i| (i, 3)).or_else(|| head.rfind(' ').map(|i| (i, 1)));
+            let (end, skip) = match cut {
+                Some((i, n)) if i > 0 => (head[..i].chars().count(), n),
+                _ => (room, 0),
+            };
+            out.push(format!("{indent}{}", rest[..end].iter().collect::<String>()));
+            rest.drain(..end + skip);
+            indent = "  ";
+        }
+        out.push(format!("{indent}{}", rest.iter().collect::<String>()));
+    }
+    out
 }
 
 /// Draws the edges of the triangles of `scene`'s objects that face the camera, in green.
@@ -141,5 +170,16 @@ mod tests {
         assert_eq!(white(0, 30), 0, "nothing above the box");
         assert_eq!(image.texels[0], [100, 100, 100, 255], "outside the box is untouched");
         assert_eq!(image.texels[47 * 64][0], 25, "the box darkens to a quarter");
+    }
+
+    #[test]
+    fn long_lines_wrap_between_fields() {
+        let line = "pom | depth 0.1200 | layers 32 | torus | bumps 4.00".to_string();
+        let wrapped = wrap(std::slice::from_ref(&line), 24);
+        assert_eq!(wrapped, ["pom | depth 0.1200", "  layers 32 | torus", "  bumps 4.00"]);
+        assert!(wrapped.iter().all(|l| l.chars().count() <= 24));
+        // Short lines stay as they are; a word longer than the width is cut.
+        assert_eq!(wrap(&["short".into()], 24), ["short"]);
+        assert_eq!(wrap(&["abcdefghijkl".into()], 8), ["abcdefgh", "  ijkl"]);
     }
 }
