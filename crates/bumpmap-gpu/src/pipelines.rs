@@ -106,7 +106,8 @@ fn texture_entry(binding: u32, dimension: wgpu::TextureViewDimension) -> wgpu::B
     }
 }
 
-fn unfiltered_entry(binding: u32) -> wgpu::BindGroupLayoutEntry {
+/// A 2D float texture the fragment stage reads with `textureLoad` (no sampler, no filtering).
+pub(crate) fn unfiltered_entry(binding: u32) -> wgpu::BindGroupLayoutEntry {
     wgpu::BindGroupLayoutEntry {
         binding,
         visibility: wgpu::ShaderStages::FRAGMENT,

@@ -12,7 +12,7 @@ use bumpmap_core::technique::Technique;
 use bumpmap_math::Rgba8Image;
 
 use crate::error::GpuError;
-use crate::pipelines::COLOR_FORMAT;
+use crate::pipelines::{COLOR_FORMAT, unfiltered_entry};
 use crate::renderer::GpuRenderer;
 
 /// The copy: each pixel of the frame, with the overlay mixed over it by its alpha. The frame's
@@ -95,19 +95,9 @@ impl GpuRenderer {
             view_formats: if view_format == format { vec![] } else { vec![view_format] },
         };
         surface.configure(&ctx.device, &config);
-        let texture = |binding| wgpu::BindGroupLayoutEntry {
-            binding,
-            visibility: wgpu::ShaderStages::FRAGMENT,
-            ty: wgpu::BindingType::Texture {
-                sample_type: wgpu::TextureSampleType::Float { filterable: false },
-                view_dimension: wgpu::TextureViewDimension::D2,
-                multisampled: false,
-            },
-            count: None,
-        };
         let layout = ctx.device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("present"),
-            entries: &[texture(0), texture(1)],
+            entries: &[unfiltered_entry(0), unfiltered_entry(1)],
         });
         let pipeline_layout = ctx.device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
             label: Some("present"),

@@ -36,15 +36,19 @@ pub struct Textures {
     no_heights: Option<[wgpu::TextureView; 2]>,
 }
 
-/// A float texture of `levels` (each `(width, height, texels as f32s, N a texel)`): `R32Float`
-/// for one channel, `Rg32Float` for two; read with `textureLoad`, never filtered.
-fn float_texture<const N: usize>(ctx: &Context, label: &str, levels: &[(usize, usize, &[f32])]) -> wgpu::TextureView {
-    const { assert!(N == 1 || N == 2, "heights are one channel, their bounds two") };
-    let format = if N == 1 { wgpu::TextureFormat::R32Float } else { wgpu::TextureFormat::Rg32Float };
-    let (w0, h0, _) = levels[0];
+/// A 2D texture of `format` with one mip level per `(width, height, bytes)` of `levels`, level
+/// 0 first, each row `bytes_per_texel × width` bytes without padding.
+fn levels_texture(
+    ctx: &Context,
+    label: &str,
+    format: wgpu::TextureFormat,
+    bytes_per_texel: u32,
+    levels: &[(usize, usize, Vec<u8>)],
+) -> wgpu::TextureView {
+    let (w0, h0, _) = &levels[0];
     let texture = ctx.device.create_texture(&wgpu::TextureDescriptor {
         label: Some(label),
-        size: wgpu::Extent3d { width: w0 as u32, height: h0 as u32, depth_or_array_layers: 1 },
+        size: wgpu::Extent3d { width: *w0 as u32, height: *h0 as u32, depth_or_array_layers: 1 },
         mip_level_count: levels.len() as u32,
         sample_count: 1,
         dimension: wgpu::TextureDimension::D2,
@@ -52,8 +56,7 @@ fn float_texture<const N: usize>(ctx: &Context, label: &str, levels: &[(usize, u
         usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
         view_formats: &[],
     });
-    for (k, &(w, h, texels)) in levels.iter().enumerate() {
-        let bytes: Vec<u8> = texels.iter().flat_map(|v| v.to_le_bytes()).collect();
+    for (k, (w, h, bytes)) in levels.iter().enumerate() {
         ctx.queue.write_texture(
             wgpu::TexelCopyTextureInfo {
                 texture: &texture,
@@ -61,16 +64,26 @@ fn float_texture<const N: usize>(ctx: &Context, label: &str, levels: &[(usize, u
                 origin: wgpu::Origin3d::ZERO,
                 aspect: wgpu::TextureAspect::All,
             },
-            &bytes,
+            bytes,
             wgpu::TexelCopyBufferLayout {
                 offset: 0,
-                bytes_per_row: Some(4 * N as u32 * w as u32),
-                rows_per_image: Some(h as u32),
+                bytes_per_row: Some(bytes_per_texel * *w as u32),
+                rows_per_image: Some(*h as u32),
             },
-            wgpu::Extent3d { width: w as u32, height: h as u32, depth_or_array_layers: 1 },
+            wgpu::Extent3d { width: *w as u32, height: *h as u32, depth_or_array_layers: 1 },
         );
     }
     texture.create_view(&wgpu::TextureViewDescriptor::default())
+}
+
+/// A float texture of `levels` (each `(width, height, texels as f32s, N a texel)`): `R32Float`
+/// for one channel, `Rg32Float` for two; read with `textureLoad`, never filtered.
+fn float_texture<const N: usize>(ctx: &Context, label: &str, levels: &[(usize, usize, &[f32])]) -> wgpu::TextureView {
+    const { assert!(N == 1 || N == 2, "heights are one channel, their bounds two") };
+    let format = if N == 1 { wgpu::TextureFormat::R32Float } else { wgpu::TextureFormat::Rg32Float };
+    let bytes: Vec<_> =
+        levels.iter().map(|&(w, h, texels)| (w, h, texels.iter().flat_map(|v| v.to_le_bytes()).collect())).collect();
+    levels_texture(ctx, label, format, 4 * N as u32, &bytes)
 }
 
 fn texture(ctx: &Context, label: &str, width: usize, height: usize, layers: u32, levels: u32) -> wgpu::Texture {
@@ -124,39 +137,17 @@ fn half_texture<const N: usize>(
     texel: impl Fn(&bumpmap_math::lean::LeanMoments) -> [f32; N],
 ) -> wgpu::TextureView {
     const { assert!(N == 2 || N == 4, "half-float moment textures hold 2 or 4 channels") };
-    let level0 = &lean.levels[0];
-    let channels = N as u32;
     let format = if N == 2 { wgpu::TextureFormat::Rg16Float } else { wgpu::TextureFormat::Rgba16Float };
-    let texture = ctx.device.create_texture(&wgpu::TextureDescriptor {
-        label: Some(label),
-        size: wgpu::Extent3d { width: level0.width as u32, height: level0.height as u32, depth_or_array_layers: 1 },
-        mip_level_count: lean.levels.len() as u32,
-        sample_count: 1,
-        dimension: wgpu::TextureDimension::D2,
-        format,
-        usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
-        view_formats: &[],
-    });
-    for (k, level) in lean.levels.iter().enumerate() {
-        let bytes: Vec<u8> =
-            level.texels.iter().flat_map(&texel).flat_map(|x| half::f16::from_f32(x).to_le_bytes()).collect();
-        ctx.queue.write_texture(
-            wgpu::TexelCopyTextureInfo {
-                texture: &texture,
-                mip_level: k as u32,
-                origin: wgpu::Origin3d::ZERO,
-                aspect: wgpu::TextureAspect::All,
-            },
-            &bytes,
-            wgpu::TexelCopyBufferLayout {
-                offset: 0,
-                bytes_per_row: Some(2 * channels * level.width as u32),
-                rows_per_image: Some(level.height as u32),
-            },
-            wgpu::Extent3d { width: level.width as u32, height: level.height as u32, depth_or_array_layers: 1 },
-        );
-    }
-    texture.create_view(&wgpu::TextureViewDescriptor::default())
+    let bytes: Vec<_> = lean
+        .levels
+        .iter()
+        .map(|level| {
+            let texels =
+                level.texels.iter().flat_map(&texel).flat_map(|x| half::f16::from_f32(x).to_le_bytes()).collect();
+            (level.width, level.height, texels)
+        })
+        .collect();
+    levels_texture(ctx, label, format, 2 * N as u32, &bytes)
 }
 
 impl Textures {

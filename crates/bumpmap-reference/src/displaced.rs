@@ -78,7 +78,7 @@ pub fn displaced_normal(surface: &Surface, u: f32, v: f32, d: f32, d_u: f32, d_v
 impl Displaced {
     /// The carved surface of `object` (number `index` in its scene), which needs an analytic
     /// surface and heights as geometry. A curved surface's tessellation holds about 48 bytes per
-    /// texel it covers, and more than [`tessellated::MAX_TEXELS`] is refused.
+    /// texel it covers, and more than `tessellated::MAX_TEXELS` (16 Mi) is refused.
     pub fn new(object: &SceneObject, index: usize) -> Result<Self, ReferenceError> {
         let source = object.source.as_ref().ok_or(ReferenceError::NoSurface { object: index })?;
         let heights = object.material.heights.as_ref().ok_or(ReferenceError::NoDisplacement { object: index })?;
