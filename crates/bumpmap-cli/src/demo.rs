@@ -201,6 +201,24 @@ fn grazing_wall(name: TechniqueName) -> (SceneKind, SceneParams, Technique) {
     (SceneKind::Wall, name.scene_params(&base), name.technique(&options))
 }
 
+/// The figure of normal mapping beside POM at a grazing angle (the README shows it).
+const PARALLAX_FIGURE: &str = "parallax_figure.png";
+
+/// Writes `left` and `right` (two images of the demo in `out`, the same height) side by side,
+/// RGB, as `file`.
+fn side_by_side(out: &Path, left: &str, right: &str, file: &str) -> Result<(), CliError> {
+    let (a, b) = (bumpmap_io::load_rgba8(&out.join(left))?, bumpmap_io::load_rgba8(&out.join(right))?);
+    let (width, height) = (a.width + b.width, a.height.min(b.height));
+    let mut rgb = Vec::with_capacity(width * height * 3);
+    for y in 0..height {
+        for image in [&a, &b] {
+            rgb.extend(image.texels[y * image.width..(y + 1) * image.width].iter().flat_map(|t| [t[0], t[1], t[2]]));
+        }
+    }
+    save_png(&out.join(file), width, height, PngLayout::Rgb8, &rgb)?;
+    Ok(())
+}
+
 /// The demo's image size.
 const SIZE: usize = 512;
 
@@ -301,6 +319,10 @@ fn write_demo(out: &Path, args: &DemoArgs) -> Result<(), CliError> {
     for r in RENDERS {
         index += &format!("- `{}`: {}\n", r.file, r.what);
     }
+    side_by_side(out, "parallax_normal_mapping.png", "parallax_pom.png", PARALLAX_FIGURE)?;
+    index += &format!(
+        "- `{PARALLAX_FIGURE}`: the two side by side, normal mapping on the left, parallax occlusion mapping on the right\n"
+    );
     index += "- `fig11_torus.decal.png`, `.diffuse.png`, `.specular.png`: Kilgard Figure 12, the framebuffer after each pass\n";
     bar.set_message("your own assets: a normal map file, a glTF with its material");
     index += &own_assets(&mut cpu, out)?;
