@@ -337,33 +337,6 @@ impl FragmentShader for SinglePass<'_> {
             (Gloss::DecalAlpha, _) => sc.gloss[0] = sc.decal[3],
             _ => sc.gloss[0].fill(1.0),
         }
-        // L, and H per vertex or per fragment (Cg Tutorial §8.1.4).
-        for k in 0..3 {
-            batch.pack(var::L + k, &mut sc.v[k]);
-        }
-        self.unit(&sc.v, &mut sc.cube, n, &mut sc.l);
-        match o.half_angle {
-            HalfAngle::Vertex => {
-                for k in 0..3 {
-                    batch.pack(var::H + k, &mut sc.v[k]);
-                }
-            }
-            HalfAngle::Fragment => {
-                // v = normalize(normalize(L) + normalize(V)); v still holds L.
-                normalize_lanes(&mut sc.v, n);
-                for k in 0..3 {
-                    batch.pack(var::V + k, &mut sc.w[k]);
-                }
-                normalize_lanes(&mut sc.w, n);
-                for k in 0..3 {
-                    for j in 0..n {
-                        sc.v[k][j] += sc.w[k][j];
-                    }
-                }
-                normalize_lanes(&mut sc.v, n);
-            }
-        }
-        self.unit(&sc.v, &mut sc.cube, n, &mut sc.h);
         if o.parallax.is_some() {
             // L and V where the ray met the heights; H from them per fragment.
             normalize_lanes(&mut sc.par_l, n);
@@ -378,6 +351,34 @@ impl FragmentShader for SinglePass<'_> {
             for k in 0..3 {
                 sc.h[k][..n].copy_from_slice(&sc.v[k][..n]);
             }
+        } else {
+            // L, and H per vertex or per fragment (Cg Tutorial §8.1.4).
+            for k in 0..3 {
+                batch.pack(var::L + k, &mut sc.v[k]);
+            }
+            self.unit(&sc.v, &mut sc.cube, n, &mut sc.l);
+            match o.half_angle {
+                HalfAngle::Vertex => {
+                    for k in 0..3 {
+                        batch.pack(var::H + k, &mut sc.v[k]);
+                    }
+                }
+                HalfAngle::Fragment => {
+                    // v = normalize(normalize(L) + normalize(V)); v still holds L.
+                    normalize_lanes(&mut sc.v, n);
+                    for k in 0..3 {
+                        batch.pack(var::V + k, &mut sc.w[k]);
+                    }
+                    normalize_lanes(&mut sc.w, n);
+                    for k in 0..3 {
+                        for j in 0..n {
+                            sc.v[k][j] += sc.w[k][j];
+                        }
+                    }
+                    normalize_lanes(&mut sc.v, n);
+                }
+            }
+            self.unit(&sc.v, &mut sc.cube, n, &mut sc.h);
         }
         // L·N and H·N with the unperturbed normal: L_z and H_z in tangent space.
         if object_space {

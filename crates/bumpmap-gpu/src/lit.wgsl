@@ -204,15 +204,17 @@ fn lit(f: Varyings) -> LitOut {
         st = par.st;
     }
     let scale = u.normal_scale.xy;
-    var normal = sample_map(normal_map, st * scale, dx * scale, dy * scale);
-    if NORMAL_TEXELS == NORMAL_TEXELS_OFFSET {
-        normal = offset_to_normal(normal, u.texels.x);
-    } else if NORMAL_TEXELS == NORMAL_TEXELS_DERIVATIVES {
-        normal = blinn_from_derivatives(normal, u.texels.x, u.texels.yz, vary3(f, VAR_PARAM_FRAME));
-    }
+    var normal: vec4<f32>;
     if PARALLAX == PARALLAX_EXACT {
         // The exact walk's own normal, from the interpolant it walked.
         normal = vec4<f32>(par.normal * 0.5 + 0.5, 1.0);
+    } else {
+        normal = sample_map(normal_map, st * scale, dx * scale, dy * scale);
+        if NORMAL_TEXELS == NORMAL_TEXELS_OFFSET {
+            normal = offset_to_normal(normal, u.texels.x);
+        } else if NORMAL_TEXELS == NORMAL_TEXELS_DERIVATIVES {
+            normal = blinn_from_derivatives(normal, u.texels.x, u.texels.yz, vary3(f, VAR_PARAM_FRAME));
+        }
     }
     let decal = sample_map(decal_map, st, dx, dy);
     var gloss = 1.0;
@@ -221,15 +223,19 @@ fn lit(f: Varyings) -> LitOut {
     } else if GLOSS == GLOSS_MAP {
         gloss = sample_map(gloss_map, st, dx, dy).r;
     }
-    var l = unit(vary3(f, VAR_L));
-    var h_in = vary3(f, VAR_H);
-    if FRAGMENT_HALF_ANGLE {
-        h_in = normalize_or_z(normalize_or_z(vary3(f, VAR_L)) + normalize_or_z(vary3(f, VAR_V)));
-    }
-    var h = unit(h_in);
+    var l: vec3<f32>;
+    var h: vec3<f32>;
     if PARALLAX != PARALLAX_NONE {
+        // L and V where the ray met the heights; H from them per fragment.
         l = normalize_or_z(par.l);
         h = normalize_or_z(l + normalize_or_z(par.v));
+    } else {
+        l = unit(vary3(f, VAR_L));
+        var h_in = vary3(f, VAR_H);
+        if FRAGMENT_HALF_ANGLE {
+            h_in = normalize_or_z(normalize_or_z(vary3(f, VAR_L)) + normalize_or_z(vary3(f, VAR_V)));
+        }
+        h = unit(h_in);
     }
     var l_n = l.z;
     var h_n = h.z;
