@@ -1,0 +1,305 @@
+//! Heights as geometry in one pass: the marches that find where a pixel's view ray meets the
+//! height field below the polygon, each written once here (the CPU backend runs these
+//! functions per fragment; `parallax.wgsl` is their copy, tested against them).
+//!
+//! Conventions. Texture space is (s, t, h): texture coordinates and heights, h = 1 on the
+//! polygon (the base surface) and h = 0 at `depth` below it along the normal, so the heights
+//! carve into the surface and never rise out of the rasterized polygon. The vertex stage gives
+//! each fragment the vector toward the eye in texture space ([`crate::vertex::var::TEX_VIEW`]);
+//! the ray goes the other way from the entry point (s, t, 1) ([`TextureRay`]). The marches
+//! sample heights through a closure (the backends' texture units: bilinear at one level).
+//!
+//! - [`offset`]: parallax mapping (Kaneko et al. 2001) with Welsh's offset limiting (2004);
+//! - [`steep`]: steep parallax mapping (McGuire & McGuire 2005): layers of equal height;
+//! - [`occlusion`]: parallax occlusion mapping (Tatarchuk 2006): layers from the view angle and
+//!   the hit interpolated linearly between the last two samples;
+//! - [`relief`]: relief mapping (Policarpo, Oliveira & Comba 2005): a linear then a binary
+//!   search;
+//! - [`exact`]: the min–max walk of the reference (`bumpmap_math::height_trace`) per pixel;
+//! - [`shadow`]: self-shadowing by a march toward the light, hard or soft;
+//! - [`fragment`]: all of it for one fragment: the hit, the light and eye vectors there, the
+//!   shadow, the depth.
+//!
+//! Silhouettes: with curvature (the base surface falling below its tangent plane, from the
+//! vertex stage), a ray's height over the surface grows as it goes (Oliveira & Policarpo's
+//! quadric approximation, 2005); a ray that rises out of the slab before meeting the heights
+//! misses the object and the fragment is discarded. What this module does not do: sample
+//! textures, choose mip levels, or light the fragment (`crate::shading`).
+
+use glam::{Vec2, Vec3};
+
+use bumpmap_math::height_mips::{HeightLevel, MinMaxLevel};
+
+mod frame;
+mod march;
+
+pub use frame::TextureFrame;
+pub use march::{
+    MarchHit, TextureRay, exact, exact_shadow, occlusion, occlusion_layers, offset, relief, shadow, steep,
+};
+
+/// The most layers a march may take.
+pub const MAX_LAYERS: u32 = 256;
+/// Layers when none are asked for.
+pub const DEFAULT_LAYERS: u32 = 32;
+/// Relief mapping's binary search steps after its linear search (Policarpo et al. use 5–8).
+pub const RELIEF_BISECTIONS: u32 = 8;
+/// How fast the soft shadow darkens with a blocker's rise above the light ray (heights per
+/// unit of darkening, weighted toward near blockers): 8 darkens fully where a blocker beside
+/// the fragment rises an eighth of the depth above the ray.
+pub const SOFT_SHADOW_SHARPNESS: f32 = 8.0;
+/// A shadow march's blocker must rise this much (in heights) above the light ray to count: the
+/// bilinear heights it samples and the hit a march interpolates differ by about this much.
+pub const SHADOW_BIAS: f32 = 1e-3;
+/// How far above the surface an exact shadow ray starts (in heights), so it does not meet the
+/// surface it leaves.
+pub const EXACT_SHADOW_LIFT: f32 = 1e-4;
+
+/// Which march finds the hit.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum ParallaxMethod {
+    /// One height lookup and an offset (Kaneko et al. 2001, Welsh's limiting).
+    Offset,
+    /// Layers of equal height, the first below the heights taken (McGuire & McGuire 2005).
+    Steep,
+    /// Layers by view angle, the hit interpolated (Tatarchuk 2006).
+    Occlusion,
+    /// Linear then binary search (Policarpo, Oliveira & Comba 2005).
+    Relief,
+    /// The min–max walk of the interpolant (Tevs et al. 2008): exact.
+    Exact,
+}
+
+impl ParallaxMethod {
+    /// Every method, in the catalogue's order.
+    pub const ALL: [ParallaxMethod; 5] = [
+        ParallaxMethod::Offset,
+        ParallaxMethod::Steep,
+        ParallaxMethod::Occlusion,
+        ParallaxMethod::Relief,
+        ParallaxMethod::Exact,
+    ];
+}
+
+/// Self-shadowing of the heights by a march toward the light.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default)]
+pub enum ParallaxShadow {
+    /// None: only the lighting model's own terms.
+    #[default]
+    Off,
+    /// Dark where any height along the way rises above the light ray.
+    Hard,
+    /// Darker the higher a blocker rises above the ray, nearer blockers weighing more
+    /// (Tatarchuk 2006's engine-style penumbra; not a physical one). `exact` casts hard shadows.
+    Soft,
+}
+
+impl ParallaxShadow {
+    /// Every mode, in the order the viewer's key cycles them.
+    pub const ALL: [ParallaxShadow; 3] = [ParallaxShadow::Off, ParallaxShadow::Hard, ParallaxShadow::Soft];
+
+    /// The name commands and the Python module take: `off`, `hard`, `soft`.
+    pub fn name(self) -> &'static str {
+        match self {
+            ParallaxShadow::Off => "off",
+            ParallaxShadow::Hard => "hard",
+            ParallaxShadow::Soft => "soft",
+        }
+    }
+
+    /// One line on what the mode does, for `--help` and the Python docstrings.
+    pub fn description(self) -> &'static str {
+        match self {
+            ParallaxShadow::Off => "none: the lighting model's own terms only",
+            ParallaxShadow::Hard => "dark where any height along the way to the light rises above the ray",
+            ParallaxShadow::Soft => {
+                "darker the higher and nearer a blocker (an engine-style penumbra, not a physical one)"
+            }
+        }
+    }
+
+    /// The next mode in [`ParallaxShadow::ALL`], after the last the first.
+    pub fn next(self) -> ParallaxShadow {
+        let i = Self::ALL.iter().position(|&m| m == self).expect("ALL holds every mode");
+        Self::ALL[(i + 1) % Self::ALL.len()]
+    }
+}
+
+/// The options every parallax technique shares.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ParallaxOptions {
+    /// Layers of a march: steep parallax and relief mapping's linear search take this many,
+    /// parallax occlusion mapping between a quarter of it (looking straight on) and all of it
+    /// (at grazing angles); shadow marches this many over the whole depth. In 1..=[`MAX_LAYERS`].
+    pub layers: u32,
+    /// Self-shadowing by a march (or, for `exact`, a ray) toward each light.
+    pub shadow: ParallaxShadow,
+    /// Discard fragments whose ray leaves a curved surface without meeting the heights.
+    pub silhouettes: bool,
+    /// Write the depth of the hit instead of the polygon's, so bumpy surfaces intersect where
+    /// their bumps do.
+    pub write_depth: bool,
+}
+
+impl Default for ParallaxOptions {
+    fn default() -> Self {
+        Self { layers: DEFAULT_LAYERS, shadow: ParallaxShadow::Off, silhouettes: false, write_depth: false }
+    }
+}
+
+/// A method with its options: what a single pass with heights as geometry does.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Parallax {
+    /// The march.
+    pub method: ParallaxMethod,
+    /// Its options.
+    pub options: ParallaxOptions,
+}
+
+/// What the vertex stage gives a parallax fragment, interpolated.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct FragmentRays {
+    /// Texture coordinates of the entry point.
+    pub st: Vec2,
+    /// Toward the eye, texture space ([`crate::vertex::var::TEX_VIEW`]).
+    pub to_eye: Vec3,
+    /// Toward the light (or its direction), texture space ([`crate::vertex::var::TEX_LIGHT`]).
+    pub to_light: Vec3,
+    /// `∂(x, y)/∂(s, t)` ([`crate::vertex::var::TANGENT_FROM_TEX`]).
+    pub jacobian: [f32; 4],
+    /// The base's fall below its tangent plane ([`crate::vertex::var::CURVATURE`]).
+    pub curvature: Vec2,
+}
+
+/// What [`fragment`] found.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ParallaxFragment {
+    /// Where the maps are read.
+    pub st: Vec2,
+    /// Toward the light from the hit, tangent frame (unnormalized).
+    pub l: Vec3,
+    /// Toward the eye from the hit, tangent frame (unnormalized).
+    pub v: Vec3,
+    /// How much of the light reaches the hit.
+    pub light: f32,
+    /// How far past the entry point the hit lies along the eye ray, as a multiple of the entry
+    /// point's distance from the eye: a window depth `z` becomes `a + (z − a)/(1 + κ)` with
+    /// `a = far/(far − near)` (perspective divides by a w that grows by 1 + κ).
+    pub kappa: f32,
+    /// The interpolant's normal there (tangent frame, unit), for `exact`; `None` for the
+    /// others, which read the normal map at `st`.
+    pub normal: Option<Vec3>,
+}
+
+/// Heights a fragment's exact walk reads: level 0 and the min–max levels.
+pub type ExactHeights<'a> = (&'a HeightLevel, &'a [MinMaxLevel]);
+
+/// Everything a parallax fragment needs before it is lit: the march of `parallax.method`
+/// (sampling heights through `sample`; `exact` reads `exact_heights`, which it needs), the light
+/// and eye vectors at the hit, the shadow, and the depth factor. `None`: the fragment is
+/// discarded (a silhouette). `positional`: whether `to_light` is a vector to a point (it then
+/// shortens as the hit moves) or a direction. An eye below the tangent plane (a polygon seen
+/// edge-on) leaves the entry point as the hit.
+pub fn fragment(
+    rays: &FragmentRays,
+    parallax: &Parallax,
+    depth: f32,
+    positional: bool,
+    sample: &mut impl FnMut(Vec2) -> f32,
+    exact_heights: Option<ExactHeights>,
+) -> Option<ParallaxFragment> {
+    let frame = TextureFrame { jacobian: rays.jacobian, depth };
+    let curvature = if parallax.options.silhouettes { rays.curvature } else { Vec2::ZERO };
+    let to_eye_tangent = frame.to_tangent(rays.to_eye);
+    let cos_view = to_eye_tangent.z / to_eye_tangent.length();
+    let layers = parallax.options.layers;
+    let hit = match TextureRay::new(rays.st, rays.to_eye, curvature) {
+        None => MarchHit { st: rays.st, descent: 0.0 },
+        Some(ray) => match (parallax.method, exact_heights) {
+            (ParallaxMethod::Offset, _) => offset(&ray, cos_view, sample),
+            (ParallaxMethod::Steep, _) => steep(&ray, layers, sample)?,
+            (ParallaxMethod::Occlusion, _) => occlusion(&ray, layers, cos_view, sample)?,
+            (ParallaxMethod::Relief, _) => relief(&ray, layers, sample)?,
+            (ParallaxMethod::Exact, Some((level0, minmax))) => exact(&ray, level0, minmax)?,
+            (ParallaxMethod::Exact, None) => MarchHit { st: rays.st, descent: 0.0 },
+        },
+    };
+    // From the entry point to the hit, texture space.
+    let moved = Vec3::new(hit.st.x - rays.st.x, hit.st.y - rays.st.y, -hit.descent);
+    let to_light = if positional { rays.to_light - moved } else { rays.to_light };
+    let to_eye = rays.to_eye - moved;
+    let light = match (parallax.method, exact_heights) {
+        (_, _) if parallax.options.shadow == ParallaxShadow::Off => 1.0,
+        (ParallaxMethod::Exact, Some((level0, minmax))) => {
+            exact_shadow(hit.st, 1.0 - hit.descent, to_light, level0, minmax)
+        }
+        // From the heights where the march ended (a layer's hit lies up to a layer inside them,
+        // and would shadow itself).
+        _ => {
+            let surface = sample(hit.st);
+            shadow(hit.st, surface, to_light, layers, parallax.options.shadow, sample)
+        }
+    };
+    let normal = match (parallax.method, exact_heights) {
+        (ParallaxMethod::Exact, Some((level0, _))) => {
+            let (w, h) = (level0.width as f32, level0.height as f32);
+            let g = bumpmap_math::interpolant::sample(level0, bumpmap_math::Wrap::Repeat, hit.st.x, hit.st.y);
+            // Where the interpolant is clamped to the slab, the surface is flat.
+            let inside = (0.0..=1.0).contains(&g.value);
+            let gradient = if inside { Vec2::new(g.dx * w, g.dy * h) } else { Vec2::ZERO };
+            Some(frame.normal(gradient))
+        }
+        _ => None,
+    };
+    Some(ParallaxFragment {
+        st: hit.st,
+        l: frame.to_tangent(to_light),
+        v: frame.to_tangent(to_eye),
+        light,
+        kappa: if rays.to_eye.z > 0.0 { hit.descent / rays.to_eye.z } else { 0.0 },
+        normal,
+    })
+}
+
+/// The most anisotropy the heights' level allows for: 16, as anisotropic filtering's usual
+/// maximum.
+pub const MAX_ANISOTROPY: f32 = 16.0;
+
+/// The level of detail a march reads the heights at, from the footprint of a pixel in texels
+/// along the screen's x and y (`rho2_x`, `rho2_y`: squared lengths of the texel-space
+/// derivatives, GL 1.2 Eq. 3.14's terms): the shorter side's, but no shorter than the longer
+/// one over [`MAX_ANISOTROPY`] — the level `EXT_texture_filter_anisotropic` reads at 16×, taken
+/// with one tap. At a grazing angle the footprint is long and thin; a march that read the level
+/// of its long side (isotropic filtering's) would walk heights flattened across it: on the
+/// wall the study views at 70°, that took POM's mean hit error from 0.05 to 0.34 texel.
+#[inline]
+pub fn height_lambda(rho2_x: f32, rho2_y: f32) -> f32 {
+    let (long, short) = (rho2_x.max(rho2_y), rho2_x.min(rho2_y));
+    0.5 * short.max(long / (MAX_ANISOTROPY * MAX_ANISOTROPY)).log2()
+}
+
+/// The level of the heights a march reads at [`height_lambda`] `lambda` under the material's
+/// `sampler`: the nearest (what `*_MIPMAP_NEAREST` reads) when the sampler has mipmaps, else
+/// level 0. The march then reads it with GL's LINEAR filter.
+#[inline]
+pub fn height_level(sampler: &crate::state::Sampler, lambda: f32, levels: usize) -> usize {
+    if sampler.has_mipmaps() { crate::state::Sampler::nearest_level(lambda, levels - 1) } else { 0 }
+}
+
+/// The window depth of a hit `kappa` ([`ParallaxFragment::kappa`]) past an entry point at
+/// window depth `z`, for a camera whose `far / (far − near)` is `a`.
+#[inline]
+pub fn displaced_depth(z: f32, kappa: f32, a: f32) -> f32 {
+    a + (z - a) / (1.0 + kappa)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_hit_below_the_entry_point_is_farther_from_the_eye() {
+        assert_eq!(displaced_depth(0.7, 0.0, 1.01), 0.7);
+        assert!(displaced_depth(0.7, 0.1, 1.01) > 0.7, "deeper is farther");
+    }
+}
