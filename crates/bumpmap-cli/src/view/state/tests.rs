@@ -1,0 +1,157 @@
+//! The viewer's model without a window: every key's effect.
+
+use super::*;
+use clap::Parser;
+
+fn viewer(extra: &[&str]) -> Viewer {
+    let mut words = vec!["bumpmap", "view", "--backend", "cpu", "--tessellation", "16,8"];
+    words.extend_from_slice(extra);
+    let crate::args::Command::View(args) = crate::args::Cli::try_parse_from(words).unwrap().command else {
+        unreachable!("parsed as view")
+    };
+    Viewer::new(args.setup).unwrap()
+}
+
+fn normal_texels(v: &Viewer) -> Vec<[u8; 4]> {
+    v.prepared.scene.objects[0].material.normal_map.levels()[0].texels.clone()
+}
+
+#[test]
+fn every_key_changes_what_it_names_and_toggles_come_back() {
+    for action in Action::ALL {
+        // The depth keys change heights as geometry, which the default technique has none of.
+        let depth_key = matches!(action, Action::DepthUp | Action::DepthDown);
+        let mut v = viewer(if depth_key { &["--technique", "pom"] } else { &[] });
+        let (choices, view) = (v.choices.clone(), v.view);
+        let effect = v.apply(action);
+        match action {
+            Action::Screenshot => assert_eq!(effect, Effect::Screenshot),
+            Action::Backend => assert_eq!(effect, Effect::SwitchBackend),
+            Action::Quit => assert_eq!(effect, Effect::Quit),
+            // At the start there is nothing to reset.
+            Action::ResetView => assert_eq!(v.view, view),
+            _ => {
+                assert_eq!(effect, Effect::Redraw);
+                assert!(v.choices != choices || v.view != view, "{action:?} changed nothing");
+                assert_eq!(v.message, None, "{action:?}: {:?}", v.message);
+            }
+        }
+        let toggle = matches!(
+            action,
+            Action::Pause
+                | Action::Decal
+                | Action::Diffuse
+                | Action::Specular
+                | Action::SelfShadow
+                | Action::Normalize
+                | Action::Filter
+                | Action::Wireframe
+                | Action::FrameRate
+                | Action::Help
+        );
+        if toggle {
+            v.apply(action);
+            assert_eq!((&v.choices, v.view), (&choices, view), "{action:?} twice");
+        }
+    }
+}
+
+#[test]
+fn the_depth_and_layer_keys_reach_the_marches_and_the_status_line_names_them() {
+    let mut v = viewer(&["--technique", "pom", "--scene", "wall"]);
+    let depth = v.depth().expect("pom carves the wall");
+    // The bump scale's depth: 4 texels of the wall's 1/128.
+    assert!((depth - 4.0 / 128.0).abs() < 1e-6, "{depth}");
+    assert!(v.status().starts_with("pom | depth 0.0312 | layers 32 |"), "{}", v.status());
+    v.apply(Action::DepthUp);
+    assert!((v.depth().unwrap() - depth * 1.25).abs() < 1e-6);
+    v.apply(Action::LayersDown);
+    v.apply(Action::ParallaxShadow);
+    let Technique::SinglePass(o) = &v.prepared.technique else { panic!("pom is a single pass") };
+    let p = o.parallax.expect("pom marches");
+    assert_eq!((p.options.layers, p.options.shadow), (16, ParallaxShadow::Hard));
+    assert!(v.status().contains("layers 16 | hard shadows"), "{}", v.status());
+    // Kilgard's passes take no heights: the depth keys say so and change nothing.
+    let mut v = viewer(&[]);
+    let before = v.choices.clone();
+    v.apply(Action::DepthUp);
+    assert_eq!(v.choices, before);
+    assert!(v.message.as_deref().is_some_and(|m| m.contains("kilgard takes no heights")), "{:?}", v.message);
+}
+
+#[test]
+fn bumps_up_rebuilds_the_normal_map_and_the_passes_change_the_material() {
+    let mut v = viewer(&[]);
+    let before = normal_texels(&v);
+    v.apply(Action::BumpsUp);
+    assert_eq!(v.choices.bump_scale, 5.0);
+    assert_ne!(normal_texels(&v), before, "the normal map is made again with the new scale");
+    v.apply(Action::Decal);
+    v.apply(Action::Specular);
+    let m = &v.prepared.scene.objects[0].material;
+    assert!(m.decal.is_none() && m.specular == Vec3::ZERO && m.diffuse != Vec3::ZERO);
+}
+
+#[test]
+fn a_technique_that_cannot_draw_the_scene_is_skipped_and_named() {
+    let dir = std::env::temp_dir().join(format!("bumpmap-view-state-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let map = dir.join("flat.png");
+    image::RgbaImage::from_pixel(16, 16, image::Rgba([128, 128, 255, 255])).save(&map).unwrap();
+    let mut v = viewer(&["--normal-map", map.to_str().unwrap()]);
+    let mut seen = Vec::new();
+    for _ in 0..TechniqueName::ALL.len() {
+        v.apply(Action::NextTechnique);
+        seen.push(v.technique());
+    }
+    assert!(!seen.contains(&TechniqueName::Reference), "the reference needs heights: {seen:?}");
+    assert!(seen.contains(&TechniqueName::SinglePass) && seen.contains(&TechniqueName::Kilgard));
+    let mut v = viewer(&["--normal-map", map.to_str().unwrap(), "--technique", "no-bump"]);
+    v.apply(Action::NextTechnique);
+    assert!(v.message.as_deref().is_some_and(|m| m.contains("peercy-independent")), "{:?}", v.message);
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn a_file_that_cannot_be_read_keeps_the_scene_and_says_why() {
+    let mut v = viewer(&[]);
+    let before = (v.choices.clone(), normal_texels(&v));
+    let err = v.load(Path::new("/nonexistent/bumps.png")).unwrap_err();
+    assert!(err.contains("bumps.png"), "{err}");
+    assert_eq!((v.choices.clone(), normal_texels(&v)), before);
+    let err = v.load(Path::new("/nonexistent/model.obj")).unwrap_err();
+    assert!(err.contains("model.obj"), "{err}");
+}
+
+#[test]
+fn the_reference_refines_while_nothing_moves() {
+    let mut v = viewer(&["--technique", "reference", "--spp", "32"]);
+    v.apply(Action::Pause);
+    let spp = |v: &mut Viewer| match v.frame().technique {
+        Technique::Reference(o) => o.samples_per_pixel,
+        _ => unreachable!(),
+    };
+    let steps: Vec<usize> = (0..5).map(|_| spp(&mut v)).collect();
+    assert_eq!(steps, [1, 4, 16, 32, 32]);
+    assert!(!v.animating(), "converged and paused: nothing left to draw");
+    v.move_light(0.1, 0.0);
+    assert!(v.animating());
+    assert_eq!(spp(&mut v), 1, "a move starts over");
+}
+
+#[test]
+fn the_light_orbits_and_the_camera_turns() {
+    let mut v = viewer(&[]);
+    let light0 = v.frame().scene.lights[0].light;
+    v.advance(1.0);
+    assert_ne!(v.frame().scene.lights[0].light, light0);
+    let eye0 = v.frame().scene.camera.eye;
+    v.orbit_camera(0.5, 0.2);
+    assert_ne!(v.frame().scene.camera.eye, eye0);
+    v.apply(Action::ResetView);
+    assert_eq!(v.frame().scene.camera.eye, eye0);
+    v.apply(Action::Pause);
+    let light = v.frame().scene.lights[0].light;
+    v.advance(1.0);
+    assert_eq!(v.frame().scene.lights[0].light, light, "paused");
+}
