@@ -13,7 +13,7 @@
 
 use std::path::{Path, PathBuf};
 
-use bumpmap_math::height_mips::{HeightLevel, MinMaxLevel};
+use bumpmap_math::height_mips::{HeightChain, HeightLevel, MinMaxLevel};
 use bumpmap_math::{HeightMips, Image};
 
 use crate::atomic::FileSet;
@@ -160,22 +160,19 @@ type PairLevel = (usize, usize, Vec<[f32; 2]>);
 fn read_levels(path: &Path, channels: usize) -> Result<Vec<PairLevel>, IoError> {
     let kind = container(path)?;
     let decode = |stored: StoredLevels| -> Vec<PairLevel> {
+        // Channel 0 and channel `channels − 1` of each texel, as a fraction of `max`.
+        fn pairs<T: Copy + Into<f32>>(levels: Vec<Image<[T; 4]>>, channels: usize, max: f32) -> Vec<PairLevel> {
+            levels
+                .into_iter()
+                .map(|l| {
+                    let t = l.texels.iter().map(|p| [p[0].into() / max, p[channels - 1].into() / max]).collect();
+                    (l.width, l.height, t)
+                })
+                .collect()
+        }
         match stored {
-            StoredLevels::Rgba8(levels) => levels
-                .into_iter()
-                .map(|l| {
-                    let t = l.texels.iter().map(|p| [p[0] as f32 / 255.0, p[channels - 1] as f32 / 255.0]).collect();
-                    (l.width, l.height, t)
-                })
-                .collect(),
-            StoredLevels::Rgba16(levels) => levels
-                .into_iter()
-                .map(|l| {
-                    let t =
-                        l.texels.iter().map(|p| [p[0] as f32 / 65535.0, p[channels - 1] as f32 / 65535.0]).collect();
-                    (l.width, l.height, t)
-                })
-                .collect(),
+            StoredLevels::Rgba8(levels) => pairs(levels, channels, 255.0),
+            StoredLevels::Rgba16(levels) => pairs(levels, channels, 65535.0),
         }
     };
     let mut levels = decode(load_texture(path)?.levels);
@@ -223,7 +220,7 @@ pub fn load_heights(path: &Path) -> Result<HeightMips, IoError> {
         return Err(bad(&minmax_file, format!("is {mw}x{mh}, but the heights {} are {w}x{h}", path.display())));
     }
     HeightMips::from_levels(levels, minmax).map_err(|e| {
-        let file = if e.to_string().starts_with("min–max") { &minmax_file } else { path };
+        let file = if e.chain() == Some(HeightChain::MinMax) { &minmax_file } else { path };
         bad(file, e.to_string())
     })
 }

@@ -112,6 +112,24 @@ impl MinMaxLevel {
     }
 }
 
+/// Which chain of a [`HeightMips`] an error is about.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum HeightChain {
+    /// The heights' levels.
+    Heights,
+    /// The min–max levels.
+    MinMax,
+}
+
+impl std::fmt::Display for HeightChain {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(match self {
+            HeightChain::Heights => "heights",
+            HeightChain::MinMax => "min–max",
+        })
+    }
+}
+
 /// Why heights cannot become a [`HeightMips`].
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
 pub enum HeightMipsError {
@@ -121,8 +139,8 @@ pub enum HeightMipsError {
     /// A level of the wrong size for its place in the chain.
     #[error("{what} level {level} is {got_w}x{got_h}, but level {level} of a {w0}x{h0} level 0 is {want_w}x{want_h}")]
     LevelSize {
-        /// `heights` or `min–max`.
-        what: &'static str,
+        /// Which chain.
+        what: HeightChain,
         /// The level.
         level: usize,
         /// Its size.
@@ -141,11 +159,11 @@ pub enum HeightMipsError {
     /// A chain that neither is level 0 alone nor reaches 1×1.
     #[error(
         "{what} has {got} levels; a {w0}x{h0} level 0 takes {} (down to 1x1)",
-        if *what == "heights" { format!("1 or all {want}") } else { format!("all {want}") }
+        if *what == HeightChain::Heights { format!("1 or all {want}") } else { format!("all {want}") }
     )]
     LevelCount {
-        /// `heights` or `min–max`.
-        what: &'static str,
+        /// Which chain.
+        what: HeightChain,
         /// Levels given.
         got: usize,
         /// The whole chain's levels.
@@ -167,6 +185,16 @@ pub enum HeightMipsError {
         /// The value.
         value: f32,
     },
+}
+
+impl HeightMipsError {
+    /// The chain a level count or size error is about; `None` for the others.
+    pub fn chain(&self) -> Option<HeightChain> {
+        match self {
+            HeightMipsError::LevelSize { what, .. } | HeightMipsError::LevelCount { what, .. } => Some(*what),
+            HeightMipsError::OutOfMemory(_) | HeightMipsError::NotAHeight { .. } => None,
+        }
+    }
 }
 
 /// The sizes of a whole chain from `width`×`height` down to 1×1.
@@ -230,12 +258,12 @@ impl HeightMips {
         minmax: Option<Vec<MinMaxLevel>>,
     ) -> Result<Self, HeightMipsError> {
         let Some(first) = levels.first() else {
-            return Err(HeightMipsError::LevelCount { what: "heights", got: 0, want: 1, w0: 0, h0: 0 });
+            return Err(HeightMipsError::LevelCount { what: HeightChain::Heights, got: 0, want: 1, w0: 0, h0: 0 });
         };
         let (w0, h0) = (first.width, first.height);
         let sizes = chain_sizes(w0, h0);
-        let check = |what: &'static str, got: &[(usize, usize)]| -> Result<(), HeightMipsError> {
-            if got.len() != sizes.len() && !(what == "heights" && got.len() == 1) {
+        let check = |what: HeightChain, got: &[(usize, usize)]| -> Result<(), HeightMipsError> {
+            if got.len() != sizes.len() && !(what == HeightChain::Heights && got.len() == 1) {
                 return Err(HeightMipsError::LevelCount { what, got: got.len(), want: sizes.len(), w0, h0 });
             }
             for (level, (&(gw, gh), &(ww, wh))) in got.iter().zip(&sizes).enumerate() {
@@ -254,9 +282,9 @@ impl HeightMips {
             }
             Ok(())
         };
-        check("heights", &levels.iter().map(|l| (l.width, l.height)).collect::<Vec<_>>())?;
+        check(HeightChain::Heights, &levels.iter().map(|l| (l.width, l.height)).collect::<Vec<_>>())?;
         if let Some(m) = &minmax {
-            check("min–max", &m.iter().map(|l| (l.width, l.height)).collect::<Vec<_>>())?;
+            check(HeightChain::MinMax, &m.iter().map(|l| (l.width, l.height)).collect::<Vec<_>>())?;
         }
         for (k, level) in levels.iter_mut().enumerate() {
             check_heights(level, k)?;
@@ -452,7 +480,7 @@ mod tests {
         assert!(lone.minmax().is_none());
         assert!(lone.clone().with_minmax().unwrap().minmax().is_some());
         let e = HeightMips::from_levels(vec![level(4, 4), level(2, 2)], None).unwrap_err();
-        assert_eq!(e, HeightMipsError::LevelCount { what: "heights", got: 2, want: 3, w0: 4, h0: 4 });
+        assert_eq!(e, HeightMipsError::LevelCount { what: HeightChain::Heights, got: 2, want: 3, w0: 4, h0: 4 });
         let e = HeightMips::from_levels(vec![level(4, 4), level(2, 3), level(1, 1)], None).unwrap_err();
         assert!(e.to_string().contains("level 1 is 2x3, but level 1 of a 4x4 level 0 is 2x2"), "{e}");
         let mut nan = level(2, 2);

@@ -36,7 +36,7 @@ pub mod tangent;
 pub use cubemap::{CubeFace, NormalizationCubeMap};
 pub use encoding::{Encoding, Texel};
 pub use height::{HeightField, HeightPreset, HeightSamples, bricks_decal};
-pub use height_mips::{HeightLevel, HeightMips, HeightMipsError};
+pub use height_mips::{HeightChain, HeightLevel, HeightMips, HeightMipsError};
 pub use image::{Image, Rgba8Image, Rgba8Mips, Rgba16Image};
 pub use imported::{ImportOptions, ImportedNormalMap, import_normal_map};
 pub use kernel::{Kernel, Wrap};
