@@ -1,6 +1,9 @@
-"""Heights as geometry from Python: height_mips against `normalmap --height-out`'s files read by
-pypng, its min–max levels against a Catmull-Rom interpolant written here in NumPy, and render's
-heights options against `bumpmap render`, byte for byte."""
+"""Heights as geometry from Python: height_mips against `normalmap --height-out`'s files (PNG read
+by pypng, KTX2 and DDS read here from their specifications), its min–max levels against a
+Catmull-Rom interpolant written here in NumPy, and render's heights options against `bumpmap
+render`, byte for byte."""
+
+import struct
 
 import numpy as np
 import pytest
@@ -113,3 +116,72 @@ def test_heights_errors_are_exceptions(tmp_path):
         bumpmap.height_mips(np.zeros((4, 4, 3), np.float32))
     with pytest.raises(ValueError, match=r"bits"):
         bumpmap.height_mips(np.zeros((4, 4), np.float32), bits=12)
+
+
+# Independent readers of the two containers, from their specifications (not bumpmap's reader).
+VK_FORMATS = {9: ("R8_UNORM", "u1", 1), 70: ("R16_UNORM", "<u2", 1), 77: ("R16G16_UNORM", "<u2", 2)}
+DXGI_FORMATS = {61: ("R8_UNORM", "u1", 1), 56: ("R16_UNORM", "<u2", 1), 35: ("R16G16_UNORM", "<u2", 2)}
+
+
+def read_ktx2(path):
+    """KTX 2.0: the identifier, the header, the level index (level 0 first in the index, the data
+    laid out smallest first), each level where the index says, aligned as §3.9.7 requires, and
+    the data format descriptor's texel size."""
+    data = path.read_bytes()
+    assert data[:12] == b"\xabKTX 20\xbb\r\n\x1a\n"
+    vk, type_size, width, height, depth, layers, faces, levels, scheme = struct.unpack_from("<9I", data, 12)
+    name, dtype, channels = VK_FORMATS[vk]
+    assert (depth, layers, faces, scheme) == (0, 0, 1, 0)
+    assert type_size == np.dtype(dtype).itemsize
+    dfd_offset, dfd_length = struct.unpack_from("<2I", data, 48)
+    # The basic descriptor block (after the DFD's total size): texel blocks of 1x1x1x1 (stored
+    # minus one) and bytesPlane0, one texel's size.
+    block = dfd_offset + 4
+    assert dfd_length >= 4 + 24 and data[block + 12 : block + 16] == b"\0\0\0\0", name
+    assert data[block + 16] == type_size * channels, name
+    texel = type_size * channels
+    align = texel * 4 // np.gcd(texel, 4)
+    out = []
+    for k in range(levels):
+        offset, length, raw = struct.unpack_from("<3Q", data, 80 + 24 * k)
+        w, h = max(width >> k, 1), max(height >> k, 1)
+        assert length == raw == w * h * texel and offset % align == 0 and offset + length <= len(data)
+        out.append(np.frombuffer(data, dtype=dtype, count=w * h * channels, offset=offset).reshape(h, w, channels))
+    return name, out
+
+
+def read_dds(path):
+    """DDS with the DX10 header: every level of one 2D surface, level 0 first."""
+    data = path.read_bytes()
+    assert data[:4] == b"DDS " and data[84:88] == b"DX10"
+    height, width, _, _, levels = struct.unpack_from("<5I", data, 12)
+    name, dtype, channels = DXGI_FORMATS[struct.unpack_from("<I", data, 128)[0]]
+    assert struct.unpack_from("<I", data, 132)[0] == 3, "D3D10_RESOURCE_DIMENSION_TEXTURE2D"
+    offset, out = 148, []
+    for k in range(levels):
+        w, h = max(width >> k, 1), max(height >> k, 1)
+        out.append(np.frombuffer(data, dtype=dtype, count=w * h * channels, offset=offset).reshape(h, w, channels))
+        offset += w * h * channels * np.dtype(dtype).itemsize
+    assert offset == len(data)
+    return name, out
+
+
+@pytest.mark.parametrize("ext, bits", [("ktx2", 16), ("ktx2", 8), ("dds", 16), ("dds", 8)])
+def test_heights_containers_mean_what_their_formats_say(tmp_path, cli, bricks, ext, bits):
+    cli("normalmap", "bricks@32", "-o", tmp_path / "n.png", "--mips", "--bits", bits, "--height-out",
+        tmp_path / f"h.{ext}")
+    levels, minmax = bumpmap.height_mips(bricks, bits=bits)
+    read = read_ktx2 if ext == "ktx2" else read_dds
+    name, stored = read(tmp_path / f"h.{ext}")
+    assert name == ("R16_UNORM" if bits == 16 else "R8_UNORM")
+    top = 65535 if bits == 16 else 255
+    assert len(stored) == len(levels) == 6
+    for k, (ours, theirs) in enumerate(zip(levels, stored)):
+        assert np.abs(ours.astype(np.float64) * top - theirs[..., 0]).max() <= 0.505, f"level {k}"
+    name, bounds = read(tmp_path / f"h.minmax.{ext}")
+    assert name == "R16G16_UNORM" and len(bounds) == len(minmax)
+    for k, (ours, theirs) in enumerate(zip(minmax, bounds)):
+        theirs = theirs.astype(np.float64) / 65535
+        # Rounded outward, within one step.
+        assert (theirs[..., 0] <= ours[..., 0] + 1e-7).all() and (theirs[..., 1] >= ours[..., 1] - 1e-7).all(), k
+        assert np.abs(theirs - ours).max() <= 1 / 65535 + 1e-7, k

@@ -301,3 +301,62 @@ fn a_depth_past_the_surface_is_clamped_with_a_note_and_still_renders() {
     );
     assert!(mean(&pixels(&out)) > 10.0, "the clamped wall is drawn");
 }
+
+#[test]
+fn bad_height_out_fails_cleanly_and_out_of_range_heights_are_named() {
+    let dir = scratch("parallax_height_out");
+    let at = |name: &str| dir.join(name);
+    let s = |p: &Path| p.to_str().unwrap().to_string();
+    let normal_map = s(&at("n.png"));
+    // An extension that holds no heights: exit 1, the file named, nothing written.
+    let tga = at("h.tga");
+    fails_cleanly(
+        &dir,
+        &["normalmap", "bricks@16", "-o", &normal_map, "--mips", "--height-out", &s(&tga)],
+        &tga,
+        "unsupported output format (use .png, .dds or .ktx2)",
+    );
+    // Clashes with the command's other outputs are usage errors; nothing is written.
+    for (args, expect) in [
+        (vec!["--height-out", normal_map.as_str()], "--height-out"),
+        (vec!["--lean-out", "LEAN", "--height-out", "LEAN"], "--lean-out"),
+    ] {
+        let lean = s(&at("h.ktx2"));
+        let args: Vec<&str> = args.into_iter().map(|a| if a == "LEAN" { lean.as_str() } else { a }).collect();
+        let o = bumpmap(&[&["normalmap", "bricks@16", "-o", &normal_map, "--mips"][..], &args].concat());
+        assert_eq!(o.status.code(), Some(2), "{args:?}: {}", stderr(&o));
+        assert!(stderr(&o).contains(expect) && !stderr(&o).contains("panicked"), "{}", stderr(&o));
+        assert!(listing(&dir).is_empty(), "{args:?}: nothing written");
+    }
+    // The input is never overwritten.
+    let input = at("in.png");
+    write_gray_png(&input, 16, 16, |x, y| ((x * 16 + y) % 256) as u8);
+    let before = std::fs::read(&input).unwrap();
+    fails_cleanly(
+        &dir,
+        &["normalmap", &s(&input), "-o", &normal_map, "--height-out", &s(&input)],
+        &input,
+        "output would overwrite the input file",
+    );
+    assert_eq!(std::fs::read(&input).unwrap(), before);
+    // A folder of height fields has no one set of heights to write.
+    let o = bumpmap(&["normalmap", &s(&dir), "-o", &s(&at("out")), "--height-out", &s(&at("h.png"))]);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(stderr(&o).contains("give one height field, not a folder"), "{}", stderr(&o));
+    // Float heights outside [0, 1] are written clamped, with a warning that names the file and
+    // the range.
+    let exr = at("tall.exr");
+    let field: Vec<f32> = (0..64).map(|i| i as f32 / 32.0).collect();
+    image::Rgb32FImage::from_fn(8, 8, |x, y| image::Rgb([field[(y * 8 + x) as usize]; 3])).save(&exr).unwrap();
+    let heights = at("tall_h.png");
+    let o = bumpmap(&["normalmap", &s(&exr), "-o", &s(&at("tall_n.png")), "--height-out", &s(&heights)]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains(&format!("warning: {}: heights from 0 to 1.96875 are clamped to [0, 1]", exr.display())),
+        "{}",
+        stderr(&o)
+    );
+    let stored = image::open(&heights).unwrap().to_luma16();
+    assert_eq!(stored.get_pixel(0, 0).0[0], 0);
+    assert_eq!(stored.get_pixel(7, 7).0[0], 65535, "clamped to 1");
+}
