@@ -100,6 +100,8 @@ def test_a_height_map_file_renders(tmp_path, cli):
     got = bumpmap.render(scene="wall", technique="height-exact", size=40, normal_map=tmp_path / "n.png",
                          height_map=tmp_path / "h.ktx2")
     assert np.array_equal(got[..., :3], read_png(tmp_path / "r.png"))
+    # Not two black images: the lit wall covers most of the frame.
+    assert (got[..., :3].max(axis=2) > 40).mean() > 0.2
 
 
 def test_heights_errors_are_exceptions(tmp_path):

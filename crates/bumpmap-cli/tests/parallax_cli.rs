@@ -109,6 +109,8 @@ fn heights_files_render_as_the_built_in_heights() {
             "built_in.png",
             &[&view[..], &["--height-field", "bricks@64", "--decal", "none", "--technique", technique]].concat(),
         );
+        // Two black images would agree: the wall is drawn and lit.
+        assert!(mean(&built_in) > 20.0, "{technique}: the built-in heights' wall is blank ({})", mean(&built_in));
         for (normals, heights, _, tolerance) in files {
             let from_file = render(
                 &dir,
