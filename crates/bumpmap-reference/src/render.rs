@@ -116,32 +116,40 @@ pub fn render(
         }
     }
 
+    let tiles = render_tiles(width, height, progress, |index, (x0, y0, tw, th)| {
+        let hits = resolve_tile(&triangles, &bins[index], (x0, y0, tw, th), spp, (width, height));
+        hits.chunks(spp)
+            .map(|samples| {
+                let sum: Vec3 =
+                    samples.iter().flatten().map(|hit| shade_sample(scene, &prepared, &triangles, hit, options)).sum();
+                sum / spp as f32
+            })
+            .collect()
+    });
+    Ok(assemble(&tiles, width, height))
+}
+
+/// Runs `tile(index, (x0, y0, width, height))` for every tile of [`TILE`]² pixels of a
+/// `width`×`height` image in parallel (each returning its pixels row-major), calling
+/// `progress(done, total)` as each finishes; the tiles in order.
+pub(crate) fn render_tiles(
+    width: usize,
+    height: usize,
+    progress: &(dyn Fn(usize, usize) + Sync),
+    tile: impl Fn(usize, (usize, usize, usize, usize)) -> Vec<Vec3> + Sync,
+) -> Vec<Vec<Vec3>> {
+    let tiles_x = width.div_ceil(TILE);
+    let total = tiles_x * height.div_ceil(TILE);
     let done = AtomicUsize::new(0);
-    let total = bins.len();
-    let tiles: Vec<Vec<Vec3>> = bins
-        .par_iter()
-        .enumerate()
-        .map(|(index, candidates)| {
+    (0..total)
+        .into_par_iter()
+        .map(|index| {
             let (x0, y0) = ((index % tiles_x) * TILE, (index / tiles_x) * TILE);
-            let (tw, th) = (TILE.min(width - x0), TILE.min(height - y0));
-            let hits = resolve_tile(&triangles, candidates, (x0, y0, tw, th), spp, (width, height));
-            let pixels = hits
-                .chunks(spp)
-                .map(|samples| {
-                    let sum: Vec3 = samples
-                        .iter()
-                        .flatten()
-                        .map(|hit| shade_sample(scene, &prepared, &triangles, hit, options))
-                        .sum();
-                    sum / spp as f32
-                })
-                .collect();
+            let pixels = tile(index, (x0, y0, TILE.min(width - x0), TILE.min(height - y0)));
             progress(done.fetch_add(1, Ordering::Relaxed) + 1, total);
             pixels
         })
-        .collect();
-
-    Ok(assemble(&tiles, width, height))
+        .collect()
 }
 
 /// The image from its tiles of [`TILE`]² pixels (row-major within a tile, tiles row-major).

@@ -6,10 +6,7 @@
 //! Visibility here is the rays' own, not the rasterized base mesh's: the carved surface lies
 //! inside the base one, so silhouettes shrink where bumps are cut by them.
 
-use std::sync::atomic::{AtomicUsize, Ordering};
-
 use glam::{Mat4, Vec2, Vec3};
-use rayon::prelude::*;
 
 use bumpmap_core::Scene;
 use bumpmap_core::technique::reference::ReferenceOptions;
@@ -17,8 +14,8 @@ use bumpmap_math::lighting::{Light, ObjectLighting, TangentFrame};
 
 use crate::displaced::{Displaced, DisplacedHit};
 use crate::error::ReferenceError;
-use crate::render::{LinearImage, Surfel, assemble, bilinear_repeat, light};
-use crate::visibility::{TILE, sample_offset};
+use crate::render::{LinearImage, Surfel, assemble, bilinear_repeat, light, render_tiles};
+use crate::visibility::sample_offset;
 
 /// The world-space ray from the eye through the image point (`x`, `y`) (pixels, row 0 at the
 /// top) of a `width`×`height` image seen through `clip_from_world`: the eye and a direction
@@ -122,31 +119,22 @@ pub fn render(
     let displaced = DisplacedScene::new(scene)?;
     let clip_from_world = scene.camera.clip_from_world(width as f32 / height as f32);
     let spp = options.samples_per_pixel;
-    let (tiles_x, tiles_y) = (width.div_ceil(TILE), height.div_ceil(TILE));
-    let done = AtomicUsize::new(0);
-    let total = tiles_x * tiles_y;
-    let tiles: Vec<Vec<Vec3>> = (0..total)
-        .into_par_iter()
-        .map(|index| {
-            let (x0, y0) = ((index % tiles_x) * TILE, (index / tiles_x) * TILE);
-            let (tw, th) = (TILE.min(width - x0), TILE.min(height - y0));
-            let mut pixels = Vec::with_capacity(tw * th);
-            for y in y0..y0 + th {
-                for x in x0..x0 + tw {
-                    let mut sum = Vec3::ZERO;
-                    for k in 0..spp {
-                        let q = Vec2::new(x as f32, y as f32) + sample_offset(k, spp, x, y);
-                        let (origin, dir) = camera_ray(&clip_from_world, scene.camera.eye, (width, height), q.x, q.y);
-                        if let Some(hit) = displaced.trace(origin, dir) {
-                            sum += displaced.shade(&hit, options);
-                        }
+    let tiles = render_tiles(width, height, progress, |_, (x0, y0, tw, th)| {
+        let mut pixels = Vec::with_capacity(tw * th);
+        for y in y0..y0 + th {
+            for x in x0..x0 + tw {
+                let mut sum = Vec3::ZERO;
+                for k in 0..spp {
+                    let q = Vec2::new(x as f32, y as f32) + sample_offset(k, spp, x, y);
+                    let (origin, dir) = camera_ray(&clip_from_world, scene.camera.eye, (width, height), q.x, q.y);
+                    if let Some(hit) = displaced.trace(origin, dir) {
+                        sum += displaced.shade(&hit, options);
                     }
-                    pixels.push(sum / spp as f32);
                 }
+                pixels.push(sum / spp as f32);
             }
-            progress(done.fetch_add(1, Ordering::Relaxed) + 1, total);
-            pixels
-        })
-        .collect();
+        }
+        pixels
+    });
     Ok(assemble(&tiles, width, height))
 }
