@@ -248,26 +248,18 @@ pub fn measure(args: &CompareArgs, progress: bool) -> Result<(Results, Vec<PathB
     } else {
         None
     };
-    let specular = if study(StudyArg::Specular, "specular filtering at a distance (Kilgard §2.5.3)", &bar) {
-        Some(studies::specular_study(&mut backend)?)
-    } else {
-        None
-    };
-    let emboss = if study(StudyArg::Emboss, "embossing (Kilgard §3.1)", &bar) {
-        Some(studies::emboss_study(&mut backend)?)
-    } else {
-        None
-    };
-    let peercy = if study(StudyArg::Peercy, "Peercy's Figures 5–7 on the stretched patch", &bar) {
-        Some(studies::peercy_study(&mut backend)?)
-    } else {
-        None
-    };
-    let parallax = if study(StudyArg::Parallax, "heights as geometry: the wall at grazing angles", &bar) {
-        Some(parallax::parallax_study(&mut backend)?)
-    } else {
-        None
-    };
+    let specular = study(StudyArg::Specular, "specular filtering at a distance (Kilgard §2.5.3)", &bar)
+        .then(|| studies::specular_study(&mut backend))
+        .transpose()?;
+    let emboss = study(StudyArg::Emboss, "embossing (Kilgard §3.1)", &bar)
+        .then(|| studies::emboss_study(&mut backend))
+        .transpose()?;
+    let peercy = study(StudyArg::Peercy, "Peercy's Figures 5–7 on the stretched patch", &bar)
+        .then(|| studies::peercy_study(&mut backend))
+        .transpose()?;
+    let parallax = study(StudyArg::Parallax, "heights as geometry: the wall at grazing angles", &bar)
+        .then(|| parallax::parallax_study(&mut backend))
+        .transpose()?;
     bar.finish_and_clear();
 
     let results = Results {
