@@ -8,13 +8,14 @@
 //! read) is undone: the old scene stays and the reason becomes [`Viewer::message`].
 
 use std::path::Path;
+use std::sync::Arc;
 
 use bumpmap::bumpmap_core::parallax::MAX_LAYERS;
 use bumpmap::bumpmap_core::state::Sampler;
 use bumpmap::motion::{LightOrbit, MAX_TILT, orbit_camera};
 use bumpmap::{
-    BumpSource, Camera, MipMode, Normalize, ParallaxShadow, Prepared, ReferenceOptions, SceneKind, SelfShadow,
-    SpecularFilter, Technique, TechniqueName, TechniqueOptions,
+    BumpSource, Camera, HeightField, HeightMips, MipMode, Normalize, ParallaxShadow, Prepared, ReferenceOptions,
+    SceneKind, SelfShadow, SpecularFilter, Technique, TechniqueName, TechniqueOptions,
 };
 use glam::Vec3;
 
@@ -167,7 +168,13 @@ pub struct Viewer {
     reference_step: usize,
     /// The last error or note, for the overlay.
     pub message: Option<String>,
+    /// The heights as geometry made from the base's height field, kept while it is the same
+    /// field: depth, layers and shadow keys prepare the scene again without remaking them.
+    heights: HeightsCache,
 }
+
+/// A height field and the heights as geometry made from it.
+type HeightsCache = Option<(Arc<HeightField>, Arc<HeightMips>)>;
 
 /// The scenes a viewer offers: the four the issue names, and the one it started on when that
 /// is another (the floor, the wall on the floor, a loaded mesh).
@@ -212,7 +219,8 @@ impl Viewer {
         };
         let scenes = scenes_with(&base.spec.kind);
         let choices = Choices { scene: scenes.iter().position(|k| *k == base.spec.kind).unwrap_or(0), ..choices };
-        let prepared = prepare(&base, &scenes, &choices).map_err(crate::render::lib_err)?;
+        let mut heights = None;
+        let prepared = prepare(&base, &scenes, &choices, &mut heights).map_err(crate::render::lib_err)?;
         let (home, orbit) = (prepared.scene.camera, LightOrbit::of(&prepared.scene));
         Ok(Self {
             args,
@@ -225,6 +233,7 @@ impl Viewer {
             orbit,
             reference_step: 0,
             message: None,
+            heights,
         })
     }
 
@@ -394,7 +403,7 @@ impl Viewer {
                 }
             }
         }
-        match prepare(&self.base, &self.scenes, &choices) {
+        match prepare(&self.base, &self.scenes, &choices, &mut self.heights) {
             Ok(prepared) => {
                 self.message = None;
                 self.set_prepared(prepared);
@@ -457,7 +466,7 @@ impl Viewer {
         let n = TechniqueName::ALL.len();
         let found = (0..n).map(|k| (choices.technique + k) % n).find_map(|t| {
             let c = Choices { technique: t, ..choices.clone() };
-            prepare(&base, &scenes, &c).ok().map(|p| (c, p))
+            prepare(&base, &scenes, &c, &mut self.heights).ok().map(|p| (c, p))
         });
         let Some((choices, prepared)) = found else {
             return Err(format!("{shown}: no technique can draw it"));
@@ -525,11 +534,30 @@ impl Viewer {
     }
 }
 
-/// The scene and technique `choices` describe, on `base`.
-fn prepare(base: &Setup, scenes: &[SceneKind], c: &Choices) -> Result<Prepared, bumpmap::Error> {
+/// The scene and technique `choices` describe, on `base`; the heights as geometry from
+/// `heights` when they were made from the same field, else made and kept there.
+fn prepare(
+    base: &Setup,
+    scenes: &[SceneKind],
+    c: &Choices,
+    heights: &mut HeightsCache,
+) -> Result<Prepared, bumpmap::Error> {
     let mut spec = base.spec.clone();
     spec.kind = scenes[c.scene].clone();
     let params = &mut spec.params;
+    let name = TechniqueName::ALL[c.technique];
+    let takes_heights = name.parallax_method().is_some() || name == TechniqueName::ReferenceDisplaced;
+    if let (true, None, BumpSource::Heights(field)) = (takes_heights, &params.height_mips, &params.bumps) {
+        let mips = match heights {
+            Some((made_from, mips)) if Arc::ptr_eq(made_from, field) => mips.clone(),
+            _ => {
+                let mips = Arc::new(HeightMips::from_field(field).map_err(bumpmap::CoreError::from)?);
+                *heights = Some((field.clone(), mips.clone()));
+                mips
+            }
+        };
+        params.height_mips = Some(mips);
+    }
     if let BumpSource::Heights(_) = params.bumps {
         params.normal_map.scale = c.bump_scale;
     }
@@ -568,7 +596,7 @@ fn prepare(base: &Setup, scenes: &[SceneKind], c: &Choices) -> Result<Prepared, 
         sp.self_shadow = SelfShadow::Ramp;
         options.reference.self_shadow = SelfShadow::Ramp;
     }
-    Prepared::new(&spec, TechniqueName::ALL[c.technique], &options)
+    Prepared::new(&spec, name, &options)
 }
 
 #[cfg(test)]

@@ -80,6 +80,19 @@ fn the_depth_and_layer_keys_reach_the_marches_and_the_status_line_names_them() {
 }
 
 #[test]
+fn the_depth_layer_and_shadow_keys_reuse_the_heights_made_from_the_same_field() {
+    let mut v = viewer(&["--technique", "pom", "--scene", "wall"]);
+    let heights = |v: &Viewer| v.prepared.scene.objects[0].material.heights.clone().expect("pom carves the wall");
+    let first = heights(&v);
+    // The bump scale remakes the normal map, not the heights (1 on the surface, whatever the scale).
+    for action in [Action::DepthUp, Action::LayersDown, Action::ParallaxShadow, Action::DepthDown, Action::BumpsUp] {
+        v.apply(action);
+        assert!(Arc::ptr_eq(&first, &heights(&v)), "{action:?} made the heights again");
+    }
+    assert_eq!(v.choices.bump_scale, 5.0, "the keys were taken");
+}
+
+#[test]
 fn bumps_up_rebuilds_the_normal_map_and_the_passes_change_the_material() {
     let mut v = viewer(&[]);
     let before = normal_texels(&v);
