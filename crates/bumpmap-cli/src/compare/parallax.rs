@@ -145,13 +145,7 @@ pub fn parallax_study(backend: &mut Renderer) -> Result<ParallaxStudy, CliError>
             let scene = &reference.scene;
             let object = &scene.objects[0];
             let heights = object.material.heights.clone().expect("the displaced reference carries heights");
-            let source = object.source.as_ref().expect("a built-in wall");
-            let texel = bumpmap_math::blinn::displacement_per_unit_height(
-                &source.surface,
-                source.repeat,
-                (heights.width(), heights.height()),
-                1.0,
-            );
+            let texel = object.texel_side((heights.width(), heights.height())).expect("the wall has area");
             depth_texels = object.material.depth / texel;
             let ref_options = ReferenceOptions { samples_per_pixel: SPP, displaced: true, ..Default::default() };
             let image = bumpmap_reference::render(scene, SIZE, SIZE, &ref_options, &|_, _| {})
@@ -226,7 +220,8 @@ fn pixel_rays(scene: &bumpmap_core::Scene) -> Result<Vec<PixelRay>, CliError> {
             (st, q)
         })
     };
-    let size = Vec2::new(256.0, 256.0);
+    let heights = object.material.heights.as_ref().expect("the displaced reference carries heights");
+    let size = Vec2::new(heights.width() as f32, heights.height() as f32);
     let mut out = Vec::new();
     for y in 0..SIZE {
         for x in 0..SIZE {
