@@ -18,6 +18,7 @@
 //!   micro-tessellated (`tessellated`) on curved ones;
 //! - [`DisplacedScene`]: every object's carved surface, the nearest hit of a camera ray and
 //!   its colour ([`camera_ray`] makes the ray of an image point);
+//! - [`occlusion`]: ambient occlusion and bent normals by occlusion rays from texel centres;
 //! - [`render`](render()): the whole image, in parallel over tiles, with a progress callback;
 //! - [`error`]: what the reference refuses.
 //!
@@ -31,6 +32,7 @@
 
 pub mod displaced;
 pub mod error;
+pub mod occlusion;
 mod render;
 mod render_displaced;
 mod tessellated;
