@@ -12,9 +12,8 @@
 //! Direction `k` points at `k · 45°` from +x (along +s) toward +y (along +t, down the image as
 //! displayed): 0 is +x, 2 is +y, 4 is −x, 6 is −y. The rise is searched on the heights' C¹
 //! interpolant (`crate::interpolant`, the surface `crate::height_trace` casts rays at): its slope
-//! at the texel, every eighth of a step over the first two steps (where the surface bends most
-//! for its distance), then texel centres and the midpoints between them, out to [`MAX_REACH`]
-//! steps or until no height left in the field could rise higher.
+//! at the texel, every quarter of the first step (where the surface bends most for its
+//! distance), then texel centres and, over the first eight steps, the midpoints between them, out to [`MAX_REACH`] steps or until no height left in the field could rise higher.
 //!
 //! What this module does not do: light a fragment (the lighting model multiplies by
 //! [`visibility`]), or read and write files.
@@ -39,9 +38,13 @@ pub const HORIZON_EDGE: f32 = 0.02;
 /// One texel's horizons: [`encode_rise`] of the rise in each direction.
 pub type Horizons = [f32; AZIMUTHS];
 
-/// Samples of the interpolant, an eighth of a step apart, before the search goes on by half
-/// steps: the first two steps.
-const NEAR_SAMPLES: usize = 16;
+/// The interpolant's samples a quarter of a step apart over the first step (¼, ½, ¾), where the
+/// surface bends most for its distance.
+const NEAR_SAMPLES: usize = 4;
+
+/// Steps whose midpoints are searched too; farther out, where a bump between two centres
+/// changes the rise by less, only the centres are.
+const MIDPOINT_STEPS: i64 = 8;
 
 /// The texel step of direction `k`: (±1 or 0, ±1 or 0).
 const STEPS: [(i64, i64); AZIMUTHS] = [(1, 0), (1, 1), (0, 1), (-1, 1), (-1, 0), (-1, -1), (0, -1), (1, -1)];
@@ -263,22 +266,23 @@ pub fn horizons_at(heights: &impl HeightGrid, wrap: Wrap, range: (f32, f32), x: 
         let (dx, dy) = STEPS[k];
         let length = ((dx * dx + dy * dy) as f32).sqrt();
         // Near the texel the surface bends most for its distance: the interpolant's own
-        // slope there, then eighths of a step out to the second centre.
+        // slope there, then quarters of the first step.
         let centre = Vec2::new(x as f32 + 0.5, y as f32 + 0.5);
         let step = Vec2::new(dx as f32, dy as f32);
         let g = sample_texels(heights, wrap, centre.x, centre.y);
         let mut best = (g.dx * step.x + g.dy * step.y) / length;
         for e in 1..NEAR_SAMPLES {
-            let f = e as f32 / 8.0;
+            let f = e as f32 / 4.0;
             let q = centre + step * f;
             best = best.max((sample_texels(heights, wrap, q.x, q.y).value.clamp(lowest, highest) - h0) / (f * length));
         }
-        for n in 1..=MAX_REACH as i64 {
-            // The midpoint between centres n − 1 and n: the interpolant there is the product
-            // of the halfway weights along each axis the step moves in.
-            let (ax, ay) = (x + (n - 1) * dx, y + (n - 1) * dy);
+        let far = |n: i64, best: f32| (highest - h0) / ((n as f32 + 0.5) * length) <= best;
+        for n in 1..=MIDPOINT_STEPS {
             let (bx, by) = (x + n * dx, y + n * dy);
-            let (cx, cy) = (ax.min(bx), ay.min(by));
+            best = best.max((at(bx, by) - h0) / (n as f32 * length));
+            // The midpoint between centres n − 1 and n: the interpolant there is the product of
+            // the halfway weights along each axis the step moves in.
+            let (cx, cy) = ((x + (n - 1) * dx).min(bx), (y + (n - 1) * dy).min(by));
             let mid = match (dx, dy) {
                 (0, _) => (0..4).map(|r| HALF[r] * at(x, cy - 1 + r as i64)).sum::<f32>(),
                 (_, 0) => (0..4).map(|c| HALF[c] * at(cx - 1 + c as i64, y)).sum::<f32>(),
@@ -286,20 +290,53 @@ pub fn horizons_at(heights: &impl HeightGrid, wrap: Wrap, range: (f32, f32), x: 
                     .map(|r| HALF[r] * (0..4).map(|c| HALF[c] * at(cx - 1 + c as i64, cy - 1 + r as i64)).sum::<f32>())
                     .sum::<f32>(),
             };
-            let d_mid = (n as f32 - 0.5) * length;
-            let d_centre = n as f32 * length;
-            best = best.max((mid.clamp(lowest, highest) - h0) / d_mid).max((at(bx, by) - h0) / d_centre);
-            // Past here nothing can rise above the horizon found; under clamp, once every
-            // coordinate the step moves is past the edge, the heights stay as they are and the
-            // rise only falls.
-            let out = |moves: i64, i: i64, n: usize| moves == 0 || !(0..n as i64).contains(&i);
-            let beyond_edge = wrap != Wrap::Repeat && out(dx, bx, w) && out(dy, by, h);
-            if (highest - h0) / (d_centre + 0.5 * length) <= best || beyond_edge {
+            best = best.max((mid.clamp(lowest, highest) - h0) / ((n as f32 - 0.5) * length));
+            // Past here nothing can rise above the horizon found.
+            if far(n, best) {
+                return encode_rise(best);
+            }
+        }
+        // Farther out, centres only, their indices stepped under the wrap (no division a step).
+        let (mut i, mut j) =
+            (wrap_index(wrap, x + MIDPOINT_STEPS * dx, w), wrap_index(wrap, y + MIDPOINT_STEPS * dy, h));
+        for n in MIDPOINT_STEPS + 1..=MAX_REACH as i64 {
+            i = advance(i, dx, w, wrap);
+            j = advance(j, dy, h, wrap);
+            best = best.max((heights.at(i, j) - h0) / (n as f32 * length));
+            // Under clamp, once every coordinate the step moves is past the edge, the heights
+            // stay as they are and the rise only falls.
+            let out = |moves: i64, c: i64, size: usize| moves == 0 || !(0..size as i64).contains(&c);
+            let beyond_edge = wrap != Wrap::Repeat && out(dx, x + n * dx, w) && out(dy, y + n * dy, h);
+            if far(n, best) || beyond_edge {
                 break;
             }
         }
         encode_rise(best)
     })
+}
+
+/// Index `i` of `n` moved by `d` (−1, 0 or 1) under `wrap`.
+#[inline(always)]
+fn advance(i: usize, d: i64, n: usize, wrap: Wrap) -> usize {
+    match (d, wrap) {
+        (0, _) => i,
+        (1, Wrap::Repeat) => {
+            if i + 1 == n {
+                0
+            } else {
+                i + 1
+            }
+        }
+        (_, Wrap::Repeat) => {
+            if i == 0 {
+                n - 1
+            } else {
+                i - 1
+            }
+        }
+        (1, _) => (i + 1).min(n - 1),
+        (_, _) => i.saturating_sub(1),
+    }
 }
 
 /// The stored horizon toward texel-space direction (`x`, `y`): the two stored directions
