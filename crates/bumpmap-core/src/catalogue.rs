@@ -61,6 +61,8 @@ pub enum TechniqueName {
     OffsetMap,
     /// Peercy's Figure 2 hardware (Figure 5).
     PeercyBlinn,
+    /// The single pass with the horizon map's shadows (Max 1988; Sloan & Cohen 2000).
+    Horizon,
     /// Parallax mapping with offset limiting (Kaneko et al. 2001, Welsh 2004).
     Parallax,
     /// Steep parallax mapping (McGuire & McGuire 2005).
@@ -143,7 +145,7 @@ pub struct TechniqueOptions {
 
 impl TechniqueName {
     /// Every name, in catalogue order.
-    pub const ALL: [TechniqueName; 23] = [
+    pub const ALL: [TechniqueName; 24] = [
         TechniqueName::Kilgard,
         TechniqueName::SinglePass,
         TechniqueName::SinglePassCube,
@@ -160,6 +162,7 @@ impl TechniqueName {
         TechniqueName::EmbossUnforced,
         TechniqueName::OffsetMap,
         TechniqueName::PeercyBlinn,
+        TechniqueName::Horizon,
         TechniqueName::Parallax,
         TechniqueName::SteepParallax,
         TechniqueName::Pom,
@@ -188,6 +191,7 @@ impl TechniqueName {
             TechniqueName::EmbossUnforced => "emboss-unforced",
             TechniqueName::OffsetMap => "offset-map",
             TechniqueName::PeercyBlinn => "peercy-blinn",
+            TechniqueName::Horizon => "horizon",
             TechniqueName::Parallax => "parallax",
             TechniqueName::SteepParallax => "steep-parallax",
             TechniqueName::Pom => "pom",
@@ -247,6 +251,9 @@ impl TechniqueName {
             TechniqueName::PeercyBlinn => {
                 "Peercy's Figure 2 hardware (Figure 5): the height derivatives from the same 7×7 kernel in a texture, Blinn's normal made per pixel from them and the interpolated ∂P/∂u, ∂P/∂v"
             }
+            TechniqueName::Horizon => {
+                "the single pass with bumps that shadow each other: the horizon map's elevation in 8 directions a texel, interpolated toward the light and compared with its elevation, a soft edge (Max 1988; Sloan & Cohen 2000)"
+            }
             TechniqueName::Parallax => {
                 "parallax mapping (Kaneko et al. 2001) with Welsh's offset limiting (2004): the maps read one height's offset along the view ray from where it enters"
             }
@@ -290,7 +297,8 @@ impl TechniqueName {
                 &[BuiltInSurface, HeightField]
             }
             TechniqueName::Emboss | TechniqueName::EmbossUnforced => &[HeightField, OneLight],
-            TechniqueName::Parallax
+            TechniqueName::Horizon
+            | TechniqueName::Parallax
             | TechniqueName::SteepParallax
             | TechniqueName::Pom
             | TechniqueName::Relief
@@ -357,6 +365,7 @@ impl TechniqueName {
             | TechniqueName::Clean
             | TechniqueName::Emboss
             | TechniqueName::EmbossUnforced
+            | TechniqueName::Horizon
             | TechniqueName::Parallax
             | TechniqueName::SteepParallax
             | TechniqueName::Pom
@@ -377,6 +386,7 @@ impl TechniqueName {
     /// The march of a technique that takes heights as geometry, `None` for the others.
     pub fn parallax_method(self) -> Option<ParallaxMethod> {
         match self {
+            TechniqueName::Horizon => Some(ParallaxMethod::Flat),
             TechniqueName::Parallax => Some(ParallaxMethod::Offset),
             TechniqueName::SteepParallax => Some(ParallaxMethod::Steep),
             TechniqueName::Pom => Some(ParallaxMethod::Occlusion),
@@ -421,6 +431,13 @@ impl TechniqueName {
             TechniqueName::EmbossUnforced => {
                 Technique::Emboss(EmbossOptions { back_facing: BackFacing::Unforced, ..options.emboss.clone() })
             }
+            TechniqueName::Horizon => Technique::SinglePass(SinglePassOptions {
+                parallax: Some(Parallax {
+                    method: ParallaxMethod::Flat,
+                    options: ParallaxOptions { shadow: ParallaxShadow::Horizon, ..options.parallax },
+                }),
+                ..single
+            }),
             TechniqueName::Parallax
             | TechniqueName::SteepParallax
             | TechniqueName::Pom

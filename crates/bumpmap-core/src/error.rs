@@ -88,6 +88,9 @@ pub enum CoreError {
     /// Heights that cannot be geometry.
     #[error("heights: {0}")]
     HeightMips(#[from] bumpmap_math::HeightMipsError),
+    /// The horizon map could not be made or was refused.
+    #[error("horizon map: {0}")]
+    Horizons(#[from] bumpmap_math::HorizonError),
     /// Heights as geometry are read with the normal map's texture coordinates and levels, so
     /// their sizes must agree.
     #[error("the heights are {}x{} but the normal map is {}x{}: they are read at the same texture coordinates and levels and must be the same size", .heights.0, .heights.1, .normal_map.0, .normal_map.1)]

@@ -67,11 +67,12 @@ const PARALLAX: Switch = Switch {
         "PARALLAX_OCCLUSION",
         "PARALLAX_RELIEF",
         "PARALLAX_EXACT",
+        "PARALLAX_FLAT",
     ],
 };
 const PARALLAX_SHADOW: Switch = Switch {
     name: "PARALLAX_SHADOW",
-    values: &["PARALLAX_SHADOW_OFF", "PARALLAX_SHADOW_HARD", "PARALLAX_SHADOW_SOFT"],
+    values: &["PARALLAX_SHADOW_OFF", "PARALLAX_SHADOW_HARD", "PARALLAX_SHADOW_SOFT", "PARALLAX_SHADOW_HORIZON"],
 };
 
 /// The WGSL name of a parallax method's constant (`PARALLAX_NONE` for none).
@@ -83,6 +84,7 @@ pub fn parallax_name(method: Option<ParallaxMethod>) -> &'static str {
         Some(ParallaxMethod::Occlusion) => "PARALLAX_OCCLUSION",
         Some(ParallaxMethod::Relief) => "PARALLAX_RELIEF",
         Some(ParallaxMethod::Exact) => "PARALLAX_EXACT",
+        Some(ParallaxMethod::Flat) => "PARALLAX_FLAT",
     }
 }
 
@@ -92,6 +94,7 @@ pub fn parallax_shadow_name(shadow: ParallaxShadow) -> &'static str {
         ParallaxShadow::Off => "PARALLAX_SHADOW_OFF",
         ParallaxShadow::Hard => "PARALLAX_SHADOW_HARD",
         ParallaxShadow::Soft => "PARALLAX_SHADOW_SOFT",
+        ParallaxShadow::Horizon => "PARALLAX_SHADOW_HORIZON",
     }
 }
 

@@ -46,6 +46,22 @@ struct Lit {
 @group(0) @binding(11) var heights: texture_2d<f32>;
 @group(0) @binding(12) var height_bounds: texture_2d<f32>;
 
+// The horizon map (bumpmap_math::horizon): directions 0-3 and 4-7 (Rgba32Float, every level),
+// read texel by texel (1x1 stand-ins where unused).
+@group(0) @binding(13) var horizons_0123: texture_2d<f32>;
+@group(0) @binding(14) var horizons_4567: texture_2d<f32>;
+
+fn horizon_texel(x: i32, y: i32, level: u32, half: u32) -> vec4<f32> {
+    if half == 0u {
+        return textureLoad(horizons_0123, vec2<i32>(x, y), i32(level));
+    }
+    return textureLoad(horizons_4567, vec2<i32>(x, y), i32(level));
+}
+
+fn horizon_size(level: u32) -> vec2<u32> {
+    return level_size(textureDimensions(horizons_0123, 0u), level);
+}
+
 fn height_texel(x: i32, y: i32, level: u32) -> f32 {
     return textureLoad(heights, vec2<i32>(x, y), i32(level)).r;
 }

@@ -4,7 +4,9 @@
 //
 // The includer defines how heights are read: height_texel(x, y, level) and height_size(level)
 // (level 0 the heights, each a texel of a level of the mip chain), minmax_texel(x, y, level),
-// minmax_size(level) and minmax_levels() (the min-max levels, cells first). The lit program
+// minmax_size(level) and minmax_levels() (the min-max levels, cells first), and the horizon
+// map's: horizon_texel(x, y, level, half) (directions 0-3 for half 0, 4-7 for half 1) and
+// horizon_size(level). The lit program
 // reads textures; the parity test reads storage buffers.
 
 struct TextureRay {
@@ -404,6 +406,42 @@ fn exact_shadow(st: vec2<f32>, height: f32, to_light: vec3<f32>) -> f32 {
 }
 
 // bumpmap_core::parallax::TextureFrame.
+// bumpmap_math::horizon::HorizonLevel::bilinear, four directions at a time.
+fn horizon_bilinear(level: u32, st: vec2<f32>, half: u32) -> vec4<f32> {
+    let size = horizon_size(level);
+    let x = linear_repeat(st.x, size.x);
+    let y = linear_repeat(st.y, size.y);
+    let ca = 1.0 - x.a;
+    let cb = 1.0 - y.a;
+    var v = horizon_texel(x.i0, y.i0, level, half) * (ca * cb);
+    v = fma(horizon_texel(x.i1, y.i0, level, half), vec4<f32>(x.a * cb), v);
+    v = fma(horizon_texel(x.i0, y.i1, level, half), vec4<f32>(ca * y.a), v);
+    return fma(horizon_texel(x.i1, y.i1, level, half), vec4<f32>(x.a * y.a), v);
+}
+
+// bumpmap_core::parallax::horizon_shadow with bumpmap_math::horizon::{horizon_toward,
+// visibility}: the light let through by the horizon map at st.
+fn horizon_shadow(st: vec2<f32>, to_light_st: vec3<f32>, level: u32) -> f32 {
+    var h = array<f32, AZIMUTHS>();
+    let a = horizon_bilinear(level, st, 0u);
+    let b = horizon_bilinear(level, st, 1u);
+    for (var k = 0u; k < 4u; k++) {
+        h[k] = a[k];
+        h[k + 4u] = b[k];
+    }
+    let size = vec2<f32>(height_size(0u));
+    let to_light = vec3<f32>(to_light_st.xy * size, to_light_st.z);
+    // atan2(y, x) in turns of the directions, wrapped into [0, AZIMUTHS).
+    let n = f32(AZIMUTHS);
+    let turns = atan2(to_light.y, to_light.x) * (n / 6.2831855);
+    let f = turns - n * floor(turns / n);
+    let k = min(u32(floor(f)), AZIMUTHS - 1u);
+    let horizon = h[k] + (f - f32(k)) * (h[(k + 1u) % AZIMUTHS] - h[k]);
+    // Elevations as stored: atan(rise) / 90 degrees.
+    let light = atan2(to_light.z, length(to_light.xy)) * 0.63661975;
+    return smoothstep(horizon - HORIZON_EDGE, horizon + HORIZON_EDGE, light);
+}
+
 fn frame_to_tangent(j: vec4<f32>, depth: f32, v: vec3<f32>) -> vec3<f32> {
     return vec3<f32>(j.x * v.x + j.y * v.y, j.z * v.x + j.w * v.y, v.z * depth);
 }
@@ -471,7 +509,9 @@ fn parallax_fragment(
     }
     let to_eye_hit = to_eye - moved;
     var light = 1.0;
-    if PARALLAX_SHADOW != PARALLAX_SHADOW_OFF {
+    if PARALLAX_SHADOW == PARALLAX_SHADOW_HORIZON {
+        light = horizon_shadow(hit.st, to_light, level);
+    } else if PARALLAX_SHADOW != PARALLAX_SHADOW_OFF {
         if PARALLAX == PARALLAX_EXACT {
             light = exact_shadow(hit.st, 1.0 - hit.descent, to_light);
         } else {

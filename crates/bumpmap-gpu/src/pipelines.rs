@@ -187,6 +187,9 @@ impl Pipelines {
                 // level, read texel by texel (textureLoad), so unfiltered.
                 unfiltered_entry(11),
                 unfiltered_entry(12),
+                // The horizon map: directions 0–3 and 4–7, Rgba32Float, every level, likewise.
+                unfiltered_entry(13),
+                unfiltered_entry(14),
             ],
         });
         let mut entries = Vec::new();

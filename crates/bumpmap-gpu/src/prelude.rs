@@ -41,20 +41,22 @@ pub(crate) const SLOTS: [(&str, usize); 17] = [
 
 /// The model's numbers `shading.wgsl` and `parallax.wgsl` read, by their Rust names (and
 /// `F32_INFINITY`, `f32::MAX`, where Rust says infinity: WGSL has no literal for it).
-pub(crate) const MODEL_CONSTANTS: [(&str, f32); 6] = [
+pub(crate) const MODEL_CONSTANTS: [(&str, f32); 7] = [
     ("MIN_PERCEPTUAL_ROUGHNESS", bumpmap_core::shading::MIN_PERCEPTUAL_ROUGHNESS),
     ("SHADOW_BIAS", bumpmap_core::parallax::SHADOW_BIAS),
     ("SOFT_SHADOW_SHARPNESS", bumpmap_core::parallax::SOFT_SHADOW_SHARPNESS),
     ("EXACT_SHADOW_LIFT", bumpmap_core::parallax::EXACT_SHADOW_LIFT),
     ("MAX_ANISOTROPY", bumpmap_core::parallax::MAX_ANISOTROPY),
+    ("HORIZON_EDGE", bumpmap_math::horizon::HORIZON_EDGE),
     ("F32_INFINITY", f32::MAX),
 ];
 
 /// The marches' counts `parallax.wgsl` reads, by their Rust names.
-pub(crate) const MODEL_COUNTS: [(&str, u32); 3] = [
+pub(crate) const MODEL_COUNTS: [(&str, u32); 4] = [
     ("RELIEF_BISECTIONS", bumpmap_core::parallax::RELIEF_BISECTIONS),
     ("SAMPLES_PER_CELL", bumpmap_math::height_trace::SAMPLES_PER_CELL as u32),
     ("BISECTIONS", bumpmap_math::height_trace::BISECTIONS as u32),
+    ("AZIMUTHS", bumpmap_math::horizon::AZIMUTHS as u32),
 ];
 
 /// vec4 locations carrying the varyings.

@@ -271,6 +271,10 @@ impl GpuRenderer {
             Some(x) => t.heights(ctx, &x.heights)?,
             None => t.no_heights(ctx),
         };
+        let [horizons_0123, horizons_4567] = match p.parallax.as_ref().and_then(|x| x.horizons.as_ref()) {
+            Some(h) => t.horizons(ctx, h)?,
+            None => t.no_horizons(ctx),
+        };
         let material = t.sampler(ctx, p.sampler);
         let clamp = t.sampler(ctx, bumpmap_core::state::Sampler::LINEAR_CLAMP);
         let uniforms = ctx.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
@@ -293,6 +297,8 @@ impl GpuRenderer {
             wgpu::BindGroupEntry { binding: 10, resource: TextureView(&roughness) },
             wgpu::BindGroupEntry { binding: 11, resource: TextureView(&heights) },
             wgpu::BindGroupEntry { binding: 12, resource: TextureView(&height_bounds) },
+            wgpu::BindGroupEntry { binding: 13, resource: TextureView(&horizons_0123) },
+            wgpu::BindGroupEntry { binding: 14, resource: TextureView(&horizons_4567) },
         ];
         Ok(ctx.device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("lit"),

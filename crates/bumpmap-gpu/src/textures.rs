@@ -9,7 +9,7 @@
 use std::sync::Arc;
 
 use bumpmap_core::state::{MagFilter, MinFilter, Sampler, WrapMode};
-use bumpmap_math::{Encoding, HeightMips, LeanMips, NormalizationCubeMap, Rgba8Image, Rgba8Mips};
+use bumpmap_math::{Encoding, HeightMips, HorizonMap, LeanMips, NormalizationCubeMap, Rgba8Image, Rgba8Mips};
 
 use crate::context::Context;
 use crate::error::GpuError;
@@ -34,6 +34,9 @@ pub struct Textures {
     /// Heights as geometry: (heights, bounds) by the scene's `Arc`.
     heights: Vec<(Arc<HeightMips>, [wgpu::TextureView; 2])>,
     no_heights: Option<[wgpu::TextureView; 2]>,
+    /// Horizon maps: directions 0–3 and 4–7 by the heights' `Arc`.
+    horizons: Vec<(Arc<HorizonMap>, [wgpu::TextureView; 2])>,
+    no_horizons: Option<[wgpu::TextureView; 2]>,
 }
 
 /// A 2D texture of `format` with one mip level per `(width, height, bytes)` of `levels`, level
@@ -77,10 +80,15 @@ fn levels_texture(
 }
 
 /// A float texture of `levels` (each `(width, height, texels as f32s, N a texel)`): `R32Float`
-/// for one channel, `Rg32Float` for two; read with `textureLoad`, never filtered.
+/// for one channel, `Rg32Float` for two, `Rgba32Float` for four; read with `textureLoad`, never
+/// filtered.
 fn float_texture<const N: usize>(ctx: &Context, label: &str, levels: &[(usize, usize, &[f32])]) -> wgpu::TextureView {
-    const { assert!(N == 1 || N == 2, "heights are one channel, their bounds two") };
-    let format = if N == 1 { wgpu::TextureFormat::R32Float } else { wgpu::TextureFormat::Rg32Float };
+    const { assert!(N == 1 || N == 2 || N == 4, "heights are one channel, their bounds two, horizons four") };
+    let format = match N {
+        1 => wgpu::TextureFormat::R32Float,
+        2 => wgpu::TextureFormat::Rg32Float,
+        _ => wgpu::TextureFormat::Rgba32Float,
+    };
     let bytes: Vec<_> =
         levels.iter().map(|&(w, h, texels)| (w, h, texels.iter().flat_map(|v| v.to_le_bytes()).collect())).collect();
     levels_texture(ctx, label, format, 4 * N as u32, &bytes)
@@ -258,6 +266,50 @@ impl Textures {
         }
         self.heights.push((heights.clone(), views.clone()));
         Ok(views)
+    }
+
+    /// The horizon map on the device: directions 0–3 and 4–7 as two `Rgba32Float` textures,
+    /// every level, read with `textureLoad` as `parallax.wgsl` filters them; refused when larger
+    /// than the adapter allows.
+    pub fn horizons(&mut self, ctx: &Context, horizons: &Arc<HorizonMap>) -> Result<[wgpu::TextureView; 2], GpuError> {
+        // parallax.wgsl reads the directions as two vec4s.
+        const { assert!(bumpmap_math::horizon::AZIMUTHS == 8) };
+        if let Some((_, v)) = self.horizons.iter().find(|(h, _)| Arc::ptr_eq(h, horizons)) {
+            return Ok(v.clone());
+        }
+        let max = ctx.max_texture_side() as usize;
+        let (width, height) = (horizons.width(), horizons.height());
+        if width > max || height > max {
+            return Err(GpuError::TooLarge { what: "the horizon map", width, height, max: max as u32 });
+        }
+        let half = |k: usize| -> Vec<(usize, usize, Vec<f32>)> {
+            horizons
+                .levels()
+                .iter()
+                .map(|l| (l.width, l.height, l.texels.iter().flat_map(|t| t[4 * k..4 * k + 4].to_vec()).collect()))
+                .collect()
+        };
+        let texture = |k: usize, label: &str| {
+            let levels = half(k);
+            let refs: Vec<(usize, usize, &[f32])> = levels.iter().map(|(w, h, v)| (*w, *h, v.as_slice())).collect();
+            float_texture::<4>(ctx, label, &refs)
+        };
+        let views = [texture(0, "horizons 0-3"), texture(1, "horizons 4-7")];
+        if self.horizons.len() >= MAX_CACHED {
+            self.horizons.clear();
+        }
+        self.horizons.push((horizons.clone(), views.clone()));
+        Ok(views)
+    }
+
+    /// 1×1 open horizons for programs without the horizon map's shadows.
+    pub fn no_horizons(&mut self, ctx: &Context) -> [wgpu::TextureView; 2] {
+        self.no_horizons
+            .get_or_insert_with(|| {
+                let open = [(1, 1, &[0.0f32; 4][..])];
+                [float_texture::<4>(ctx, "no horizons", &open), float_texture::<4>(ctx, "no horizons", &open)]
+            })
+            .clone()
     }
 
     /// 1×1 heights and bounds for programs without heights as geometry.

@@ -1,7 +1,7 @@
 //! `parallax.wgsl`'s `parallax_fragment()` against its definition,
 //! `bumpmap_core::parallax::fragment`, on random fragments over bricks: every march, every
-//! shadow mode, with and without silhouettes, on a compute shader reading the same heights and
-//! min–max levels from a storage buffer.
+//! shadow mode (the horizon map's too), with and without silhouettes, on a compute shader reading
+//! the same heights, min–max levels and horizons from a storage buffer.
 //!
 //! Tolerance: both sides compute in f32, but the GPU may contract multiply-adds and orders a few
 //! sums differently, so a march may end one layer apart (or a walk one crossing apart) where the
@@ -12,7 +12,9 @@
 
 mod common;
 
-use bumpmap_core::parallax::{FragmentRays, Parallax, ParallaxMethod, ParallaxOptions, ParallaxShadow, fragment};
+use bumpmap_core::parallax::{
+    FragmentRays, HorizonLookup, Parallax, ParallaxMethod, ParallaxOptions, ParallaxShadow, fragment,
+};
 use bumpmap_gpu::{parallax_name, parallax_shadow_name, parallax_wgsl};
 use bumpmap_math::HeightMips;
 use glam::{Vec2, Vec3};
@@ -26,12 +28,14 @@ impl Rng {
     }
 }
 
-/// The heights and their min–max levels behind a header, as `data` lays them out.
+/// The heights, their min–max levels and their horizons behind a header, as `data` lays them
+/// out.
 fn heights_buffer(m: &HeightMips, fragments: &[[f32; 16]]) -> Vec<f32> {
     let levels = m.levels();
     let minmax = m.minmax().unwrap();
+    let horizons = m.horizons().unwrap();
     let l = levels.len();
-    let frag = 2 + 6 * l;
+    let frag = 2 + 9 * l;
     let mut texels_at = frag + 16 * fragments.len();
     let mut header = vec![fragments.len() as f32, l as f32];
     let mut texels = Vec::new();
@@ -44,6 +48,11 @@ fn heights_buffer(m: &HeightMips, fragments: &[[f32; 16]]) -> Vec<f32> {
         header.extend([level.width as f32, level.height as f32, texels_at as f32]);
         texels.extend(level.texels.iter().flatten());
         texels_at += 2 * level.texels.len();
+    }
+    for level in horizons.levels() {
+        header.extend([level.width as f32, level.height as f32, texels_at as f32]);
+        texels.extend(level.texels.iter().flatten());
+        texels_at += 8 * level.texels.len();
     }
     assert!(texels_at < 1 << 24, "offsets stay exact in f32");
     header.extend(fragments.iter().flatten());
@@ -82,12 +91,23 @@ fn minmax_texel(x: i32, y: i32, level: u32) -> vec2<f32> {
     return vec2<f32>(data[o], data[o + 1u]);
 }
 
+fn horizon_size(level: u32) -> vec2<u32> {
+    let b = 2u + 6u * hdr(1u) + 3u * level;
+    return vec2<u32>(hdr(b), hdr(b + 1u));
+}
+
+fn horizon_texel(x: i32, y: i32, level: u32, half: u32) -> vec4<f32> {
+    let b = 2u + 6u * hdr(1u) + 3u * level;
+    let o = hdr(b + 2u) + 8u * (u32(y) * hdr(b) + u32(x)) + 4u * half;
+    return vec4<f32>(data[o], data[o + 1u], data[o + 2u], data[o + 3u]);
+}
+
 @compute @workgroup_size(64)
 fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     if id.x >= hdr(0u) {
         return;
     }
-    let b = 2u + 6u * hdr(1u) + 16u * id.x;
+    let b = 2u + 9u * hdr(1u) + 16u * id.x;
     let f = parallax_fragment(
         vec2<f32>(data[b], data[b + 1u]),
         vec3<f32>(data[b + 2u], data[b + 3u], data[b + 4u]),
@@ -159,9 +179,10 @@ fn wgsl_parallax_fragment_is_the_cores() {
         format!("{}\nconst DEPTH: f32 = {depth:?};\nconst LAYERS: u32 = {layers}u;\n{HARNESS}", parallax_wgsl());
     let levels = heights.levels();
     let exact = Some((&levels[0], heights.minmax().unwrap()));
+    let horizons = heights.horizons().unwrap();
     let mut worst = 0f32;
     for method in ParallaxMethod::ALL {
-        for shadow in [ParallaxShadow::Off, ParallaxShadow::Hard, ParallaxShadow::Soft] {
+        for shadow in ParallaxShadow::ALL {
             for silhouettes in [false, true] {
                 let constants = [
                     ("PARALLAX", code(parallax_name(Some(method)))),
@@ -184,7 +205,10 @@ fn wgsl_parallax_fragment_is_the_cores() {
                     };
                     let level = &levels[f[14] as usize];
                     let mut sample = |st: Vec2| level.bilinear(st.x, st.y);
-                    let want = fragment(&rays, &p, depth, f[15] > 0.5, &mut sample, exact);
+                    let mut sample_horizons = |st: Vec2| horizons.levels()[f[14] as usize].bilinear(st.x, st.y);
+                    let size = Vec2::new(levels[0].width as f32, levels[0].height as f32);
+                    let lookup = HorizonLookup { size, sample: &mut sample_horizons };
+                    let want = fragment(&rays, &p, depth, f[15] > 0.5, &mut sample, exact, Some(lookup));
                     let g = &got[4 * i..4 * i + 4];
                     let ok = g[1][3] > 0.5;
                     if ok != want.is_some() {

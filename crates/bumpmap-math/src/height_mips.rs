@@ -20,6 +20,7 @@
 
 use crate::buffer::OutOfMemory;
 use crate::height::HeightField;
+use crate::horizon::{HorizonError, HorizonMap};
 use crate::interpolant::{HeightGrid, cell_bounds, cell_texels};
 use crate::kernel::Wrap;
 use crate::mip::{footprint, next_size};
@@ -51,7 +52,7 @@ impl HeightGrid for HeightLevel {
 /// The texel index below `u` (texel units, centres at half-integers) and the weight of the next
 /// one, for GL's LINEAR under REPEAT: `u = frac(s)·n − ½` (GL 1.2 §3.8.8).
 #[inline(always)]
-fn linear_repeat(s: f32, n: usize) -> (usize, usize, f32) {
+pub(crate) fn linear_repeat(s: f32, n: usize) -> (usize, usize, f32) {
     let nf = n as f32;
     let u = (s - s.floor()) * nf - 0.5;
     let f = u.floor();
@@ -215,10 +216,19 @@ fn try_vec<T>(n: usize, what: &'static str) -> Result<Vec<T>, OutOfMemory> {
 }
 
 /// Heights with their mip levels and, where made or given, their min–max levels.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug)]
 pub struct HeightMips {
     levels: Vec<HeightLevel>,
     minmax: Option<Vec<MinMaxLevel>>,
+    /// Made from level 0 the first time they are asked for ([`HeightMips::horizons`]).
+    horizons: std::sync::OnceLock<Result<std::sync::Arc<HorizonMap>, HorizonError>>,
+}
+
+/// Equal heights and bounds; whether the horizons were made yet does not count.
+impl PartialEq for HeightMips {
+    fn eq(&self, other: &Self) -> bool {
+        self.levels == other.levels && self.minmax == other.minmax
+    }
 }
 
 impl HeightMips {
@@ -247,7 +257,7 @@ impl HeightMips {
         check_heights(&mut level0, 0)?;
         let levels = mean_levels(level0)?;
         let minmax = minmax_levels(&levels[0])?;
-        Ok(Self { levels, minmax: Some(minmax) })
+        Ok(Self { levels, minmax: Some(minmax), horizons: Default::default() })
     }
 
     /// Levels as a file holds them: level 0 alone (the others are made) or the whole chain, and
@@ -290,7 +300,15 @@ impl HeightMips {
             check_heights(level, k)?;
         }
         let levels = if levels.len() == 1 { mean_levels(levels.swap_remove(0))? } else { levels };
-        Ok(Self { levels, minmax })
+        Ok(Self { levels, minmax, horizons: Default::default() })
+    }
+
+    /// The horizon map of level 0 (`crate::horizon`, heights wrapped around as the walk wraps
+    /// them), made the first time it is asked for and kept: it does not depend on the depth.
+    pub fn horizons(&self) -> Result<std::sync::Arc<HorizonMap>, HorizonError> {
+        self.horizons
+            .get_or_init(|| HorizonMap::from_heights(&self.levels[0], Wrap::Repeat).map(std::sync::Arc::new))
+            .clone()
     }
 
     /// Level 0's width.

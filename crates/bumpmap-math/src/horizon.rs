@@ -78,6 +78,25 @@ pub struct HorizonLevel {
     pub texels: Vec<Horizons>,
 }
 
+impl HorizonLevel {
+    /// GL's LINEAR lookup with REPEAT at texture coordinates (s, t), every direction, as
+    /// `crate::height_mips::HeightLevel::bilinear` reads heights.
+    #[inline]
+    pub fn bilinear(&self, s: f32, t: f32) -> Horizons {
+        let (i0, i1, a) = crate::height_mips::linear_repeat(s, self.width);
+        let (j0, j1, b) = crate::height_mips::linear_repeat(t, self.height);
+        let (r0, r1) = (j0 * self.width, j1 * self.width);
+        let (ca, cb) = (1.0 - a, 1.0 - b);
+        let [p00, p10, p01, p11] = [r0 + i0, r0 + i1, r1 + i0, r1 + i1].map(|i| &self.texels[i]);
+        std::array::from_fn(|k| {
+            let v = p00[k] * (ca * cb);
+            let v = p10[k].mul_add(a * cb, v);
+            let v = p01[k].mul_add(ca * b, v);
+            p11[k].mul_add(a * b, v)
+        })
+    }
+}
+
 /// A horizon map with its mip levels: each smaller level the mean of the stored values it
 /// covers, so at a distance the shadow's edge widens instead of flickering.
 #[derive(Clone, Debug, PartialEq)]

@@ -18,7 +18,8 @@ use std::time::Instant;
 
 use bumpmap::{BumpSource, Prepared, Renderer, SceneKind, SceneParams, SceneSpec, TechniqueName, TechniqueOptions};
 use bumpmap_core::parallax::{
-    FragmentRays, Parallax, ParallaxOptions, ParallaxShadow, TextureFrame, fragment, height_lambda, height_level,
+    FragmentRays, HorizonLookup, Parallax, ParallaxMethod, ParallaxOptions, ParallaxShadow, TextureFrame, fragment,
+    height_lambda, height_level,
 };
 use bumpmap_core::scene::SceneLight;
 use bumpmap_core::state::Sampler;
@@ -35,9 +36,11 @@ use crate::render::{core_err, lib_err, reference_err};
 pub const ANGLES: [f32; 5] = [30.0, 60.0, 70.0, 75.0, 85.0];
 /// The height fields, 256² each.
 pub const FIELDS: [&str; 2] = ["bricks", "dimples"];
-/// The techniques measured: normal mapping, then each march.
-pub const TECHNIQUES: [TechniqueName; 6] = [
+/// The techniques measured: normal mapping, normal mapping with the horizon map's shadows,
+/// then each march.
+pub const TECHNIQUES: [TechniqueName; 7] = [
     TechniqueName::SinglePass,
+    TechniqueName::Horizon,
     TechniqueName::Parallax,
     TechniqueName::SteepParallax,
     TechniqueName::Pom,
@@ -166,7 +169,8 @@ pub fn parallax_study(backend: &mut Renderer) -> Result<ParallaxStudy, CliError>
                 let drawn = backend.draw(&prepared, SIZE, SIZE).map_err(lib_err)?;
                 let millis = t.elapsed().as_secs_f64() * 1e3;
                 let (scores, _) = metrics::score(&image, &ref_rgb, &drawn);
-                let (hit_mean, hit_p95, shadow_agreement) = hits(technique, &pixels, &heights, object.material.depth);
+                let (hit_mean, hit_p95, shadow_agreement) =
+                    hits(technique, &pixels, &heights, object.material.depth).map_err(|e| core_err(e.into()))?;
                 if show
                     && matches!(technique, TechniqueName::SinglePass | TechniqueName::Pom | TechniqueName::HeightExact)
                 {
@@ -272,21 +276,28 @@ fn hits(
     pixels: &[PixelRay],
     heights: &bumpmap_math::HeightMips,
     depth: f32,
-) -> (f64, f64, f64) {
+) -> Result<(f64, f64, f64), bumpmap_math::HorizonError> {
     let levels = heights.levels();
     let exact = heights.minmax().map(|m| (&levels[0], m));
     let texels = Vec2::new(heights.width() as f32, heights.height() as f32);
+    let horizons = heights.horizons()?;
     let mut errors = Vec::with_capacity(pixels.len());
     let (mut facing, mut agree) = (0usize, 0usize);
     for px in pixels {
         let (st, lit) = match technique.parallax_method() {
             None => (px.rays.st, true),
             Some(method) => {
-                let options = ParallaxOptions { shadow: ParallaxShadow::Hard, ..Default::default() };
+                // The horizon technique's own shadow, every march's hard one.
+                let shadow =
+                    if method == ParallaxMethod::Flat { ParallaxShadow::Horizon } else { ParallaxShadow::Hard };
+                let options = ParallaxOptions { shadow, ..Default::default() };
                 let parallax = Parallax { method, options };
-                let level = &levels[height_level(&Sampler::TRILINEAR_REPEAT, px.lambda, levels.len())];
+                let k = height_level(&Sampler::TRILINEAR_REPEAT, px.lambda, levels.len());
+                let level = &levels[k];
                 let mut sample = |st: Vec2| level.bilinear(st.x, st.y);
-                match fragment(&px.rays, &parallax, depth, false, &mut sample, exact) {
+                let mut sample_horizons = |st: Vec2| horizons.levels()[k].bilinear(st.x, st.y);
+                let lookup = HorizonLookup { size: texels, sample: &mut sample_horizons };
+                match fragment(&px.rays, &parallax, depth, false, &mut sample, exact, Some(lookup)) {
                     Some(f) => (f.st, f.light > 0.5),
                     None => continue,
                 }
@@ -302,7 +313,7 @@ fn hits(
     let n = errors.len().max(1);
     let mean = errors.iter().sum::<f64>() / n as f64;
     let p95 = errors.get((0.95 * (n - 1) as f64).round() as usize).copied().unwrap_or(0.0);
-    (mean, p95, agree as f64 / facing.max(1) as f64)
+    Ok((mean, p95, agree as f64 / facing.max(1) as f64))
 }
 
 /// The displaced reference of `scene` at `spp`, for the main table's second column.

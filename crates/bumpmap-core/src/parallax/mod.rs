@@ -17,6 +17,7 @@
 //!   search;
 //! - [`exact`]: the min–max walk of the reference (`bumpmap_math::height_trace`) per pixel;
 //! - [`shadow`]: self-shadowing by a march toward the light, hard or soft;
+//! - [`horizon_shadow`]: self-shadowing by the horizon map, no march (Sloan & Cohen 2000);
 //! - [`fragment`]: all of it for one fragment: the hit, the light and eye vectors there, the
 //!   shadow, the depth.
 //!
@@ -29,6 +30,7 @@
 use glam::{Vec2, Vec3};
 
 use bumpmap_math::height_mips::{HeightLevel, MinMaxLevel};
+use bumpmap_math::horizon::Horizons;
 
 mod frame;
 mod march;
@@ -58,6 +60,9 @@ pub const EXACT_SHADOW_LIFT: f32 = 1e-4;
 /// Which march finds the hit.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum ParallaxMethod {
+    /// No march: the maps are read where the ray enters the polygon, as the single pass reads
+    /// them (the `horizon` technique: the single pass with the horizon map's shadows).
+    Flat,
     /// One height lookup and an offset (Kaneko et al. 2001, Welsh's limiting).
     Offset,
     /// Layers of equal height, the first below the heights taken (McGuire & McGuire 2005).
@@ -72,7 +77,8 @@ pub enum ParallaxMethod {
 
 impl ParallaxMethod {
     /// Every method, in the catalogue's order.
-    pub const ALL: [ParallaxMethod; 5] = [
+    pub const ALL: [ParallaxMethod; 6] = [
+        ParallaxMethod::Flat,
         ParallaxMethod::Offset,
         ParallaxMethod::Steep,
         ParallaxMethod::Occlusion,
@@ -92,11 +98,15 @@ pub enum ParallaxShadow {
     /// Darker the higher a blocker rises above the ray, nearer blockers weighing more
     /// (Tatarchuk 2006's engine-style penumbra; not a physical one). `exact` casts hard shadows.
     Soft,
+    /// No march toward the light: the horizon map's elevation toward it, with a soft edge
+    /// (Max 1988; Sloan & Cohen 2000; `bumpmap_math::horizon`).
+    Horizon,
 }
 
 impl ParallaxShadow {
     /// Every mode, in the order the viewer's key cycles them.
-    pub const ALL: [ParallaxShadow; 3] = [ParallaxShadow::Off, ParallaxShadow::Hard, ParallaxShadow::Soft];
+    pub const ALL: [ParallaxShadow; 4] =
+        [ParallaxShadow::Off, ParallaxShadow::Hard, ParallaxShadow::Soft, ParallaxShadow::Horizon];
 
     /// The name commands and the Python module take: `off`, `hard`, `soft`.
     pub fn name(self) -> &'static str {
@@ -104,6 +114,7 @@ impl ParallaxShadow {
             ParallaxShadow::Off => "off",
             ParallaxShadow::Hard => "hard",
             ParallaxShadow::Soft => "soft",
+            ParallaxShadow::Horizon => "horizon",
         }
     }
 
@@ -114,6 +125,9 @@ impl ParallaxShadow {
             ParallaxShadow::Hard => "dark where any height along the way to the light rises above the ray",
             ParallaxShadow::Soft => {
                 "darker the higher and nearer a blocker (an engine-style penumbra, not a physical one)"
+            }
+            ParallaxShadow::Horizon => {
+                "the horizon map's elevation toward the light, 8 directions a texel (Sloan & Cohen 2000): no march"
             }
         }
     }
@@ -194,9 +208,27 @@ pub struct ParallaxFragment {
 /// Heights a fragment's exact walk reads: level 0 and the min–max levels.
 pub type ExactHeights<'a> = (&'a HeightLevel, &'a [MinMaxLevel]);
 
+/// What a fragment shadowed by the horizon map reads: the horizons at a point (filtered as the
+/// backend's texture unit filters them) and the size of level 0 in texels, which turns texture
+/// space into the texel space the horizons are measured in.
+pub struct HorizonLookup<'a> {
+    /// Level 0's width and height.
+    pub size: Vec2,
+    /// The horizons at texture coordinates.
+    pub sample: &'a mut dyn FnMut(Vec2) -> Horizons,
+}
+
+/// How much light reaches a point at `st` by the horizon map: [`bumpmap_math::horizon::visibility`]
+/// of `to_light` (texture space) taken to texel space.
+pub fn horizon_shadow(st: Vec2, to_light: Vec3, horizons: &mut HorizonLookup) -> f32 {
+    let toward = Vec3::new(to_light.x * horizons.size.x, to_light.y * horizons.size.y, to_light.z);
+    bumpmap_math::horizon::visibility(&(horizons.sample)(st), toward)
+}
+
 /// Everything a parallax fragment needs before it is lit: the march of `parallax.method`
 /// (sampling heights through `sample`; `exact` reads `exact_heights`, which it needs), the light
-/// and eye vectors at the hit, the shadow, and the depth factor. `None`: the fragment is
+/// and eye vectors at the hit, the shadow (the horizon map's through `horizons`, which
+/// [`ParallaxShadow::Horizon`] needs; without it the fragment is lit), and the depth factor. `None`: the fragment is
 /// discarded (a silhouette). `positional`: whether `to_light` is a vector to a point (it then
 /// shortens as the hit moves) or a direction. An eye below the tangent plane (a polygon seen
 /// edge-on) leaves the entry point as the hit.
@@ -207,6 +239,7 @@ pub fn fragment(
     positional: bool,
     sample: &mut impl FnMut(Vec2) -> f32,
     exact_heights: Option<ExactHeights>,
+    horizons: Option<HorizonLookup>,
 ) -> Option<ParallaxFragment> {
     let frame = TextureFrame { jacobian: rays.jacobian, depth };
     let curvature = if parallax.options.silhouettes { rays.curvature } else { Vec2::ZERO };
@@ -216,6 +249,7 @@ pub fn fragment(
     let hit = match TextureRay::new(rays.st, rays.to_eye, curvature) {
         None => MarchHit { st: rays.st, descent: 0.0 },
         Some(ray) => match (parallax.method, exact_heights) {
+            (ParallaxMethod::Flat, _) => MarchHit { st: rays.st, descent: 0.0 },
             (ParallaxMethod::Offset, _) => offset(&ray, cos_view, sample),
             (ParallaxMethod::Steep, _) => steep(&ray, layers, sample)?,
             (ParallaxMethod::Occlusion, _) => occlusion(&ray, layers, cos_view, sample)?,
@@ -230,6 +264,10 @@ pub fn fragment(
     let to_eye = rays.to_eye - moved;
     let light = match (parallax.method, exact_heights) {
         (_, _) if parallax.options.shadow == ParallaxShadow::Off => 1.0,
+        (_, _) if parallax.options.shadow == ParallaxShadow::Horizon => match horizons {
+            Some(mut h) => horizon_shadow(hit.st, to_light, &mut h),
+            None => 1.0,
+        },
         (ParallaxMethod::Exact, Some((level0, minmax))) => {
             exact_shadow(hit.st, 1.0 - hit.descent, to_light, level0, minmax)
         }

@@ -200,6 +200,8 @@ pub struct ParallaxProgram {
     pub parallax: Parallax,
     /// The heights, the normal map's size (with their min–max levels for the exact walk).
     pub heights: Arc<HeightMips>,
+    /// The heights' horizon map, for [`crate::parallax::ParallaxShadow::Horizon`].
+    pub horizons: Option<Arc<bumpmap_math::HorizonMap>>,
     /// Object units per unit of height.
     pub depth: f32,
     /// The camera's `far / (far − near)`: what a hit's window depth is computed with

@@ -11,7 +11,7 @@ use std::sync::Arc;
 use bumpmap_math::Rgba8Mips;
 
 use crate::error::{CoreError, Feature};
-use crate::parallax::{MAX_LAYERS, Parallax, ParallaxMethod};
+use crate::parallax::{MAX_LAYERS, Parallax, ParallaxMethod, ParallaxShadow};
 use crate::scene::{Attenuation, Scene, SceneLight};
 use crate::shading::LitTerms;
 pub use crate::shading::{SelfShadow, SpecularFilter, SpecularShadow};
@@ -237,12 +237,23 @@ pub fn passes(scene: &Scene, options: &SinglePassOptions) -> Result<Vec<Pass>, C
                 cube_size: options.cube_size,
                 half_angle: options.half_angle,
                 light: light.clone(),
-                parallax: options.parallax.map(|parallax| ParallaxProgram {
-                    parallax,
-                    heights: m.heights.clone().expect("validated: every material has heights"),
-                    depth: m.depth,
-                    depth_range: scene.camera.far / (scene.camera.far - scene.camera.near),
-                }),
+                parallax: match options.parallax {
+                    Some(parallax) => {
+                        let heights = m.heights.clone().expect("validated: every material has heights");
+                        let horizons = match parallax.options.shadow {
+                            ParallaxShadow::Horizon => Some(heights.horizons()?),
+                            _ => None,
+                        };
+                        Some(ParallaxProgram {
+                            parallax,
+                            heights,
+                            horizons,
+                            depth: m.depth,
+                            depth_range: scene.camera.far / (scene.camera.far - scene.camera.near),
+                        })
+                    }
+                    None => None,
+                },
             };
             let state = if l == 0 { PassState::OPAQUE } else { PassState::equal(Blend::ADD) };
             passes.push(Pass { object: o, light: l, snapshot: None, state, program: Program::Lit(Box::new(program)) });

@@ -1,14 +1,14 @@
 //! Heights as geometry on the CPU pipeline: [`bumpmap_core::parallax::fragment`] for each live
 //! fragment, its heights read by GL's LINEAR filter from the level of the footprint's shorter
 //! side ([`bumpmap_core::parallax::height_lambda`]; the footprint at the entry point, once per
-//! quad).
+//! quad), the horizon map (where the shadow is the horizon's) from the same level.
 //!
 //! Not vectorized: each lane runs the core's march as it is written (one home for every march;
 //! BENCHMARKS.md says what that costs).
 
 use glam::{Vec2, Vec3};
 
-use bumpmap_core::parallax::{FragmentRays, displaced_depth, fragment, height_lambda, height_level};
+use bumpmap_core::parallax::{FragmentRays, HorizonLookup, displaced_depth, fragment, height_lambda, height_level};
 use bumpmap_core::technique::ParallaxProgram;
 use bumpmap_core::vertex::var;
 use bumpmap_math::lighting::Light;
@@ -34,6 +34,7 @@ impl SinglePass<'_> {
         batch.pack_lanes(&batch.depth, &mut sc.depth);
         let levels = p.heights.levels();
         let exact = p.heights.minmax().map(|m| (&levels[0], m));
+        let horizon_levels = p.horizons.as_ref().map_or(&[][..], |h| h.levels());
         let positional = matches!(self.program.light.light, Light::Positional(_));
         let sampler = self.program.sampler;
         let size = Vec2::new(levels[0].width as f32, levels[0].height as f32);
@@ -45,8 +46,13 @@ impl SinglePass<'_> {
             let at = |k: usize| Vec2::new(s[q + k], t_[q + k]);
             let (dx, dy) = ((at(1) - at(0)) * size, (at(2) - at(0)) * size);
             let lambda = height_lambda(dx.length_squared(), dy.length_squared());
-            let level = &levels[height_level(&sampler, lambda, levels.len())];
+            let k = height_level(&sampler, lambda, levels.len());
+            let level = &levels[k];
             let mut sample = |st: Vec2| level.bilinear(st.x, st.y);
+            // The horizons from the heights' level: the same footprint.
+            let mut sample_horizons = |st: Vec2| horizon_levels[k].bilinear(st.x, st.y);
+            let horizons = (!horizon_levels.is_empty())
+                .then(|| HorizonLookup { size, sample: &mut sample_horizons as &mut dyn FnMut(Vec2) -> _ });
             let rays = FragmentRays {
                 st: Vec2::new(sc.coords[0][j], sc.coords[1][j]),
                 to_eye: Vec3::new(t[0][j], t[1][j], t[2][j]),
@@ -55,7 +61,7 @@ impl SinglePass<'_> {
                 curvature: Vec2::new(t[10][j], t[11][j]),
             };
             let (hit, l, v, light, normal, depth) =
-                match fragment(&rays, &p.parallax, p.depth, positional, &mut sample, exact) {
+                match fragment(&rays, &p.parallax, p.depth, positional, &mut sample, exact, horizons) {
                     Some(f) => {
                         let depth = if p.parallax.options.write_depth {
                             displaced_depth(sc.depth[j], f.kappa, p.depth_range)
