@@ -24,9 +24,15 @@ pub fn run(args: &NormalmapArgs) -> Result<(), CliError> {
     let channel: Channel = args.map.channel.into();
     let input = Path::new(&args.input);
     if input.is_dir() {
-        if args.roughness_out.is_some() || args.lean_out.is_some() || args.height_out.is_some() {
+        if args.roughness_out.is_some()
+            || args.lean_out.is_some()
+            || args.height_out.is_some()
+            || args.horizon_out.is_some()
+            || args.ao_out.is_some()
+            || args.bent_normals_out.is_some()
+        {
             return Err(CliError::Usage(
-                "--roughness-out, --lean-out and --height-out write one map: give one height field, not a folder"
+                "--roughness-out, --lean-out, --height-out, --horizon-out, --ao-out and --bent-normals-out write one map: give one height field, not a folder"
                     .into(),
             ));
         }
@@ -71,8 +77,44 @@ pub fn run(args: &NormalmapArgs) -> Result<(), CliError> {
     {
         return Err(CliError::Usage(format!("--lean-out: {} is --height-out's file", clash.display())));
     }
+    let mut taken: Vec<(&str, PathBuf)> = std::iter::once(("-o", level_path(&output, 0)))
+        .chain(args.roughness_out.iter().map(|r| ("--roughness-out", level_path(r, 0))))
+        .chain(lean_out.iter().flatten().map(|l| ("--lean-out", l.clone())))
+        .chain(height_files.iter().map(|h| ("--height-out", h.clone())))
+        .collect();
+    let horizon_outputs = [
+        (
+            "--horizon-out",
+            args.horizon_out.as_ref().map(|h| bumpmap_io::horizon_file::horizon_files(h, 1)).transpose()?,
+        ),
+        (
+            "--ao-out",
+            args.ao_out.as_ref().map(|a| bumpmap_io::horizon_file::gray_file(a).map(|f| vec![f])).transpose()?,
+        ),
+        ("--bent-normals-out", args.bent_normals_out.as_ref().map(|b| vec![level_path(b, 0)])),
+    ];
+    for (flag, files) in &horizon_outputs {
+        for file in files.iter().flatten() {
+            ensure_not_input(file, &inputs)?;
+            if let Some((other, _)) = taken.iter().find(|(_, t)| t == file) {
+                return Err(CliError::Usage(format!("{flag}: {} is also {other}'s file", file.display())));
+            }
+            taken.push((flag, file.clone()));
+        }
+    }
+    if let Some(b) = &args.bent_normals_out {
+        check_format(b, TextureFormat::Rgba8)?;
+    }
     let field = source.load(channel)?;
     let levels = make_chain(&field, &options, args.mips, args.mip_mode.into(), format, &args.input)?;
+    let horizons = if args.horizon_out.is_some() || args.ao_out.is_some() || args.bent_normals_out.is_some() {
+        Some(bumpmap_math::HorizonMap::from_heights(&field, options.wrap).map_err(|e| match e {
+            bumpmap_math::HorizonError::OutOfMemory(e) => CliError::OutOfMemory(e),
+            other => CliError::Path { path: args.input.clone().into(), reason: other.to_string() },
+        })?)
+    } else {
+        None
+    };
     let roughness = match &args.roughness_out {
         Some(_) => Some(roughness_chain(&field, &options, args.roughness, args.roughness_layout, &args.input)?),
         None => None,
@@ -101,9 +143,30 @@ pub fn run(args: &NormalmapArgs) -> Result<(), CliError> {
             }
         }
     }
+    let bits = if args.bits == 16 { HeightBits::Sixteen } else { HeightBits::Eight };
     if let (Some(path), Some(heights)) = (&args.height_out, &heights) {
-        let bits = if args.bits == 16 { HeightBits::Sixteen } else { HeightBits::Eight };
         bumpmap_io::height_file::write_heights_into(&mut set, path, heights, bits)?;
+    }
+    if let Some(map) = &horizons {
+        // Texels per unit of height: the normal map's own geometry.
+        let depth = options.scale.abs();
+        if let Some(path) = &args.horizon_out {
+            let count = if args.mips { map.levels().len() } else { 1 };
+            bumpmap_io::horizon_file::write_horizons_into(&mut set, path, map, count, bits)?;
+        }
+        if let Some(path) = &args.ao_out {
+            let ao = map.ambient_occlusion(depth);
+            bumpmap_io::horizon_file::write_gray_into(&mut set, path, (map.width(), map.height()), &ao, bits)?;
+        }
+        if let Some(path) = &args.bent_normals_out {
+            let (y, encoding) = (options.y_convention, options.encoding);
+            let chain = match args.bits {
+                16 => Chain::Rgba16(MipChain { levels: vec![map.bent_normal_map(depth, y, encoding)], encoding }),
+                _ => Chain::Rgba8(MipChain { levels: vec![map.bent_normal_map(depth, y, encoding)], encoding }),
+            };
+            let format = if args.bits == 16 { TextureFormat::Rgba16 } else { TextureFormat::Rgba8 };
+            write_into(&mut set, path, &chain, format)?;
+        }
     }
     let written = set.commit()?;
     eprintln!("wrote {}", describe(&written));

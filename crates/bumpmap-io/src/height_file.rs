@@ -33,13 +33,13 @@ pub enum HeightBits {
 
 /// The container a heights file is, by its extension.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-enum Container {
+pub(crate) enum Container {
     Png,
     Ktx2,
     Dds,
 }
 
-fn container(path: &Path) -> Result<Container, IoError> {
+pub(crate) fn container(path: &Path) -> Result<Container, IoError> {
     match path.extension().map(|e| e.to_string_lossy().to_ascii_lowercase()).as_deref() {
         Some("png") => Ok(Container::Png),
         Some("ktx2") => Ok(Container::Ktx2),
@@ -123,7 +123,7 @@ pub fn write_heights_into(
 }
 
 /// One set of levels into `path`: PNG files a level each, or one container.
-fn write_levels(
+pub(crate) fn write_levels(
     set: &mut FileSet,
     path: &Path,
     kind: Container,
@@ -141,7 +141,9 @@ fn write_levels(
                         let rgb: Vec<u16> = l.texels.iter().flat_map(|&[lo, hi]| [lo, hi, 0]).collect();
                         save_png16_samples_into(set, &file, l.width, l.height, Png16::Rgb, &rgb)?
                     }
-                    _ => unreachable!("heights are gray, bounds two-channel"),
+                    Level::Rgba8(l) => save_png_into(set, &file, l.width, l.height, PngLayout::Rgba8, l.as_bytes())?,
+                    Level::Rgba16(l) => crate::image_file::save_png16_into(set, &file, l)?,
+                    Level::Rgba32F(_) => unreachable!("no PNG holds floats; callers write them to KTX2 or DDS"),
                 }
             }
             Ok(())

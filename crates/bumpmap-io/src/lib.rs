@@ -23,6 +23,7 @@ mod gltf_mesh;
 mod gltf_read;
 mod gltf_write;
 pub mod height_file;
+pub mod horizon_file;
 pub mod image_file;
 pub mod mesh_file;
 mod obj_read;

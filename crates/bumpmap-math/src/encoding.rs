@@ -113,6 +113,9 @@ pub trait Texel: sealed::Sealed + Copy + Default + PartialEq + std::fmt::Debug +
     fn mirror_green(self) -> Self;
     /// The texel at 8 bits, each channel rounded to the nearest byte.
     fn to_rgba8(self) -> [u8; 4];
+    /// Four values in [0, 1] (clamped), each rounded to the nearest step: data that is not a
+    /// direction (a horizon map's elevations).
+    fn pack_unorm(v: [f32; 4]) -> Self;
 }
 
 mod sealed {
@@ -141,6 +144,9 @@ impl Texel for [u8; 4] {
     fn to_rgba8(self) -> [u8; 4] {
         self
     }
+    fn pack_unorm(v: [f32; 4]) -> Self {
+        v.map(|c| Encoding::Unorm.encode_unsigned(c))
+    }
 }
 
 impl Texel for [u16; 4] {
@@ -162,6 +168,9 @@ impl Texel for [u16; 4] {
     }
     fn to_rgba8(self) -> [u8; 4] {
         self.map(|c| ((c as u32 + 128) / 257) as u8)
+    }
+    fn pack_unorm(v: [f32; 4]) -> Self {
+        v.map(|c| Encoding::Unorm.encode16_unsigned(c))
     }
 }
 

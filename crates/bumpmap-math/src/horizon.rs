@@ -22,9 +22,12 @@ use glam::{Vec2, Vec3};
 use rayon::prelude::*;
 
 use crate::buffer::OutOfMemory;
+use crate::encoding::{Encoding, Texel};
+use crate::image::Image;
 use crate::interpolant::{HeightGrid, sample_texels, wrap_index};
 use crate::kernel::Wrap;
 use crate::mip::{footprint, next_size};
+use crate::normalmap::{YConvention, encode_unit};
 
 /// Directions per texel: 8, as Sloan & Cohen store them in two RGBA textures.
 pub const AZIMUTHS: usize = 8;
@@ -233,6 +236,27 @@ impl HorizonMap {
     /// Level 0's bent normals at `depth` texels per unit of height ([`bent_normal`]).
     pub fn bent_normals(&self, depth: f32) -> Vec<Vec3> {
         self.levels[0].texels.par_iter().map(|h| bent_normal(h, depth)).collect()
+    }
+
+    /// Level 0's bent normals at `depth` as a tangent-space normal map in `normalmap`'s
+    /// conventions: green along `y` ([`YConvention`]), components encoded as `encoding` says,
+    /// A at its largest.
+    pub fn bent_normal_map<T: Texel>(&self, depth: f32, y: YConvention, encoding: Encoding) -> Image<T> {
+        let flip = if y == YConvention::TEXTURE_SPACE { 1.0 } else { -1.0 };
+        let texels = self
+            .bent_normals(depth)
+            .into_iter()
+            .map(|n| encode_unit::<T>(Vec3::new(n.x, flip * n.y, n.z), encoding))
+            .collect();
+        Image::new(self.width(), self.height(), texels)
+    }
+
+    /// Directions `4·half` to `4·half + 3` of `level` as RGBA texels (R the first), each stored
+    /// value at `T`'s bits: what a horizon-map file holds (half 0 and half 1, two textures).
+    pub fn directions<T: Texel>(&self, level: usize, half: usize) -> Image<T> {
+        let l = &self.levels[level];
+        let texels = l.texels.iter().map(|h| T::pack_unorm(std::array::from_fn(|c| h[4 * half + c]))).collect();
+        Image::new(l.width, l.height, texels)
     }
 
     /// The bytes a horizon map of level 0 `width`×`height` takes with its levels (for estimates).

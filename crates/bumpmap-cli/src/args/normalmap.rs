@@ -169,7 +169,8 @@ bumpmap normalmap bricks@512 -o bricks.ktx2 --mips         # a preset, all level
 bumpmap normalmap textures/ -o normals/ --scale 8          # every image in a folder, in parallel\n  \
 bumpmap normalmap rock.png -o rock.dds --mips --format bc5  # BC5 for an engine (Z rebuilt in the shader)\n  \
 bumpmap normalmap scan16.png -o rock.png --bits 16         # 16-bit PNG, no banding on gentle slopes\n  \
-bumpmap normalmap bricks -o n.png --mips --height-out h.png --bits 16   # + heights for --technique pom\n\n\
+bumpmap normalmap bricks -o n.png --mips --height-out h.png --bits 16   # + heights for --technique pom\n  \
+bumpmap normalmap bricks -o n.png --horizon-out hz.png --ao-out ao.png --bent-normals-out bent.png   # shadows, AO\n\n\
 IN is an image file (PNG, TGA, BMP, JPEG, TIFF, PNM at 8 or 16 bits; OpenEXR in float), a folder of them, or a \
 preset: bricks, pinwheel, dimples, noise:SEED, each optionally @SIZE (default 256). Green points \
 up the image as displayed (glTF, Blender, Unity) unless --y-convention directx.")]
@@ -210,6 +211,15 @@ pub struct NormalmapArgs {
     /// Also write the heights as the parallax techniques read them (`render --height-map`), every level at --bits, with the min–max levels the exact walk reads: .png: H.png, H.mip1.png, … and H.minmax.png, H.minmax.mip1.png, … (16-bit RGB, R the lower bound, G the upper); .ktx2 or .dds: H (R8 or R16_UNORM) and H.minmax (R16G16_UNORM). Heights are clamped to [0, 1], 1 the surface
     #[arg(long = "height-out", value_name = "H")]
     pub height_out: Option<PathBuf>,
+    /// Also write the horizon map (Max 1988; Sloan & Cohen 2000): per texel, how high the heights around it rise in 8 directions, k·45° from +s toward +t (down the image), as two RGBA textures at --bits: .png: H.png (directions 0–3 in R, G, B, A) and H.dirs4-7.png (4–7), with H.mip1.png, … under --mips; .ktx2 or .dds: H and H.dirs4-7, every level under --mips. A channel is atan(rise)/90°, the rise in heights per texel: the same map serves every --scale
+    #[arg(long = "horizon-out", value_name = "H")]
+    pub horizon_out: Option<PathBuf>,
+    /// Also write ambient occlusion from the horizons at --scale: the cosine-weighted share of the sky each texel sees past the heights around it (1 open, 0 closed), one gray level at --bits (.png, or R8/R16 .ktx2/.dds)
+    #[arg(long = "ao-out", value_name = "A")]
+    pub ao_out: Option<PathBuf>,
+    /// Also write bent normals from the horizons at --scale: the mean direction of the open sky, as a tangent-space normal map in the same conventions as the normal map (--y-convention, --encoding, --bits), level 0 (.png, .ktx2, .dds); for the ambient term in engines that read them (Godot, Unreal)
+    #[arg(long = "bent-normals-out", value_name = "B")]
+    pub bent_normals_out: Option<PathBuf>,
 }
 
 /// Where a roughness map puts its value.

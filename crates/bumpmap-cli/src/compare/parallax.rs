@@ -18,8 +18,8 @@ use std::time::Instant;
 
 use bumpmap::{BumpSource, Prepared, Renderer, SceneKind, SceneParams, SceneSpec, TechniqueName, TechniqueOptions};
 use bumpmap_core::parallax::{
-    FragmentRays, HorizonLookup, Parallax, ParallaxMethod, ParallaxOptions, ParallaxShadow, TextureFrame, fragment,
-    height_lambda, height_level,
+    FragmentRays, HorizonLookup, Parallax, ParallaxOptions, ParallaxShadow, TextureFrame, fragment, height_lambda,
+    height_level,
 };
 use bumpmap_core::scene::SceneLight;
 use bumpmap_core::state::Sampler;
@@ -36,11 +36,9 @@ use crate::render::{core_err, lib_err, reference_err};
 pub const ANGLES: [f32; 5] = [30.0, 60.0, 70.0, 75.0, 85.0];
 /// The height fields, 256² each.
 pub const FIELDS: [&str; 2] = ["bricks", "dimples"];
-/// The techniques measured: normal mapping, normal mapping with the horizon map's shadows,
-/// then each march.
-pub const TECHNIQUES: [TechniqueName; 7] = [
+/// The techniques measured: normal mapping, then each march.
+pub const TECHNIQUES: [TechniqueName; 6] = [
     TechniqueName::SinglePass,
-    TechniqueName::Horizon,
     TechniqueName::Parallax,
     TechniqueName::SteepParallax,
     TechniqueName::Pom,
@@ -125,7 +123,7 @@ fn spec(field: &'static str, degrees: f32) -> SceneSpec {
 
 /// Per pixel: where the pixel-centre ray enters the wall and what the vertex stage would give
 /// it there, and the exact hit; `None` for pixels off the wall.
-struct PixelRay {
+pub(super) struct PixelRay {
     rays: FragmentRays,
     /// λ of the normal map (and heights) at the entry point.
     lambda: f32,
@@ -169,8 +167,12 @@ pub fn parallax_study(backend: &mut Renderer) -> Result<ParallaxStudy, CliError>
                 let drawn = backend.draw(&prepared, SIZE, SIZE).map_err(lib_err)?;
                 let millis = t.elapsed().as_secs_f64() * 1e3;
                 let (scores, _) = metrics::score(&image, &ref_rgb, &drawn);
+                let parallax = technique.parallax_method().map(|method| Parallax {
+                    method,
+                    options: ParallaxOptions { shadow: ParallaxShadow::Hard, ..Default::default() },
+                });
                 let (hit_mean, hit_p95, shadow_agreement) =
-                    hits(technique, &pixels, &heights, object.material.depth).map_err(|e| core_err(e.into()))?;
+                    hits(parallax, &pixels, &heights, object.material.depth).map_err(|e| core_err(e.into()))?;
                 if show
                     && matches!(technique, TechniqueName::SinglePass | TechniqueName::Pom | TechniqueName::HeightExact)
                 {
@@ -269,10 +271,11 @@ fn pixel_rays(scene: &bumpmap_core::Scene) -> Result<Vec<PixelRay>, CliError> {
     Ok(out)
 }
 
-/// `technique`'s mean and 95th-percentile hit error in texels over `pixels`, and its hard
-/// shadow's agreement with the shadow rays over the pixels facing the light.
-fn hits(
-    technique: TechniqueName,
+/// The mean and 95th-percentile hit error in texels over `pixels` of `parallax`'s march (normal
+/// mapping's entry point for `None`), and its shadow's agreement with the shadow rays over the
+/// pixels facing the light (all lit for `None`).
+pub(super) fn hits(
+    parallax: Option<Parallax>,
     pixels: &[PixelRay],
     heights: &bumpmap_math::HeightMips,
     depth: f32,
@@ -284,14 +287,9 @@ fn hits(
     let mut errors = Vec::with_capacity(pixels.len());
     let (mut facing, mut agree) = (0usize, 0usize);
     for px in pixels {
-        let (st, lit) = match technique.parallax_method() {
+        let (st, lit) = match parallax {
             None => (px.rays.st, true),
-            Some(method) => {
-                // The horizon technique's own shadow, every march's hard one.
-                let shadow =
-                    if method == ParallaxMethod::Flat { ParallaxShadow::Horizon } else { ParallaxShadow::Hard };
-                let options = ParallaxOptions { shadow, ..Default::default() };
-                let parallax = Parallax { method, options };
+            Some(parallax) => {
                 let k = height_level(&Sampler::TRILINEAR_REPEAT, px.lambda, levels.len());
                 let level = &levels[k];
                 let mut sample = |st: Vec2| level.bilinear(st.x, st.y);

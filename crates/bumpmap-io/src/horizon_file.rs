@@ -1,0 +1,98 @@
+//! Horizon maps, ambient occlusion and bent normals in files (`bumpmap_math::horizon`), written
+//! with the normal map as one set.
+//!
+//! - horizons, two textures of four directions each (R the first): `.png`: `H.png` (directions
+//!   0–3, RGBA at 8 or 16 bits), `H.mip1.png`, … and `H.dirs4-7.png`, `H.dirs4-7.mip1.png`, …;
+//!   `.ktx2` / `.dds`: `H.ktx2` and `H.dirs4-7.ktx2`, every level (`R8G8B8A8_UNORM` or
+//!   `R16G16B16A16_UNORM`). A channel holds `atan(rise) / 90°`, the rise in heights per texel of
+//!   level 0; direction k points k·45° from +s toward +t (down the image as displayed);
+//! - ambient occlusion: one gray level (`.png` 8/16-bit gray, `.ktx2`/`.dds` `R8_UNORM` or
+//!   `R16_UNORM`), 1 open, 0 closed.
+//!
+//! Bent normals are a normal map and are written as one. What this module does not do: make
+//! the maps, or read them back.
+
+use std::path::{Path, PathBuf};
+
+use bumpmap_math::{HorizonMap, Image};
+
+use crate::atomic::FileSet;
+use crate::error::IoError;
+use crate::height_file::{Container, HeightBits, container, write_levels};
+use crate::image_file::level_path;
+use crate::texture_file::{Level, TextureFormat};
+
+/// The second horizon file beside `path`: `H.dirs4-7.EXT`.
+pub fn second_half_path(path: &Path) -> PathBuf {
+    let stem = path.file_stem().unwrap_or_default().to_string_lossy();
+    let ext = path.extension().map(|e| e.to_string_lossy().into_owned()).unwrap_or_default();
+    path.with_file_name(format!("{stem}.dirs4-7.{ext}"))
+}
+
+/// Every file [`write_horizons_into`] writes for `path` and `levels` levels.
+pub fn horizon_files(path: &Path, levels: usize) -> Result<Vec<PathBuf>, IoError> {
+    let second = second_half_path(path);
+    Ok(match container(path)? {
+        Container::Png => {
+            (0..levels).map(|k| level_path(path, k)).chain((0..levels).map(|k| level_path(&second, k))).collect()
+        }
+        Container::Ktx2 | Container::Dds => vec![path.to_path_buf(), second],
+    })
+}
+
+/// Stages the first `levels` levels of `map` at `bits` into `set`, by `path`'s extension.
+pub fn write_horizons_into(
+    set: &mut FileSet,
+    path: &Path,
+    map: &HorizonMap,
+    levels: usize,
+    bits: HeightBits,
+) -> Result<(), IoError> {
+    let kind = container(path)?;
+    let levels = levels.clamp(1, map.levels().len());
+    for (half, file) in [(0, path.to_path_buf()), (1, second_half_path(path))] {
+        match bits {
+            HeightBits::Eight => {
+                let images: Vec<Image<[u8; 4]>> = (0..levels).map(|k| map.directions(k, half)).collect();
+                write_levels(set, &file, kind, images.iter().map(Level::Rgba8).collect(), TextureFormat::Rgba8)?;
+            }
+            HeightBits::Sixteen => {
+                let images: Vec<Image<[u16; 4]>> = (0..levels).map(|k| map.directions(k, half)).collect();
+                write_levels(set, &file, kind, images.iter().map(Level::Rgba16).collect(), TextureFormat::Rgba16)?;
+            }
+        }
+    }
+    Ok(())
+}
+
+/// `path` if its extension is one a gray map can be written to (`.png`, `.ktx2`, `.dds`).
+pub fn gray_file(path: &Path) -> Result<PathBuf, IoError> {
+    container(path).map(|_| path.to_path_buf())
+}
+
+/// Stages one gray level of `values` in [0, 1] (`width`×`height`, row 0 = t = 0) at `bits` into
+/// `set`, by `path`'s extension: an ambient-occlusion map.
+pub fn write_gray_into(
+    set: &mut FileSet,
+    path: &Path,
+    (width, height): (usize, usize),
+    values: &[f32],
+    bits: HeightBits,
+) -> Result<(), IoError> {
+    let kind = container(path)?;
+    match bits {
+        HeightBits::Eight => {
+            let image =
+                Image::new(width, height, values.iter().map(|&v| (v.clamp(0.0, 1.0) * 255.0).round() as u8).collect());
+            write_levels(set, path, kind, vec![Level::Gray8(&image)], TextureFormat::R8)
+        }
+        HeightBits::Sixteen => {
+            let image = Image::new(
+                width,
+                height,
+                values.iter().map(|&v| (v.clamp(0.0, 1.0) * 65535.0).round() as u16).collect(),
+            );
+            write_levels(set, path, kind, vec![Level::Gray16(&image)], TextureFormat::R16)
+        }
+    }
+}
