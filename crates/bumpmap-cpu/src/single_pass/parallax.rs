@@ -52,7 +52,7 @@ impl SinglePass<'_> {
             // The horizons from the heights' level: the same footprint.
             let mut sample_horizons = |st: Vec2| horizon_levels[k].bilinear(st.x, st.y);
             let horizons = (!horizon_levels.is_empty())
-                .then(|| HorizonLookup { size, sample: &mut sample_horizons as &mut dyn FnMut(Vec2) -> _ });
+                .then_some(HorizonLookup { size, sample: &mut sample_horizons as &mut dyn FnMut(Vec2) -> _ });
             let rays = FragmentRays {
                 st: Vec2::new(sc.coords[0][j], sc.coords[1][j]),
                 to_eye: Vec3::new(t[0][j], t[1][j], t[2][j]),
