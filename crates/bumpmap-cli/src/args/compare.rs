@@ -71,6 +71,8 @@ pub enum StudyArg {
     Peercy,
     /// heights as geometry: every march against the displaced reference on a wall at 30°–85°
     Parallax,
+    /// bumps that shadow each other (horizon map, POM's march, Eq. 12) against shadow rays, lights 45°–80°; ambient occlusion and bent normals against 256 rays a texel
+    Shadows,
 }
 
 impl CompareArgs {

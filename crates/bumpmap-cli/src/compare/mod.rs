@@ -5,6 +5,8 @@
 //! - [`studies`]: the golf ball (Kilgard §2.4.2), embossing (§3.1) and Peercy's Figures 5–7;
 //! - [`parallax`]: heights as geometry, every march against the displaced reference on a wall
 //!   seen at grazing angles;
+//! - [`shadows`]: bumps that shadow each other (horizon maps, marches, Eq. 12) against shadow
+//!   rays, and ambient occlusion and bent normals against occlusion rays;
 //! - [`metrics`]: RMSE, PSNR, bias, FLIP and SSIM against the reference;
 //! - [`plots`]: the report's plots (SVG);
 //! - [`report`]: `results.json` and `report.html`.
@@ -16,6 +18,8 @@ mod metrics;
 mod parallax;
 mod plots;
 mod report;
+mod shadows;
+mod shadows_report;
 mod studies;
 
 use std::path::{Path, PathBuf};
@@ -105,6 +109,8 @@ pub struct Results {
     pub peercy: Option<PeercyStudy>,
     /// Heights as geometry on the wall at grazing angles.
     pub parallax: Option<parallax::ParallaxStudy>,
+    /// Bumps that shadow each other, ambient occlusion and bent normals.
+    pub shadows: Option<shadows::ShadowStudy>,
     /// Total milliseconds of the command.
     pub total_millis: f64,
 }
@@ -185,7 +191,7 @@ pub fn measure(args: &CompareArgs, progress: bool) -> Result<(Results, Vec<PathB
     }
     let mut backend = crate::render::renderer(args.backend)?;
     // The two references, each technique, convergence and the studies.
-    let steps = (wanted.len() + 8) as u64;
+    let steps = (wanted.len() + 9) as u64;
     let bar = if progress { ProgressBar::new(steps) } else { ProgressBar::hidden() }
         .with_style(ProgressStyle::with_template("{bar:40} {pos}/{len} {elapsed} {wide_msg}").expect("valid template"));
 
@@ -260,6 +266,9 @@ pub fn measure(args: &CompareArgs, progress: bool) -> Result<(Results, Vec<PathB
     let parallax = study(StudyArg::Parallax, "heights as geometry: the wall at grazing angles", &bar)
         .then(|| parallax::parallax_study(&mut backend))
         .transpose()?;
+    let shadows = study(StudyArg::Shadows, "bumps that shadow each other: horizon maps, marches, Eq. 12", &bar)
+        .then(|| shadows::shadow_study(&mut backend))
+        .transpose()?;
     bar.finish_and_clear();
 
     let results = Results {
@@ -277,6 +286,7 @@ pub fn measure(args: &CompareArgs, progress: bool) -> Result<(Results, Vec<PathB
         emboss,
         peercy,
         parallax,
+        shadows,
         total_millis: start.elapsed().as_secs_f64() * 1e3,
     };
     Ok((results, inputs))

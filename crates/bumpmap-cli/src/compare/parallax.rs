@@ -50,8 +50,8 @@ pub const LIGHT_DEGREES: f32 = 70.0;
 /// Image side, samples per pixel of the reference, the eye's distance from the wall's centre and
 /// the field of view: about a third of a texel across a pixel at the centre, so the marches read
 /// level 0 up to 75° and the distant, minified end of the wall at 85° reads smaller levels.
-const SIZE: usize = 256;
-const SPP: usize = 16;
+pub(super) const SIZE: usize = 256;
+pub(super) const SPP: usize = 16;
 const DISTANCE: f32 = 1.2;
 const FOV_DEGREES: f32 = 30.0;
 
@@ -102,7 +102,13 @@ impl ParallaxStudy {
 /// The wall seen `degrees` from its normal, lit from the side at [`LIGHT_DEGREES`], with
 /// `field`'s heights (and the brick decal on bricks).
 fn spec(field: &'static str, degrees: f32) -> SceneSpec {
-    let (a, l) = (degrees.to_radians(), LIGHT_DEGREES.to_radians());
+    wall(field, degrees, LIGHT_DEGREES)
+}
+
+/// The wall seen `degrees` from its normal, lit from the side `light_degrees` from it, with
+/// `field`'s heights (and the brick decal on bricks).
+pub(super) fn wall(field: &'static str, degrees: f32, light_degrees: f32) -> SceneSpec {
+    let (a, l) = (degrees.to_radians(), light_degrees.to_radians());
     let preset = if field == "bricks" { HeightPreset::Bricks } else { HeightPreset::Dimples };
     // The light from the right and a little toward the eye, so shadows fall across the view.
     let light = Vec3::new(l.sin() * 0.8, -l.sin() * 0.6, l.cos());
@@ -124,13 +130,13 @@ fn spec(field: &'static str, degrees: f32) -> SceneSpec {
 /// Per pixel: where the pixel-centre ray enters the wall and what the vertex stage would give
 /// it there, and the exact hit; `None` for pixels off the wall.
 pub(super) struct PixelRay {
-    rays: FragmentRays,
+    pub(super) rays: FragmentRays,
     /// λ of the normal map (and heights) at the entry point.
     lambda: f32,
     exact: bumpmap_reference::SceneHit,
     /// Whether the exact surface faces the light there, and whether its shadow ray reaches it.
-    faces_light: bool,
-    lit: bool,
+    pub(super) faces_light: bool,
+    pub(super) lit: bool,
 }
 
 /// The study: every field, angle and technique.
@@ -200,7 +206,7 @@ pub fn parallax_study(backend: &mut Renderer) -> Result<ParallaxStudy, CliError>
 }
 
 /// Every pixel of the wall: its entry point, texture-space vectors, footprint and exact hit.
-fn pixel_rays(scene: &bumpmap_core::Scene) -> Result<Vec<PixelRay>, CliError> {
+pub(super) fn pixel_rays(scene: &bumpmap_core::Scene) -> Result<Vec<PixelRay>, CliError> {
     let displaced = DisplacedScene::new(scene).map_err(|e| CliError::Render(reference_err(e)))?;
     let object = &scene.objects[0];
     let source = object.source.as_ref().expect("a built-in wall");

@@ -31,6 +31,10 @@ pub fn plots(r: &Results) -> Vec<(&'static str, String)> {
         plots.push(("parallax_flip_bricks.svg", parallax_plot(p, "bricks", false)));
         plots.push(("parallax_flip_dimples.svg", parallax_plot(p, "dimples", false)));
     }
+    if let Some(s) = &r.shadows {
+        plots.push(("shadows_bricks.svg", shadow_plot(s, "bricks")));
+        plots.push(("shadows_dimples.svg", shadow_plot(s, "dimples")));
+    }
     plots
 }
 
@@ -75,6 +79,38 @@ fn parallax_plot(p: &super::parallax::ParallaxStudy, field: &str, hits: bool) ->
     } else {
         svg_plot(labels, 25f64..90.0, 0f64..hi * 1.6, |c| draw_lines(c, &lines))
     }
+}
+
+/// Bumps that shadow each other on `field`: each method's mask agreement with the shadow rays
+/// (percent of the pixels facing the light) by the light's angle.
+fn shadow_plot(s: &super::shadows::ShadowStudy, field: &str) -> String {
+    use super::shadows::ShadowMethod;
+    let caption = format!("{field}: shadow mask against shadow rays");
+    let labels = Labels {
+        caption: &caption,
+        x: "light angle from the normal (degrees)",
+        y: "pixels facing the light that agree (%)",
+        legend: Some(SeriesLabelPosition::LowerLeft),
+    };
+    let lines: Vec<(&str, Vec<(f64, f64)>)> = ShadowMethod::ALL
+        .iter()
+        .map(|m| {
+            let points = s
+                .rows
+                .iter()
+                .filter(|row| row.field == field && row.method == *m)
+                .map(|row| (row.light as f64, 100.0 * row.agreement))
+                .collect();
+            (m.name(), points)
+        })
+        .collect();
+    let lo = s.rows.iter().filter(|r| r.field == field).map(|r| 100.0 * r.agreement).fold(100.0, f64::min);
+    svg_plot(labels, 40f64..85.0, (lo - 0.6 * (100.0 - lo)).max(0.0)..100.5, |chart| {
+        let colors = [BLACK, RGBColor(150, 150, 150), RED, BLUE, GREEN, RGBColor(230, 140, 0)];
+        for ((name, points), color) in lines.iter().zip(colors) {
+            labelled_line(chart, name, color, points.clone());
+        }
+    })
 }
 
 /// The captions of one plot, and where its legend goes (none without a position).

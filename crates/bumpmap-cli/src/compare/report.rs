@@ -79,6 +79,9 @@ pub fn json(r: &Results) -> String {
     if let Some(p) = &r.parallax {
         studies.insert("parallax".into(), parallax_json(p));
     }
+    if let Some(s) = &r.shadows {
+        studies.insert("shadows".into(), super::shadows_report::json(s));
+    }
     serde_json::to_string_pretty(&value).expect("a JSON value serializes") + "\n"
 }
 
@@ -219,7 +222,7 @@ fn parallax_section(p: &super::parallax::ParallaxStudy) -> String {
 }
 
 /// Escapes text for HTML.
-fn escape(s: &str) -> String {
+pub(super) fn escape(s: &str) -> String {
     s.replace('&', "&amp;").replace('<', "&lt;").replace('>', "&gt;").replace('"', "&quot;")
 }
 
@@ -321,6 +324,9 @@ figcaption {{ font-size: 0.85em; max-width: {size}px; }}
     }
     if let Some(p) = &r.parallax {
         page += &parallax_section(p);
+    }
+    if let Some(s) = &r.shadows {
+        page += &super::shadows_report::section(s);
     }
     page += &format!(
         r#"<h2>Techniques</h2>
