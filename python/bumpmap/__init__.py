@@ -12,6 +12,8 @@ and they make the same bytes the command writes from the same options:
   averaged normal in alpha (Kilgard §2.4.2);
 - ``height_mips(heights, **options)``: the heights as the parallax techniques read them: their
   levels and min–max levels (``bumpmap normalmap --height-out``);
+- ``horizon_maps(heights, **options)``: the horizon map, ambient occlusion and bent normals
+  (``bumpmap normalmap --horizon-out --ao-out --bent-normals-out``);
 - ``read_height_field(path, **options)``: an image file or a preset (``"bricks@512"``);
 - ``write_texture(path, levels, **options)``: PNG (``.mip1.png``, ... beside level 0), DDS or
   KTX2, BC5/BC7 included;
@@ -42,6 +44,7 @@ __all__ = [
     "normal_map",
     "mip_chain",
     "height_mips",
+    "horizon_maps",
     "read_height_field",
     "write_texture",
     "tangents",
@@ -124,6 +127,21 @@ def height_mips(heights, **options):
     return _bumpmap.height_mips(heights, options)
 
 
+def horizon_maps(heights, **options):
+    """The horizon map (Max 1988; Sloan & Cohen 2000) and what it gives, as
+    ``bumpmap normalmap IN --horizon-out H --ao-out A --bent-normals-out B`` makes them.
+
+    heights: as for ``normal_map``; ``scale`` is the normal map's and the depth, in texels, the
+    heights are taken at. Returns a dict: ``"horizons"``, a list of (H, W, 8) float32 arrays,
+    level 0 first, each value ``atan(rise) / 90°`` with the rise in heights per texel toward
+    direction k (k·45° from +x toward the next row, down the image); ``"ambient_occlusion"``, an
+    (H, W) float32 array, the cosine-weighted share of the sky each texel sees (1 open);
+    ``"bent_normals"``, an (H, W, 4) array encoded as ``normal_map`` encodes normals (green per
+    ``y_convention``), the mean open direction.
+    """
+    return _bumpmap.horizon_maps(heights, options)
+
+
 def read_height_field(path, **options):
     """A height field from an image file (PNG, TGA, BMP, JPEG, TIFF, PNM at 8 or 16 bits;
     OpenEXR in float) or a preset (``"bricks"``, ``"pinwheel"``, ``"dimples"``,
@@ -201,6 +219,6 @@ def techniques():
     return _bumpmap.techniques()
 
 
-for _f in (normal_map, mip_chain, height_mips, read_height_field, write_texture, tangents, render, compare):
+for _f in (normal_map, mip_chain, height_mips, horizon_maps, read_height_field, write_texture, tangents, render, compare):
     _f.__doc__ = inspect.cleandoc(_f.__doc__ or "") + _options_doc(_f.__name__)
 del _f

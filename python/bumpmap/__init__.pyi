@@ -45,6 +45,21 @@ def mip_chain(
 def height_mips(
     heights: _Heights, *, bits: Literal[8, 16] = 8
 ) -> tuple[list[npt.NDArray[np.float32]], list[npt.NDArray[np.float32]]]: ...
+class HorizonMaps(TypedDict):
+    horizons: list[npt.NDArray[np.float32]]
+    ambient_occlusion: npt.NDArray[np.float32]
+    bent_normals: _Levels
+
+def horizon_maps(
+    heights: _Heights,
+    *,
+    scale: float = 4.0,
+    kernel: _Kernel = "forward",
+    wrap: _Wrap = "repeat",
+    encoding: _Encoding = "unorm",
+    y_convention: _YConvention = "opengl",
+    bits: Literal[8, 16] = 8,
+) -> HorizonMaps: ...
 def read_height_field(path: _Path, *, channel: _Channel = "luminance") -> _Heights: ...
 def write_texture(path: _Path, levels: Union[_Levels, Sequence[_Levels]], *, format: _Format = "rgba8") -> list[str]: ...
 
@@ -101,7 +116,7 @@ def render(
     depth: Optional[float] = None,
     height_map: Optional[_Path] = None,
     layers: int = 32,
-    parallax_shadow: Literal["off", "hard", "soft"] = "off",
+    parallax_shadow: Literal["off", "hard", "soft", "horizon"] = "off",
     silhouettes: bool = False,
     write_depth: bool = False,
     **options: Any,

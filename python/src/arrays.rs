@@ -115,6 +115,19 @@ pub fn from_pairs<'py>(
         .map_err(|e| PyValueError::new_err(e.to_string()))
 }
 
+/// An (H, W, `channels`) float32 array of `texels`, row 0 first.
+pub fn from_plane_channels<'py>(
+    py: Python<'py>,
+    height: usize,
+    width: usize,
+    texels: &[f32],
+    channels: usize,
+) -> PyResult<Bound<'py, PyAny>> {
+    Array3::from_shape_vec((height, width, channels), texels.to_vec())
+        .map(|a| a.into_pyarray(py).into_any())
+        .map_err(|e| PyValueError::new_err(e.to_string()))
+}
+
 /// One level as an (H, W, 4) array.
 fn level_array<'py, T: Element + Copy>(py: Python<'py>, level: Image<[T; 4]>) -> PyResult<Bound<'py, PyAny>> {
     let shape = (level.height, level.width, 4);

@@ -117,6 +117,47 @@ fn height_mips<'py>(
     Ok((PyList::new(py, levels)?, PyList::new(py, minmax)?))
 }
 
+/// Heights → the horizon map (every level, float32 (H, W, 8): atan(rise)/90° per direction),
+/// ambient occlusion (float32 (H, W)) and bent normals (encoded as `normal_map` encodes normals),
+/// as `normalmap --horizon-out --ao-out --bent-normals-out` makes them.
+#[pyfunction]
+#[pyo3(signature = (heights, options = None))]
+fn horizon_maps<'py>(
+    py: Python<'py>,
+    heights: &Bound<'py, PyAny>,
+    options: Option<&Bound<'py, PyDict>>,
+) -> PyResult<Bound<'py, PyDict>> {
+    let args = normalmap_args(&options::HORIZON_MAPS, false, options)?;
+    let field = arrays::height_field(heights)?;
+    let map = interrupt::run(py, move |_| commands::horizons(&args, &field, "heights"))?
+        .map_err(|e| to_py("horizon_maps", e))?;
+    let args = normalmap_args(&options::HORIZON_MAPS, false, options)?;
+    let depth = args.map.scale.abs();
+    let levels: Vec<_> = map
+        .levels()
+        .iter()
+        .map(|l| arrays::from_plane_channels(py, l.height, l.width, l.texels.as_flattened(), 8))
+        .collect::<PyResult<_>>()?;
+    let (w, h) = (map.width(), map.height());
+    let ao = arrays::from_plane(py, h, w, &map.ambient_occlusion(depth))?;
+    let (y, encoding) = (args.map.options().y_convention, args.map.options().encoding);
+    let bent = match args.bits {
+        16 => bumpmap_cli::commands::Chain::Rgba16(bumpmap_math::MipChain {
+            levels: vec![map.bent_normal_map(depth, y, encoding)],
+            encoding,
+        }),
+        _ => bumpmap_cli::commands::Chain::Rgba8(bumpmap_math::MipChain {
+            levels: vec![map.bent_normal_map(depth, y, encoding)],
+            encoding,
+        }),
+    };
+    let out = PyDict::new(py);
+    out.set_item("horizons", PyList::new(py, levels)?)?;
+    out.set_item("ambient_occlusion", ao)?;
+    out.set_item("bent_normals", arrays::from_chain(py, bent)?.swap_remove(0))?;
+    Ok(out)
+}
+
 /// A height field from an image file or a preset (`bricks@512`), as the command line reads it.
 #[pyfunction]
 #[pyo3(signature = (path, options = None))]
@@ -322,6 +363,7 @@ fn _bumpmap(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(normal_map, m)?)?;
     m.add_function(wrap_pyfunction!(mip_chain, m)?)?;
     m.add_function(wrap_pyfunction!(height_mips, m)?)?;
+    m.add_function(wrap_pyfunction!(horizon_maps, m)?)?;
     m.add_function(wrap_pyfunction!(read_height_field, m)?)?;
     m.add_function(wrap_pyfunction!(write_texture, m)?)?;
     m.add_function(wrap_pyfunction!(tangents, m)?)?;

@@ -46,6 +46,10 @@ pub const MIP_CHAIN: Function = Function {
 };
 /// `height_mips`: the bits the heights are stored in.
 pub const HEIGHT_MIPS: Function = Function { name: "height_mips", command: "normalmap", taken: Taken::Only(&["bits"]) };
+/// `horizon_maps`: how heights become normals (the scale is also the depth the horizons are
+/// taken at).
+pub const HORIZON_MAPS: Function =
+    Function { name: "horizon_maps", command: "normalmap", taken: Taken::Only(MAP_OPTIONS) };
 /// `read_height_field`: the channel.
 pub const READ_HEIGHT_FIELD: Function =
     Function { name: "read_height_field", command: "normalmap", taken: Taken::Only(&["channel"]) };
@@ -62,8 +66,17 @@ pub const RENDER: Function =
 pub const COMPARE: Function = Function { name: "compare", command: "compare", taken: Taken::AllBut(&["output"]) };
 
 /// Every function that takes options, by Python name.
-pub const FUNCTIONS: [&Function; 8] =
-    [&NORMAL_MAP, &MIP_CHAIN, &HEIGHT_MIPS, &READ_HEIGHT_FIELD, &WRITE_TEXTURE, &TANGENTS, &RENDER, &COMPARE];
+pub const FUNCTIONS: [&Function; 9] = [
+    &NORMAL_MAP,
+    &MIP_CHAIN,
+    &HEIGHT_MIPS,
+    &HORIZON_MAPS,
+    &READ_HEIGHT_FIELD,
+    &WRITE_TEXTURE,
+    &TANGENTS,
+    &RENDER,
+    &COMPARE,
+];
 
 /// A keyword's name for an option's long name: `bump-scale` → `bump_scale`.
 fn keyword(long: &str) -> String {

@@ -109,7 +109,7 @@ def test_heights_errors_are_exceptions(tmp_path):
         bumpmap.render(technique="pom", depth=0)
     with pytest.raises(ValueError, match=r"layers.*999 is not in 1..=256"):
         bumpmap.render(technique="pom", layers=999)
-    with pytest.raises(ValueError, match=r"parallax_shadow.*possible values: off, hard, soft"):
+    with pytest.raises(ValueError, match=r"parallax_shadow.*possible values: off, hard, soft, horizon"):
         bumpmap.render(technique="pom", parallax_shadow="sharp")
     (normals,) = bumpmap.write_texture(tmp_path / "n.png", bumpmap.normal_map(bumpmap.read_height_field("bricks@16")))
     with pytest.raises(FileNotFoundError, match=r"missing\.png"):

@@ -35,6 +35,12 @@ pub fn heights(args: &NormalmapArgs, field: &HeightField, name: &str) -> Result<
     crate::normalmap::height_levels(field, args.bits, name)
 }
 
+/// `--horizon-out`'s horizon map of `field`, read beyond its edges as the normal map's wrap says
+/// (ambient occlusion and bent normals come from it).
+pub fn horizons(args: &NormalmapArgs, field: &HeightField, name: &str) -> Result<bumpmap_math::HorizonMap, CliError> {
+    crate::normalmap::horizon_map(field, args.map.wrap.into(), name)
+}
+
 /// The texel format `normalmap`'s `--format` and `--bits` ask for together.
 pub fn texel_format(args: &NormalmapArgs) -> Result<TextureFormat, CliError> {
     crate::normalmap::texel_format(args)

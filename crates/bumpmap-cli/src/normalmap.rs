@@ -108,14 +108,11 @@ pub fn run(args: &NormalmapArgs) -> Result<(), CliError> {
     let field = source.load(channel)?;
     let levels = make_chain(&field, &options, args.mips, args.mip_mode.into(), format, &args.input)?;
     let horizons = if args.horizon_out.is_some() || args.ao_out.is_some() || args.bent_normals_out.is_some() {
-        Some(bumpmap_math::HorizonMap::from_heights(&field, options.wrap).map_err(|e| match e {
-            bumpmap_math::HorizonError::OutOfMemory(e) => CliError::OutOfMemory(e),
-            other => CliError::Path { path: args.input.clone().into(), reason: other.to_string() },
-        })?)
+        Some(horizon_map(&field, options.wrap, &args.input)?)
     } else {
         None
     };
-    let roughness = match &args.roughness_out {
+    let mut roughness = match &args.roughness_out {
         Some(_) => Some(roughness_chain(&field, &options, args.roughness, args.roughness_layout, &args.input)?),
         None => None,
     };
@@ -127,6 +124,17 @@ pub fn run(args: &NormalmapArgs) -> Result<(), CliError> {
         Some(_) => Some(height_levels(&field, args.bits, &args.input)?),
         None => None,
     };
+    // glTF's ORM texture holds the occlusion in red: with --ao-out, the occlusion's own levels.
+    if let (Some(chain), Some(map), true, Some(_)) =
+        (&mut roughness, &horizons, args.roughness_layout == crate::args::RoughnessLayoutArg::Gltf, &args.ao_out)
+    {
+        let ao = map.ambient_occlusion_levels(options.scale.abs()).map_err(CliError::OutOfMemory)?;
+        for (level, occlusion) in chain.levels.iter_mut().zip(&ao) {
+            for (texel, &v) in level.texels.iter_mut().zip(&occlusion.texels) {
+                texel[0] = bumpmap_math::roughness::unorm8(v);
+            }
+        }
+    }
     // The heights are not needed to write the chain: a 16384² field is 1 GiB of floats.
     drop(field);
     let mut set = FileSet::new(&inputs);
@@ -191,6 +199,19 @@ pub(crate) fn height_levels(field: &HeightField, bits: u8, name: &str) -> Result
     let steps = if bits == 16 { 65535 } else { 255 };
     bumpmap_math::HeightMips::from_field_rounded(field, steps).map_err(|e| match e {
         bumpmap_math::HeightMipsError::OutOfMemory(e) => CliError::OutOfMemory(e),
+        other => CliError::Path { path: name.into(), reason: other.to_string() },
+    })
+}
+
+/// The horizon map of `field` (`--horizon-out`, and what `--ao-out` and `--bent-normals-out`
+/// are made from), read beyond the edges as `wrap` says.
+pub(crate) fn horizon_map(
+    field: &HeightField,
+    wrap: bumpmap_math::Wrap,
+    name: &str,
+) -> Result<bumpmap_math::HorizonMap, CliError> {
+    bumpmap_math::HorizonMap::from_heights(field, wrap).map_err(|e| match e {
+        bumpmap_math::HorizonError::OutOfMemory(e) => CliError::OutOfMemory(e),
         other => CliError::Path { path: name.into(), reason: other.to_string() },
     })
 }

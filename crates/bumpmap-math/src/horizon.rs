@@ -233,6 +233,21 @@ impl HorizonMap {
         self.levels[0].texels.par_iter().map(|h| ambient_occlusion(h, depth)).collect()
     }
 
+    /// Ambient occlusion at `depth` for level 0 and every smaller level, each the mean of the
+    /// level-0 occlusion it covers (what a mipmapped occlusion texture holds).
+    pub fn ambient_occlusion_levels(&self, depth: f32) -> Result<Vec<Image<f32>>, OutOfMemory> {
+        let mut planes = vec![(
+            self.width(),
+            self.height(),
+            self.ambient_occlusion(depth).into_iter().map(|v| [v]).collect::<Vec<_>>(),
+        )];
+        while let Some((w, h, last)) = planes.last().filter(|(w, h, _)| (*w, *h) != (1, 1)) {
+            let next = mean_plane(*w, *h, last, "the occlusion's smaller levels")?;
+            planes.push(next);
+        }
+        Ok(planes.into_iter().map(|(w, h, t)| Image::new(w, h, t.into_iter().map(|[v]| v).collect())).collect())
+    }
+
     /// Level 0's bent normals at `depth` texels per unit of height ([`bent_normal`]).
     pub fn bent_normals(&self, depth: f32) -> Vec<Vec3> {
         self.levels[0].texels.par_iter().map(|h| bent_normal(h, depth)).collect()
@@ -274,23 +289,34 @@ fn try_vec<T>(n: usize, what: &'static str) -> Result<Vec<T>, OutOfMemory> {
 
 /// The next level: each texel the mean of those it covers.
 fn mean_level(last: &HorizonLevel) -> Result<HorizonLevel, OutOfMemory> {
-    let (w, h) = (last.width, last.height);
+    let (width, height, texels) =
+        mean_plane(last.width, last.height, &last.texels, "the horizon map's smaller levels")?;
+    Ok(HorizonLevel { width, height, texels })
+}
+
+/// The level after a `w`×`h` plane of `N` channels: each texel the mean of those it covers.
+fn mean_plane<const N: usize>(
+    w: usize,
+    h: usize,
+    texels: &[[f32; N]],
+    what: &'static str,
+) -> Result<(usize, usize, Vec<[f32; N]>), OutOfMemory> {
     let (nw, nh) = (next_size(w), next_size(h));
-    let mut texels = try_vec(nw * nh, "the horizon map's smaller levels")?;
+    let mut next = try_vec(nw * nh, what)?;
     for j in 0..nh {
         for i in 0..nw {
-            let mut sum = [0.0f32; AZIMUTHS];
+            let mut sum = [0.0f32; N];
             let mut n = 0.0f32;
             for y in footprint(j, h) {
                 for x in footprint(i, w) {
-                    sum.iter_mut().zip(&last.texels[y * w + x]).for_each(|(s, v)| *s += v);
+                    sum.iter_mut().zip(&texels[y * w + x]).for_each(|(s, v)| *s += v);
                     n += 1.0;
                 }
             }
-            texels.push(sum.map(|s| s / n));
+            next.push(sum.map(|s| s / n));
         }
     }
-    Ok(HorizonLevel { width: nw, height: nh, texels })
+    Ok((nw, nh, next))
 }
 
 /// The horizons of texel (`x`, `y`) of `heights`. `range` is the field's lowest and highest

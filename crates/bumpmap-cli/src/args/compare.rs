@@ -46,7 +46,7 @@ pub struct CompareArgs {
     /// Comma-separated techniques to run (default: every technique of the catalogue, `bumpmap render --help` lists them, but the two references they are measured against)
     #[arg(long, value_delimiter = ',')]
     pub techniques: Vec<String>,
-    /// The studies the report makes besides the table, comma-separated: golf-ball (Kilgard §2.4.2), specular (§2.5.3's highlight at a distance), emboss (§3.1), peercy (Figures 5–7), parallax (heights as geometry on the wall at grazing angles); all, or none for the table alone
+    /// The studies the report makes besides the table, comma-separated: golf-ball (Kilgard §2.4.2), specular (§2.5.3's highlight at a distance), emboss (§3.1), peercy (Figures 5–7), parallax (heights as geometry on the wall at grazing angles), shadows (bumps that shadow each other, ambient occlusion and bent normals, against rays); all, or none for the table alone
     #[arg(long, value_enum, value_delimiter = ',', default_value = "all")]
     pub studies: Vec<StudyArg>,
     /// Output folder

@@ -202,7 +202,7 @@ pub struct NormalmapArgs {
     /// The surface's own perceptual roughness (glTF's roughnessFactor), in [0, 1]: level 0's value wherever its normal is one
     #[arg(long, default_value_t = 0.5, value_parser = parse_unit, requires = "roughness_out")]
     pub roughness: f32,
-    /// Channels of --roughness-out: gray (roughness in RGB), gloss (1 − roughness in RGB), gltf (glTF's metallicRoughness and Unreal's ORM: G roughness, B metallic 0, R 1), unity (Unity's metallic-smoothness: R metallic 0, A smoothness)
+    /// Channels of --roughness-out: gray (roughness in RGB), gloss (1 − roughness in RGB), gltf (glTF's metallicRoughness and Unreal's ORM: G roughness, B metallic 0, R 1, or with --ao-out the occlusion, every level its mean), unity (Unity's metallic-smoothness: R metallic 0, A smoothness)
     #[arg(long = "roughness-layout", value_enum, default_value = "gray", requires = "roughness_out")]
     pub roughness_layout: RoughnessLayoutArg,
     /// Also write LEAN mapping's moments (Olano & Baker 2010) for every level, as 32-bit floats in .ktx2 or .dds: L.ktx2 holds (Bx, By, Mxx, Myy), L.mxy-j.ktx2 holds (Mxy, J, 0, 0), with B = (Nx/Nz, Ny/Nz), M = (Bx², BxBy, By²), J = 1/Nz³, each level the mean over the level-0 texels it covers of the 8-bit normal map's; what `--specular-filter lean` renders from
@@ -229,7 +229,7 @@ pub enum RoughnessLayoutArg {
     Gray,
     /// 1 − roughness (gloss, smoothness) in R, G and B; A 1
     Gloss,
-    /// glTF metallicRoughness / Unreal ORM: R 1 (no occlusion), G roughness, B metallic 0, A 1
+    /// glTF metallicRoughness / Unreal ORM: R 1 (no occlusion; with --ao-out the occlusion), G roughness, B metallic 0, A 1
     Gltf,
     /// Unity metallic-smoothness: R metallic 0, G and B 0, A smoothness (1 − roughness)
     Unity,

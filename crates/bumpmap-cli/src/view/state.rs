@@ -10,7 +10,7 @@
 use std::path::Path;
 use std::sync::Arc;
 
-use bumpmap::bumpmap_core::parallax::MAX_LAYERS;
+use bumpmap::bumpmap_core::parallax::{MAX_LAYERS, ParallaxMethod};
 use bumpmap::bumpmap_core::state::Sampler;
 use bumpmap::motion::{LightOrbit, MAX_TILT, orbit_camera};
 use bumpmap::{
@@ -353,6 +353,10 @@ impl Viewer {
             },
             Action::LayersUp => c.layers = (c.layers * 2).min(MAX_LAYERS),
             Action::LayersDown => c.layers = (c.layers / 2).max(1),
+            Action::ParallaxShadow if self.technique() == TechniqueName::Horizon => {
+                self.message =
+                    Some("horizon always shadows by the horizon map: the shadow key cycles the marches' shadows".into())
+            }
             Action::ParallaxShadow => c.parallax_shadow = c.parallax_shadow.next(),
         }
         self.moved();
@@ -501,14 +505,12 @@ impl Viewer {
         let heights = match self.depth() {
             Some(d) => {
                 let shadow = match c.parallax_shadow {
+                    _ if self.technique() == TechniqueName::Horizon => " | horizon shadows".to_string(),
                     ParallaxShadow::Off => String::new(),
                     s => format!(" | {} shadows", s.name()),
                 };
-                let layers = if self.technique().parallax_method().is_some() {
-                    format!(" | layers {}", c.layers)
-                } else {
-                    String::new()
-                };
+                let marches = self.technique().parallax_method().is_some_and(|m| m != ParallaxMethod::Flat);
+                let layers = if marches { format!(" | layers {}", c.layers) } else { String::new() };
                 format!(" | depth {d:.4}{layers}{shadow}")
             }
             None => String::new(),

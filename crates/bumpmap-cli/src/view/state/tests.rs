@@ -168,3 +168,25 @@ fn the_light_orbits_and_the_camera_turns() {
     v.advance(1.0);
     assert_eq!(v.frame().scene.lights[0].light, light, "paused");
 }
+
+#[test]
+fn the_horizon_technique_and_the_shadow_key_shadow_by_the_horizon_map() {
+    let mut v = viewer(&["--technique", "horizon", "--scene", "wall"]);
+    assert!(v.status().starts_with("horizon | depth 0.0312 | horizon shadows |"), "{}", v.status());
+    let Technique::SinglePass(o) = &v.prepared.technique else { panic!("horizon is a single pass") };
+    let p = o.parallax.expect("horizon reads the heights");
+    assert_eq!((p.method, p.options.shadow), (ParallaxMethod::Flat, ParallaxShadow::Horizon));
+    // The shadow key has nothing to change here: it says so and leaves the scene as it is.
+    let before = v.choices.clone();
+    v.apply(Action::ParallaxShadow);
+    assert_eq!(v.choices, before);
+    assert!(v.message.as_deref().is_some_and(|m| m.contains("horizon map")), "{:?}", v.message);
+    // On pom the key reaches the horizon map after the marches' own shadows.
+    let mut v = viewer(&["--technique", "pom", "--scene", "wall"]);
+    for _ in 0..3 {
+        v.apply(Action::ParallaxShadow);
+    }
+    let Technique::SinglePass(o) = &v.prepared.technique else { panic!("pom is a single pass") };
+    assert_eq!(o.parallax.expect("pom marches").options.shadow, ParallaxShadow::Horizon);
+    assert!(v.status().contains("| horizon shadows"), "{}", v.status());
+}
