@@ -550,6 +550,7 @@ fn technique_options(s: &SceneSetup, name: TechniqueName) -> Result<TechniqueOpt
             shadow: s.heights.parallax_shadow.0,
             silhouettes: s.heights.silhouettes,
             write_depth: s.heights.write_depth,
+            ambient_occlusion: s.heights.ambient_occlusion,
         },
     })
 }

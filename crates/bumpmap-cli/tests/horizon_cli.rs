@@ -187,3 +187,45 @@ fn the_horizon_technique_darkens_what_the_bricks_hide_from_a_low_light() {
     assert!(darker > 200, "{darker} pixels shadowed");
     assert_eq!(brighter, 0, "no pixel lit more than by normal mapping");
 }
+
+#[test]
+fn ambient_occlusion_darkens_the_ambient_light_in_the_joints_only() {
+    let dir = scratch("horizon_ambient_occlusion");
+    // The light behind the wall: what is left is the ambient term.
+    let draw = |extra: &[&str], name: &str| {
+        let out = s(&dir.join(name));
+        let fixed = [
+            "render",
+            "--scene",
+            "wall",
+            "--technique",
+            "horizon",
+            "--light",
+            "dir:0,0,-1",
+            "--size",
+            "256",
+            "-o",
+            &out,
+        ];
+        let args = [&fixed[..], extra].concat();
+        let o = bumpmap(&args);
+        assert!(o.status.success(), "{}", stderr(&o));
+        image::open(&out).unwrap().to_rgb8()
+    };
+    let (plain, occluded) = (draw(&[], "plain.png"), draw(&["--ambient-occlusion"], "ao.png"));
+    let sum = |p: &image::Rgb<u8>| p.0.iter().map(|&c| c as i32).sum::<i32>();
+    let (mut darker, mut brighter) = (0, 0);
+    for (a, b) in plain.pixels().zip(occluded.pixels()) {
+        darker += (sum(b) + 3 < sum(a)) as usize;
+        brighter += (sum(b) > sum(a) + 1) as usize;
+    }
+    assert!(occluded.pixels().map(sum).max().unwrap() > 30, "the ambient-lit wall is drawn, not black");
+    assert!(darker > 300 && brighter == 0, "{darker} pixels darker, {brighter} brighter");
+    // Occlusion is in the joints: a few pixels lose much of their light, most little or none.
+    let wall: Vec<(i32, i32)> =
+        plain.pixels().zip(occluded.pixels()).filter(|(a, _)| sum(a) > 30).map(|(a, b)| (sum(a), sum(b))).collect();
+    let deep = wall.iter().filter(|(a, b)| (*b as f32) < 0.85 * *a as f32).count();
+    let slight = wall.iter().filter(|(a, b)| (*b as f32) >= 0.97 * *a as f32).count();
+    eprintln!("{} wall pixels: {deep} lose over 15 %, {slight} under 3 %", wall.len());
+    assert!(deep > wall.len() / 50 && slight > wall.len() / 2, "{deep} deep, {slight} slight of {}", wall.len());
+}

@@ -256,6 +256,8 @@ pub struct Fragment {
     /// The filtered roughness map's perceptual roughness in [0, 1] (read only by
     /// [`SpecularFilter::RoughnessMap`]).
     pub roughness: f32,
+    /// Ambient occlusion in [0, 1], multiplying the ambient term (1: none).
+    pub occlusion: f32,
 }
 
 /// The self-shadowing factor s_self of Eq. 11 for L·N = `l_n`.
@@ -307,7 +309,7 @@ pub fn dot3(a: [f32; 3], b: [f32; 3]) -> f32 {
     a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 }
 
-/// The colour of one fragment (alpha is 1): `decal · min(ambient + diffuse · light · s_self ·
+/// The colour of one fragment (alpha is 1): `decal · min(ambient · occlusion + diffuse · light · s_self ·
 /// max(0, N'·L) · |N'|, 1) + specular · light · gate · gloss · (H·N')^shininess` (the lobe
 /// filtered as [`filtered_specular`] says).
 ///
@@ -324,7 +326,7 @@ pub fn shade(terms: &LitTerms, f: &Fragment) -> Vec3 {
         filtered_specular(h_dot_n, terms.shininess, terms.specular_filter, f.normal.w, f.roughness, f.h, f.moments);
     let (ka, kd, ks, decal) = (terms.ambient.to_array(), terms.diffuse.to_array(), terms.specular.to_array(), f.decal);
     Vec3::from_array(std::array::from_fn(|c| {
-        let diffuse = min_hi(ka[c] + kd[c] * (f.light * s_self * max_lo(n_dot_l, 0.0) * f.normal.w), 1.0);
+        let diffuse = min_hi(ka[c] * f.occlusion + kd[c] * (f.light * s_self * max_lo(n_dot_l, 0.0) * f.normal.w), 1.0);
         let specular = ks[c] * (f.light * gate * f.gloss * power);
         decal[c] * diffuse + specular
     }))
@@ -420,6 +422,7 @@ mod tests {
             light: 1.0,
             moments: LeanMoments::FLAT,
             roughness: perceptual_roughness(8.0),
+            occlusion: 1.0,
         }
     }
 

@@ -72,6 +72,8 @@ pub struct Scratch {
     h_n: Lanes,
     /// Attenuation × spotlight.
     light: Lanes,
+    /// Ambient occlusion, multiplying the ambient term (1 without heights as geometry).
+    occlusion: Lanes,
     /// Eq. 12's s_self, N'·L, H·N' (then its power), the specular gate, and a power's partial
     /// product.
     s_self: Lanes,
@@ -109,6 +111,7 @@ impl Scratch {
             l_n: z,
             h_n: z,
             light: z,
+            occlusion: [1.0; LANES],
             s_self: z,
             n_dot_l: z,
             h_dot_n: z,
@@ -394,6 +397,8 @@ impl FragmentShader for SinglePass<'_> {
             for j in 0..n {
                 sc.light[j] *= sc.par_light[j];
             }
+        } else {
+            sc.occlusion[..n].fill(1.0);
         }
         lighting_lanes(&o.terms, sc, object_space, n, out);
     }
@@ -423,6 +428,7 @@ fn lighting_lanes(terms: &LitTerms, sc: &mut Scratch, object_space: bool, n: usi
         l_n,
         h_n,
         light,
+        occlusion,
         s_self,
         n_dot_l,
         h_dot_n,
@@ -487,7 +493,8 @@ fn lighting_lanes(terms: &LitTerms, sc: &mut Scratch, object_space: bool, n: usi
     let (ka, kd, ks) = (terms.ambient, terms.diffuse, terms.specular);
     for c in 0..3 {
         for j in 0..n {
-            let diffuse = min_hi(ka[c] + kd[c] * (light[j] * s_self[j] * max_lo(n_dot_l[j], 0.0) * normal[3][j]), 1.0);
+            let lit = kd[c] * (light[j] * s_self[j] * max_lo(n_dot_l[j], 0.0) * normal[3][j]);
+            let diffuse = min_hi(ka[c] * occlusion[j] + lit, 1.0);
             let specular = ks[c] * (light[j] * gate[j] * gloss[0][j] * power[j]);
             out[c][j] = decal[c][j] * diffuse + specular;
         }
@@ -567,6 +574,7 @@ mod tests {
                 sc.l_n[j] = next() * 2.0 - 1.0;
                 sc.h_n[j] = next() * 2.0 - 1.0;
                 sc.light[j] = next();
+                sc.occlusion[j] = next();
             }
             let input = (*sc).clone();
             let mut out = [[0.0; LANES]; 4];
@@ -585,6 +593,7 @@ mod tests {
                     light: input.light[j],
                     moments: LeanMoments::from_array(std::array::from_fn(|c| input.moments[c][j])),
                     roughness: input.roughness[0][j],
+                    occlusion: input.occlusion[j],
                 };
                 let expected = shade(&terms, &f);
                 for c in 0..3 {

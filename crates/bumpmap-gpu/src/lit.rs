@@ -179,6 +179,7 @@ pub struct LitVariant {
     parallax_shadow: u32,
     silhouettes: bool,
     write_depth: bool,
+    ambient_occlusion: bool,
     height_mipmaps: bool,
     positional_light: bool,
 }
@@ -203,6 +204,7 @@ impl Default for LitVariant {
             parallax_shadow: 0,
             silhouettes: false,
             write_depth: false,
+            ambient_occlusion: false,
             height_mipmaps: false,
             positional_light: false,
         }
@@ -231,6 +233,7 @@ impl LitVariant {
             )),
             silhouettes: p.parallax.as_ref().is_some_and(|x| x.parallax.options.silhouettes),
             write_depth: p.parallax.as_ref().is_some_and(|x| x.parallax.options.write_depth),
+            ambient_occlusion: p.parallax.as_ref().is_some_and(|x| x.parallax.options.ambient_occlusion),
             height_mipmaps: p.parallax.is_some() && p.sampler.has_mipmaps(),
             positional_light: matches!(p.light.light, bumpmap_math::lighting::Light::Positional(_)),
         }
@@ -243,7 +246,7 @@ impl LitVariant {
 
     /// The override constants by their names in `lit.wgsl`, with their values: the one list
     /// the pipeline's constants and the prelude's declarations are made from.
-    pub(crate) fn overrides(&self) -> [(&'static str, Override); 18] {
+    pub(crate) fn overrides(&self) -> [(&'static str, Override); 19] {
         use Override::{Code, Flag, Float};
         [
             (SELF_SHADOW.name, Code(self.self_shadow)),
@@ -262,6 +265,7 @@ impl LitVariant {
             (PARALLAX_SHADOW.name, Code(self.parallax_shadow)),
             ("SILHOUETTES", Flag(self.silhouettes)),
             ("WRITE_DEPTH", Flag(self.write_depth)),
+            ("AMBIENT_OCCLUSION", Flag(self.ambient_occlusion)),
             ("HEIGHT_MIPMAPS", Flag(self.height_mipmaps)),
             ("POSITIONAL_LIGHT", Flag(self.positional_light)),
         ]

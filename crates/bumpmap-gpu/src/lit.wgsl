@@ -184,7 +184,7 @@ fn lit(f: Varyings) -> LitOut {
     var st = entry;
     var dx = vec2<f32>(0.0);
     var dy = vec2<f32>(0.0);
-    var par = ParallaxFragment(entry, vec3<f32>(0.0), vec3<f32>(0.0), 1.0, 0.0, vec3<f32>(0.0, 0.0, 1.0), true);
+    var par = ParallaxFragment(entry, vec3<f32>(0.0), vec3<f32>(0.0), 1.0, 0.0, vec3<f32>(0.0, 0.0, 1.0), 1.0, true);
     if PARALLAX != PARALLAX_NONE {
         dx = dpdxCoarse(entry);
         dy = dpdyCoarse(entry);
@@ -282,7 +282,7 @@ fn lit(f: Varyings) -> LitOut {
     if SPECULAR_FILTER == SPECULAR_FILTER_ROUGHNESS_MAP {
         roughness = sample_map(roughness_map, st * scale, dx * scale, dy * scale).r;
     }
-    let frag = Fragment(normal, decal.rgb, gloss, l, h, l_n, h_n, light, lean_b, lean_m, lean_j, roughness);
+    let frag = Fragment(normal, decal.rgb, gloss, l, h, l_n, h_n, light, lean_b, lean_m, lean_j, roughness, par.occlusion);
     var depth = f.position.z;
     if WRITE_DEPTH {
         depth = displaced_depth(f.position.z, par.kappa, u.parallax.z);

@@ -419,9 +419,8 @@ fn horizon_bilinear(level: u32, st: vec2<f32>, half: u32) -> vec4<f32> {
     return fma(horizon_texel(x.i1, y.i1, level, half), vec4<f32>(x.a * y.a), v);
 }
 
-// bumpmap_core::parallax::horizon_shadow with bumpmap_math::horizon::{horizon_toward,
-// visibility}: the light let through by the horizon map at st.
-fn horizon_shadow(st: vec2<f32>, to_light_st: vec3<f32>, level: u32) -> f32 {
+// The horizons at st, every direction.
+fn horizons_at(st: vec2<f32>, level: u32) -> array<f32, AZIMUTHS> {
     var h = array<f32, AZIMUTHS>();
     let a = horizon_bilinear(level, st, 0u);
     let b = horizon_bilinear(level, st, 1u);
@@ -429,6 +428,30 @@ fn horizon_shadow(st: vec2<f32>, to_light_st: vec3<f32>, level: u32) -> f32 {
         h[k] = a[k];
         h[k + 4u] = b[k];
     }
+    return h;
+}
+
+// bumpmap_core::parallax::horizon_occlusion with bumpmap_math::horizon::ambient_occlusion: the
+// mean of cos^2 of the horizons' elevations at the frame's depth in texels.
+fn horizon_occlusion(h: array<f32, AZIMUTHS>, j: vec4<f32>, depth_st: f32) -> f32 {
+    let size = vec2<f32>(height_size(0u));
+    let texel_side = sqrt(abs(j.x * j.w - j.y * j.z) / (size.x * size.y));
+    var depth = 0.0;
+    if texel_side > 0.0 {
+        depth = depth_st / texel_side;
+    }
+    var sum = 0.0;
+    for (var k = 0u; k < AZIMUTHS; k++) {
+        let e = atan(depth * tan(clamp(h[k], 0.0, 1.0) * 1.5707964));
+        sum += cos(e) * cos(e);
+    }
+    return sum / f32(AZIMUTHS);
+}
+
+// bumpmap_core::parallax::horizon_shadow with bumpmap_math::horizon::{horizon_toward,
+// visibility}: the light let through by horizons h.
+fn horizon_shadow(h_in: array<f32, AZIMUTHS>, to_light_st: vec3<f32>) -> f32 {
+    var h = h_in;
     let size = vec2<f32>(height_size(0u));
     let to_light = vec3<f32>(to_light_st.xy * size, to_light_st.z);
     // atan2(y, x) in turns of the directions, wrapped into [0, AZIMUTHS).
@@ -465,6 +488,8 @@ struct ParallaxFragment {
     kappa: f32,
     // The exact walk's normal (tangent frame), (0, 0, 1) for the others.
     normal: vec3<f32>,
+    // What multiplies the ambient term (the horizon map's ambient occlusion, or 1).
+    occlusion: f32,
     // False: discarded (a silhouette).
     ok: bool,
 };
@@ -509,9 +534,17 @@ fn parallax_fragment(
     }
     let to_eye_hit = to_eye - moved;
     var light = 1.0;
-    if PARALLAX_SHADOW == PARALLAX_SHADOW_HORIZON {
-        light = horizon_shadow(hit.st, to_light, level);
-    } else if PARALLAX_SHADOW != PARALLAX_SHADOW_OFF {
+    var occlusion = 1.0;
+    if PARALLAX_SHADOW == PARALLAX_SHADOW_HORIZON || AMBIENT_OCCLUSION {
+        let h = horizons_at(hit.st, level);
+        if AMBIENT_OCCLUSION {
+            occlusion = horizon_occlusion(h, jacobian, depth);
+        }
+        if PARALLAX_SHADOW == PARALLAX_SHADOW_HORIZON {
+            light = horizon_shadow(h, to_light);
+        }
+    }
+    if PARALLAX_SHADOW != PARALLAX_SHADOW_OFF && PARALLAX_SHADOW != PARALLAX_SHADOW_HORIZON {
         if PARALLAX == PARALLAX_EXACT {
             light = exact_shadow(hit.st, 1.0 - hit.descent, to_light);
         } else {
@@ -540,6 +573,7 @@ fn parallax_fragment(
         light,
         kappa,
         normal,
+        occlusion,
         hit.ok,
     );
 }

@@ -36,6 +36,8 @@ struct Fragment {
     lean_j: f32,
     // The filtered roughness map's perceptual roughness.
     roughness: f32,
+    // Ambient occlusion, multiplying the ambient term.
+    occlusion: f32,
 };
 
 // x^k for a whole k by binary powering (the order of f32::powi).
@@ -142,7 +144,7 @@ fn shade(t: Terms, f: Fragment) -> vec3<f32> {
     } else {
         power = filtered_specular(h_dot_n, t.shininess, t.specular_filter, f.normal.a, f.roughness);
     }
-    let diffuse = min(t.ambient + t.diffuse * (f.light * s_self * max(n_dot_l, 0.0) * f.normal.a), vec3<f32>(1.0));
+    let diffuse = min(t.ambient * f.occlusion + t.diffuse * (f.light * s_self * max(n_dot_l, 0.0) * f.normal.a), vec3<f32>(1.0));
     let specular = t.specular * (f.light * gate * f.gloss * power);
     return f.decal * diffuse + specular;
 }

@@ -58,6 +58,7 @@ fn wgsl_shade_is_the_lighting_model() {
                 // Roughness from 0.35 (exponent 129) to 1: past 0.35 the lobe's peak times its
                 // energy factor grows past what an absolute 2e-4 can say of pow's few ulps.
                 roughness: 0.35 + rng.unit() * 0.65,
+                occlusion: rng.unit(),
             }
         })
         .collect();
@@ -70,6 +71,7 @@ fn wgsl_shade_is_the_lighting_model() {
             v.extend(f.h.extend(f.l_n).to_array());
             v.extend([f.h_n, f.moments.b.x, f.moments.b.y, f.moments.m.x]);
             v.extend([f.moments.m.y, f.moments.m.z, f.moments.j, f.roughness]);
+            v.extend([f.occlusion, 0.0, 0.0, 0.0]);
             v
         })
         .collect();
@@ -104,7 +106,7 @@ fn wgsl_shade_is_the_lighting_model() {
                     |v: Vec3| format!("vec3<f32>({}, {}, {})", wgsl_literal(v.x), wgsl_literal(v.y), wgsl_literal(v.z));
                 let wgsl = format!(
                     "{shading}
-struct In {{ normal: vec4<f32>, decal_gloss: vec4<f32>, l_light: vec4<f32>, h_ln: vec4<f32>, hn: vec4<f32>, m: vec4<f32> }};
+struct In {{ normal: vec4<f32>, decal_gloss: vec4<f32>, l_light: vec4<f32>, h_ln: vec4<f32>, hn: vec4<f32>, m: vec4<f32>, o: vec4<f32> }};
 @group(0) @binding(0) var<storage, read> inputs: array<In>;
 @group(0) @binding(1) var<storage, read_write> outputs: array<vec4<f32>>;
 @compute @workgroup_size(64)
@@ -112,7 +114,7 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {{
     if id.x >= arrayLength(&outputs) {{ return; }}
     let i = inputs[id.x];
     let t = Terms({}, {}, {}, {}, {ss}, {sg}, {sf});
-    let f = Fragment(i.normal, i.decal_gloss.xyz, i.decal_gloss.w, i.l_light.xyz, i.h_ln.xyz, i.h_ln.w, i.hn.x, i.l_light.w, i.hn.yz, vec3<f32>(i.hn.w, i.m.xy), i.m.z, i.m.w);
+    let f = Fragment(i.normal, i.decal_gloss.xyz, i.decal_gloss.w, i.l_light.xyz, i.h_ln.xyz, i.h_ln.w, i.hn.x, i.l_light.w, i.hn.yz, vec3<f32>(i.hn.w, i.m.xy), i.m.z, i.m.w, i.o.x);
     outputs[id.x] = vec4<f32>(shade(t, f), 1.0);
 }}",
                     v3(terms.ambient),

@@ -122,7 +122,7 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     outputs[4u * id.x] = vec4<f32>(f.st, f.light, f.kappa);
     outputs[4u * id.x + 1u] = vec4<f32>(f.l, select(0.0, 1.0, f.ok));
     outputs[4u * id.x + 2u] = vec4<f32>(f.v, 0.0);
-    outputs[4u * id.x + 3u] = vec4<f32>(f.normal, 0.0);
+    outputs[4u * id.x + 3u] = vec4<f32>(f.normal, f.occlusion);
 }
 ";
 
@@ -184,17 +184,20 @@ fn wgsl_parallax_fragment_is_the_cores() {
     for method in ParallaxMethod::ALL {
         for shadow in ParallaxShadow::ALL {
             for silhouettes in [false, true] {
+                // Ambient occlusion from the horizon map along with its shadows.
+                let ambient_occlusion = shadow == ParallaxShadow::Horizon;
                 let constants = [
                     ("PARALLAX", code(parallax_name(Some(method)))),
                     ("PARALLAX_SHADOW", code(parallax_shadow_name(shadow))),
                     ("SILHOUETTES", silhouettes as u32 as f64),
+                    ("AMBIENT_OCCLUSION", ambient_occlusion as u32 as f64),
                 ];
                 let got =
                     common::run_compute_with(&ctx, &program, common::bytes(&data), 4 * fragments.len(), &constants)
                         .expect("parallax.wgsl compiles");
-                let p =
-                    Parallax { method, options: ParallaxOptions { layers, shadow, silhouettes, write_depth: true } };
-                let (mut hits, mut decisions, mut shadows) = (0, 0, 0);
+                let options = ParallaxOptions { layers, shadow, silhouettes, write_depth: true, ambient_occlusion };
+                let p = Parallax { method, options };
+                let (mut hits, mut decisions, mut shadows, mut occluded) = (0, 0, 0, 0);
                 for (i, f) in fragments.iter().enumerate() {
                     let rays = FragmentRays {
                         st: Vec2::new(f[0], f[1]),
@@ -234,6 +237,13 @@ fn wgsl_parallax_fragment_is_the_cores() {
                         worst = worst.max(d);
                         assert!(d < 1e-3, "{method:?} {shadow:?}: {a} vs {b} (fragment {i})");
                     }
+                    assert!(
+                        (g[3][3] - want.occlusion).abs() < 1e-4,
+                        "{method:?} {shadow:?}: occlusion {} vs {}",
+                        g[3][3],
+                        want.occlusion
+                    );
+                    occluded += (want.occlusion < 0.95) as usize;
                     if let Some(n) = want.normal {
                         assert!((v3(g[3]) - n).length() < 1e-3, "{method:?}: normal {} vs {n}", v3(g[3]));
                     }
@@ -252,6 +262,16 @@ fn wgsl_parallax_fragment_is_the_cores() {
                 );
                 assert!(share(hits) >= 0.98, "{method:?} {shadow:?} {silhouettes}: hits agree on {hits}/{n}");
                 assert!(share(shadows) >= 0.98, "{method:?} {shadow:?} {silhouettes}: shadows agree on {shadows}/{n}");
+                if ambient_occlusion {
+                    assert!(
+                        occluded > 20,
+                        "{method:?}: only {occluded} fragments occluded: the check would be vacuous"
+                    );
+                }
+                if shadow == ParallaxShadow::Horizon {
+                    let dark = got.chunks(4).filter(|g| g[1][3] > 0.5 && g[0][2] < 0.5).count();
+                    assert!(dark > 20, "{method:?}: only {dark} fragments in the horizon's shadow");
+                }
             }
         }
     }

@@ -196,6 +196,15 @@ fn every_parallax_technique_matches_the_cpu() {
             ParallaxOptions { silhouettes: true, shadow: ParallaxShadow::Soft, ..Default::default() },
         ),
         (
+            "wall_low_light_horizon_occlusion",
+            SceneKind::Wall,
+            SceneParams {
+                lights: vec![SceneLight::white(Light::Directional(Vec3::new(0.9, 0.3, 0.34).normalize()))],
+                ..Default::default()
+            },
+            ParallaxOptions { shadow: ParallaxShadow::Horizon, ambient_occlusion: true, ..Default::default() },
+        ),
+        (
             "wall_floor_write_depth",
             SceneKind::WallFloor,
             SceneParams { depth: Some(0.1), ..Default::default() },

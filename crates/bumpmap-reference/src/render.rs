@@ -259,6 +259,7 @@ pub(crate) fn light(
             light: factor,
             moments: bumpmap_core::shading::LeanMoments::FLAT,
             roughness: bumpmap_core::shading::perceptual_roughness(terms.shininess),
+            occlusion: 1.0,
         };
         color += shade(&terms, &fragment).clamp(Vec3::ZERO, Vec3::ONE);
     }

@@ -220,6 +220,9 @@ pub struct HeightsGroup {
     /// Write the depth where the ray met the heights instead of the polygon's, so two bumpy surfaces intersect where their bumps do
     #[arg(long = "write-depth")]
     pub write_depth: bool,
+    /// Multiply the ambient term by the ambient occlusion of the heights' horizon map (Sloan & Cohen 2000): the share of the sky each point sees past the bumps around it, at the depth drawn
+    #[arg(long = "ambient-occlusion")]
+    pub ambient_occlusion: bool,
 }
 
 /// A parallax shadow mode (`bumpmap_core::parallax::ParallaxShadow`), by its name.

@@ -153,11 +153,20 @@ pub struct ParallaxOptions {
     /// Write the depth of the hit instead of the polygon's, so bumpy surfaces intersect where
     /// their bumps do.
     pub write_depth: bool,
+    /// Multiply the ambient term by the ambient occlusion of the horizon map at the hit
+    /// (`bumpmap_math::horizon::ambient_occlusion` at the material's depth).
+    pub ambient_occlusion: bool,
 }
 
 impl Default for ParallaxOptions {
     fn default() -> Self {
-        Self { layers: DEFAULT_LAYERS, shadow: ParallaxShadow::Off, silhouettes: false, write_depth: false }
+        Self {
+            layers: DEFAULT_LAYERS,
+            shadow: ParallaxShadow::Off,
+            silhouettes: false,
+            write_depth: false,
+            ambient_occlusion: false,
+        }
     }
 }
 
@@ -203,6 +212,16 @@ pub struct ParallaxFragment {
     /// The interpolant's normal there (tangent frame, unit), for `exact`; `None` for the
     /// others, which read the normal map at `st`.
     pub normal: Option<Vec3>,
+    /// What multiplies the ambient term: the horizon map's ambient occlusion at the hit with
+    /// [`ParallaxOptions::ambient_occlusion`], else 1.
+    pub occlusion: f32,
+}
+
+impl Parallax {
+    /// Whether a fragment reads the horizon map: for its shadow or its ambient occlusion.
+    pub fn reads_horizons(&self) -> bool {
+        self.options.shadow == ParallaxShadow::Horizon || self.options.ambient_occlusion
+    }
 }
 
 /// Heights a fragment's exact walk reads: level 0 and the min–max levels.
@@ -218,11 +237,22 @@ pub struct HorizonLookup<'a> {
     pub sample: &'a mut dyn FnMut(Vec2) -> Horizons,
 }
 
-/// How much light reaches a point at `st` by the horizon map: [`bumpmap_math::horizon::visibility`]
-/// of `to_light` (texture space) taken to texel space.
-pub fn horizon_shadow(st: Vec2, to_light: Vec3, horizons: &mut HorizonLookup) -> f32 {
-    let toward = Vec3::new(to_light.x * horizons.size.x, to_light.y * horizons.size.y, to_light.z);
-    bumpmap_math::horizon::visibility(&(horizons.sample)(st), toward)
+/// How much light reaches a point whose horizons are `horizons` (as sampled at it):
+/// [`bumpmap_math::horizon::visibility`] of `to_light` (texture space) taken to the texel space
+/// of heights `size` texels across.
+pub fn horizon_shadow(horizons: &Horizons, size: Vec2, to_light: Vec3) -> f32 {
+    let toward = Vec3::new(to_light.x * size.x, to_light.y * size.y, to_light.z);
+    bumpmap_math::horizon::visibility(horizons, toward)
+}
+
+/// The ambient occlusion of a point whose horizons are `horizons`, on heights `size` texels
+/// across carved `frame.depth` deep: [`bumpmap_math::horizon::ambient_occlusion`] at the depth
+/// in texels of the frame's mean texel side (`√|det J| / √(W·H)`).
+pub fn horizon_occlusion(horizons: &Horizons, size: Vec2, frame: &TextureFrame) -> f32 {
+    let [a, b, c, d] = frame.jacobian;
+    let texel_side = ((a * d - b * c).abs() / (size.x * size.y)).sqrt();
+    let depth = if texel_side > 0.0 { frame.depth / texel_side } else { 0.0 };
+    bumpmap_math::horizon::ambient_occlusion(horizons, depth)
 }
 
 /// Everything a parallax fragment needs before it is lit: the march of `parallax.method`
@@ -262,10 +292,19 @@ pub fn fragment(
     let moved = Vec3::new(hit.st.x - rays.st.x, hit.st.y - rays.st.y, -hit.descent);
     let to_light = if positional { rays.to_light - moved } else { rays.to_light };
     let to_eye = rays.to_eye - moved;
+    // The horizons at the hit, where the shadow or the occlusion reads them.
+    let sampled = match horizons {
+        Some(h) if parallax.reads_horizons() => Some(((h.sample)(hit.st), h.size)),
+        _ => None,
+    };
+    let occlusion = match &sampled {
+        Some((h, size)) if parallax.options.ambient_occlusion => horizon_occlusion(h, *size, &frame),
+        _ => 1.0,
+    };
     let light = match (parallax.method, exact_heights) {
         (_, _) if parallax.options.shadow == ParallaxShadow::Off => 1.0,
-        (_, _) if parallax.options.shadow == ParallaxShadow::Horizon => match horizons {
-            Some(mut h) => horizon_shadow(hit.st, to_light, &mut h),
+        (_, _) if parallax.options.shadow == ParallaxShadow::Horizon => match &sampled {
+            Some((h, size)) => horizon_shadow(h, *size, to_light),
             None => 1.0,
         },
         (ParallaxMethod::Exact, Some((level0, minmax))) => {
@@ -296,6 +335,7 @@ pub fn fragment(
         light,
         kappa: if rays.to_eye.z > 0.0 { hit.descent / rays.to_eye.z } else { 0.0 },
         normal,
+        occlusion,
     })
 }
 

@@ -11,7 +11,7 @@ use std::sync::Arc;
 use bumpmap_math::Rgba8Mips;
 
 use crate::error::{CoreError, Feature};
-use crate::parallax::{MAX_LAYERS, Parallax, ParallaxMethod, ParallaxShadow};
+use crate::parallax::{MAX_LAYERS, Parallax, ParallaxMethod};
 use crate::scene::{Attenuation, Scene, SceneLight};
 use crate::shading::LitTerms;
 pub use crate::shading::{SelfShadow, SpecularFilter, SpecularShadow};
@@ -240,10 +240,7 @@ pub fn passes(scene: &Scene, options: &SinglePassOptions) -> Result<Vec<Pass>, C
                 parallax: match options.parallax {
                     Some(parallax) => {
                         let heights = m.heights.clone().expect("validated: every material has heights");
-                        let horizons = match parallax.options.shadow {
-                            ParallaxShadow::Horizon => Some(heights.horizons()?),
-                            _ => None,
-                        };
+                        let horizons = if parallax.reads_horizons() { Some(heights.horizons()?) } else { None };
                         Some(ParallaxProgram {
                             parallax,
                             heights,

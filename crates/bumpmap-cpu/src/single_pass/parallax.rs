@@ -60,7 +60,7 @@ impl SinglePass<'_> {
                 jacobian: [t[6][j], t[7][j], t[8][j], t[9][j]],
                 curvature: Vec2::new(t[10][j], t[11][j]),
             };
-            let (hit, l, v, light, normal, depth) =
+            let (hit, l, v, light, normal, depth, occlusion) =
                 match fragment(&rays, &p.parallax, p.depth, positional, &mut sample, exact, horizons) {
                     Some(f) => {
                         let depth = if p.parallax.options.write_depth {
@@ -68,9 +68,9 @@ impl SinglePass<'_> {
                         } else {
                             sc.depth[j]
                         };
-                        (f.st, f.l, f.v, f.light, f.normal.unwrap_or(Vec3::Z), depth)
+                        (f.st, f.l, f.v, f.light, f.normal.unwrap_or(Vec3::Z), depth, f.occlusion)
                     }
-                    None => (rays.st, Vec3::Z, Vec3::Z, 0.0, Vec3::Z, f32::NAN),
+                    None => (rays.st, Vec3::Z, Vec3::Z, 0.0, Vec3::Z, f32::NAN, 1.0),
                 };
             (sc.hit[0][j], sc.hit[1][j]) = (hit.x, hit.y);
             for c in 0..3 {
@@ -79,6 +79,7 @@ impl SinglePass<'_> {
                 sc.par_n[c][j] = normal[c];
             }
             sc.par_light[j] = light;
+            sc.occlusion[j] = occlusion;
             sc.depth[j] = depth;
         }
     }
