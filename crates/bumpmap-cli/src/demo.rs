@@ -183,7 +183,36 @@ const RENDERS: &[DemoRender] = &[
         passes: false,
         make: || grazing_wall(TechniqueName::Pom),
     },
+    DemoRender {
+        file: "shadows_normal_mapping.png",
+        what: "Bumps that shadow each other, 1 of 2: the brick wall head-on, lit low from the side (70° from the normal), by the single pass: Eq. 12 lights every joint, since the wall itself faces the light",
+        passes: false,
+        make: || low_light_wall(TechniqueName::SinglePass),
+    },
+    DemoRender {
+        file: "shadows_horizon.png",
+        what: "Bumps that shadow each other, 2 of 2: the same by the horizon map (horizon, with --ambient-occlusion): each brick shadows the joint beside it, no march",
+        passes: false,
+        make: || low_light_wall(TechniqueName::Horizon),
+    },
 ];
+
+/// The brick wall head-on, lit from the side 70° from its normal, by `name` (ambient occlusion
+/// from the horizon map for the techniques that read it).
+fn low_light_wall(name: TechniqueName) -> (SceneKind, SceneParams, Technique) {
+    let l = 70f32.to_radians();
+    let base = SceneParams {
+        eye: Some(Vec3::new(0.0, 0.0, 1.8)),
+        target: Some(Vec3::ZERO),
+        lights: vec![SceneLight::white(Light::Directional(Vec3::new(l.sin() * 0.8, -l.sin() * 0.6, l.cos())))],
+        ..Default::default()
+    };
+    let options = TechniqueOptions {
+        parallax: ParallaxOptions { ambient_occlusion: true, ..Default::default() },
+        ..Default::default()
+    };
+    (SceneKind::Wall, name.scene_params(&base), name.technique(&options))
+}
 
 /// The brick wall seen 65° off its normal, lit from the side, by `name` (hard shadows from the
 /// heights for the techniques that take them as geometry).
@@ -203,6 +232,8 @@ fn grazing_wall(name: TechniqueName) -> (SceneKind, SceneParams, Technique) {
 
 /// The figure of normal mapping beside POM at a grazing angle (the README shows it).
 const PARALLAX_FIGURE: &str = "parallax_figure.png";
+/// The figure of normal mapping beside the horizon map under a low light (the README shows it).
+const SHADOWS_FIGURE: &str = "shadows_figure.png";
 
 /// Writes `left` and `right` (two images of the demo in `out`, the same height) side by side,
 /// RGB, as `file`.
@@ -322,6 +353,10 @@ fn write_demo(out: &Path, args: &DemoArgs) -> Result<(), CliError> {
     side_by_side(out, "parallax_normal_mapping.png", "parallax_pom.png", PARALLAX_FIGURE)?;
     index += &format!(
         "- `{PARALLAX_FIGURE}`: the two side by side, normal mapping on the left, parallax occlusion mapping on the right\n"
+    );
+    side_by_side(out, "shadows_normal_mapping.png", "shadows_horizon.png", SHADOWS_FIGURE)?;
+    index += &format!(
+        "- `{SHADOWS_FIGURE}`: the two side by side, normal mapping on the left, the horizon map's shadows and ambient occlusion on the right\n"
     );
     index += "- `fig11_torus.decal.png`, `.diffuse.png`, `.specular.png`: Kilgard Figure 12, the framebuffer after each pass\n";
     bar.set_message("your own assets: a normal map file, a glTF with its material");
