@@ -13,7 +13,7 @@ cargo build --release -p bumpmap-cli >&2
 B=$root/target/release/bumpmap
 x() { xvfb-run -a -s "-screen 0 1024x768x24" "$B" view --width 800 --height 600 "$@" 2>&1; }
 for backend in cpu gpu; do
-    for technique in kilgard single-pass pom height-exact; do
+    for technique in kilgard single-pass horizon pom height-exact; do
         x --backend "$backend" --technique "$technique" --frames 151 | grep "frames/s"
     done
 done
