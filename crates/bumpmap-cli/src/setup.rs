@@ -223,6 +223,28 @@ pub fn setup(s: &SceneSetup) -> Result<Setup, CliError> {
         ));
         spec.params.height_mips = Some(Arc::new(heights));
     }
+    if let Some(path) = &s.heights.horizon_map {
+        let horizons = bumpmap_io::horizon_file::load_horizons(path)?;
+        let (hs, ns) = ((horizons.width(), horizons.height()), spec.params.bumps.size());
+        if hs != ns {
+            return Err(CliError::Path {
+                path: path.clone(),
+                reason: format!(
+                    "is {}x{}, but the normal map is {}x{}: horizons are read at the normal map's texture coordinates and levels",
+                    hs.0, hs.1, ns.0, ns.1
+                ),
+            });
+        }
+        notes.push(format!(
+            "{}: horizon map, {}x{}, {} directions, {} levels",
+            path.display(),
+            hs.0,
+            hs.1,
+            bumpmap::bumpmap_math::horizon::AZIMUTHS,
+            horizons.levels().len()
+        ));
+        spec.params.horizon_map = Some(Arc::new(horizons));
+    }
     spec.params.depth = s.heights.depth;
 
     let p = &mut spec.params;

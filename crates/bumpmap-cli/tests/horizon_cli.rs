@@ -229,3 +229,77 @@ fn ambient_occlusion_darkens_the_ambient_light_in_the_joints_only() {
     eprintln!("{} wall pixels: {deep} lose over 15 %, {slight} under 3 %", wall.len());
     assert!(deep > wall.len() / 50 && slight > wall.len() / 2, "{deep} deep, {slight} slight of {}", wall.len());
 }
+
+#[test]
+fn a_horizon_map_file_renders_as_the_one_made_and_bad_ones_are_refused() {
+    let dir = scratch("horizon_map_file");
+    let at = |name: &str| dir.join(name);
+    let o = bumpmap(&[
+        "normalmap",
+        "bricks@64",
+        "-o",
+        &s(&at("n.png")),
+        "--mips",
+        "--bits",
+        "16",
+        "--horizon-out",
+        &s(&at("hz.png")),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let render = |extra: &[&str], name: &str| {
+        let out = s(&at(name));
+        let fixed = [
+            "render",
+            "--scene",
+            "wall",
+            "--technique",
+            "horizon",
+            "--height-field",
+            "bricks@64",
+            "--light",
+            "dir:0.9,0.3,0.34",
+            "--size",
+            "64",
+            "-o",
+            &out,
+        ];
+        bumpmap(&[&fixed[..], extra].concat())
+    };
+    let o = render(&[], "made.png");
+    assert!(o.status.success(), "{}", stderr(&o));
+    let hz = s(&at("hz.png"));
+    let o = render(&["--horizon-map", &hz], "read.png");
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(stderr(&o).contains("horizon map, 64x64, 8 directions, 7 levels"), "{}", stderr(&o));
+    let (made, read) = (image::open(at("made.png")).unwrap().to_rgb8(), image::open(at("read.png")).unwrap().to_rgb8());
+    // 16 bits a direction: the same shadows but for a pixel on an edge's rounding.
+    let worst = made.pixels().zip(read.pixels()).flat_map(|(a, b)| (0..3).map(move |c| a[c].abs_diff(b[c]))).max();
+    assert!(worst.unwrap() <= 8, "largest difference {worst:?}");
+    assert!(made.pixels().filter(|p| p[0] > 40).count() > 1000, "not black");
+
+    // Bad maps: exit 1, the file named, nothing written.
+    // The wrong size.
+    let o = bumpmap(&["normalmap", "bricks@32", "-o", &s(&at("n32.png")), "--horizon-out", &s(&at("hz32.png"))]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let before = listing(&dir);
+    let refuse = |map: &Path, expect: &str| {
+        let o = render(&["--horizon-map", &s(map)], "bad.png");
+        let err = stderr(&o);
+        assert_eq!(o.status.code(), Some(1), "{err}");
+        assert!(err.contains(&map.display().to_string()) && err.contains(expect), "{expect}: {err}");
+        assert_eq!(listing(&dir), before, "nothing written");
+    };
+    refuse(&at("hz32.png"), "is 32x32, but the normal map is 64x64");
+    // Three directions a texel instead of four (an RGB image), and one file of the two.
+    image::RgbImage::from_pixel(64, 64, image::Rgb([0, 0, 0])).save(at("rgb.png")).unwrap();
+    std::fs::copy(at("hz.dirs4-7.png"), at("rgb.dirs4-7.png")).unwrap();
+    std::fs::copy(at("hz.png"), at("alone.png")).unwrap();
+    let before = listing(&dir);
+    let o = render(&["--horizon-map", &s(&at("rgb.png"))], "bad.png");
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    assert!(stderr(&o).contains("has 3 channels"), "{}", stderr(&o));
+    let o = render(&["--horizon-map", &s(&at("alone.png"))], "bad.png");
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    assert!(stderr(&o).contains("alone.dirs4-7.png: not found"), "{}", stderr(&o));
+    assert_eq!(listing(&dir), before, "nothing written");
+}

@@ -215,6 +215,9 @@ pub struct SceneParams {
     /// normal map's size, instead of the height field's: what a normal map given as it is needs
     /// for the parallax techniques.
     pub height_mips: Option<Arc<HeightMips>>,
+    /// The heights' horizon map given as it is (the files `normalmap --horizon-out` writes),
+    /// instead of the one made from the heights when a technique reads it; level 0's size.
+    pub horizon_map: Option<Arc<bumpmap_math::HorizonMap>>,
     /// Whether the material carries the heights as geometry ([`crate::scene::Material::heights`]);
     /// the technique catalogue turns it on for the techniques that read them.
     pub displacement: bool,
@@ -246,6 +249,7 @@ impl Default for SceneParams {
             height_map: true,
             depth: None,
             height_mips: None,
+            horizon_map: None,
             displacement: false,
         }
     }
@@ -363,12 +367,15 @@ pub fn build(kind: &SceneKind, params: &SceneParams) -> Result<Scene, CoreError>
         {
             return Err(CoreError::out_of_range("the depth", d, "a positive number of object units"));
         }
-        let mips = match (&params.height_mips, heights) {
+        let mut mips = match (&params.height_mips, heights) {
             (Some(given), _) => Some(given.clone()),
             (None, Some(field)) => Some(Arc::new(HeightMips::from_field(field)?)),
             // A normal map given without heights: the catalogue's requirement names what is missing.
             (None, None) => None,
         };
+        if let (Some(m), Some(horizons)) = (&mips, &params.horizon_map) {
+            mips = Some(Arc::new((**m).clone().with_horizons(horizons.clone())?));
+        }
         if let Some(h) = &mips {
             let (hs, ns) = ((h.width(), h.height()), (material.normal_map.width(), material.normal_map.height()));
             if hs != ns {

@@ -9,18 +9,19 @@
 //! - ambient occlusion: one gray level (`.png` 8/16-bit gray, `.ktx2`/`.dds` `R8_UNORM` or
 //!   `R16_UNORM`), 1 open, 0 closed.
 //!
-//! Bent normals are a normal map and are written as one. What this module does not do: make
-//! the maps, or read them back.
+//! Bent normals are a normal map and are written as one. [`load_horizons`] reads a horizon map
+//! back (both textures, every level they hold). What this module does not do: make the maps.
 
 use std::path::{Path, PathBuf};
 
-use bumpmap_math::{HorizonMap, Image};
+use bumpmap_math::{HorizonLevel, HorizonMap, Image};
 
 use crate::atomic::FileSet;
 use crate::error::IoError;
 use crate::height_file::{Container, HeightBits, container, write_levels};
 use crate::image_file::level_path;
 use crate::texture_file::{Level, TextureFormat};
+use crate::texture_read::{StoredLevels, load_texture};
 
 /// The second horizon file beside `path`: `H.dirs4-7.EXT`.
 pub fn second_half_path(path: &Path) -> PathBuf {
@@ -95,4 +96,88 @@ pub fn write_gray_into(
             write_levels(set, path, kind, vec![Level::Gray16(&image)], TextureFormat::R16)
         }
     }
+}
+
+/// One texture of a horizon map read back: its levels, four directions a texel in [0, 1].
+fn read_half(path: &Path) -> Result<Vec<(usize, usize, Vec<[f32; 4]>)>, IoError> {
+    let bad = |file: &Path, reason: String| IoError::Texture { path: file.to_path_buf(), reason };
+    let kind = container(path)?;
+    let read = |file: &Path| -> Result<Vec<(usize, usize, Vec<[f32; 4]>)>, IoError> {
+        if !file.is_file() {
+            return Err(bad(
+                file,
+                "not found: a horizon map is two files of four directions each (H and H.dirs4-7)".into(),
+            ));
+        }
+        if kind == Container::Png {
+            // Four channels, one direction each: a gray or RGB image holds fewer.
+            let io = |source| IoError::Read { path: file.to_path_buf(), source };
+            let reader = image::ImageReader::open(file).map_err(io)?.with_guessed_format().map_err(io)?;
+            let decoder = reader.into_decoder().map_err(|e| bad(file, e.to_string()))?;
+            let colour = image::ImageDecoder::color_type(&decoder);
+            if colour.channel_count() != 4 {
+                return Err(bad(
+                    file,
+                    format!(
+                        "has {} channels ({colour:?}); a horizon map's texture holds four directions, one in each of R, G, B and A",
+                        colour.channel_count()
+                    ),
+                ));
+            }
+        }
+        let stored = load_texture(file)?;
+        if !matches!(stored.format, TextureFormat::Rgba8 | TextureFormat::Rgba16) {
+            return Err(bad(
+                file,
+                format!(
+                    "holds {} texels; a horizon map's texture holds four directions (R8G8B8A8 or R16G16B16A16_UNORM)",
+                    stored.format.name()
+                ),
+            ));
+        }
+        Ok(match stored.levels {
+            StoredLevels::Rgba8(levels) => levels
+                .into_iter()
+                .map(|l| (l.width, l.height, l.texels.iter().map(|t| t.map(|c| c as f32 / 255.0)).collect()))
+                .collect(),
+            StoredLevels::Rgba16(levels) => levels
+                .into_iter()
+                .map(|l| (l.width, l.height, l.texels.iter().map(|t| t.map(|c| c as f32 / 65535.0)).collect()))
+                .collect(),
+        })
+    };
+    let mut levels = read(path)?;
+    if kind == Container::Png {
+        for k in 1.. {
+            let file = level_path(path, k);
+            if !file.is_file() || levels.last().is_some_and(|(w, h, _)| (*w, *h) == (1, 1)) {
+                break;
+            }
+            levels.extend(read(&file)?);
+        }
+    }
+    Ok(levels)
+}
+
+/// A horizon map written by [`write_horizons_into`] (or by another tool in the same layout):
+/// `path` (directions 0–3) and `H.dirs4-7` beside it, each level of one the size of the other's,
+/// level 0 alone or a chain (the rest are made). Missing files, textures of other than four
+/// channels, sizes that do not match and values that are not numbers are errors naming the file.
+pub fn load_horizons(path: &Path) -> Result<HorizonMap, IoError> {
+    let bad = |file: &Path, reason: String| IoError::Texture { path: file.to_path_buf(), reason };
+    let second = second_half_path(path);
+    let (a, b) = (read_half(path)?, read_half(&second)?);
+    if a.len() != b.len() {
+        return Err(bad(&second, format!("holds {} levels, but {} holds {}", b.len(), path.display(), a.len())));
+    }
+    let mut levels = Vec::with_capacity(a.len());
+    for (k, ((w, h, lo), (w2, h2, hi))) in a.into_iter().zip(b).enumerate() {
+        if (w, h) != (w2, h2) {
+            return Err(bad(&second, format!("level {k} is {w2}x{h2}, but {}'s is {w}x{h}", path.display())));
+        }
+        let texels =
+            lo.iter().zip(&hi).map(|(l, u)| std::array::from_fn(|c| if c < 4 { l[c] } else { u[c - 4] })).collect();
+        levels.push(HorizonLevel { width: w, height: h, texels });
+    }
+    HorizonMap::from_levels(levels).map_err(|e| bad(path, e.to_string()))
 }

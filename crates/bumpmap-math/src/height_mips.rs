@@ -311,6 +311,26 @@ impl HeightMips {
             .clone()
     }
 
+    /// These heights with `horizons` as their horizon map (a file's, say) instead of the one
+    /// [`HeightMips::horizons`] would make; refused unless it is level 0's size.
+    pub fn with_horizons(self, horizons: std::sync::Arc<HorizonMap>) -> Result<Self, HorizonError> {
+        let (w, h) = (self.width(), self.height());
+        if (horizons.width(), horizons.height()) != (w, h) {
+            return Err(HorizonError::LevelSize {
+                level: 0,
+                got_w: horizons.width(),
+                got_h: horizons.height(),
+                want_w: w,
+                want_h: h,
+                w0: w,
+                h0: h,
+            });
+        }
+        let made = std::sync::OnceLock::new();
+        made.get_or_init(|| Ok(horizons));
+        Ok(Self { horizons: made, ..self })
+    }
+
     /// Level 0's width.
     pub fn width(&self) -> usize {
         self.levels[0].width

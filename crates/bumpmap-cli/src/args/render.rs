@@ -208,6 +208,9 @@ pub struct HeightsGroup {
     /// The heights as a file, the normal map's size: what `normalmap --height-out` writes (H.png with H.mip1.png … and H.minmax.png …, or H.ktx2 / H.dds with H.minmax.ktx2 / .dds beside it); what a --normal-map needs for these techniques. height-exact needs the min–max files
     #[arg(long = "height-map", value_name = "FILE")]
     pub height_map: Option<PathBuf>,
+    /// The heights' horizon map as a file, the normal map's size: what `normalmap --horizon-out` writes (H.png and H.dirs4-7.png with their .mipK.png levels, or H.ktx2 / H.dds and H.dirs4-7 beside it), read by --parallax-shadow horizon, --technique horizon and --ambient-occlusion instead of the one made from the heights
+    #[arg(long = "horizon-map", value_name = "FILE")]
+    pub horizon_map: Option<PathBuf>,
     /// Layers of a march: steep-parallax and relief step through this many, pom through a quarter of it looking straight on up to all of it at grazing angles; a shadow march steps this many over the depth
     #[arg(long, default_value_t = bumpmap::bumpmap_core::parallax::DEFAULT_LAYERS, value_parser = clap::value_parser!(u32).range(1..=bumpmap::bumpmap_core::parallax::MAX_LAYERS as i64), allow_negative_numbers = true)]
     pub layers: u32,
