@@ -98,11 +98,14 @@ pub fn write_gray_into(
     }
 }
 
+/// A level of one of a horizon map's two textures: width, height, four directions a texel.
+type HalfLevel = (usize, usize, Vec<[f32; 4]>);
+
 /// One texture of a horizon map read back: its levels, four directions a texel in [0, 1].
-fn read_half(path: &Path) -> Result<Vec<(usize, usize, Vec<[f32; 4]>)>, IoError> {
+fn read_half(path: &Path) -> Result<Vec<HalfLevel>, IoError> {
     let bad = |file: &Path, reason: String| IoError::Texture { path: file.to_path_buf(), reason };
     let kind = container(path)?;
-    let read = |file: &Path| -> Result<Vec<(usize, usize, Vec<[f32; 4]>)>, IoError> {
+    let read = |file: &Path| -> Result<Vec<HalfLevel>, IoError> {
         if !file.is_file() {
             return Err(bad(
                 file,
