@@ -15,6 +15,11 @@ use rayon::prelude::*;
 use crate::args::NormalmapArgs;
 use crate::error::CliError;
 
+mod extras;
+
+pub(crate) use extras::{height_levels, horizon_map, roughness_chain};
+use extras::{lean_levels, lean_paths};
+
 /// Image extensions a folder walk picks up.
 const IMAGE_EXTENSIONS: [&str; 13] =
     ["png", "tga", "bmp", "jpg", "jpeg", "tif", "tiff", "pgm", "ppm", "pbm", "pam", "pnm", "exr"];
@@ -179,109 +184,6 @@ pub fn run(args: &NormalmapArgs) -> Result<(), CliError> {
     let written = set.commit()?;
     eprintln!("wrote {}", describe(&written));
     Ok(())
-}
-
-/// `--height-out`'s heights: the field rounded to `bits` first, so the levels and the min–max
-/// bounds are those of the heights stored; a warning where the field leaves [0, 1].
-pub(crate) fn height_levels(field: &HeightField, bits: u8, name: &str) -> Result<bumpmap_math::HeightMips, CliError> {
-    let mut row = Vec::new();
-    let (mut lo, mut hi) = (f32::INFINITY, f32::NEG_INFINITY);
-    for y in 0..field.height() {
-        for &v in field.row(y, &mut row) {
-            (lo, hi) = (lo.min(v), hi.max(v));
-        }
-    }
-    if lo < 0.0 || hi > 1.0 {
-        eprintln!(
-            "warning: {name}: heights from {lo} to {hi} are clamped to [0, 1] for --height-out (1 on the surface, 0 at --depth below it)"
-        );
-    }
-    let steps = if bits == 16 { 65535 } else { 255 };
-    bumpmap_math::HeightMips::from_field_rounded(field, steps).map_err(|e| match e {
-        bumpmap_math::HeightMipsError::OutOfMemory(e) => CliError::OutOfMemory(e),
-        other => CliError::Path { path: name.into(), reason: other.to_string() },
-    })
-}
-
-/// The horizon map of `field` (`--horizon-out`, and what `--ao-out` and `--bent-normals-out`
-/// are made from), read beyond the edges as `wrap` says.
-pub(crate) fn horizon_map(
-    field: &HeightField,
-    wrap: bumpmap_math::Wrap,
-    name: &str,
-) -> Result<bumpmap_math::HorizonMap, CliError> {
-    bumpmap_math::HorizonMap::from_heights(field, wrap).map_err(|e| match e {
-        bumpmap_math::HorizonError::OutOfMemory(e) => CliError::OutOfMemory(e),
-        other => CliError::Path { path: name.into(), reason: other.to_string() },
-    })
-}
-
-/// `--roughness-out`'s levels for a surface of perceptual roughness `perceptual`: the lengths of
-/// the averaged normals from a 16-bit chain with the length in alpha (whatever the normal map's
-/// own depth and mip mode), made into roughness by
-/// [`filament_roughness`](bumpmap_math::roughness::filament_roughness) and laid out in RGBA8 as
-/// `layout` says. `compare`'s specular study draws with these levels too.
-pub(crate) fn roughness_chain(
-    field: &HeightField,
-    options: &NormalMapOptions,
-    perceptual: f32,
-    layout: crate::args::RoughnessLayoutArg,
-    name: &str,
-) -> Result<MipChain, CliError> {
-    let lengths: MipChain<[u16; 4]> = make_texels(field, options, true, MipMode::LengthInAlpha, name)?;
-    let levels = bumpmap_math::roughness::roughness_levels(&lengths.levels, perceptual)
-        .into_iter()
-        .map(|level| bumpmap_math::Image {
-            width: level.width,
-            height: level.height,
-            texels: level.texels.into_iter().map(|r| layout.texel(r)).collect(),
-        })
-        .collect();
-    Ok(MipChain { levels, encoding: bumpmap_math::Encoding::Unorm })
-}
-
-/// `--lean-out`'s two files: `L` itself and `L`'s stem with `.mxy-j` before the extension.
-/// Only .ktx2 and .dds hold floats.
-fn lean_paths(out: &Path) -> Result<[PathBuf; 2], CliError> {
-    let ext = out.extension().map(|e| e.to_string_lossy().to_ascii_lowercase()).unwrap_or_default();
-    if ext != "ktx2" && ext != "dds" {
-        return Err(CliError::Usage(format!(
-            "--lean-out {}: the moments are floats, which .ktx2 or .dds hold (not .{ext})",
-            out.display()
-        )));
-    }
-    let stem = out.file_stem().unwrap_or_default().to_string_lossy();
-    let ext = out.extension().unwrap_or_default().to_string_lossy();
-    Ok([out.to_path_buf(), out.with_file_name(format!("{stem}.mxy-j.{ext}"))])
-}
-
-/// `--lean-out`'s levels, two planes: (Bx, By, Mxx, Myy) and (Mxy, J, 0, 0), from the 8-bit
-/// normal map's level 0 (the chain `render` draws from, whatever `--bits` the normal map is
-/// written at), by [`LeanMips`](bumpmap_math::LeanMips): the written chain's own level 0 when
-/// it is 8-bit (its mip mode changes no level-0 texel), else one made at 8 bits.
-fn lean_levels(
-    field: &HeightField,
-    options: &NormalMapOptions,
-    written: &Chain,
-    name: &str,
-) -> Result<[Vec<bumpmap_math::Image<[f32; 4]>>; 2], CliError> {
-    let made;
-    let chain: &MipChain = match written {
-        Chain::Rgba8(chain) => chain,
-        Chain::Rgba16(_) => {
-            made = make_texels(field, options, true, MipMode::LengthInAlpha, name)?;
-            &made
-        }
-    };
-    let lean = bumpmap_math::LeanMips::from_level0(&chain.levels[0], chain.levels.len(), chain.encoding)
-        .map_err(|e| CliError::NormalMap { path: name.to_string(), source: NormalMapError::OutOfMemory(e) })?;
-    let plane = |texel: fn(&bumpmap_math::LeanMoments) -> [f32; 4]| {
-        lean.levels
-            .iter()
-            .map(|l| bumpmap_math::Image::new(l.width, l.height, l.texels.iter().map(texel).collect()))
-            .collect()
-    };
-    Ok([plane(|t| [t.b.x, t.b.y, t.m.x, t.m.z]), plane(|t| [t.m.y, t.j, 0.0, 0.0])])
 }
 
 /// The output file for one input: `-o` itself, or, when `-o` is a folder (an existing one, or
