@@ -167,7 +167,7 @@ impl Action {
             Action::DepthDown => "heights as geometry: shallower",
             Action::LayersUp => "more layers (parallax marches)",
             Action::LayersDown => "fewer layers",
-            Action::ParallaxShadow => "parallax shadows: off / hard / soft / horizon",
+            Action::ParallaxShadow => "parallax shadows: off/hard/soft/horizon",
             Action::Backend => "switch backend (cpu / gpu)",
             Action::Wireframe => "wireframe on / off",
             Action::FrameRate => "frame rate on / off",
