@@ -43,7 +43,7 @@ def test_a_normal_map_file_renders(tmp_path, cli):
 
 def test_every_technique_of_the_catalogue_draws():
     names = [name for name, _, _ in bumpmap.techniques()]
-    assert len(names) == 23 and names[0] == "kilgard" and "reference" in names and "toksvig" in names
+    assert len(names) == 24 and names[0] == "kilgard" and "reference" in names and "toksvig" in names
     assert "pom" in names and "height-exact" in names and "reference-displaced" in names
     assert "roughness-map" in names and "lean" in names and "clean" in names
     flat = bumpmap.render(size=32, technique="no-bump")
