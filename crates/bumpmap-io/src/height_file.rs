@@ -153,45 +153,54 @@ pub(crate) fn write_levels(
     }
 }
 
-/// A level read back: width, height, and two channels of each texel.
-type PairLevel = (usize, usize, Vec<[f32; 2]>);
+/// A level read back: width, height, and the four channels of each texel in [0, 1].
+pub(crate) type RgbaLevel = (usize, usize, Vec<[f32; 4]>);
 
-/// Every level a heights file holds, channels `channels` of each texel as floats in [0, 1]: a
-/// container's own levels, or a PNG and the `NAME.mipK.png` files beside it (as many as there
-/// are, each the next size).
-fn read_levels(path: &Path, channels: usize) -> Result<Vec<PairLevel>, IoError> {
+/// Every level a texture file holds, each texel's four channels as fractions of their largest
+/// value: a container's own levels, or a PNG and the `NAME.mipK.png` files beside it (as many
+/// as there are, up to 1×1). `check` sees each file before it is read, and its decoded format
+/// after.
+pub(crate) fn read_levels_checked(
+    path: &Path,
+    check: &impl Fn(&Path, Option<TextureFormat>) -> Result<(), IoError>,
+) -> Result<Vec<RgbaLevel>, IoError> {
     let kind = container(path)?;
-    let decode = |stored: StoredLevels| -> Vec<PairLevel> {
-        // Channel 0 and channel `channels − 1` of each texel, as a fraction of `max`.
-        fn pairs<T: Copy + Into<f32>>(levels: Vec<Image<[T; 4]>>, channels: usize, max: f32) -> Vec<PairLevel> {
+    let read = |file: &Path| -> Result<Vec<RgbaLevel>, IoError> {
+        check(file, None)?;
+        let stored = load_texture(file)?;
+        check(file, Some(stored.format))?;
+        fn unit<T: Copy + Into<f32>>(levels: Vec<Image<[T; 4]>>, max: f32) -> Vec<RgbaLevel> {
             levels
                 .into_iter()
-                .map(|l| {
-                    let t = l.texels.iter().map(|p| [p[0].into() / max, p[channels - 1].into() / max]).collect();
-                    (l.width, l.height, t)
-                })
+                .map(|l| (l.width, l.height, l.texels.iter().map(|p| p.map(|c| c.into() / max)).collect()))
                 .collect()
         }
-        match stored {
-            StoredLevels::Rgba8(levels) => pairs(levels, channels, 255.0),
-            StoredLevels::Rgba16(levels) => pairs(levels, channels, 65535.0),
-        }
+        Ok(match stored.levels {
+            StoredLevels::Rgba8(levels) => unit(levels, 255.0),
+            StoredLevels::Rgba16(levels) => unit(levels, 65535.0),
+        })
     };
-    let mut levels = decode(load_texture(path)?.levels);
+    let mut levels = read(path)?;
     if kind == Container::Png {
         for k in 1.. {
             let file = level_path(path, k);
-            if !file.is_file() {
+            if !file.is_file() || levels.last().is_some_and(|(w, h, _)| (*w, *h) == (1, 1)) {
                 break;
             }
-            levels.extend(decode(load_texture(&file)?.levels));
-            let (w, h, _) = levels[k - 1];
-            if (w, h) == (1, 1) {
-                break;
-            }
+            levels.extend(read(&file)?);
         }
     }
     Ok(levels)
+}
+
+/// A level read back: width, height, and two channels of each texel.
+type PairLevel = (usize, usize, Vec<[f32; 2]>);
+
+/// Every level a heights file holds ([`read_levels_checked`]), channel 0 and channel
+/// `channels − 1` of each texel.
+fn read_levels(path: &Path, channels: usize) -> Result<Vec<PairLevel>, IoError> {
+    let levels = read_levels_checked(path, &|_, _| Ok(()))?;
+    Ok(levels.into_iter().map(|(w, h, t)| (w, h, t.into_iter().map(|p| [p[0], p[channels - 1]]).collect())).collect())
 }
 
 /// Heights `normalmap --height-out` wrote (or any gray image, `.ktx2` or `.dds` of R8/R16, with

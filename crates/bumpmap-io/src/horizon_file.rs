@@ -18,10 +18,9 @@ use bumpmap_math::{HorizonLevel, HorizonMap, Image};
 
 use crate::atomic::FileSet;
 use crate::error::IoError;
-use crate::height_file::{Container, HeightBits, container, write_levels};
+use crate::height_file::{Container, HeightBits, RgbaLevel, container, read_levels_checked, write_levels};
 use crate::image_file::level_path;
 use crate::texture_file::{Level, TextureFormat};
-use crate::texture_read::{StoredLevels, load_texture};
 
 /// The second horizon file beside `path`: `H.dirs4-7.EXT`.
 pub fn second_half_path(path: &Path) -> PathBuf {
@@ -98,68 +97,41 @@ pub fn write_gray_into(
     }
 }
 
-/// A level of one of a horizon map's two textures: width, height, four directions a texel.
-type HalfLevel = (usize, usize, Vec<[f32; 4]>);
-
-/// One texture of a horizon map read back: its levels, four directions a texel in [0, 1].
-fn read_half(path: &Path) -> Result<Vec<HalfLevel>, IoError> {
+/// One texture of a horizon map read back: its levels, four directions a texel in [0, 1]. Each
+/// file must be there and hold four channels (an RGBA PNG, an RGBA8 or RGBA16 container).
+fn read_half(path: &Path) -> Result<Vec<RgbaLevel>, IoError> {
     let bad = |file: &Path, reason: String| IoError::Texture { path: file.to_path_buf(), reason };
-    let kind = container(path)?;
-    let read = |file: &Path| -> Result<Vec<HalfLevel>, IoError> {
-        if !file.is_file() {
-            return Err(bad(
-                file,
-                "not found: a horizon map is two files of four directions each (H and H.dirs4-7)".into(),
-            ));
+    let png = container(path)? == Container::Png;
+    read_levels_checked(path, &|file: &Path, format: Option<TextureFormat>| match format {
+        None if !file.is_file() => {
+            Err(bad(file, "not found: a horizon map is two files of four directions each (H and H.dirs4-7)".into()))
         }
-        if kind == Container::Png {
+        None if png => {
             // Four channels, one direction each: a gray or RGB image holds fewer.
             let io = |source| IoError::Read { path: file.to_path_buf(), source };
             let reader = image::ImageReader::open(file).map_err(io)?.with_guessed_format().map_err(io)?;
             let decoder = reader.into_decoder().map_err(|e| bad(file, e.to_string()))?;
             let colour = image::ImageDecoder::color_type(&decoder);
-            if colour.channel_count() != 4 {
-                return Err(bad(
-                    file,
-                    format!(
-                        "has {} channels ({colour:?}); a horizon map's texture holds four directions, one in each of R, G, B and A",
-                        colour.channel_count()
-                    ),
-                ));
+            if colour.channel_count() == 4 {
+                return Ok(());
             }
-        }
-        let stored = load_texture(file)?;
-        if !matches!(stored.format, TextureFormat::Rgba8 | TextureFormat::Rgba16) {
-            return Err(bad(
+            Err(bad(
                 file,
                 format!(
-                    "holds {} texels; a horizon map's texture holds four directions (R8G8B8A8 or R16G16B16A16_UNORM)",
-                    stored.format.name()
+                    "has {} channels ({colour:?}); a horizon map's texture holds four directions, one in each of R, G, B and A",
+                    colour.channel_count()
                 ),
-            ));
+            ))
         }
-        Ok(match stored.levels {
-            StoredLevels::Rgba8(levels) => levels
-                .into_iter()
-                .map(|l| (l.width, l.height, l.texels.iter().map(|t| t.map(|c| c as f32 / 255.0)).collect()))
-                .collect(),
-            StoredLevels::Rgba16(levels) => levels
-                .into_iter()
-                .map(|l| (l.width, l.height, l.texels.iter().map(|t| t.map(|c| c as f32 / 65535.0)).collect()))
-                .collect(),
-        })
-    };
-    let mut levels = read(path)?;
-    if kind == Container::Png {
-        for k in 1.. {
-            let file = level_path(path, k);
-            if !file.is_file() || levels.last().is_some_and(|(w, h, _)| (*w, *h) == (1, 1)) {
-                break;
-            }
-            levels.extend(read(&file)?);
-        }
-    }
-    Ok(levels)
+        Some(f) if !matches!(f, TextureFormat::Rgba8 | TextureFormat::Rgba16) => Err(bad(
+            file,
+            format!(
+                "holds {} texels; a horizon map's texture holds four directions (R8G8B8A8 or R16G16B16A16_UNORM)",
+                f.name()
+            ),
+        )),
+        _ => Ok(()),
+    })
 }
 
 /// A horizon map written by [`write_horizons_into`] (or by another tool in the same layout):

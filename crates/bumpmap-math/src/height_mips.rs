@@ -209,7 +209,7 @@ pub fn chain_sizes(width: usize, height: usize) -> Vec<(usize, usize)> {
 }
 
 /// An empty vector with room for `n`, or the error naming `what`.
-fn try_vec<T>(n: usize, what: &'static str) -> Result<Vec<T>, OutOfMemory> {
+pub(crate) fn try_vec<T>(n: usize, what: &'static str) -> Result<Vec<T>, OutOfMemory> {
     let mut v = Vec::new();
     v.try_reserve_exact(n).map_err(|_| OutOfMemory::of::<T>(what, n))?;
     Ok(v)

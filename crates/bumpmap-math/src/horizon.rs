@@ -23,6 +23,7 @@ use rayon::prelude::*;
 
 use crate::buffer::OutOfMemory;
 use crate::encoding::{Encoding, Texel};
+use crate::height_mips::try_vec;
 use crate::image::Image;
 use crate::interpolant::{HeightGrid, sample_texels, wrap_index};
 use crate::kernel::Wrap;
@@ -279,12 +280,6 @@ impl HorizonMap {
         let texels: u64 = crate::height_mips::chain_sizes(width, height).iter().map(|&(w, h)| (w * h) as u64).sum();
         texels * std::mem::size_of::<Horizons>() as u64
     }
-}
-
-fn try_vec<T>(n: usize, what: &'static str) -> Result<Vec<T>, OutOfMemory> {
-    let mut v = Vec::new();
-    v.try_reserve_exact(n).map_err(|_| OutOfMemory::of::<T>(what, n))?;
-    Ok(v)
 }
 
 /// The next level: each texel the mean of those it covers.
