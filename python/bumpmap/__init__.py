@@ -23,7 +23,11 @@ and they make the same bytes the command writes from the same options:
   (``bumpmap render``) -> an (H, W, 4) uint8 image;
 - ``compare(output=None, **options)``: every technique against the reference
   (``bumpmap compare``) -> the results as a dict;
-- ``techniques()``: the catalogue, name by name.
+- ``techniques()``: the catalogue, name by name;
+- ``inspect(source)``: what a normal map (a file or an array) is: DirectX or OpenGL, a normal
+  map at all, its mips, its seam (``bumpmap inspect --json``) -> a dict;
+- ``height_from_normals(normals, **options)``: a normal map's slopes integrated back into
+  heights (``bumpmap height``) -> an (H, W) float32 array.
 
 Errors are exceptions carrying the library's message: ``ValueError`` for values, ``TypeError``
 for arrays of the wrong dtype or options that do not exist, ``OSError`` for files
@@ -34,7 +38,7 @@ then not written at all).
 
 from __future__ import annotations
 
-import inspect
+import inspect as _inspect
 
 from . import _bumpmap
 
@@ -51,6 +55,8 @@ __all__ = [
     "render",
     "compare",
     "techniques",
+    "inspect",
+    "height_from_normals",
     "__version__",
 ]
 
@@ -219,6 +225,40 @@ def techniques():
     return _bumpmap.techniques()
 
 
-for _f in (normal_map, mip_chain, height_mips, horizon_maps, read_height_field, write_texture, tangents, render, compare):
-    _f.__doc__ = inspect.cleandoc(_f.__doc__ or "") + _options_doc(_f.__name__)
+def inspect(source):
+    """What a normal map is, as ``bumpmap inspect --json`` says it.
+
+    source: a file (PNG 8/16-bit, TGA, TIFF, JPEG, OpenEXR, DDS or KTX2 with their levels, BC5
+    and BC7 included), or an (H, W, 3) or (H, W, 4) numpy array of uint8 or uint16 (unorm) or
+    float32 (signed where any of RGB is below -0.01, else 0..1), row 0 the image's top.
+
+    Returns a dict: ``"normal_map"`` (bool) and ``"kind"``; ``"convention"`` with its
+    ``"verdict"`` (``"opengl"``, ``"directx"`` or ``"undecidable"``, by the curl test: a map
+    made from heights has no curl when green is read the way it was written), ``"confidence"``,
+    ``"reason"`` where undecidable and ``"made_with"`` (the kernel its slopes fit best);
+    ``"texels"`` (unit lengths, texels facing away, gray texels); ``"mips"`` (how the smaller
+    levels were made: ``"box"``, ``"length-in-alpha"``, ``"renormalized"``, ``"smooth"`` or
+    ``"other"``, and what renormalizing costs); ``"seam"`` (whether the map and its heights
+    tile); ``"compression_degrees"`` (what BC5/BC7 added, where it can be estimated); and
+    ``"findings"``, what needs fixing (``bumpmap inspect --strict`` exits 1 on any).
+    """
+    return _bumpmap.inspect(source)
+
+
+def height_from_normals(normals, **options):
+    """Heights from a normal map, as ``bumpmap normalmap``'s inverse: the least-squares surface
+    whose slopes the map holds, as ``bumpmap height`` makes it.
+
+    normals: an (H, W, 3) or (H, W, 4) numpy array as ``inspect`` takes it. The Y convention
+    and the kernel come from the map (the curl test, the least-squares fit) unless given; the
+    method is ``fft`` where the map and its heights tile, else ``dct``.
+
+    Returns an (H, W) float32 array: the heights mapped onto [0, 1] (lowest 0, highest 1; all 0
+    for a flat map), or with ``raw=True`` in texels divided by ``scale``, mean zero.
+    """
+    return _bumpmap.height_from_normals(normals, options)
+
+
+for _f in (normal_map, mip_chain, height_mips, horizon_maps, read_height_field, write_texture, tangents, render, compare, height_from_normals):
+    _f.__doc__ = _inspect.cleandoc(_f.__doc__ or "") + _options_doc(_f.__name__)
 del _f

@@ -134,3 +134,16 @@ def compare(
     studies: Union[str, Sequence[str]] = "all",
 ) -> dict[str, Any]: ...
 def techniques() -> list[tuple[str, str, list[str]]]: ...
+
+_Normals = Union[npt.NDArray[np.uint8], npt.NDArray[np.uint16], npt.NDArray[np.float32]]
+
+def inspect(source: Union[_Path, _Normals]) -> dict[str, Any]: ...
+def height_from_normals(
+    normals: _Normals,
+    *,
+    method: Literal["auto", "fft", "dct", "kernel"] = "auto",
+    kernel: Union[Literal["auto", "spectral"], _Kernel] = "auto",
+    scale: float = 1.0,
+    y_convention: Literal["auto", "opengl", "directx", "y-up", "y-down"] = "auto",
+    raw: bool = False,
+) -> npt.NDArray[np.float32]: ...

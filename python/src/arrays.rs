@@ -40,12 +40,13 @@ pub fn dtype_name(array: &Bound<'_, PyUntypedArray>) -> String {
     array.dtype().getattr("name").and_then(|n| n.extract::<String>()).unwrap_or_else(|_| "?".into())
 }
 
-/// `array`'s elements in row-major order, whatever its strides.
+/// `array`'s elements in row-major order, whatever its strides or memory order (a Fortran-
+/// ordered array's memory is column-major: it is read element by element, not as its bytes lie).
 pub fn elements<T: Element + Copy>(array: &Bound<'_, PyUntypedArray>) -> PyResult<Vec<T>> {
     let typed: PyReadonlyArrayDyn<'_, T> = array.cast::<PyArrayDyn<T>>()?.readonly();
     Ok(match typed.as_slice() {
-        Ok(s) => s.to_vec(),
-        Err(_) => typed.as_array().iter().copied().collect(),
+        Ok(s) if typed.is_c_contiguous() => s.to_vec(),
+        _ => typed.as_array().iter().copied().collect(),
     })
 }
 
@@ -251,4 +252,37 @@ pub fn from_rows<const C: usize>(py: Python<'_>, rows: Vec<[f32; C]>) -> PyResul
     let array =
         Array2::from_shape_vec((n, C), rows.into_flattened()).map_err(|e| PyValueError::new_err(e.to_string()))?;
     Ok(array.into_pyarray(py).into_any())
+}
+
+/// A normal map from an (H, W, 3) or (H, W, 4) array: uint8 or uint16 unorm, or float32 (signed
+/// where any of RGB is below −0.01, else 0..1), as `bumpmap inspect` reads files. Three
+/// channels get alpha at its largest.
+pub fn normal_texels(value: &Bound<'_, PyAny>) -> PyResult<bumpmap::inspect::DecodedMap> {
+    use bumpmap::inspect::{DecodedMap, StoredAs};
+    const EXPECTED: &str = "(H, W, 3) or (H, W, 4) of uint8, uint16 or float32";
+    let array = native(value, "normals", EXPECTED)?;
+    let (h, w, c) = match array.shape() {
+        [h, w, c @ (3 | 4)] => (*h, *w, *c),
+        other => return Err(PyValueError::new_err(format!("normals must be {EXPECTED}, got shape {other:?}"))),
+    };
+    fn rgba<T: Element + Copy>(
+        array: &Bound<'_, PyUntypedArray>,
+        w: usize,
+        h: usize,
+        c: usize,
+        one: T,
+    ) -> PyResult<Image<[T; 4]>> {
+        let flat: Vec<T> = elements(array)?;
+        let texels = flat.chunks_exact(c).map(|t| [t[0], t[1], t[2], if c == 4 { t[3] } else { one }]).collect();
+        Ok(Image::new(w, h, texels))
+    }
+    if is::<u8>(&array) {
+        Ok(DecodedMap::from_unorm(&[rgba(&array, w, h, c, u8::MAX)?], StoredAs::Unorm8))
+    } else if is::<u16>(&array) {
+        Ok(DecodedMap::from_unorm(&[rgba(&array, w, h, c, u16::MAX)?], StoredAs::Unorm16))
+    } else if is::<f32>(&array) {
+        Ok(DecodedMap::from_float(&rgba(&array, w, h, c, 1.0f32)?))
+    } else {
+        Err(PyTypeError::new_err(format!("normals must be {EXPECTED}, got {}", dtype_name(&array))))
+    }
 }

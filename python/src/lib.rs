@@ -330,6 +330,59 @@ fn compare<'py>(
     py.import("json")?.call_method1("loads", (json,))
 }
 
+/// What a normal map is, as `bumpmap inspect --json` says it, as a dict: a file (`source` a
+/// path) or an array ((H, W, 3|4) of uint8, uint16 or float32).
+#[pyfunction]
+fn inspect<'py>(py: Python<'py>, source: &Bound<'py, PyAny>) -> PyResult<Bound<'py, PyAny>> {
+    let report = if source.cast::<numpy::PyUntypedArray>().is_ok() {
+        let map = arrays::normal_texels(source)?;
+        interrupt::run(py, move |_| bumpmap::inspect::inspect_map("array", &map))?
+    } else {
+        let path: PathBuf = source.extract().map_err(|_| {
+            PyTypeError::new_err(format!(
+                "inspect(): source must be a path or a numpy array, got {}",
+                source.get_type().name().map(|n| n.to_string()).unwrap_or_default()
+            ))
+        })?;
+        interrupt::run(py, move |_| bumpmap::inspect::inspect_file(&path))?.map_err(|e| to_py("inspect", library(e)))?
+    };
+    py.import("json")?.call_method1("loads", (report.to_json().to_string(),))
+}
+
+/// Heights from a normal map ((H, W, 3|4) of uint8, uint16 or float32), as `bumpmap height`
+/// makes them: an (H, W) float32 array, mapped onto [0, 1] unless `raw`.
+#[pyfunction]
+#[pyo3(signature = (normals, options = None))]
+fn height_from_normals<'py>(
+    py: Python<'py>,
+    normals: &Bound<'py, PyAny>,
+    options: Option<&Bound<'py, PyDict>>,
+) -> PyResult<Bound<'py, PyAny>> {
+    let args = match parse(&options::HEIGHT_FROM_NORMALS, &["normals".into(), "--output=heights.exr".into()], options)?
+    {
+        Command::Height(a) => a,
+        _ => unreachable!("height's options parse as height"),
+    };
+    let height_options = args.options().map_err(|e| to_py("height_from_normals", e))?;
+    let map = arrays::normal_texels(normals)?;
+    let raw = args.raw;
+    let heights = interrupt::run(py, move |_| {
+        let level0 = map.levels.first().cloned().ok_or_else(|| CliError::Render("the map has no texels".into()))?;
+        bumpmap::heights::heights_from_normals(&level0, &height_options).map_err(|e| CliError::Render(e.to_string()))
+    })?
+    .map_err(|e| to_py("height_from_normals", e))?;
+    let texels = if raw { heights.texels.clone() } else { heights.normalized() };
+    arrays::from_plane(py, heights.height, heights.width, &texels)
+}
+
+/// The library's error in the command line's words (a file's error stays one).
+fn library(e: bumpmap::Error) -> CliError {
+    match e {
+        bumpmap::Error::Io(e) => CliError::Io(e),
+        other => CliError::Render(other.to_string()),
+    }
+}
+
 /// Each option `function` takes: `(keyword, default as the command line writes it or None,
 /// help, choices, is a flag)`. The wrappers' docstrings and the tests read it.
 #[pyfunction(name = "options")]
@@ -371,5 +424,7 @@ fn _bumpmap(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(compare, m)?)?;
     m.add_function(wrap_pyfunction!(option_table, m)?)?;
     m.add_function(wrap_pyfunction!(techniques, m)?)?;
+    m.add_function(wrap_pyfunction!(inspect, m)?)?;
+    m.add_function(wrap_pyfunction!(height_from_normals, m)?)?;
     Ok(())
 }

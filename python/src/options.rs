@@ -65,8 +65,15 @@ pub const RENDER: Function =
 /// `compare`: every option of `bumpmap compare` but the output folder (its own argument).
 pub const COMPARE: Function = Function { name: "compare", command: "compare", taken: Taken::AllBut(&["output"]) };
 
+/// `height_from_normals`: how the slopes are integrated (the output is an array).
+pub const HEIGHT_FROM_NORMALS: Function = Function {
+    name: "height_from_normals",
+    command: "height",
+    taken: Taken::Only(&["method", "kernel", "scale", "y-convention", "raw"]),
+};
+
 /// Every function that takes options, by Python name.
-pub const FUNCTIONS: [&Function; 9] = [
+pub const FUNCTIONS: [&Function; 10] = [
     &NORMAL_MAP,
     &MIP_CHAIN,
     &HEIGHT_MIPS,
@@ -76,6 +83,7 @@ pub const FUNCTIONS: [&Function; 9] = [
     &TANGENTS,
     &RENDER,
     &COMPARE,
+    &HEIGHT_FROM_NORMALS,
 ];
 
 /// A keyword's name for an option's long name: `bump-scale` → `bump_scale`.

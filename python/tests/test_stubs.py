@@ -28,7 +28,7 @@ def same_default(stub_value, cli_default, is_flag):
 def test_stub_defaults_are_the_cli_defaults():
     functions = stub_functions()
     checked = 0
-    for name in ["normal_map", "mip_chain", "height_mips", "horizon_maps", "read_height_field", "write_texture", "tangents", "render", "compare"]:
+    for name in ["normal_map", "mip_chain", "height_mips", "horizon_maps", "read_height_field", "write_texture", "tangents", "render", "compare", "height_from_normals"]:
         node = functions[name]
         options = {o[0]: o for o in _bumpmap.options(name)}
         for arg, default in zip(node.args.kwonlyargs, node.args.kw_defaults):

@@ -5,8 +5,8 @@
 //! - [`args`]: the command line (clap), a module per command, its value parsers and limits;
 //! - `setup`: the option groups `render` and `bench render` share, made into the front door's
 //!   scene description, technique and options (the user's own assets loaded);
-//! - `normalmap`, `cubemap`, `mesh` (tangents), `render`, `bench`, `demo`, `compare`, `view`: the
-//!   subcommands, drawing through the `bumpmap` crate's renderer;
+//! - `normalmap`, `cubemap`, `mesh` (tangents), `render`, `bench`, `demo`, `compare`, `view`,
+//!   `inspect` (inspect and height): the subcommands, drawing through the `bumpmap` crate's renderer;
 //! - [`commands`]: the commands as functions over their parsed arguments, returning what they
 //!   would write (the Python package calls these);
 //! - [`error`]: every layer's errors as one type, in the words of the command line.
@@ -23,6 +23,7 @@ mod compare;
 mod cubemap;
 mod demo;
 pub mod error;
+mod inspect;
 mod mesh;
 mod normalmap;
 mod render;
@@ -42,5 +43,7 @@ pub fn run(cli: Cli) -> Result<(), error::CliError> {
         Command::Demo(a) => demo::run(&a),
         Command::Compare(a) => compare::run(&a),
         Command::View(a) => view::run(&a),
+        Command::Inspect(a) => inspect::run_inspect(&a),
+        Command::Height(a) => inspect::run_height(&a),
     }
 }

@@ -22,6 +22,7 @@ pub mod error;
 mod gltf_mesh;
 mod gltf_read;
 mod gltf_write;
+pub mod gray_file;
 pub mod height_file;
 pub mod horizon_file;
 pub mod image_file;
@@ -38,4 +39,4 @@ pub use mesh_file::{
     LoadedMesh, MaterialTexture, MeshFormat, MeshMaterial, MeshOptions, ObjTexcoords, load_mesh, load_mesh_with,
     read_mesh, save_gltf,
 };
-pub use texture_read::{StoredLevels, StoredTexture, load_texture, read_texture};
+pub use texture_read::{AnyTexture, StoredLevels, StoredTexture, load_any_texture, load_texture, read_texture};

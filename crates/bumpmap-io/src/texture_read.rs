@@ -107,6 +107,35 @@ pub fn read_texture(bytes: &[u8], name: &Path, limits: &DecodeLimits) -> Result<
     }
 }
 
+/// A texture whose texels may also be floating point: what `bumpmap inspect` and
+/// `bumpmap height` read (an EXR or float TIFF normal map, which [`load_texture`] refuses
+/// because the renderers sample unorm texels).
+#[derive(Clone, Debug, PartialEq)]
+pub enum AnyTexture {
+    /// Unsigned-normalized texels, or a container's blocks decoded (as [`load_texture`] reads).
+    Stored(StoredTexture),
+    /// One level of 32-bit float RGBA (alpha 1 where the file has none), as stored: a normal
+    /// map in float stores −1..1 or 0..1, which is for the reader to tell.
+    Float(Image<[f32; 4]>),
+}
+
+/// [`load_texture`], but a floating-point image (EXR, float TIFF) is read too, as
+/// [`AnyTexture::Float`].
+pub fn load_any_texture(path: &Path) -> Result<AnyTexture, IoError> {
+    match load_texture(path) {
+        Err(IoError::Texture { reason, .. }) if reason.starts_with(FLOAT_REFUSED) => {
+            let img = crate::image_file::decode_path(path)?;
+            let (w, h) = (img.width() as usize, img.height() as usize);
+            let rgba = img.into_rgba32f();
+            Ok(AnyTexture::Float(Image::new(w, h, rgba.pixels().map(|p| p.0).collect())))
+        }
+        other => other.map(AnyTexture::Stored),
+    }
+}
+
+/// How [`image_levels`]' refusal of floating-point texels begins.
+const FLOAT_REFUSED: &str = "floating-point texels";
+
 /// One image's texels at the depth they were stored, as one level.
 fn image_levels(img: image::DynamicImage, path: &Path) -> Result<StoredTexture, IoError> {
     use image::ColorType::*;
@@ -125,7 +154,7 @@ fn image_levels(img: image::DynamicImage, path: &Path) -> Result<StoredTexture, 
         other => Err(bad(
             path,
             format!(
-                "{other:?} texels: a normal map is read from 8- or 16-bit unsigned channels (floating-point maps differ in how they store −1..1)"
+                "{FLOAT_REFUSED} ({other:?}): a normal map is drawn from 8- or 16-bit unsigned channels (floating-point maps differ in how they store −1..1; `bumpmap inspect` reads them)"
             ),
         )),
     }

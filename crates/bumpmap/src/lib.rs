@@ -25,6 +25,8 @@
 //!   bumps from a height field or a normal map;
 //! - [`motion`]: the light orbiting and the camera turning between frames;
 //! - [`assets`]: your own normal map files and meshes with their glTF materials;
+//! - [`inspect`]: what a normal map made elsewhere is (DirectX or OpenGL, a normal map at all,
+//!   its mips, its seam); [`heights`]: its heights back;
 //! - [`Error`]: everything that can go wrong, naming the value or the file.
 //!
 //! The crates behind it are re-exported for what this page does not cover: [`bumpmap_math`]
@@ -36,6 +38,8 @@
 
 pub mod assets;
 mod error;
+pub mod heights;
+pub mod inspect;
 pub mod motion;
 pub mod renderer;
 

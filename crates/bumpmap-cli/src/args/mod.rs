@@ -6,6 +6,7 @@ mod bench;
 mod compare;
 mod cubemap;
 mod demo;
+mod inspect;
 mod normalmap;
 mod render;
 mod tangents;
@@ -15,6 +16,7 @@ pub use bench::*;
 pub use compare::*;
 pub use cubemap::*;
 pub use demo::*;
+pub use inspect::*;
 pub use normalmap::*;
 pub use render::*;
 pub use tangents::*;
@@ -65,6 +67,10 @@ pub enum Command {
     Compare(CompareArgs),
     /// A window on a scene with the light moving: keys switch techniques, passes and options
     View(Box<ViewArgs>),
+    /// What a normal map made elsewhere is: DirectX or OpenGL, a normal map at all, its mips, its seam
+    Inspect(InspectArgs),
+    /// Normal map → heights: integrate its slopes back into a height field
+    Height(HeightArgs),
 }
 
 /// One number as typed: text that overflows single precision (`1e40`) is refused with the

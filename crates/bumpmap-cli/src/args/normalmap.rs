@@ -267,7 +267,7 @@ fn parse_unit(s: &str) -> Result<f32, String> {
     if (0.0..=1.0).contains(&v) { Ok(v) } else { Err(format!("'{s}' is not in [0, 1]")) }
 }
 
-fn parse_bits(s: &str) -> Result<u8, String> {
+pub(super) fn parse_bits(s: &str) -> Result<u8, String> {
     match s {
         "8" => Ok(8),
         "16" => Ok(16),

@@ -1,0 +1,178 @@
+//! `bumpmap inspect` and `bumpmap height`: normal maps made elsewhere, read.
+
+use std::path::PathBuf;
+
+use clap::{Args, ValueEnum};
+
+use bumpmap_math::Kernel;
+use bumpmap_math::integration::Derivative;
+use clap::builder::{PossibleValuesParser, TypedValueParser};
+
+use super::normalmap::parse_bits;
+use crate::args::{YArg, parse_f32};
+
+/// `bumpmap inspect`.
+#[derive(Args, Debug)]
+#[command(after_help = "Examples:\n  \
+bumpmap inspect rock_normal.png\n  \
+bumpmap inspect textures/ --json > report.json\n  \
+bumpmap inspect n.ktx2 --strict && echo clean\n\n\
+For each file: whether it is a normal map at all (unit-length vectors leaning out of the surface, \
+not a gray height or roughness map or a colour image); which way its green points, by the curl \
+test (a normal map made from heights is a gradient field, whose curl vanishes only when green is \
+read the way it was written; a map whose bumps vary along one direction cannot tell, and says \
+\"undecidable\" rather than guess); how its mips were made (box-filtered, length in alpha, \
+renormalized — and what renormalizing costs at a distance); whether it tiles (its seam against its \
+own worst neighbouring texels); and for BC7 an estimate of the angle the compression added.\n\n\
+Reads PNG (8/16-bit), TGA, TIFF, JPEG, OpenEXR, DDS and KTX2 (with their mips, BC5 and BC7 \
+included), or every such file directly inside a folder. Exit status: 0, or 1 when a file cannot \
+be read or, with --strict, when a map needs fixing (not a normal map, texels facing into the \
+surface or far from unit length, renormalized mips); 2 for a malformed command line.")]
+pub struct InspectArgs {
+    /// Normal map files, or folders of them
+    #[arg(required = true)]
+    pub inputs: Vec<PathBuf>,
+    /// Print one JSON array (an object per file) instead of the verdicts in words
+    #[arg(long)]
+    pub json: bool,
+    /// Exit 1 when any map needs fixing (the lines marked FIX)
+    #[arg(long)]
+    pub strict: bool,
+}
+
+/// `height --method`.
+#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum MethodArg {
+    /// fft when the map tiles (by inspect's seam test), else dct
+    Auto,
+    /// The Fourier least-squares solve over the periodic map (Frankot–Chellappa): for maps that tile
+    Fft,
+    /// Poisson with a free boundary (the DCT's mirrored extension): for maps that do not tile
+    Dct,
+    /// fft with the finite difference named by --kernel undone exactly (up to a constant, where the kernel is invertible)
+    Kernel,
+}
+
+/// `height --y-convention`.
+#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum YDetectArg {
+    /// The curl test's verdict (opengl where it cannot decide), said on stderr
+    Auto,
+    /// Green up (glTF, OpenGL, Blender, Unity)
+    #[value(alias = "y-up")]
+    Opengl,
+    /// Green down (DirectX, Unreal)
+    #[value(alias = "y-down")]
+    Directx,
+}
+
+impl YDetectArg {
+    /// The convention given, if one was.
+    pub fn given(self) -> Option<bumpmap_math::YConvention> {
+        match self {
+            YDetectArg::Auto => None,
+            YDetectArg::Opengl => Some(YArg::Opengl.into()),
+            YDetectArg::Directx => Some(YArg::Directx.into()),
+        }
+    }
+}
+
+/// `height --kernel`: fitted, or the model given.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum DerivativeChoice {
+    /// Fitted to the slopes.
+    Auto,
+    /// Given.
+    Given(Derivative),
+}
+
+/// `auto`, `spectral`, or a kernel's name ([`Kernel::ALL`]).
+fn derivative_parser() -> impl TypedValueParser<Value = DerivativeChoice> {
+    let names = ["auto", "spectral"].into_iter().chain(Kernel::ALL.map(Kernel::name));
+    PossibleValuesParser::new(names).map(|name| match name.as_str() {
+        "auto" => DerivativeChoice::Auto,
+        "spectral" => DerivativeChoice::Given(Derivative::Spectral),
+        kernel => DerivativeChoice::Given(Derivative::Kernel(Kernel::parse(kernel).expect("one of the names offered"))),
+    })
+}
+
+/// `bumpmap height`.
+#[derive(Args, Debug)]
+#[command(after_help = "Examples:\n  \
+bumpmap height rock_normal.png -o rock_height.png              # 16-bit, 0..1, range printed\n  \
+bumpmap height n.png -o h.exr --raw --scale 4                   # heights in texels, float\n  \
+bumpmap height n.png -o h.png --method kernel --kernel sobel3 --scale 4   # undo normalmap exactly\n\n\
+Integrates the slopes a normal map holds (p = −nx/nz, q = −ny/nz, green read as --y-convention \
+says) back into heights: the least-squares surface whose slopes they are under the difference \
+that made them (--kernel), solved with FFTs. The heights come back with mean zero in texels \
+divided by --scale (the --scale `bumpmap normalmap` made the map with: the height of a unit \
+step in texels), then mapped onto 0..1 for the file unless --raw. Which method, kernel and \
+convention were used, and why, is printed.\n\n\
+A kernel that smooths (sobel5, gaussian7) loses detail no integration brings back; --kernel \
+auto then finds the sharpest kernel that explains the map (slopes cannot tell sobel5 from \
+sobel3 applied to smoother heights), whose heights give the same map back.")]
+pub struct HeightArgs {
+    /// The normal map: PNG (8/16-bit), TGA, TIFF, JPEG, OpenEXR, DDS or KTX2 (level 0 is used)
+    pub input: PathBuf,
+    /// Output: .png (16-bit gray, or --bits 8) or .exr (32-bit float)
+    #[arg(short, long)]
+    pub output: PathBuf,
+    /// How the slopes are integrated
+    #[arg(long, value_enum, default_value = "auto")]
+    pub method: MethodArg,
+    /// The difference the map was made with (normalmap's --kernel): auto fits every kernel and the spectral derivative iω to the slopes and takes the one that explains them best; spectral is Frankot–Chellappa's iω
+    #[arg(long, default_value = "auto", value_parser = derivative_parser())]
+    pub kernel: DerivativeChoice,
+    /// The scale the map was made with (normalmap's --scale): heights come back divided by it
+    #[arg(long, value_parser = parse_f32, default_value_t = 1.0)]
+    pub scale: f32,
+    /// Which way the map's green points
+    #[arg(long = "y-convention", value_enum, default_value = "auto")]
+    pub y_convention: YDetectArg,
+    /// Write the heights as they are (texels divided by --scale, mean zero) instead of mapped onto 0..1; needs an .exr output
+    #[arg(long)]
+    pub raw: bool,
+    /// Bits per channel of a PNG output: 8 or 16
+    #[arg(long, default_value_t = 16, value_parser = parse_bits)]
+    pub bits: u8,
+    /// Refuse (exit 1) a file inspect says is not a normal map, rather than warn and integrate it
+    #[arg(long)]
+    pub strict: bool,
+}
+
+impl HeightArgs {
+    /// The library's options: `--method` and `--kernel` made into a boundary and a derivative.
+    /// Refuses `--method kernel` without a kernel named, and a scale of 0 or beyond ±1e6.
+    pub fn options(&self) -> Result<bumpmap::heights::HeightOptions, crate::error::CliError> {
+        use crate::error::CliError;
+        use bumpmap_math::integration::Boundary;
+        if !self.scale.is_finite() || self.scale == 0.0 || self.scale.abs() > 1e6 {
+            return Err(CliError::Usage(format!(
+                "--scale must be a number other than 0 within ±1e6, got {}",
+                self.scale
+            )));
+        }
+        let boundary = match self.method {
+            MethodArg::Auto => None,
+            MethodArg::Fft | MethodArg::Kernel => Some(Boundary::Periodic),
+            MethodArg::Dct => Some(Boundary::Free),
+        };
+        let derivative = match (self.method, self.kernel) {
+            (MethodArg::Kernel, DerivativeChoice::Given(Derivative::Kernel(k))) => Some(Derivative::Kernel(k)),
+            (MethodArg::Kernel, _) => {
+                return Err(CliError::Usage(
+                    "--method kernel undoes a named kernel: add --kernel NAME (normalmap's --kernel); --method fft fits one itself"
+                        .into(),
+                ));
+            }
+            (_, DerivativeChoice::Given(d)) => Some(d),
+            (_, DerivativeChoice::Auto) => None,
+        };
+        Ok(bumpmap::heights::HeightOptions {
+            boundary,
+            derivative,
+            y_convention: self.y_convention.given(),
+            scale: self.scale,
+        })
+    }
+}

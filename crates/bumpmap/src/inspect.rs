@@ -1,0 +1,486 @@
+//! What a normal map file is: its Y convention, whether it is a normal map at all, how it is
+//! stored, how its mips were made, whether it tiles, what block compression cost it — in a
+//! short verdict for a person ([`MapReport::lines`]) and a machine one ([`MapReport::to_json`]).
+//!
+//! The questions are answered by [`bumpmap_math::inspect`] on the decoded vectors; this module
+//! reads the file, decodes its texels as the format says (unorm, float signed or not, BC5's
+//! rebuilt Z), and words the answers.
+//!
+//! ```
+//! use bumpmap::inspect::{StoredAs, inspect_levels};
+//! use bumpmap::{HeightPreset, MipChain, MipMode, NormalMapOptions, YConvention};
+//!
+//! let heights = HeightPreset::Dimples.render(64, 64);
+//! let options = NormalMapOptions { y_convention: YConvention::YUp, ..Default::default() };
+//! let chain: MipChain = MipChain::from_height(&heights, &options, MipMode::LengthInAlpha).unwrap();
+//! let report = inspect_levels("dimples", StoredAs::Unorm8, &chain.levels);
+//! assert_eq!(report.inspection.convention.convention, Ok(YConvention::YUp));
+//! assert!(report.findings().is_empty());
+//! ```
+//!
+//! What this module does not do: change the file, or repair a map (`render --rebuild-mips`
+//! makes its mips anew; `normalmap` makes a map from heights).
+
+use std::path::{Path, PathBuf};
+
+use bumpmap_io::{AnyTexture, StoredLevels};
+use bumpmap_math::Image;
+use bumpmap_math::encoding::Texel;
+use bumpmap_math::inspect::{Inspection, MapKind, MipFilter, inspect, is_xy_only, rebuild_z, signed_levels};
+use bumpmap_math::integration::{Boundary, Derivative, DerivativeFit, Slopes, fit_derivative, integrate_fitted};
+use bumpmap_math::normalmap::YConvention;
+use glam::Vec4;
+
+use crate::Error;
+
+/// How a file stores its vectors.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum StoredAs {
+    /// 8-bit unsigned-normalized channels (`2c/255 − 1`).
+    Unorm8,
+    /// 16-bit unsigned-normalized channels.
+    Unorm16,
+    /// BC5 blocks: X and Y, Z rebuilt.
+    Bc5,
+    /// BC7 blocks: RGBA.
+    Bc7,
+    /// Floating point, −1..1 as stored.
+    FloatSigned,
+    /// Floating point, 0..1 (`2v − 1`).
+    FloatUnsigned,
+}
+
+impl StoredAs {
+    /// In words, for the verdict.
+    pub fn describe(self) -> &'static str {
+        match self {
+            StoredAs::Unorm8 => "8-bit unsigned",
+            StoredAs::Unorm16 => "16-bit unsigned",
+            StoredAs::Bc5 => "BC5 (X and Y only, Z rebuilt)",
+            StoredAs::Bc7 => "BC7",
+            StoredAs::FloatSigned => "floating point, signed (−1..1)",
+            StoredAs::FloatUnsigned => "floating point, unsigned (0..1)",
+        }
+    }
+
+    /// The name in JSON: `unorm8`, `unorm16`, `bc5`, `bc7`, `float-signed`, `float-unsigned`.
+    pub fn name(self) -> &'static str {
+        match self {
+            StoredAs::Unorm8 => "unorm8",
+            StoredAs::Unorm16 => "unorm16",
+            StoredAs::Bc5 => "bc5",
+            StoredAs::Bc7 => "bc7",
+            StoredAs::FloatSigned => "float-signed",
+            StoredAs::FloatUnsigned => "float-unsigned",
+        }
+    }
+}
+
+/// One file's verdict.
+#[derive(Clone, Debug, PartialEq)]
+pub struct MapReport {
+    /// The file (or what the caller called the texels).
+    pub source: String,
+    /// How the texels were stored.
+    pub stored: StoredAs,
+    /// Every question's answer.
+    pub inspection: Inspection,
+    /// What block compression added, in degrees RMS, estimated where the map reads as a gradient.
+    pub compression_degrees: Option<f32>,
+    /// The difference the slopes fit best ([`DerivativeFit::best`]), where the convention is
+    /// decided: the kernel to give `height --kernel` and `normalmap --kernel` (slopes cannot
+    /// tell a kernel from a smoother one of its family: the sharpest is named).
+    pub made_with: Option<Derivative>,
+}
+
+/// Something a user must act on (`inspect --strict` exits 1 on any).
+#[derive(Clone, Debug, PartialEq)]
+pub enum Finding {
+    /// The texels are not a tangent-space normal map.
+    NotANormalMap(MapKind),
+    /// Texels whose vectors point into the surface (the fraction).
+    FacingAway(f32),
+    /// Texels whose length is far from 1 (the fraction).
+    NotUnitLength(f32),
+    /// Smaller levels renormalized: distant diffuse light this many times too bright.
+    RenormalizedMips(f32),
+}
+
+impl std::fmt::Display for Finding {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Finding::NotANormalMap(kind) => write!(f, "{}", kind.describe()),
+            Finding::FacingAway(p) => write!(f, "{:.2}% of texels point into the surface (z ≤ 0)", p * 100.0),
+            Finding::NotUnitLength(p) => write!(f, "{:.1}% of texels are not of unit length", p * 100.0),
+            Finding::RenormalizedMips(b) => write!(
+                f,
+                "the mips were renormalized: distant diffuse light is up to {:.0}% too bright (make them anew: render --rebuild-mips)",
+                (b - 1.0) * 100.0
+            ),
+        }
+    }
+}
+
+/// The fraction of texels facing away above which a map needs fixing.
+const FACING_AWAY_FINDING: f32 = 0.001;
+/// The fraction of texels off unit length above which a map needs fixing.
+const OFF_UNIT_FINDING: f32 = 0.01;
+/// The brightening by renormalized mips above which they need fixing.
+const BRIGHTENING_FINDING: f32 = 1.02;
+
+impl MapReport {
+    /// What a user must act on; empty for a clean map.
+    pub fn findings(&self) -> Vec<Finding> {
+        let i = &self.inspection;
+        if !i.kind.is_normal_map() {
+            return vec![Finding::NotANormalMap(i.kind)];
+        }
+        let mut out = Vec::new();
+        if i.texels.facing_away > FACING_AWAY_FINDING {
+            out.push(Finding::FacingAway(i.texels.facing_away));
+        }
+        if !i.two_channel && i.texels.off_unit > OFF_UNIT_FINDING {
+            out.push(Finding::NotUnitLength(i.texels.off_unit));
+        }
+        if let Some(m) = &i.mips
+            && m.filter == MipFilter::Renormalized
+            && let Some(b) = m.renormalized_brightening()
+            && b > BRIGHTENING_FINDING
+        {
+            out.push(Finding::RenormalizedMips(b));
+        }
+        out
+    }
+
+    /// The verdict for a person: a heading line, then one indented line per question.
+    pub fn lines(&self) -> Vec<String> {
+        let i = &self.inspection;
+        let (w, h) = i.size;
+        let plural = if i.levels == 1 { "" } else { "s" };
+        let mut out = vec![format!("{}: {w}x{h}, {}, {} level{plural}", self.source, self.stored.describe(), i.levels)];
+        let t = &i.texels;
+        out.push(if !i.kind.is_normal_map() {
+            format!("  {} (mean |n| {:.3}, {:.0}% gray texels)", i.kind.describe(), t.mean_length, t.gray * 100.0)
+        } else if i.two_channel {
+            format!(
+                "  a normal map (two channels: lengths are 1 by construction); {:.2}% facing away",
+                t.facing_away * 100.0
+            )
+        } else {
+            format!(
+                "  a normal map: {:.1}% of texels unit length (mean |n| {:.3}), {:.2}% facing away",
+                (1.0 - t.off_unit) * 100.0,
+                t.mean_length,
+                t.facing_away * 100.0
+            )
+        });
+        let c = &i.convention;
+        out.push(match c.convention {
+            Ok(y) => format!(
+                "  convention: {} (green {}), confidence {:.2} (curl test){}",
+                y.name(),
+                if y == YConvention::YUp { "up" } else { "down" },
+                c.confidence,
+                match self.made_with {
+                    Some(Derivative::Kernel(k)) => format!("; its slopes fit the {} kernel best", k.name()),
+                    Some(Derivative::Spectral) => "; no kernel fits its slopes better than the exact derivative".into(),
+                    None => String::new(),
+                }
+            ),
+            Err(why) => format!("  convention: undecidable: {}", why.reason()),
+        });
+        out.push(match &i.mips {
+            None => "  mips: none stored".to_string(),
+            Some(m) => {
+                let cost = match (m.filter, m.quoted()) {
+                    (MipFilter::Renormalized, Some(q)) => format!(
+                        ": at level {} a box filter keeps a mean length of {:.2}, so renormalized they light the distant surface up to {:.0}% brighter than its bumps average up close (Kilgard §2.4.2)",
+                        q.level,
+                        q.box_length,
+                        (1.0 / q.box_length.max(1e-3) - 1.0) * 100.0
+                    ),
+                    (MipFilter::LengthInAlpha, _) => {
+                        ": the averaged normal's length is in alpha, for the length factor and Toksvig's filter (Kilgard §5.3)".into()
+                    }
+                    (MipFilter::Box, _) => ": unnormalized means, the shortening kept in RGB".into(),
+                    (MipFilter::Smooth, _) => ": the normals barely differ, so nothing is lost by any filter".into(),
+                    (MipFilter::Other, Some(q)) => format!(
+                        ": not a box filter of the level above (mean error {:.3} at level {})",
+                        q.errors.iter().cloned().fold(f32::MAX, f32::min),
+                        q.level
+                    ),
+                    (MipFilter::Other | MipFilter::Renormalized, None) => String::new(),
+                };
+                format!("  mips: {} levels below 0, {}{cost}", i.levels - 1, m.filter.name())
+            }
+        });
+        let s = &i.seam;
+        out.push(format!(
+            "  tiling: {} (seam {:.1}°, worst interior neighbours {:.1}°){}",
+            if s.tiles() { "tiles" } else { "does not tile" },
+            s.seam_degrees(),
+            s.interior_degrees(),
+            if s.tiles() && !s.heights_tile() {
+                format!(
+                    ", but the heights it holds climb {:.3}, {:.3} per texel and do not",
+                    s.mean_slope[0], s.mean_slope[1]
+                )
+            } else {
+                String::new()
+            }
+        ));
+        match self.stored {
+            StoredAs::Bc5 | StoredAs::Bc7 => {
+                let name = if self.stored == StoredAs::Bc5 { "BC5" } else { "BC7" };
+                out.push(match self.compression_degrees {
+                    Some(d) => format!(
+                        "  compression: {name} added about {d:.1}° RMS (estimated from the slopes no height field explains)"
+                    ),
+                    None => format!(
+                        "  compression: {name}; its error cannot be estimated here (it is read from the slopes no height field explains, which needs a decided convention and few texels steeper than 60°)"
+                    ),
+                })
+            }
+            _ => {}
+        }
+        for f in self.findings() {
+            out.push(format!("  FIX: {f}"));
+        }
+        out
+    }
+
+    /// The verdict as JSON (what `inspect --json` prints and Python's `inspect()` returns).
+    pub fn to_json(&self) -> serde_json::Value {
+        use serde_json::json;
+        let i = &self.inspection;
+        let t = &i.texels;
+        let c = &i.convention;
+        let mips = i.mips.as_ref().map(|m| {
+            json!({
+                "filter": m.filter.name(),
+                "renormalized_brightening": if m.filter == MipFilter::Renormalized { m.renormalized_brightening().map(f64::from) } else { None },
+                "levels": m.levels.iter().map(|l| json!({
+                    "level": l.level,
+                    "size": [l.size.0, l.size.1],
+                    "box_length": l.box_length,
+                    "error_box": l.errors[0],
+                    "error_length_in_alpha": l.errors[1],
+                    "error_renormalized": l.errors[2],
+                    "alpha_error": l.alpha_error,
+                })).collect::<Vec<_>>(),
+            })
+        });
+        json!({
+            "file": self.source,
+            "size": [i.size.0, i.size.1],
+            "stored": self.stored.name(),
+            "levels": i.levels,
+            "two_channel": i.two_channel,
+            "normal_map": i.kind.is_normal_map(),
+            "kind": kind_name(i.kind),
+            "texels": {
+                "mean_length": t.mean_length,
+                "length_rms_error": t.length_rms_error,
+                "off_unit": t.off_unit,
+                "facing_away": t.facing_away,
+                "gray": t.gray,
+            },
+            "convention": {
+                "verdict": match c.convention { Ok(y) => y.name(), Err(_) => "undecidable" },
+                "reason": c.convention.err().map(|u| u.reason()),
+                "confidence": c.confidence,
+                "curl_ratio": c.curl_ratio,
+                "curl_kernel": c.kernel.name(),
+                "made_with": self.made_with.map(|d| d.name()),
+                "mixed_energy": c.mixed_energy,
+            },
+            "mips": mips,
+            "seam": {
+                "tiles": i.seam.tiles(),
+                "heights_tile": i.seam.heights_tile(),
+                "mean_slope": i.seam.mean_slope,
+                "seam_degrees": i.seam.seam_degrees(),
+                "interior_degrees": i.seam.interior_degrees(),
+            },
+            "compression_degrees": self.compression_degrees,
+            "findings": self.findings().iter().map(|f| f.to_string()).collect::<Vec<_>>(),
+        })
+    }
+}
+
+fn kind_name(kind: MapKind) -> &'static str {
+    match kind {
+        MapKind::NormalMap => "normal-map",
+        MapKind::Gray => "gray",
+        MapKind::NotUnitVectors => "not-unit-vectors",
+        MapKind::FacingAway => "facing-away",
+    }
+}
+
+/// A map's texels decoded: signed vectors (level 0 first; xyz the direction as stored, w the
+/// alpha), how they were stored, and whether Z was rebuilt from X and Y.
+#[derive(Clone, Debug, PartialEq)]
+pub struct DecodedMap {
+    /// The levels, level 0 first.
+    pub levels: Vec<Image<Vec4>>,
+    /// How the file stored them.
+    pub stored: StoredAs,
+    /// Whether Z was rebuilt (BC5, or an RGB image with blue empty everywhere).
+    pub two_channel: bool,
+}
+
+impl DecodedMap {
+    /// `levels` as stored; a map holding X and Y only (BC5, whose Z the reader rebuilt, or blue
+    /// empty everywhere) gets Z rebuilt as a shader would.
+    pub fn new(mut levels: Vec<Image<Vec4>>, stored: StoredAs) -> Self {
+        let two_channel = stored == StoredAs::Bc5 || levels.first().is_some_and(is_xy_only);
+        if two_channel && stored != StoredAs::Bc5 {
+            levels.iter_mut().for_each(rebuild_z);
+        }
+        Self { levels, stored, two_channel }
+    }
+
+    /// Floating-point texels (RGBA; alpha 1 where there is none): signed (−1..1 as stored)
+    /// when any channel of RGB is below −0.01, else 0..1 (`2v − 1`).
+    pub fn from_float(img: &Image<[f32; 4]>) -> Self {
+        let signed = img.texels.iter().any(|t| t[..3].iter().any(|&c| c < -0.01));
+        let texels = img
+            .texels
+            .iter()
+            .map(|&[r, g, b, a]| {
+                let v = Vec4::new(r, g, b, a);
+                if signed { v } else { (v.truncate() * 2.0 - 1.0).extend(a) }
+            })
+            .collect();
+        let stored = if signed { StoredAs::FloatSigned } else { StoredAs::FloatUnsigned };
+        Self::new(vec![Image::new(img.width, img.height, texels)], stored)
+    }
+
+    /// Unorm texels (8 or 16 bits) already in memory.
+    pub fn from_unorm<T: Texel>(levels: &[Image<T>], stored: StoredAs) -> Self {
+        Self::new(signed_levels(levels), stored)
+    }
+}
+
+/// Reads a normal map file as [`DecodedMap`]: PNG (8 or 16 bits), TGA, TIFF, EXR, JPEG, DDS or
+/// KTX2 (their levels, BC5 and BC7 included); floating point as [`DecodedMap::from_float`].
+pub fn read_map(path: &Path) -> Result<DecodedMap, Error> {
+    use bumpmap_io::texture_file::TextureFormat;
+    Ok(match bumpmap_io::load_any_texture(path)? {
+        AnyTexture::Stored(t) => {
+            let stored = match (t.format, &t.levels) {
+                (TextureFormat::Bc5, _) => StoredAs::Bc5,
+                (TextureFormat::Bc7, _) => StoredAs::Bc7,
+                (_, StoredLevels::Rgba16(_)) => StoredAs::Unorm16,
+                _ => StoredAs::Unorm8,
+            };
+            match &t.levels {
+                StoredLevels::Rgba8(l) => DecodedMap::from_unorm(l, stored),
+                StoredLevels::Rgba16(l) => DecodedMap::from_unorm(l, stored),
+            }
+        }
+        AnyTexture::Float(img) => DecodedMap::from_float(&img),
+    })
+}
+
+/// Inspects a file ([`read_map`] reads it).
+pub fn inspect_file(path: &Path) -> Result<MapReport, Error> {
+    Ok(inspect_map(&path.display().to_string(), &read_map(path)?))
+}
+
+/// Inspects unorm texels already in memory (level 0 first), named `source` in the verdict.
+pub fn inspect_levels<T: Texel>(source: &str, stored: StoredAs, levels: &[Image<T>]) -> MapReport {
+    inspect_map(source, &DecodedMap::from_unorm(levels, stored))
+}
+
+/// Inspects a decoded map, named `source` in the verdict.
+pub fn inspect_map(source: &str, map: &DecodedMap) -> MapReport {
+    let empty = [Image::new(0, 0, Vec::new())];
+    let levels = if map.levels.is_empty() { &empty[..] } else { &map.levels[..] };
+    let inspection = inspect(levels, map.two_channel).expect("at least one level");
+    let compressed = matches!(map.stored, StoredAs::Bc5 | StoredAs::Bc7);
+    let compression_degrees = if compressed { compression_estimate(&levels[0], &inspection) } else { None };
+    let made_with = fitted(&levels[0], &inspection).map(|fit| fit.best());
+    MapReport { source: source.to_string(), stored: map.stored, inspection, compression_degrees, made_with }
+}
+
+/// How each derivative model fits the slopes as the convention reads them; `None` where it is
+/// undecided or the map is too small to integrate.
+fn fitted(level0: &Image<Vec4>, inspection: &Inspection) -> Option<DerivativeFit> {
+    let y = inspection.convention.convention.ok()?;
+    let slopes = Slopes::from_normals(level0, y, 1.0).ok()?;
+    fit_derivative(&slopes, boundary_of(inspection)).ok()
+}
+
+/// Periodic where the heights tile, else free.
+fn boundary_of(inspection: &Inspection) -> Boundary {
+    if inspection.seam.heights_tile() { Boundary::Periodic } else { Boundary::Free }
+}
+
+/// Texels leaning further than this `n_z` (60°) from the surface normal are steep.
+const STEEP_NZ: f32 = 0.5;
+
+/// The share of steep texels beyond which the compression estimate is not given: there 8-bit
+/// rounding's slope error grows as `1/n_z²` and the least-squares solve spreads it onto the
+/// shallow texels around, so the residual stops measuring the compression (measured: bricks at
+/// scale 8 read 6× the true error, with 20 % of texels steep).
+const STEEP_SHARE: f64 = 0.02;
+
+/// The angle block compression added, estimated from what no height field explains: a map
+/// made from heights holds a gradient, so the heights integrated under the kernel that fits it
+/// best ([`DerivativeFit`]) leave, as the slopes' residual,
+/// the part of the encoding's noise that is not itself a gradient: half of it, for noise that
+/// favours no direction. A slope error `δ` tilts a texel's normal by about `δ·n_z²`. 8-bit
+/// rounding's own share (0.18° RMS) is taken out. `None` where the convention is undecided (the
+/// slopes are then not read the way they were made), where no kernel explains the map, or where
+/// more than [`STEEP_SHARE`] of the texels are steep.
+fn compression_estimate(level0: &Image<Vec4>, inspection: &Inspection) -> Option<f32> {
+    const ROUNDING_DEGREES: f32 = 0.18;
+    let y = inspection.convention.convention.ok()?;
+    let steep = level0.texels.iter().filter(|t| t.z < STEEP_NZ).count();
+    if steep as f64 > STEEP_SHARE * level0.texels.len() as f64 {
+        return None;
+    }
+    let slopes = Slopes::from_normals(level0, y, 1.0).ok()?;
+    let boundary = boundary_of(inspection);
+    let (heights, fit) = integrate_fitted(&slopes, boundary).ok()?;
+    let Derivative::Kernel(kernel) = fit.best() else { return None };
+    let again = Slopes::of_heights(slopes.width, slopes.height, &heights, kernel);
+    // A free boundary's heights do not wrap: the kernel's taps across the edge are left out.
+    let r = if boundary == Boundary::Free { kernel.radius() as usize } else { 0 };
+    let (w, h) = (slopes.width, slopes.height);
+    let (mut sum, mut n) = (0.0f64, 0usize);
+    for y in r..h.saturating_sub(r) {
+        for x in r..w.saturating_sub(r) {
+            let i = y * w + x;
+            let nz2 = (level0.texels[i].z.max(0.0) as f64).powi(2);
+            let e2 = ((slopes.du[i] - again.du[i]) as f64).powi(2) + ((slopes.dv[i] - again.dv[i]) as f64).powi(2);
+            sum += e2 * nz2 * nz2;
+            n += 1;
+        }
+    }
+    let degrees = (2.0 * sum / n.max(1) as f64).sqrt().to_degrees() as f32;
+    Some((degrees.powi(2) - ROUNDING_DEGREES.powi(2)).max(0.0).sqrt())
+}
+
+/// The image and texture files directly in `folder` (by extension, sorted), skipping links
+/// that lead outside it: what `inspect FOLDER` reads.
+pub fn maps_in_folder(folder: &Path) -> Result<Vec<PathBuf>, Error> {
+    const EXTENSIONS: [&str; 9] = ["png", "tga", "tif", "tiff", "exr", "dds", "ktx2", "jpg", "jpeg"];
+    let read_err = |source| Error::Io(bumpmap_io::IoError::Read { path: folder.to_path_buf(), source });
+    let root = folder.canonicalize().map_err(read_err)?;
+    let mut out = Vec::new();
+    for entry in std::fs::read_dir(folder).map_err(read_err)? {
+        let path = entry.map_err(read_err)?.path();
+        let known = path
+            .extension()
+            .and_then(|e| e.to_str())
+            .is_some_and(|e| EXTENSIONS.iter().any(|k| k.eq_ignore_ascii_case(e)));
+        let inside = path.canonicalize().is_ok_and(|p| p.parent() == Some(root.as_path()) && p.is_file());
+        if known && inside {
+            out.push(path);
+        }
+    }
+    out.sort();
+    Ok(out)
+}
