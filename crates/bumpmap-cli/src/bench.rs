@@ -37,6 +37,9 @@ pub fn run(args: &BenchArgs) -> Result<(), CliError> {
         BenchWhat::Normalmap { size, format, runs, threads, json } => {
             with_threads(threads, || bench_normalmap(size as usize, format, runs, json))
         }
+        BenchWhat::Height { size, runs, threads, json } => {
+            with_threads(threads, || bench_height(size as usize, runs, json))
+        }
         BenchWhat::Tangents { triangles, mode, runs, threads, json } => {
             with_threads(threads, || bench_tangents(triangles as usize, mode, runs, json))
         }
@@ -45,6 +48,51 @@ pub fn run(args: &BenchArgs) -> Result<(), CliError> {
             with_threads(threads, || bench_reference(scene, size, spp as usize, runs, json))
         }
     }
+}
+
+/// Normal map → heights on the benchmark's heights made into a 16-bit map (forward kernel,
+/// scale 4, green up); making and decoding the map are not timed.
+fn bench_height(size: usize, runs: u32, json: bool) -> Result<(), CliError> {
+    use bumpmap::heights::{HeightOptions, heights_from_normals};
+    use bumpmap_math::integration::{Boundary, Derivative};
+    let field = HeightField::from_u8(size, size, &bench_heights(size)).expect("square field");
+    let options = NormalMapOptions { y_convention: bumpmap_math::YConvention::YUp, ..Default::default() };
+    let level0 = bumpmap_math::normalmap::normal_map_level0_texels::<[u16; 4]>(&field, &options)
+        .map_err(|source| CliError::NormalMap { path: "the benchmark's heights".into(), source })?;
+    let normals = bumpmap_math::inspect::signed_levels(&[level0]).remove(0);
+    let mut failure = None;
+    let mut run = |options: &HeightOptions| {
+        if let Err(e) = heights_from_normals(&normals, options) {
+            failure = Some(e);
+        }
+    };
+    let auto = HeightOptions { scale: 4.0, ..Default::default() };
+    let all = time_runs(runs, || run(&auto));
+    let given = HeightOptions {
+        boundary: Some(Boundary::Periodic),
+        derivative: Some(Derivative::Kernel(bumpmap_math::Kernel::Forward)),
+        y_convention: Some(bumpmap_math::YConvention::YUp),
+        scale: 4.0,
+    };
+    let solve = time_runs(runs, || run(&given));
+    if let Some(e) = failure {
+        return Err(CliError::Render(e.to_string()));
+    }
+    let threads = rayon::current_num_threads();
+    if json {
+        println!(
+            "{{\"bench\":\"height\",\"size\":{size},\"threads\":{threads},\"runs\":{runs},\"median_ms\":{:.3},\"min_ms\":{:.3},\"max_ms\":{:.3},\"solve_median_ms\":{:.3}}}",
+            all.median, all.min, all.max, solve.median
+        );
+    } else {
+        println!("normal map → heights, {size}x{size} 16-bit, {threads} threads, {runs} runs");
+        println!(
+            "  curl and seam tests, kernel fit, solve: median {:.1} ms (min {:.1}, max {:.1})",
+            all.median, all.min, all.max
+        );
+        println!("  the solve alone (kernel, convention and method given): median {:.1} ms", solve.median);
+    }
+    Ok(())
 }
 
 /// The reference renderer's time for one image; scene setup is not timed.

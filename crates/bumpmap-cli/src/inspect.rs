@@ -92,19 +92,20 @@ pub fn run_height(args: &HeightArgs) -> Result<(), CliError> {
     }
     bumpmap_io::atomic::ensure_not_input(&args.output, &[&args.input])?;
     let map = read_map(&args.input).map_err(library)?;
-    let report = inspect_map(&args.input.display().to_string(), &map);
-    if !report.inspection.kind.is_normal_map() {
-        let what = report.inspection.kind.describe();
+    // Level 0's questions only: what height needs (the kind, the curl and seam tests).
+    let inspection = bumpmap_math::inspect::inspect(&map.levels[..map.levels.len().min(1)], map.two_channel)
+        .ok_or_else(|| CliError::Render(format!("{}: no texels", args.input.display())))?;
+    if !inspection.kind.is_normal_map() {
+        let what = inspection.kind.describe();
         if args.strict {
             return Err(CliError::Render(format!("{}: {what} (--strict refuses it)", args.input.display())));
         }
         eprintln!("warning: {}: {what}; integrating it anyway (--strict refuses it)", args.input.display());
     }
     let level0 = map.levels.first().ok_or_else(|| CliError::Render(format!("{}: no texels", args.input.display())))?;
-    let heights =
-        heights_from_inspection(level0, &report.inspection, &options).map_err(|e| integration(&args.input, e))?;
+    let heights = heights_from_inspection(level0, &inspection, &options).map_err(|e| integration(&args.input, e))?;
     let (lo, hi) = heights.range();
-    let seam = report.inspection.seam;
+    let seam = inspection.seam;
     let why_method = match (heights.boundary_chosen, heights.method.boundary) {
         (Chosen::Given, _) => "as given".to_string(),
         (_, Boundary::Free) if seam.tiles() => format!(
@@ -133,7 +134,7 @@ pub fn run_height(args: &HeightArgs) -> Result<(), CliError> {
         Chosen::Detected(c) => format!("by the curl test, confidence {c:.2}"),
         Chosen::Default => format!(
             "the curl test could not decide ({}), so the glTF default; pass --y-convention if it is wrong",
-            report.inspection.convention.convention.err().map_or("", |u| u.reason())
+            inspection.convention.convention.err().map_or("", |u| u.reason())
         ),
     };
     let flat = hi - lo <= f32::EPSILON * lo.abs().max(1.0);

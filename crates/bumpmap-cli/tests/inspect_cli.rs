@@ -38,7 +38,7 @@ fn write_rgb_exr(path: &Path, w: u32, h: u32, f: impl Fn(u32, u32) -> [f32; 3]) 
 fn inspect_names_the_convention_of_maps_made_either_way_and_exits_0() {
     let dir = scratch("inspect_conventions");
     let (gl, dx) = (dir.join("gl.png"), dir.join("dx.ktx2"));
-    ok(&["normalmap", "dimples@128", "-o", s(&gl), "--y-convention", "opengl", "--kernel", "sobel3"]);
+    ok(&["normalmap", "bricks@128", "-o", s(&gl), "--y-convention", "opengl", "--kernel", "sobel3", "--mips"]);
     ok(&["normalmap", "noise:4@128", "-o", s(&dx), "--y-convention", "directx", "--mips", "--format", "bc7"]);
     let o = bumpmap(&["inspect", s(&gl), s(&dx)]);
     let out = String::from_utf8_lossy(&o.stdout);
@@ -46,7 +46,10 @@ fn inspect_names_the_convention_of_maps_made_either_way_and_exits_0() {
     assert!(out.contains("convention: opengl (green up)"), "{out}");
     assert!(out.contains("its slopes fit the sobel3 kernel best"), "{out}");
     assert!(out.contains("convention: directx (green down)"), "{out}");
-    assert!(out.contains("length-in-alpha"), "our mips keep the length in alpha: {out}");
+    assert!(
+        out.contains("7 levels below 0, length-in-alpha"),
+        "our mips (gl.mip1.png …) keep the length in alpha: {out}"
+    );
     assert!(out.contains("compression: BC7 added about"), "{out}");
     let v = json(&["inspect", "--json", s(&gl), s(&dx)]);
     assert_eq!(v[0]["convention"]["verdict"], "opengl");
@@ -54,12 +57,24 @@ fn inspect_names_the_convention_of_maps_made_either_way_and_exits_0() {
     assert_eq!(v[1]["stored"], "bc7");
     assert_eq!(v[0]["convention"]["made_with"], "sobel3");
     assert!(v[1]["compression_degrees"].as_f64().unwrap() > 0.1, "{}", v[1]);
-    assert_eq!(v[1]["mips"]["filter"], "length-in-alpha");
+    assert_eq!(v[0]["mips"]["filter"], "length-in-alpha");
+    assert_eq!(v[0]["levels"], 8);
+    assert_eq!(v[1]["mips"]["filter"], "smooth", "noise at 128² barely shortens its normals");
     assert_eq!(v[0]["seam"]["tiles"], true);
     assert_eq!(v[0]["normal_map"], true);
-    // A folder reads every map directly inside it.
+    // A folder reads every map directly inside it, gl.png with the levels beside it.
     let v = json(&["inspect", "--json", s(&dir)]);
     assert_eq!(v.as_array().unwrap().len(), 2, "{v}");
+    // A level beside a PNG that is a link is not followed: the chain stops before it.
+    #[cfg(unix)]
+    {
+        let elsewhere = scratch("inspect_conventions_elsewhere");
+        let level3 = dir.join("gl.mip3.png");
+        std::fs::rename(&level3, elsewhere.join("moved.png")).unwrap();
+        std::os::unix::fs::symlink(elsewhere.join("moved.png"), &level3).unwrap();
+        let v = json(&["inspect", "--json", s(&gl)]);
+        assert_eq!(v[0]["levels"], 3, "levels 0–2 only: {}", v[0]);
+    }
 }
 
 #[test]

@@ -363,8 +363,39 @@ impl DecodedMap {
 }
 
 /// Reads a normal map file as [`DecodedMap`]: PNG (8 or 16 bits), TGA, TIFF, EXR, JPEG, DDS or
-/// KTX2 (their levels, BC5 and BC7 included); floating point as [`DecodedMap::from_float`].
+/// KTX2 (their levels, BC5 and BC7 included); floating point as [`DecodedMap::from_float`]. A
+/// PNG's smaller levels are the `NAME.mip1.png`, `NAME.mip2.png`, … beside it, as `bumpmap
+/// normalmap` writes them: regular files in the same folder only (a link is not followed), each
+/// half the size of the level before.
 pub fn read_map(path: &Path) -> Result<DecodedMap, Error> {
+    let mut map = read_one(path)?;
+    if path.extension().is_some_and(|e| e.eq_ignore_ascii_case("png")) && map.levels.len() == 1 {
+        for k in 1.. {
+            let file = bumpmap_io::image_file::level_path(path, k);
+            let regular = std::fs::symlink_metadata(&file).is_ok_and(|m| m.file_type().is_file());
+            let last = &map.levels[map.levels.len() - 1];
+            if !regular || (last.width, last.height) == (1, 1) {
+                break;
+            }
+            let want = (bumpmap_math::mip::next_size(last.width), bumpmap_math::mip::next_size(last.height));
+            let level = read_one(&file)?.levels.swap_remove(0);
+            if (level.width, level.height) != want {
+                return Err(Error::Io(bumpmap_io::IoError::Texture {
+                    path: file,
+                    reason: format!(
+                        "is {}x{}, but as level {k} of a {}x{} map it must be {}x{}",
+                        level.width, level.height, map.levels[0].width, map.levels[0].height, want.0, want.1
+                    ),
+                }));
+            }
+            map.levels.push(level);
+        }
+    }
+    Ok(map)
+}
+
+/// One file's levels.
+fn read_one(path: &Path) -> Result<DecodedMap, Error> {
     use bumpmap_io::texture_file::TextureFormat;
     Ok(match bumpmap_io::load_any_texture(path)? {
         AnyTexture::Stored(t) => {
@@ -464,7 +495,8 @@ fn compression_estimate(level0: &Image<Vec4>, inspection: &Inspection) -> Option
 }
 
 /// The image and texture files directly in `folder` (by extension, sorted), skipping links
-/// that lead outside it: what `inspect FOLDER` reads.
+/// that lead outside it and the `NAME.mipK.png` levels of a `NAME.png` there (read with it):
+/// what `inspect FOLDER` reads.
 pub fn maps_in_folder(folder: &Path) -> Result<Vec<PathBuf>, Error> {
     const EXTENSIONS: [&str; 9] = ["png", "tga", "tif", "tiff", "exr", "dds", "ktx2", "jpg", "jpeg"];
     let read_err = |source| Error::Io(bumpmap_io::IoError::Read { path: folder.to_path_buf(), source });
@@ -481,6 +513,15 @@ pub fn maps_in_folder(folder: &Path) -> Result<Vec<PathBuf>, Error> {
             out.push(path);
         }
     }
-    out.sort();
-    Ok(out)
+    // A PNG's smaller levels (`NAME.mipK.png` beside `NAME.png`) are read with it, not alone.
+    let level_of_another = |p: &PathBuf| {
+        let name = p.file_name().and_then(|n| n.to_str()).unwrap_or_default();
+        name.rsplit_once(".mip").is_some_and(|(stem, rest)| {
+            rest.strip_suffix(".png").is_some_and(|k| !k.is_empty() && k.bytes().all(|b| b.is_ascii_digit()))
+                && out.iter().any(|q| q.file_name().and_then(|n| n.to_str()) == Some(&format!("{stem}.png")))
+        })
+    };
+    let mut maps: Vec<PathBuf> = out.iter().filter(|p| !level_of_another(p)).cloned().collect();
+    maps.sort();
+    Ok(maps)
 }

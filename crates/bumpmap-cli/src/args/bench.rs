@@ -33,6 +33,22 @@ pub enum BenchWhat {
         #[arg(long)]
         json: bool,
     },
+    /// 16-bit normal map → heights (what `height` does after decoding): the curl and seam tests,
+    /// the kernel fit and the solve, and the solve alone
+    Height {
+        /// Edge length of the square map
+        #[arg(long, default_value_t = 4096, value_parser = clap::value_parser!(u32).range(2..=16384))]
+        size: u32,
+        /// Timed runs (after one warm-up)
+        #[arg(long, default_value_t = 5, value_parser = clap::value_parser!(u32).range(1..))]
+        runs: u32,
+        /// Worker threads, 1 to 256 (default: all cores)
+        #[arg(long, value_parser = clap::value_parser!(u16).range(1..=256))]
+        threads: Option<u16>,
+        /// Print one JSON line instead of prose
+        #[arg(long)]
+        json: bool,
+    },
     /// Tangents for a wavy textured grid of N triangles (the MikkTSpace peer's mesh)
     Tangents {
         /// Triangles (rounded to a 1000-column grid)

@@ -56,12 +56,16 @@ impl MipFilter {
 pub const OTHER_ABOVE: f32 = 0.04;
 
 /// The mean length of a level's box-filtered normals above which the level is smooth: the
-/// three models differ by less than the error of 8 bits.
-pub const SMOOTH_ABOVE: f32 = 0.995;
+/// models differ by less than 3 % (what renormalizing can brighten), within what BC7 leaves.
+pub const SMOOTH_ABOVE: f32 = 0.97;
 
-/// The mean `|alpha − length|` below which alpha holds the mean's length: 8-bit alpha's
-/// rounding and the directions' own leave about 0.005.
-pub const ALPHA_HOLDS_LENGTH: f32 = 0.02;
+/// The fewest texels a level needs to tell the models apart.
+pub const TELLING_TEXELS: usize = 64;
+
+/// Alpha holds the mean's length where it is this much closer to the length than to 1 (the
+/// mean `|alpha − length|` against the mean `1 − length`): a renormalized level's alpha of 1
+/// is as far from the length as the shortening itself.
+pub const ALPHA_HOLDS_LENGTH: f32 = 0.5;
 
 /// One level checked.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -75,6 +79,8 @@ pub struct LevelCheck {
     pub errors: [f32; 3],
     /// The mean of `|alpha − the mean's length|`: small only where alpha holds the length.
     pub alpha_error: f32,
+    /// The mean of `1 − the mean's length`: how far an alpha of 1 would be from it.
+    pub shortening: f32,
     /// The mean length of the box-filtered chain from level 0 at this size.
     pub box_length: f32,
 }
@@ -122,7 +128,7 @@ pub fn classify(levels: &[Image<Vec4>]) -> Option<MipReport> {
             break;
         }
         let mut errors = [0.0f64; 3];
-        let mut alpha_error = 0.0f64;
+        let (mut alpha_error, mut shortening) = (0.0f64, 0.0f64);
         for y in 0..h {
             for x in 0..w {
                 let (mut raw, mut weighted, mut n) = (Vec3::ZERO, Vec3::ZERO, 0.0f32);
@@ -140,6 +146,7 @@ pub fn classify(levels: &[Image<Vec4>]) -> Option<MipReport> {
                 let alpha = (s.w - weighted.length()).abs();
                 errors[1] += ((s.xyz() - weighted.normalize_or_zero()).length() + alpha) as f64;
                 alpha_error += alpha as f64;
+                shortening += (1.0 - weighted.length()).abs() as f64;
                 errors[2] += (s.xyz() - raw.normalize_or_zero()).length() as f64;
             }
         }
@@ -151,11 +158,13 @@ pub fn classify(levels: &[Image<Vec4>]) -> Option<MipReport> {
             size: (w, h),
             errors: errors.map(|e| (e / count) as f32),
             alpha_error: (alpha_error / count) as f32,
+            shortening: (shortening / count) as f32,
             box_length: box_length as f32,
         });
     }
     // Judged on the levels where the models differ: those whose normals shorten.
-    let telling: Vec<&LevelCheck> = checks.iter().filter(|c| c.box_length < SMOOTH_ABOVE).collect();
+    let telling: Vec<&LevelCheck> =
+        checks.iter().filter(|c| c.box_length < SMOOTH_ABOVE && c.size.0 * c.size.1 >= TELLING_TEXELS).collect();
     let filter = if checks.is_empty() {
         MipFilter::Other
     } else if telling.is_empty() {
@@ -166,20 +175,20 @@ pub fn classify(levels: &[Image<Vec4>]) -> Option<MipReport> {
         }
     } else {
         // Weighted by texels: level 1 speaks loudest.
-        let mut total = [0.0f64; 4];
+        let mut total = [0.0f64; 5];
         let mut weight = 0.0f64;
         for c in &telling {
             let wgt = (c.size.0 * c.size.1) as f64;
-            for (t, e) in total.iter_mut().zip(c.errors.iter().chain([&c.alpha_error])) {
+            for (t, e) in total.iter_mut().zip(c.errors.iter().chain([&c.alpha_error, &c.shortening])) {
                 *t += wgt * *e as f64;
             }
             weight += wgt;
         }
-        let [boxed, _, renormalized, alpha] = total.map(|t| (t / weight) as f32);
+        let [boxed, _, renormalized, alpha, shortening] = total.map(|t| (t / weight) as f32);
         // Length in alpha shares renormalized's directions; its alpha tells them apart.
         if boxed.min(renormalized) > tolerance {
             MipFilter::Other
-        } else if alpha <= ALPHA_HOLDS_LENGTH {
+        } else if alpha <= ALPHA_HOLDS_LENGTH * shortening {
             MipFilter::LengthInAlpha
         } else if boxed < renormalized {
             MipFilter::Box

@@ -17,6 +17,8 @@ use bumpmap_math::{
 use glam::Vec3;
 use indicatif::{ProgressBar, ProgressStyle};
 
+mod normal_maps_in;
+
 use crate::args::{BackendArg, DemoArgs, DemoGpuArg};
 use crate::error::CliError;
 use crate::render::{core_err, draw, lib_err, write_frame};
@@ -341,6 +343,10 @@ fn write_demo(out: &Path, args: &DemoArgs) -> Result<(), CliError> {
         );
         bar.inc(1);
     }
+    bar.set_message("normal maps in: inspect, and heights back");
+    let maps: Vec<String> = presets.iter().map(|(name, _)| format!("{name}_normal.png")).collect();
+    let maps: Vec<&str> = maps.iter().map(String::as_str).collect();
+    index += &normal_maps_in::write(out, &maps, "bricks_height.png", "bricks_normal.png")?;
     bar.set_message("normalization cube map");
     crate::cubemap::write(&out.join("cubemap"), &NormalizationCubeMap::new(32, Encoding::Unorm))?;
     index += "- `cubemap/px.png` … `nz.png`: a 32² normalization cube map\n";
