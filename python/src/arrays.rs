@@ -265,6 +265,8 @@ pub fn normal_texels(value: &Bound<'_, PyAny>) -> PyResult<bumpmap::inspect::Dec
         [h, w, c @ (3 | 4)] => (*h, *w, *c),
         other => return Err(PyValueError::new_err(format!("normals must be {EXPECTED}, got shape {other:?}"))),
     };
+    DecodedMap::check_memory("normals", w.saturating_mul(h))
+        .map_err(|e| pyo3::exceptions::PyMemoryError::new_err(e.to_string()))?;
     fn rgba<T: Element + Copy>(
         array: &Bound<'_, PyUntypedArray>,
         w: usize,

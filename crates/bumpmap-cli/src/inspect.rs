@@ -42,6 +42,7 @@ pub fn run_inspect(args: &InspectArgs) -> Result<(), CliError> {
                     print_report(&report);
                 }
             }
+            Err(e) if files.len() == 1 && !args.json => return Err(library(e)),
             Err(e) => {
                 failed += 1;
                 eprintln!("error: {e}");
@@ -167,6 +168,7 @@ pub fn run_height(args: &HeightArgs) -> Result<(), CliError> {
 fn library(e: bumpmap::Error) -> CliError {
     match e {
         bumpmap::Error::Io(e) => CliError::Io(e),
+        bumpmap::Error::OutOfMemory { what, source } => CliError::Render(format!("{what}: {source}")),
         other => CliError::Render(other.to_string()),
     }
 }

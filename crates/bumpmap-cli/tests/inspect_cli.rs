@@ -250,3 +250,24 @@ fn a_flat_map_is_warned_about_and_written_as_zero() {
     let px = image::open(&out).unwrap().to_luma16();
     assert!(px.pixels().all(|p| p.0[0] == 0));
 }
+
+#[test]
+#[cfg(target_os = "linux")]
+fn a_map_too_big_for_the_memory_is_refused_naming_the_bytes() {
+    let dir = scratch("inspect_memory");
+    let map = dir.join("big.png");
+    ok(&["normalmap", "noise:2@4096", "-o", s(&map)]);
+    let exe = env!("CARGO_BIN_EXE_bumpmap");
+    for command in [
+        format!("'{exe}' inspect '{}'", s(&map)),
+        format!("'{exe}' height '{}' -o '{}'", s(&map), s(&dir.join("h.png"))),
+    ] {
+        // 600 MiB of address space: the map decodes (64 MiB), its work (800 MiB) does not fit.
+        let o =
+            std::process::Command::new("sh").arg("-c").arg(format!("ulimit -v 614400; {command}")).output().unwrap();
+        let err = stderr(&o);
+        assert_eq!(o.status.code(), Some(1), "{command}: {err}");
+        assert!(err.contains("big.png") && err.contains("not enough memory") && err.contains("800.0 MiB"), "{err}");
+    }
+    assert_eq!(listing(&dir), ["big.png"]);
+}

@@ -29,6 +29,14 @@ pub enum Error {
     /// A file could not be read or written.
     #[error(transparent)]
     Io(#[from] IoError),
+    /// A map too big for the memory its work needs.
+    #[error("{what}: {source}")]
+    OutOfMemory {
+        /// The file (or array) being worked on.
+        what: String,
+        /// The buffer that would not fit.
+        source: bumpmap_math::buffer::OutOfMemory,
+    },
     /// A normal map file whose levels cannot be a normal map.
     #[error("{}: {source}", .path.display())]
     NormalMap {

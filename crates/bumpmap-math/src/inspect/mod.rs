@@ -16,8 +16,11 @@ mod mips;
 mod texels;
 
 pub use convention::{ConventionVerdict, Undecidable, detect_convention};
-pub use mips::{LevelCheck, MipFilter, MipReport, classify as classify_mips};
-pub use texels::{MapKind, Seam, TexelStats};
+pub use mips::{
+    ALPHA_HOLDS_LENGTH, LevelCheck, MipFilter, MipReport, OTHER_ABOVE, SMOOTH_ABOVE, TELLING_TEXELS,
+    classify as classify_mips,
+};
+pub use texels::{MEAN_SLOPE_TILES, MapKind, SEAM_SAMPLES, Seam, TexelStats};
 
 use glam::Vec4;
 

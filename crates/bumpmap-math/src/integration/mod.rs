@@ -33,6 +33,13 @@ use crate::image::Image;
 use crate::kernel::Kernel;
 use crate::normalmap::YConvention;
 
+mod fit;
+mod transfer;
+
+use fit::fit;
+pub use fit::{DerivativeFit, FIT_TIE, FIT_TIE_FLOOR};
+use transfer::Transfer;
+
 /// Where the map ends: what the solve assumes beyond its edges.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum Boundary {
@@ -222,52 +229,6 @@ pub fn integrate(slopes: &Slopes, method: IntegrationMethod) -> Result<Vec<f32>,
     Ok(finish(slopes, method.boundary, solve(spectra, w, h, method.derivative)))
 }
 
-/// How well each derivative model explains a map's slopes: the least-squares residual it
-/// leaves, `Σ_ω |D̂_v·P̂ − D̂_u·Q̂|² / (|D̂_u|² + |D̂_v|²)` — the part of the slopes no height
-/// field could have made under that model, which for the model that made the map is the
-/// encoding's noise alone (and the same noise for every model, so the residuals compare).
-///
-/// Slopes cannot tell a kernel `K` from `K` times a symmetric smoothing `F`: `K·F` applied to
-/// `h` is `K` applied to `F·h`, so both explain the map exactly (Sobel 5×5 is Sobel 3×3 with
-/// one more [1 2 1] smoothing each way). Of the models that explain the slopes equally well
-/// the sharpest kernel is taken: its heights are the smoother explanation, and made into a map by that
-/// kernel they give the map back. Deconvolving a smoothing the map never had would amplify
-/// its noise instead.
-#[derive(Clone, Debug, PartialEq)]
-pub struct DerivativeFit {
-    /// Each candidate ([`Derivative::Spectral`] and every kernel) with its residual energy per
-    /// texel and its sharpness (the mean of `|D̂_u|² + |D̂_v|²`), smallest residual first.
-    pub residuals: Vec<(Derivative, f32, f32)>,
-    /// The slopes' own energy per texel, on the same frequencies (the scale for
-    /// [`FIT_TIE_FLOOR`]).
-    pub energy: f32,
-}
-
-/// Residuals within this factor of the smallest (and [`FIT_TIE_FLOOR`]) explain the slopes
-/// equally well: noise moves a residual by a few percent.
-pub const FIT_TIE: f32 = 1.25;
-
-/// Residuals below this fraction of the slopes' own energy are all noise-free fits.
-pub const FIT_TIE_FLOOR: f32 = 1e-7;
-
-impl DerivativeFit {
-    /// The sharpest kernel among those that explain the slopes as well as the best; `iω` only
-    /// where no kernel does (a map `bumpmap normalmap --kernel K` can make again is the more
-    /// useful explanation).
-    pub fn best(&self) -> Derivative {
-        let Some(&(_, least, _)) = self.residuals.first() else { return Derivative::Spectral };
-        self.residuals
-            .iter()
-            .filter(|r| r.1 <= FIT_TIE * least + FIT_TIE_FLOOR * self.energy && r.0 != Derivative::Spectral)
-            .max_by(|a, b| a.2.total_cmp(&b.2))
-            .map_or(Derivative::Spectral, |r| r.0)
-    }
-}
-
-/// At most this many frequencies are visited to fit a derivative (a stride over both axes
-/// keeps a 4096² map's fit to a 64th of its spectrum).
-const FIT_FREQUENCIES: usize = 1 << 18;
-
 /// [`integrate`] with the derivative model that fits the slopes best ([`DerivativeFit`]), from
 /// one pair of transforms. Returns the heights, the fit, and so the model used.
 pub fn integrate_fitted(slopes: &Slopes, boundary: Boundary) -> Result<(Vec<f32>, DerivativeFit), IntegrationError> {
@@ -317,47 +278,6 @@ fn finish(slopes: &Slopes, boundary: Boundary, solved: Vec<f32>) -> Vec<f32> {
     out
 }
 
-/// Every candidate's residual over a strided subset of the spectrum.
-fn fit(spectra: &(crate::fourier::Spectrum, crate::fourier::Spectrum), w: usize, h: usize) -> DerivativeFit {
-    let (p, q) = spectra;
-    let cw = p.columns();
-    let stride = ((cw * h) as f64 / FIT_FREQUENCIES as f64).sqrt().ceil().max(1.0) as usize;
-    let candidates: Vec<Derivative> =
-        std::iter::once(Derivative::Spectral).chain(Kernel::ALL.into_iter().map(Derivative::Kernel)).collect();
-    use rayon::prelude::*;
-    // Per texel of the solved size, per frequency visited.
-    let norm = cw.div_ceil(stride) as f64 * h.div_ceil(stride) as f64 * (w * h) as f64;
-    let mut energy = 0.0f64;
-    for kx in (0..cw).step_by(stride) {
-        for ky in (0..h).step_by(stride) {
-            let i = kx * h + ky;
-            energy += (p.data[i].norm_sqr() + q.data[i].norm_sqr()) as f64;
-        }
-    }
-    let mut residuals: Vec<(Derivative, f32, f32)> = candidates
-        .par_iter()
-        .map(|&d| {
-            let transfer = Transfer::new(w, h, d);
-            let (mut sum, mut sharpness) = (0.0f64, 0.0f64);
-            for kx in (0..cw).step_by(stride) {
-                for ky in (0..h).step_by(stride) {
-                    let (du, dv) = transfer.at(kx, ky);
-                    let denom = du.norm_sqr() as f64 + dv.norm_sqr() as f64;
-                    sharpness += denom;
-                    if denom > 1e-12 {
-                        let i = kx * h + ky;
-                        let wide = |c: Complex32| realfft::num_complex::Complex64::new(c.re as f64, c.im as f64);
-                        sum += (wide(dv) * wide(p.data[i]) - wide(du) * wide(q.data[i])).norm_sqr() / denom;
-                    }
-                }
-            }
-            (d, (sum / norm) as f32, (sharpness * (w * h) as f64 / norm) as f32)
-        })
-        .collect();
-    residuals.sort_by(|a, b| a.1.total_cmp(&b.1));
-    DerivativeFit { residuals, energy: (energy / norm) as f32 }
-}
-
 /// The least-squares heights of periodic slopes given their spectra: the filter, one inverse.
 fn solve(
     spectra: (crate::fourier::Spectrum, crate::fourier::Spectrum),
@@ -380,99 +300,6 @@ fn solve(
     crate::fourier::inverse(p)
 }
 
-/// `D̂_u`, `D̂_v` at each kept frequency. For a kernel, `Σ w·e^{i(ω_u·dx + ω_v·dy)}` (a tap
-/// reading the texel `dx` further along multiplies its spectrum by `e^{iω·dx}`), summed per
-/// row offset once and per column offset at each frequency.
-struct Transfer {
-    h: usize,
-    /// `ω_u` of each kept column frequency (0 ≤ ω_u ≤ π).
-    omega_u: Vec<f32>,
-    /// `ω_v` of each row frequency, in (−π, π].
-    omega_v: Vec<f32>,
-    derivative: Derivative,
-    /// For a kernel: per tap row `dy`, `Σ_dx w·e^{iω_u·dx}` at each column frequency, for
-    /// `D̂_u` and for `D̂_v`.
-    rows_u: Vec<(i32, Vec<Complex32>)>,
-    rows_v: Vec<(i32, Vec<Complex32>)>,
-    /// For a kernel: `e^{iω_v·dy}` at each row frequency, for each `dy` its rows use (indexed
-    /// by `dy + PHASE_RADIUS`).
-    phases: Vec<Vec<Complex32>>,
-    w_even: bool,
-}
-
-/// The largest `|dy|` a kernel's taps reach ([`Kernel::radius`] at most).
-const PHASE_RADIUS: i32 = 3;
-
-impl Transfer {
-    fn new(w: usize, h: usize, derivative: Derivative) -> Self {
-        let omega = |k: usize, n: usize| {
-            let k = if k > n / 2 { k as f32 - n as f32 } else { k as f32 };
-            std::f32::consts::TAU * k / n as f32
-        };
-        let omega_u: Vec<f32> = (0..w / 2 + 1).map(|k| omega(k, w)).collect();
-        let omega_v: Vec<f32> = (0..h).map(|k| omega(k, h)).collect();
-        let rows = |taps: Vec<crate::kernel::Tap>| -> Vec<(i32, Vec<Complex32>)> {
-            let mut dys: Vec<i32> = taps.iter().map(|t| t.dy).collect();
-            dys.sort_unstable();
-            dys.dedup();
-            dys.into_iter()
-                .map(|dy| {
-                    let sums = omega_u
-                        .iter()
-                        .map(|&wu| {
-                            taps.iter()
-                                .filter(|t| t.dy == dy)
-                                .map(|t| Complex32::from_polar(t.weight, wu * t.dx as f32))
-                                .sum()
-                        })
-                        .collect();
-                    (dy, sums)
-                })
-                .collect()
-        };
-        let (rows_u, rows_v, phases) = match derivative {
-            Derivative::Kernel(k) => {
-                debug_assert!(k.radius() <= PHASE_RADIUS);
-                let phases = (-PHASE_RADIUS..=PHASE_RADIUS)
-                    .map(|dy| omega_v.iter().map(|&wv| Complex32::from_polar(1.0, wv * dy as f32)).collect())
-                    .collect();
-                (rows(k.taps_du()), rows(k.taps_dv()), phases)
-            }
-            Derivative::Spectral => (Vec::new(), Vec::new(), Vec::new()),
-        };
-        Self { h, omega_u, omega_v, derivative, rows_u, rows_v, phases, w_even: w.is_multiple_of(2) }
-    }
-
-    /// `ε·|ω|²` for a kernel ([`TIKHONOV`]), 0 for `iω`.
-    #[inline]
-    fn regularization(&self, kx: usize, ky: usize) -> f32 {
-        match self.derivative {
-            Derivative::Spectral => 0.0,
-            Derivative::Kernel(_) => TIKHONOV * (self.omega_u[kx].powi(2) + self.omega_v[ky].powi(2)),
-        }
-    }
-
-    #[inline]
-    fn at(&self, kx: usize, ky: usize) -> (Complex32, Complex32) {
-        match self.derivative {
-            Derivative::Spectral => {
-                // The Nyquist frequency's derivative has no sign a real image can carry: 0.
-                let nyquist_u = self.w_even && kx == self.omega_u.len() - 1;
-                let nyquist_v = self.h.is_multiple_of(2) && ky == self.h / 2;
-                let du = if nyquist_u { 0.0 } else { self.omega_u[kx] };
-                let dv = if nyquist_v { 0.0 } else { self.omega_v[ky] };
-                (Complex32::new(0.0, du), Complex32::new(0.0, dv))
-            }
-            Derivative::Kernel(_) => {
-                let sum = |rows: &[(i32, Vec<Complex32>)]| -> Complex32 {
-                    rows.iter().map(|(dy, s)| s[kx] * self.phases[(dy + PHASE_RADIUS) as usize][ky]).sum()
-                };
-                (sum(&self.rows_u), sum(&self.rows_v))
-            }
-        }
-    }
-}
-
 /// The slopes of the map mirrored into 2W×2H (half-sample symmetric, as DCT-II extends a
 /// signal): `∂h/∂u` negated in the copies mirrored across a vertical edge, `∂h/∂v` in those
 /// mirrored across a horizontal one.
@@ -491,104 +318,4 @@ fn mirrored(s: &Slopes) -> (Vec<f32>, Vec<f32>) {
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-
-    fn rms(a: &[f32], b: &[f32]) -> f32 {
-        let ma = a.iter().sum::<f32>() / a.len() as f32;
-        let mb = b.iter().sum::<f32>() / b.len() as f32;
-        (a.iter().zip(b).map(|(x, y)| ((x - ma) - (y - mb)).powi(2)).sum::<f32>() / a.len() as f32).sqrt()
-    }
-
-    fn bumps(w: usize, h: usize) -> Vec<f32> {
-        (0..w * h)
-            .map(|i| {
-                let (x, y) = ((i % w) as f32 / w as f32, (i / w) as f32 / h as f32);
-                let t = std::f32::consts::TAU;
-                3.0 * (t * x).sin() * (2.0 * t * y).cos() + 1.5 * (t * (3.0 * x + y)).cos() + (t * 5.0 * y).sin()
-            })
-            .collect()
-    }
-
-    #[test]
-    fn the_kernel_method_inverts_the_forward_difference_exactly() {
-        // Periodic, non-square, with a component at every frequency (the forward difference
-        // sees them all): exact up to f32 round-off through two transforms.
-        let (w, h) = (40, 24);
-        let heights: Vec<f32> = (0..w * h).map(|i| ((i * 7919 + 13) % 101) as f32 / 10.0).collect();
-        let kernel = Kernel::Forward;
-        let got = integrate(&Slopes::of_heights(w, h, &heights, kernel), IntegrationMethod::kernel(kernel)).unwrap();
-        let e = rms(&heights, &got);
-        assert!(e < 2e-3, "rms {e} of heights spanning 10");
-    }
-
-    #[test]
-    fn smoothing_kernels_are_inverted_away_from_the_frequencies_they_cannot_see() {
-        // Smooth heights (no content at Nyquist): every kernel's inverse gives them back.
-        let (w, h) = (48, 32);
-        let heights = bumps(w, h);
-        for kernel in Kernel::ALL {
-            let got =
-                integrate(&Slopes::of_heights(w, h, &heights, kernel), IntegrationMethod::kernel(kernel)).unwrap();
-            let e = rms(&heights, &got);
-            assert!(e < 1e-3, "{kernel:?}: rms {e} of heights spanning about 11");
-        }
-    }
-
-    #[test]
-    fn frankot_chellappa_recovers_band_limited_heights_from_their_exact_slopes() {
-        let (w, h) = (64, 48);
-        let t = std::f32::consts::TAU;
-        let heights = bumps(w, h);
-        // The analytic slopes of `bumps`, per texel.
-        let (mut du, mut dv) = (Vec::new(), Vec::new());
-        for i in 0..w * h {
-            let (x, y) = ((i % w) as f32 / w as f32, (i / w) as f32 / h as f32);
-            let (sx, sy) = (t / w as f32, t / h as f32);
-            du.push(sx * (3.0 * (t * x).cos() * (2.0 * t * y).cos() - 4.5 * (t * (3.0 * x + y)).sin()));
-            dv.push(
-                sy * (-6.0 * (t * x).sin() * (2.0 * t * y).sin() - 1.5 * (t * (3.0 * x + y)).sin()
-                    + 5.0 * (t * 5.0 * y).cos()),
-            );
-        }
-        let got = integrate(&Slopes { width: w, height: h, du, dv }, IntegrationMethod::FRANKOT_CHELLAPPA).unwrap();
-        assert!(rms(&heights, &got) < 1e-3, "rms {}", rms(&heights, &got));
-    }
-
-    #[test]
-    fn the_dct_method_recovers_a_surface_that_does_not_tile() {
-        // A tilted paraboloid: not periodic, so fft smears its edges; dct does not.
-        let (w, h) = (48, 40);
-        let f = |x: f32, y: f32| 0.02 * (x - 10.0).powi(2) + 0.3 * y - 0.01 * x * y;
-        let heights: Vec<f32> = (0..w * h).map(|i| f((i % w) as f32, (i / w) as f32)).collect();
-        let du: Vec<f32> = (0..w * h).map(|i| 0.04 * ((i % w) as f32 - 10.0) - 0.01 * (i / w) as f32).collect();
-        let dv: Vec<f32> = (0..w * h).map(|i| 0.3 - 0.01 * (i % w) as f32).collect();
-        let s = Slopes { width: w, height: h, du, dv };
-        let range = heights.iter().cloned().fold(f32::MIN, f32::max) - heights.iter().cloned().fold(f32::MAX, f32::min);
-        let dct = rms(
-            &heights,
-            &integrate(&s, IntegrationMethod { boundary: Boundary::Free, derivative: Derivative::Spectral }).unwrap(),
-        ) / range;
-        let fft = rms(&heights, &integrate(&s, IntegrationMethod::FRANKOT_CHELLAPPA).unwrap()) / range;
-        assert!(dct < 0.01, "dct: rms {dct} of the range");
-        assert!(fft > 5.0 * dct, "fft ({fft}) should be far worse than dct ({dct}) on a surface that does not tile");
-    }
-
-    #[test]
-    fn slopes_follow_the_y_convention_and_the_scale() {
-        let n = Vec4::new(-0.2, 0.1, 0.9, 1.0);
-        let img = Image::new(2, 2, vec![n; 4]);
-        let down = Slopes::from_normals(&img, YConvention::YDown, 2.0).unwrap();
-        let up = Slopes::from_normals(&img, YConvention::YUp, 2.0).unwrap();
-        assert!((down.du[0] - 0.2 / 1.8).abs() < 1e-6 && (down.dv[0] + 0.1 / 1.8).abs() < 1e-6);
-        assert_eq!(up.dv[0], -down.dv[0]);
-        assert!(matches!(Slopes::from_normals(&img, YConvention::YUp, 0.0), Err(IntegrationError::BadScale(_))));
-        let one = Image::new(1, 3, vec![n; 3]);
-        assert!(matches!(Slopes::from_normals(&one, YConvention::YUp, 1.0), Err(IntegrationError::TooSmall { .. })));
-        let nan = Image::new(2, 2, vec![n, n, Vec4::new(f32::NAN, 0.0, 1.0, 1.0), n]);
-        assert_eq!(
-            Slopes::from_normals(&nan, YConvention::YUp, 1.0).unwrap_err(),
-            IntegrationError::NotANumber { x: 0, y: 1 }
-        );
-    }
-}
+mod tests;

@@ -21,17 +21,21 @@
 //! What this module does not do: change the file, or repair a map (`render --rebuild-mips`
 //! makes its mips anew; `normalmap` makes a map from heights).
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
-use bumpmap_io::{AnyTexture, StoredLevels};
 use bumpmap_math::Image;
 use bumpmap_math::encoding::Texel;
-use bumpmap_math::inspect::{Inspection, MapKind, MipFilter, inspect, is_xy_only, rebuild_z, signed_levels};
-use bumpmap_math::integration::{Boundary, Derivative, DerivativeFit, Slopes, fit_derivative, integrate_fitted};
+use bumpmap_math::inspect::{Inspection, MapKind, MipFilter, inspect};
+use bumpmap_math::integration::{Boundary, Derivative, DerivativeFit, Slopes, fit_derivative};
 use bumpmap_math::normalmap::YConvention;
 use glam::Vec4;
 
 use crate::Error;
+
+mod compression;
+mod read;
+
+pub use read::{DecodedMap, WORKING_BYTES_PER_TEXEL, maps_in_folder, read_map};
 
 /// How a file stores its vectors.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -317,103 +321,6 @@ fn kind_name(kind: MapKind) -> &'static str {
     }
 }
 
-/// A map's texels decoded: signed vectors (level 0 first; xyz the direction as stored, w the
-/// alpha), how they were stored, and whether Z was rebuilt from X and Y.
-#[derive(Clone, Debug, PartialEq)]
-pub struct DecodedMap {
-    /// The levels, level 0 first.
-    pub levels: Vec<Image<Vec4>>,
-    /// How the file stored them.
-    pub stored: StoredAs,
-    /// Whether Z was rebuilt (BC5, or an RGB image with blue empty everywhere).
-    pub two_channel: bool,
-}
-
-impl DecodedMap {
-    /// `levels` as stored; a map holding X and Y only (BC5, whose Z the reader rebuilt, or blue
-    /// empty everywhere) gets Z rebuilt as a shader would.
-    pub fn new(mut levels: Vec<Image<Vec4>>, stored: StoredAs) -> Self {
-        let two_channel = stored == StoredAs::Bc5 || levels.first().is_some_and(is_xy_only);
-        if two_channel && stored != StoredAs::Bc5 {
-            levels.iter_mut().for_each(rebuild_z);
-        }
-        Self { levels, stored, two_channel }
-    }
-
-    /// Floating-point texels (RGBA; alpha 1 where there is none): signed (−1..1 as stored)
-    /// when any channel of RGB is below −0.01, else 0..1 (`2v − 1`).
-    pub fn from_float(img: &Image<[f32; 4]>) -> Self {
-        let signed = img.texels.iter().any(|t| t[..3].iter().any(|&c| c < -0.01));
-        let texels = img
-            .texels
-            .iter()
-            .map(|&[r, g, b, a]| {
-                let v = Vec4::new(r, g, b, a);
-                if signed { v } else { (v.truncate() * 2.0 - 1.0).extend(a) }
-            })
-            .collect();
-        let stored = if signed { StoredAs::FloatSigned } else { StoredAs::FloatUnsigned };
-        Self::new(vec![Image::new(img.width, img.height, texels)], stored)
-    }
-
-    /// Unorm texels (8 or 16 bits) already in memory.
-    pub fn from_unorm<T: Texel>(levels: &[Image<T>], stored: StoredAs) -> Self {
-        Self::new(signed_levels(levels), stored)
-    }
-}
-
-/// Reads a normal map file as [`DecodedMap`]: PNG (8 or 16 bits), TGA, TIFF, EXR, JPEG, DDS or
-/// KTX2 (their levels, BC5 and BC7 included); floating point as [`DecodedMap::from_float`]. A
-/// PNG's smaller levels are the `NAME.mip1.png`, `NAME.mip2.png`, … beside it, as `bumpmap
-/// normalmap` writes them: regular files in the same folder only (a link is not followed), each
-/// half the size of the level before.
-pub fn read_map(path: &Path) -> Result<DecodedMap, Error> {
-    let mut map = read_one(path)?;
-    if path.extension().is_some_and(|e| e.eq_ignore_ascii_case("png")) && map.levels.len() == 1 {
-        for k in 1.. {
-            let file = bumpmap_io::image_file::level_path(path, k);
-            let regular = std::fs::symlink_metadata(&file).is_ok_and(|m| m.file_type().is_file());
-            let last = &map.levels[map.levels.len() - 1];
-            if !regular || (last.width, last.height) == (1, 1) {
-                break;
-            }
-            let want = (bumpmap_math::mip::next_size(last.width), bumpmap_math::mip::next_size(last.height));
-            let level = read_one(&file)?.levels.swap_remove(0);
-            if (level.width, level.height) != want {
-                return Err(Error::Io(bumpmap_io::IoError::Texture {
-                    path: file,
-                    reason: format!(
-                        "is {}x{}, but as level {k} of a {}x{} map it must be {}x{}",
-                        level.width, level.height, map.levels[0].width, map.levels[0].height, want.0, want.1
-                    ),
-                }));
-            }
-            map.levels.push(level);
-        }
-    }
-    Ok(map)
-}
-
-/// One file's levels.
-fn read_one(path: &Path) -> Result<DecodedMap, Error> {
-    use bumpmap_io::texture_file::TextureFormat;
-    Ok(match bumpmap_io::load_any_texture(path)? {
-        AnyTexture::Stored(t) => {
-            let stored = match (t.format, &t.levels) {
-                (TextureFormat::Bc5, _) => StoredAs::Bc5,
-                (TextureFormat::Bc7, _) => StoredAs::Bc7,
-                (_, StoredLevels::Rgba16(_)) => StoredAs::Unorm16,
-                _ => StoredAs::Unorm8,
-            };
-            match &t.levels {
-                StoredLevels::Rgba8(l) => DecodedMap::from_unorm(l, stored),
-                StoredLevels::Rgba16(l) => DecodedMap::from_unorm(l, stored),
-            }
-        }
-        AnyTexture::Float(img) => DecodedMap::from_float(&img),
-    })
-}
-
 /// Inspects a file ([`read_map`] reads it).
 pub fn inspect_file(path: &Path) -> Result<MapReport, Error> {
     Ok(inspect_map(&path.display().to_string(), &read_map(path)?))
@@ -430,7 +337,7 @@ pub fn inspect_map(source: &str, map: &DecodedMap) -> MapReport {
     let levels = if map.levels.is_empty() { &empty[..] } else { &map.levels[..] };
     let inspection = inspect(levels, map.two_channel).expect("at least one level");
     let compressed = matches!(map.stored, StoredAs::Bc5 | StoredAs::Bc7);
-    let compression_degrees = if compressed { compression_estimate(&levels[0], &inspection) } else { None };
+    let compression_degrees = if compressed { compression::estimate(&levels[0], &inspection) } else { None };
     let made_with = fitted(&levels[0], &inspection).map(|fit| fit.best());
     MapReport { source: source.to_string(), stored: map.stored, inspection, compression_degrees, made_with }
 }
@@ -444,84 +351,6 @@ fn fitted(level0: &Image<Vec4>, inspection: &Inspection) -> Option<DerivativeFit
 }
 
 /// Periodic where the heights tile, else free.
-fn boundary_of(inspection: &Inspection) -> Boundary {
+pub(crate) fn boundary_of(inspection: &Inspection) -> Boundary {
     if inspection.seam.heights_tile() { Boundary::Periodic } else { Boundary::Free }
-}
-
-/// Texels leaning further than this `n_z` (60°) from the surface normal are steep.
-const STEEP_NZ: f32 = 0.5;
-
-/// The share of steep texels beyond which the compression estimate is not given: there 8-bit
-/// rounding's slope error grows as `1/n_z²` and the least-squares solve spreads it onto the
-/// shallow texels around, so the residual stops measuring the compression (measured: bricks at
-/// scale 8 read 6× the true error, with 20 % of texels steep).
-const STEEP_SHARE: f64 = 0.02;
-
-/// The angle block compression added, estimated from what no height field explains: a map
-/// made from heights holds a gradient, so the heights integrated under the kernel that fits it
-/// best ([`DerivativeFit`]) leave, as the slopes' residual,
-/// the part of the encoding's noise that is not itself a gradient: half of it, for noise that
-/// favours no direction. A slope error `δ` tilts a texel's normal by about `δ·n_z²`. 8-bit
-/// rounding's own share (0.18° RMS) is taken out. `None` where the convention is undecided (the
-/// slopes are then not read the way they were made), where no kernel explains the map, or where
-/// more than [`STEEP_SHARE`] of the texels are steep.
-fn compression_estimate(level0: &Image<Vec4>, inspection: &Inspection) -> Option<f32> {
-    const ROUNDING_DEGREES: f32 = 0.18;
-    let y = inspection.convention.convention.ok()?;
-    let steep = level0.texels.iter().filter(|t| t.z < STEEP_NZ).count();
-    if steep as f64 > STEEP_SHARE * level0.texels.len() as f64 {
-        return None;
-    }
-    let slopes = Slopes::from_normals(level0, y, 1.0).ok()?;
-    let boundary = boundary_of(inspection);
-    let (heights, fit) = integrate_fitted(&slopes, boundary).ok()?;
-    let Derivative::Kernel(kernel) = fit.best() else { return None };
-    let again = Slopes::of_heights(slopes.width, slopes.height, &heights, kernel);
-    // A free boundary's heights do not wrap: the kernel's taps across the edge are left out.
-    let r = if boundary == Boundary::Free { kernel.radius() as usize } else { 0 };
-    let (w, h) = (slopes.width, slopes.height);
-    let (mut sum, mut n) = (0.0f64, 0usize);
-    for y in r..h.saturating_sub(r) {
-        for x in r..w.saturating_sub(r) {
-            let i = y * w + x;
-            let nz2 = (level0.texels[i].z.max(0.0) as f64).powi(2);
-            let e2 = ((slopes.du[i] - again.du[i]) as f64).powi(2) + ((slopes.dv[i] - again.dv[i]) as f64).powi(2);
-            sum += e2 * nz2 * nz2;
-            n += 1;
-        }
-    }
-    let degrees = (2.0 * sum / n.max(1) as f64).sqrt().to_degrees() as f32;
-    Some((degrees.powi(2) - ROUNDING_DEGREES.powi(2)).max(0.0).sqrt())
-}
-
-/// The image and texture files directly in `folder` (by extension, sorted), skipping links
-/// that lead outside it and the `NAME.mipK.png` levels of a `NAME.png` there (read with it):
-/// what `inspect FOLDER` reads.
-pub fn maps_in_folder(folder: &Path) -> Result<Vec<PathBuf>, Error> {
-    const EXTENSIONS: [&str; 9] = ["png", "tga", "tif", "tiff", "exr", "dds", "ktx2", "jpg", "jpeg"];
-    let read_err = |source| Error::Io(bumpmap_io::IoError::Read { path: folder.to_path_buf(), source });
-    let root = folder.canonicalize().map_err(read_err)?;
-    let mut out = Vec::new();
-    for entry in std::fs::read_dir(folder).map_err(read_err)? {
-        let path = entry.map_err(read_err)?.path();
-        let known = path
-            .extension()
-            .and_then(|e| e.to_str())
-            .is_some_and(|e| EXTENSIONS.iter().any(|k| k.eq_ignore_ascii_case(e)));
-        let inside = path.canonicalize().is_ok_and(|p| p.parent() == Some(root.as_path()) && p.is_file());
-        if known && inside {
-            out.push(path);
-        }
-    }
-    // A PNG's smaller levels (`NAME.mipK.png` beside `NAME.png`) are read with it, not alone.
-    let level_of_another = |p: &PathBuf| {
-        let name = p.file_name().and_then(|n| n.to_str()).unwrap_or_default();
-        name.rsplit_once(".mip").is_some_and(|(stem, rest)| {
-            rest.strip_suffix(".png").is_some_and(|k| !k.is_empty() && k.bytes().all(|b| b.is_ascii_digit()))
-                && out.iter().any(|q| q.file_name().and_then(|n| n.to_str()) == Some(&format!("{stem}.png")))
-        })
-    };
-    let mut maps: Vec<PathBuf> = out.iter().filter(|p| !level_of_another(p)).cloned().collect();
-    maps.sort();
-    Ok(maps)
 }
