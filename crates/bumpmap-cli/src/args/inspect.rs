@@ -23,9 +23,11 @@ test (a normal map made from heights is a gradient field, whose curl vanishes on
 read the way it was written; a map whose bumps vary along one direction cannot tell, and says \
 \"undecidable\" rather than guess); how its mips were made (box-filtered, length in alpha, \
 renormalized — and what renormalizing costs at a distance); whether it tiles (its seam against its \
-own worst neighbouring texels); and for BC7 an estimate of the angle the compression added.\n\n\
-Reads PNG (8/16-bit), TGA, TIFF, JPEG, OpenEXR, DDS and KTX2 (with their mips, BC5 and BC7 \
-included), or every such file directly inside a folder. Exit status: 0, or 1 when a file cannot \
+own worst neighbouring texels); which finite-difference kernel its slopes fit (what to give \
+`height --kernel`); and for BC5 and BC7 an estimate of the angle the compression added.\n\n\
+Reads PNG (8/16-bit; its NAME.mip1.png, ... beside it as its mips), TGA, TIFF, JPEG, OpenEXR, \
+DDS and KTX2 (with their mips, BC5 and BC7 included), or every such file directly inside a \
+folder. Exit status: 0, or 1 when a file cannot \
 be read or, with --strict, when a map needs fixing (not a normal map, texels facing into the \
 surface or far from unit length, renormalized mips); 2 for a malformed command line.")]
 pub struct InspectArgs {
