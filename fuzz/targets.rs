@@ -31,14 +31,27 @@ pub fn image(data: &[u8]) {
 }
 
 /// A normal map as `render --normal-map` reads it: a DDS, KTX2 or image file decoded with the
-/// levels it carries (BC5 and BC7 blocks included), then brought into texture space.
+/// levels it carries (BC5 and BC7 blocks included), then brought into texture space; and as
+/// `inspect` and `height` read it: every question asked, and its heights integrated.
 pub fn texture(data: &[u8]) {
+    use bumpmap::inspect::{DecodedMap, StoredAs, inspect_map};
     let Ok(texture) = read_texture(data, Path::new("fuzz.dds"), &IMAGE_LIMITS) else { return };
     let options = ImportOptions::default();
-    let _ = match &texture.levels {
-        StoredLevels::Rgba8(levels) => import_normal_map(levels, &options).map(|_| ()),
-        StoredLevels::Rgba16(levels) => import_normal_map(levels, &options).map(|_| ()),
+    let map = match &texture.levels {
+        StoredLevels::Rgba8(levels) => {
+            let _ = import_normal_map(levels, &options);
+            DecodedMap::from_unorm(levels, StoredAs::Unorm8)
+        }
+        StoredLevels::Rgba16(levels) => {
+            let _ = import_normal_map(levels, &options);
+            DecodedMap::from_unorm(levels, StoredAs::Unorm16)
+        }
     };
+    let report = inspect_map("fuzz", &map);
+    let _ = (report.lines(), report.to_json());
+    if let Some(level0) = map.levels.first() {
+        let _ = bumpmap::heights::heights_from_normals(level0, &Default::default());
+    }
 }
 
 /// OBJ text to a mesh.
