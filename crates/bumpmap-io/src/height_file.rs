@@ -240,18 +240,35 @@ pub fn load_heights(path: &Path) -> Result<HeightMips, IoError> {
 mod tests {
     use super::*;
 
-    fn tmp(name: &str) -> PathBuf {
-        let dir = std::env::temp_dir().join(format!("bumpmap-heights-{}", std::process::id()));
-        std::fs::create_dir_all(&dir).unwrap();
-        dir.join(name)
+    /// A folder of the test's own, removed when the test ends (pass or fail): a run leaves
+    /// nothing in the system's temporary folder.
+    struct Scratch(PathBuf);
+
+    impl Scratch {
+        fn new(test: &str) -> Self {
+            let dir = std::env::temp_dir().join(format!("bumpmap-heights-{}-{test}", std::process::id()));
+            std::fs::create_dir_all(&dir).unwrap();
+            Self(dir)
+        }
+
+        fn file(&self, name: &str) -> PathBuf {
+            self.0.join(name)
+        }
+    }
+
+    impl Drop for Scratch {
+        fn drop(&mut self) {
+            let _ = std::fs::remove_dir_all(&self.0);
+        }
     }
 
     #[test]
     fn heights_and_bounds_read_back_as_written_in_every_container() {
         let field = bumpmap_math::HeightPreset::Bricks.render(12, 8);
         let heights = HeightMips::from_field(&field).unwrap();
+        let scratch = Scratch::new("containers");
         for name in ["h.png", "h.ktx2", "h.dds"] {
-            let path = tmp(name);
+            let path = scratch.file(name);
             let mut set = FileSet::new(&[]);
             write_heights_into(&mut set, &path, &heights, HeightBits::Sixteen).unwrap();
             let written = set.commit().unwrap();
@@ -278,7 +295,8 @@ mod tests {
     fn a_missing_bounds_file_leaves_none_and_a_short_chain_is_named() {
         let field = bumpmap_math::HeightPreset::Dimples.render(8, 8);
         let heights = HeightMips::from_field(&field).unwrap();
-        let path = tmp("alone.png");
+        let scratch = Scratch::new("alone");
+        let path = scratch.file("alone.png");
         let mut set = FileSet::new(&[]);
         write_heights_into(&mut set, &path, &heights, HeightBits::Eight).unwrap();
         let written = set.commit().unwrap();
@@ -302,6 +320,6 @@ mod tests {
         let back = load_heights(&path).unwrap();
         assert_eq!(back.levels().len(), 4);
         std::fs::remove_file(&written[0]).unwrap();
-        assert!(load_heights(&tmp("h.tga")).unwrap_err().to_string().contains(".png, .dds or .ktx2"));
+        assert!(load_heights(&scratch.file("h.tga")).unwrap_err().to_string().contains(".png, .dds or .ktx2"));
     }
 }

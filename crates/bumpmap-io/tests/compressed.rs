@@ -8,8 +8,9 @@ use std::path::PathBuf;
 use bumpmap_io::texture_file::{TextureFormat, TextureLayout, write_dds, write_ktx2};
 use bumpmap_math::{HeightPreset, MipChain, MipMode, NormalMapOptions, Rgba8Image, YConvention};
 
+/// A file under the target folder (not the system's temporary one: a run leaves nothing in /tmp).
 fn tmp(name: &str) -> PathBuf {
-    std::env::temp_dir().join(format!("bumpmap-bc-{}-{name}", std::process::id()))
+    std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!("bc-{}-{name}", std::process::id()))
 }
 
 /// The unit normal a texel encodes; for BC5, Z rebuilt from X and Y as a shader does.

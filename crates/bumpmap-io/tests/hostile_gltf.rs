@@ -7,7 +7,8 @@ use std::path::{Path, PathBuf};
 use bumpmap_io::load_mesh;
 
 fn scratch(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("bumpmap-hostile-{}-{name}", std::process::id()));
+    // Under the target folder, not the system's temporary one: a run leaves nothing in /tmp.
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!("hostile-gltf-{}-{name}", std::process::id()));
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).unwrap();
     dir
