@@ -344,7 +344,8 @@ fn inspect<'py>(py: Python<'py>, source: &Bound<'py, PyAny>) -> PyResult<Bound<'
                 source.get_type().name().map(|n| n.to_string()).unwrap_or_default()
             ))
         })?;
-        interrupt::run(py, move |_| bumpmap::inspect::inspect_file(&path))?.map_err(|e| to_py("inspect", library(e)))?
+        interrupt::run(py, move |_| bumpmap::inspect::inspect_file(&path))?
+            .map_err(|e| to_py("inspect", commands::library_error(e)))?
     };
     py.import("json")?.call_method1("loads", (report.to_json().to_string(),))
 }
@@ -373,14 +374,6 @@ fn height_from_normals<'py>(
     .map_err(|e| to_py("height_from_normals", e))?;
     let texels = if raw { heights.texels.clone() } else { heights.normalized() };
     arrays::from_plane(py, heights.height, heights.width, &texels)
-}
-
-/// The library's error in the command line's words (a file's error stays one).
-fn library(e: bumpmap::Error) -> CliError {
-    match e {
-        bumpmap::Error::Io(e) => CliError::Io(e),
-        other => CliError::Render(other.to_string()),
-    }
 }
 
 /// Each option `function` takes: `(keyword, default as the command line writes it or None,

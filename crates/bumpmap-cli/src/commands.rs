@@ -84,6 +84,11 @@ pub fn compare(args: &CompareArgs, progress: bool) -> Result<(Results, Vec<PathB
     crate::compare::measure(args, progress)
 }
 
+/// A library error in the command line's words (what `render`, `inspect` and `height` report).
+pub fn library_error(e: bumpmap::Error) -> CliError {
+    crate::render::lib_err(e)
+}
+
 /// `compare`'s `results.json`, as text.
 pub fn compare_json(results: &Results) -> String {
     crate::compare::json(results)

@@ -5,7 +5,7 @@
 use std::path::{Path, PathBuf};
 
 use bumpmap::heights::{Chosen, heights_from_inspection};
-use bumpmap::inspect::{MapReport, inspect_map, maps_in_folder, read_map};
+use bumpmap::inspect::{MapReport, inspect_map, maps_in_folder, read_file, read_map};
 use bumpmap_io::atomic::FileSet;
 use bumpmap_io::gray_file::{GrayFormat, save_gray_into};
 use bumpmap_math::integration::{Boundary, IntegrationError};
@@ -18,7 +18,7 @@ pub fn run_inspect(args: &InspectArgs) -> Result<(), CliError> {
     let mut files: Vec<PathBuf> = Vec::new();
     for input in &args.inputs {
         if input.is_dir() {
-            let found = maps_in_folder(input).map_err(library)?;
+            let found = maps_in_folder(input).map_err(crate::render::lib_err)?;
             if found.is_empty() {
                 return Err(CliError::Path {
                     path: input.clone(),
@@ -42,7 +42,7 @@ pub fn run_inspect(args: &InspectArgs) -> Result<(), CliError> {
                     print_report(&report);
                 }
             }
-            Err(e) if files.len() == 1 && !args.json => return Err(library(e)),
+            Err(e) if files.len() == 1 && !args.json => return Err(crate::render::lib_err(e)),
             Err(e) => {
                 failed += 1;
                 eprintln!("error: {e}");
@@ -92,7 +92,7 @@ pub fn run_height(args: &HeightArgs) -> Result<(), CliError> {
         )));
     }
     bumpmap_io::atomic::ensure_not_input(&args.output, &[&args.input])?;
-    let map = read_map(&args.input).map_err(library)?;
+    let map = read_file(&args.input).map_err(crate::render::lib_err)?;
     // Level 0's questions only: what height needs (the kind, the curl and seam tests).
     let inspection = bumpmap_math::inspect::inspect(&map.levels[..map.levels.len().min(1)], map.two_channel)
         .ok_or_else(|| CliError::Render(format!("{}: no texels", args.input.display())))?;
@@ -163,14 +163,6 @@ pub fn run_height(args: &HeightArgs) -> Result<(), CliError> {
         if args.raw { "as they are (--raw)".to_string() } else { "mapped onto 0..1".to_string() }
     );
     Ok(())
-}
-
-fn library(e: bumpmap::Error) -> CliError {
-    match e {
-        bumpmap::Error::Io(e) => CliError::Io(e),
-        bumpmap::Error::OutOfMemory { what, source } => CliError::Render(format!("{what}: {source}")),
-        other => CliError::Render(other.to_string()),
-    }
 }
 
 fn integration(input: &Path, e: IntegrationError) -> CliError {

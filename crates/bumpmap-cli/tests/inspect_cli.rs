@@ -271,3 +271,23 @@ fn a_map_too_big_for_the_memory_is_refused_naming_the_bytes() {
     }
     assert_eq!(listing(&dir), ["big.png"]);
 }
+
+#[test]
+fn a_level_beside_a_png_of_the_wrong_size_is_named_and_height_does_not_need_it() {
+    let dir = scratch("inspect_bad_level");
+    let map = dir.join("n.png");
+    ok(&["normalmap", "dimples@64", "-o", s(&map), "--mips"]);
+    // Level 2 replaced by a 7x7 image.
+    let level2 = dir.join("n.mip2.png");
+    image::RgbImage::from_pixel(7, 7, image::Rgb([128, 128, 255])).save(&level2).unwrap();
+    let before = listing(&dir);
+    let o = bumpmap(&["inspect", s(&map)]);
+    let err = stderr(&o);
+    assert_eq!(o.status.code(), Some(1), "{err}");
+    assert!(err.contains("n.mip2.png") && err.contains("is 7x7") && err.contains("must be 16x16"), "{err}");
+    assert!(!err.contains("panicked"), "{err}");
+    // height reads level 0 alone.
+    let out = dir.join("h.png");
+    ok(&["height", s(&map), "-o", s(&out)]);
+    assert_eq!(listing(&dir).len(), before.len() + 1);
+}

@@ -69,8 +69,15 @@ fn bad(path: &Path, reason: impl std::fmt::Display) -> IoError {
     IoError::Texture { path: path.to_path_buf(), reason: reason.to_string() }
 }
 
-/// Reads a texture file: `.dds`, `.ktx2`, or any image `image` decodes (by its contents).
+/// Reads a texture file: `.dds`, `.ktx2`, or any image `image` decodes (by its contents) at 8
+/// or 16 bits a channel.
 pub fn load_texture(path: &Path) -> Result<StoredTexture, IoError> {
+    unorm_only(load_any_texture(path)?, path)
+}
+
+/// [`load_texture`], but a floating-point image (EXR, float TIFF) is read too, as
+/// [`AnyTexture::Float`].
+pub fn load_any_texture(path: &Path) -> Result<AnyTexture, IoError> {
     let meta = std::fs::metadata(path).map_err(|source| IoError::Read { path: path.to_path_buf(), source })?;
     if !meta.is_file() {
         return Err(bad(path, "is not a regular file"));
@@ -89,9 +96,9 @@ pub fn load_texture(path: &Path) -> Result<StoredTexture, IoError> {
             return Err(bad(path, format!("{} bytes; the limit is {MAX_TEXTURE_FILE_BYTES}", meta.len())));
         }
         let bytes = std::fs::read(path).map_err(|source| IoError::Read { path: path.to_path_buf(), source })?;
-        return read_texture(&bytes, path, &DecodeLimits::default());
+        return read_texture(&bytes, path, &DecodeLimits::default()).map(AnyTexture::Stored);
     }
-    image_levels(crate::image_file::decode_path(path)?, path)
+    Ok(image_levels(crate::image_file::decode_path(path)?))
 }
 
 /// [`load_texture`] for a file's bytes already in memory; `name` is the file errors name and
@@ -103,7 +110,7 @@ pub fn read_texture(bytes: &[u8], name: &Path, limits: &DecodeLimits) -> Result<
     } else if bytes.starts_with(&KTX2_IDENTIFIER) {
         read_ktx2(bytes, name)
     } else {
-        image_levels(crate::image_file::decode_bytes(bytes, name, limits)?, name)
+        unorm_only(image_levels(crate::image_file::decode_bytes(bytes, name, limits)?), name)
     }
 }
 
@@ -119,44 +126,41 @@ pub enum AnyTexture {
     Float(Image<[f32; 4]>),
 }
 
-/// [`load_texture`], but a floating-point image (EXR, float TIFF) is read too, as
-/// [`AnyTexture::Float`].
-pub fn load_any_texture(path: &Path) -> Result<AnyTexture, IoError> {
-    match load_texture(path) {
-        Err(IoError::Texture { reason, .. }) if reason.starts_with(FLOAT_REFUSED) => {
-            let img = crate::image_file::decode_path(path)?;
-            let (w, h) = (img.width() as usize, img.height() as usize);
-            let rgba = img.into_rgba32f();
-            Ok(AnyTexture::Float(Image::new(w, h, rgba.pixels().map(|p| p.0).collect())))
-        }
-        other => other.map(AnyTexture::Stored),
+/// The unorm texture, or the refusal of a floating-point one (the renderers sample unorm
+/// texels).
+fn unorm_only(texture: AnyTexture, path: &Path) -> Result<StoredTexture, IoError> {
+    match texture {
+        AnyTexture::Stored(t) => Ok(t),
+        AnyTexture::Float(_) => Err(bad(
+            path,
+            "floating-point texels: a normal map is drawn from 8- or 16-bit unsigned channels (floating-point maps differ in how they store −1..1; `bumpmap inspect` reads them)",
+        )),
     }
 }
 
-/// How [`image_levels`]' refusal of floating-point texels begins.
-const FLOAT_REFUSED: &str = "floating-point texels";
-
-/// One image's texels at the depth they were stored, as one level.
-fn image_levels(img: image::DynamicImage, path: &Path) -> Result<StoredTexture, IoError> {
+/// One image's texels at the depth they were stored, as one level: 8 or 16 bits unorm, any
+/// other depth as 32-bit float.
+fn image_levels(img: image::DynamicImage) -> AnyTexture {
     use image::ColorType::*;
     let (w, h) = (img.width() as usize, img.height() as usize);
     match img.color() {
         L8 | La8 | Rgb8 | Rgba8 => {
             let rgba = img.to_rgba8();
             let level = Rgba8Image::new(w, h, rgba.pixels().map(|p| p.0).collect());
-            Ok(StoredTexture { levels: StoredLevels::Rgba8(vec![level]), format: TextureFormat::Rgba8 })
+            AnyTexture::Stored(StoredTexture { levels: StoredLevels::Rgba8(vec![level]), format: TextureFormat::Rgba8 })
         }
         L16 | La16 | Rgb16 | Rgba16 => {
             let rgba = img.to_rgba16();
             let level = Rgba16Image::new(w, h, rgba.pixels().map(|p| p.0).collect());
-            Ok(StoredTexture { levels: StoredLevels::Rgba16(vec![level]), format: TextureFormat::Rgba16 })
+            AnyTexture::Stored(StoredTexture {
+                levels: StoredLevels::Rgba16(vec![level]),
+                format: TextureFormat::Rgba16,
+            })
         }
-        other => Err(bad(
-            path,
-            format!(
-                "{FLOAT_REFUSED} ({other:?}): a normal map is drawn from 8- or 16-bit unsigned channels (floating-point maps differ in how they store −1..1; `bumpmap inspect` reads them)"
-            ),
-        )),
+        _ => {
+            let rgba = img.into_rgba32f();
+            AnyTexture::Float(Image::new(w, h, rgba.pixels().map(|p| p.0).collect()))
+        }
     }
 }
 

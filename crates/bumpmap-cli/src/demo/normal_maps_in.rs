@@ -4,7 +4,7 @@
 use std::path::Path;
 
 use bumpmap::heights::{HeightOptions, heights_from_inspection};
-use bumpmap::inspect::{inspect_map, read_map};
+use bumpmap::inspect::{inspect_map, read_file, read_map};
 use bumpmap_io::image_file::{PngLayout, save_png};
 use bumpmap_math::NormalMapOptions;
 
@@ -37,7 +37,7 @@ pub fn write(out: &Path, maps: &[&str], heights: &str, normals: &str) -> Result<
     crate::normalmap::write_text(&out.join(INSPECT_TEXT), &text)?;
 
     let field = bumpmap_io::load_height_field(&out.join(heights), bumpmap_io::Channel::Luminance)?;
-    let map = read_map(&out.join(normals)).map_err(crate::render::lib_err)?;
+    let map = read_file(&out.join(normals)).map_err(crate::render::lib_err)?;
     let report = inspect_map(normals, &map);
     let level0 = &map.levels[0];
     // The demo's maps are made at the default scale: given it, the heights come back in the

@@ -175,8 +175,10 @@ impl Slopes {
     /// The slopes of `heights` (`width·height`, row 0 first) under `kernel`, wrapping: what a
     /// normal map made from them by that kernel at scale 1 holds, before encoding.
     pub fn of_heights(width: usize, height: usize, heights: &[f32], kernel: Kernel) -> Self {
+        use rayon::prelude::*;
         let apply = |taps: &[crate::kernel::Tap]| -> Vec<f32> {
             (0..width * height)
+                .into_par_iter()
                 .map(|i| {
                     let (x, y) = ((i % width) as i64, (i / width) as i64);
                     taps.iter()

@@ -1,11 +1,8 @@
 //! What block compression added to a map, estimated from the slopes no height field explains.
 
 use bumpmap_math::Image;
-use bumpmap_math::inspect::Inspection;
-use bumpmap_math::integration::{Boundary, Derivative, Slopes, integrate_fitted};
+use bumpmap_math::integration::{Boundary, Derivative, DerivativeFit, Slopes, fit_derivative, integrate_fitted};
 use glam::Vec4;
-
-use super::boundary_of;
 
 /// Texels leaning further than this `n_z` (60°) from the surface normal are steep.
 const STEEP_NZ: f32 = 0.5;
@@ -21,20 +18,23 @@ const STEEP_SHARE: f64 = 0.02;
 /// best ([`DerivativeFit`]) leave, as the slopes' residual,
 /// the part of the encoding's noise that is not itself a gradient: half of it, for noise that
 /// favours no direction. A slope error `δ` tilts a texel's normal by about `δ·n_z²`. 8-bit
-/// rounding's own share (0.18° RMS) is taken out. `None` where the convention is undecided (the
-/// slopes are then not read the way they were made), where no kernel explains the map, or where
-/// more than [`STEEP_SHARE`] of the texels are steep.
-pub(super) fn estimate(level0: &Image<Vec4>, inspection: &Inspection) -> Option<f32> {
+/// rounding's own share (0.18° RMS) is taken out. `slopes` are level 0's as the decided
+/// convention reads them (undecided, the slopes are not read the way they were made: no
+/// estimate). `None` where no kernel explains the map or more than [`STEEP_SHARE`] of the
+/// texels are steep. The fit made on the way comes back too, so the report names the kernel
+/// without fitting again.
+pub(super) fn estimate(
+    level0: &Image<Vec4>,
+    slopes: &Slopes,
+    boundary: Boundary,
+) -> (Option<f32>, Option<DerivativeFit>) {
     const ROUNDING_DEGREES: f32 = 0.18;
-    let y = inspection.convention.convention.ok()?;
     let steep = level0.texels.iter().filter(|t| t.z < STEEP_NZ).count();
     if steep as f64 > STEEP_SHARE * level0.texels.len() as f64 {
-        return None;
+        return (None, fit_derivative(slopes, boundary).ok());
     }
-    let slopes = Slopes::from_normals(level0, y, 1.0).ok()?;
-    let boundary = boundary_of(inspection);
-    let (heights, fit) = integrate_fitted(&slopes, boundary).ok()?;
-    let Derivative::Kernel(kernel) = fit.best() else { return None };
+    let Ok((heights, fit)) = integrate_fitted(slopes, boundary) else { return (None, None) };
+    let Derivative::Kernel(kernel) = fit.best() else { return (None, Some(fit)) };
     let again = Slopes::of_heights(slopes.width, slopes.height, &heights, kernel);
     // A free boundary's heights do not wrap: the kernel's taps across the edge are left out.
     let r = if boundary == Boundary::Free { kernel.radius() as usize } else { 0 };
@@ -50,5 +50,5 @@ pub(super) fn estimate(level0: &Image<Vec4>, inspection: &Inspection) -> Option<
         }
     }
     let degrees = (2.0 * sum / n.max(1) as f64).sqrt().to_degrees() as f32;
-    Some((degrees.powi(2) - ROUNDING_DEGREES.powi(2)).max(0.0).sqrt())
+    (Some((degrees.powi(2) - ROUNDING_DEGREES.powi(2)).max(0.0).sqrt()), Some(fit))
 }

@@ -26,16 +26,15 @@ use std::path::Path;
 use bumpmap_math::Image;
 use bumpmap_math::encoding::Texel;
 use bumpmap_math::inspect::{Inspection, MapKind, MipFilter, inspect};
-use bumpmap_math::integration::{Boundary, Derivative, DerivativeFit, Slopes, fit_derivative};
+use bumpmap_math::integration::{Boundary, Derivative, Slopes, fit_derivative};
 use bumpmap_math::normalmap::YConvention;
-use glam::Vec4;
 
 use crate::Error;
 
 mod compression;
 mod read;
 
-pub use read::{DecodedMap, WORKING_BYTES_PER_TEXEL, maps_in_folder, read_map};
+pub use read::{DecodedMap, WORKING_BYTES_PER_TEXEL, maps_in_folder, read_file, read_map};
 
 /// How a file stores its vectors.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -91,7 +90,7 @@ pub struct MapReport {
     pub inspection: Inspection,
     /// What block compression added, in degrees RMS, estimated where the map reads as a gradient.
     pub compression_degrees: Option<f32>,
-    /// The difference the slopes fit best ([`DerivativeFit::best`]), where the convention is
+    /// The difference the slopes fit best ([`DerivativeFit::best`](bumpmap_math::integration::DerivativeFit::best)), where the convention is
     /// decided: the kernel to give `height --kernel` and `normalmap --kernel` (slopes cannot
     /// tell a kernel from a smoother one of its family: the sharpest is named).
     pub made_with: Option<Derivative>,
@@ -337,20 +336,19 @@ pub fn inspect_map(source: &str, map: &DecodedMap) -> MapReport {
     let levels = if map.levels.is_empty() { &empty[..] } else { &map.levels[..] };
     let inspection = inspect(levels, map.two_channel).expect("at least one level");
     let compressed = matches!(map.stored, StoredAs::Bc5 | StoredAs::Bc7);
-    let compression_degrees = if compressed { compression::estimate(&levels[0], &inspection) } else { None };
-    let made_with = fitted(&levels[0], &inspection).map(|fit| fit.best());
+    // Level 0's slopes as the decided convention reads them; none where it is undecided.
+    let slopes = inspection.convention.convention.ok().and_then(|y| Slopes::from_normals(&levels[0], y, 1.0).ok());
+    let boundary = boundary_of(&inspection);
+    let (compression_degrees, fit) = match &slopes {
+        Some(slopes) if compressed => compression::estimate(&levels[0], slopes, boundary),
+        Some(slopes) => (None, fit_derivative(slopes, boundary).ok()),
+        None => (None, None),
+    };
+    let made_with = fit.map(|fit| fit.best());
     MapReport { source: source.to_string(), stored: map.stored, inspection, compression_degrees, made_with }
 }
 
-/// How each derivative model fits the slopes as the convention reads them; `None` where it is
-/// undecided or the map is too small to integrate.
-fn fitted(level0: &Image<Vec4>, inspection: &Inspection) -> Option<DerivativeFit> {
-    let y = inspection.convention.convention.ok()?;
-    let slopes = Slopes::from_normals(level0, y, 1.0).ok()?;
-    fit_derivative(&slopes, boundary_of(inspection)).ok()
-}
-
 /// Periodic where the heights tile, else free.
-pub(crate) fn boundary_of(inspection: &Inspection) -> Boundary {
+fn boundary_of(inspection: &Inspection) -> Boundary {
     if inspection.seam.heights_tile() { Boundary::Periodic } else { Boundary::Free }
 }

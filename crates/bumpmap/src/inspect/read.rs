@@ -75,7 +75,7 @@ impl DecodedMap {
 /// normalmap` writes them: regular files in the same folder only (a link is not followed), each
 /// half the size of the level before.
 pub fn read_map(path: &Path) -> Result<DecodedMap, Error> {
-    let mut map = read_one(path)?;
+    let mut map = read_file(path)?;
     if path.extension().is_some_and(|e| e.eq_ignore_ascii_case("png")) && map.levels.len() == 1 {
         for k in 1.. {
             let file = bumpmap_io::image_file::level_path(path, k);
@@ -85,7 +85,7 @@ pub fn read_map(path: &Path) -> Result<DecodedMap, Error> {
                 break;
             }
             let want = (bumpmap_math::mip::next_size(last.width), bumpmap_math::mip::next_size(last.height));
-            let level = read_one(&file)?.levels.swap_remove(0);
+            let level = read_file(&file)?.levels.swap_remove(0);
             if (level.width, level.height) != want {
                 return Err(Error::Io(bumpmap_io::IoError::Texture {
                     path: file,
@@ -101,8 +101,9 @@ pub fn read_map(path: &Path) -> Result<DecodedMap, Error> {
     Ok(map)
 }
 
-/// One file's levels.
-fn read_one(path: &Path) -> Result<DecodedMap, Error> {
+/// One file's own levels, without the `NAME.mipK.png` files beside a PNG: what `height`
+/// reads (it needs level 0 only, and a broken level beside it is no reason to refuse).
+pub fn read_file(path: &Path) -> Result<DecodedMap, Error> {
     use bumpmap_io::texture_file::TextureFormat;
     let texture = bumpmap_io::load_any_texture(path)?;
     let (w, h) = match &texture {
