@@ -173,6 +173,15 @@ fn height_gives_back_the_heights_a_normal_map_was_made_from() {
     assert!(err.contains("read as directx (by the curl test"), "{err}");
     let (w, h, got) = read_heights(&back);
     assert_eq!((w, h), (96, 96));
+    // The file as OpenEXR itself reads it: headers validated pedantically, one float channel
+    // `Y` (luminance, which `image` does not decode: it wants RGB), the same values.
+    let meta = exr::meta::MetaData::read_from_file(&back, true).expect("a valid OpenEXR header");
+    let channels: Vec<String> = meta.headers[0].channels.list.iter().map(|c| c.name.to_string()).collect();
+    assert_eq!(channels, ["Y"]);
+    assert_eq!(meta.headers[0].channels.list[0].sample_type, exr::meta::attribute::SampleType::F32);
+    let image = exr::prelude::read_first_flat_layer_from_file(&back).expect("OpenEXR reads it");
+    let values: Vec<f32> = image.layer_data.channel_data.list[0].sample_data.values_as_f32().collect();
+    assert_eq!(values, got, "OpenEXR reads the values our reader does");
     let truth = bumpmap::HeightPreset::Dimples.render(96, 96).to_f32();
     let mean = |v: &[f32]| v.iter().sum::<f32>() / v.len() as f32;
     let (mt, mg) = (mean(&truth), mean(&got));
