@@ -111,6 +111,7 @@ pub fn run(args: &NormalmapArgs) -> Result<(), CliError> {
         check_format(b, TextureFormat::Rgba8)?;
     }
     let field = source.load(channel)?;
+    extras::ensure_room(args, field.width(), field.height())?;
     let levels = make_chain(&field, &options, args.mips, args.mip_mode.into(), format, &args.input)?;
     let horizons = if args.horizon_out.is_some() || args.ao_out.is_some() || args.bent_normals_out.is_some() {
         Some(horizon_map(&field, options.wrap, &args.input)?)

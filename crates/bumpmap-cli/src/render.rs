@@ -73,8 +73,7 @@ pub fn draw_args(args: &RenderArgs, progress: bool) -> Result<Drawn, CliError> {
     let scene = &args.setup.scene;
     let bumps = scene.height_field.clone().or_else(|| scene.normal_map.as_ref().map(|p| p.display().to_string()));
     let too_big = |e| too_big(e, &setup.spec, bumps.as_deref());
-    ensure_room(&setup.spec, name).map_err(too_big)?;
-    let prepared = Prepared::new(&setup.spec, name, &setup.options).map_err(|e| too_big(lib_err(e)))?;
+    let prepared = Prepared::new(&setup.spec, name, &setup.options).map_err(|e| too_big(prepare_err(e)))?;
     for note in depth_notes(&args.setup, &setup.spec, &prepared) {
         eprintln!("{note}");
     }
@@ -141,40 +140,9 @@ pub fn ensure_drawn(black: bool, output: &Path) -> Result<(), CliError> {
     })
 }
 
-/// Refuses, before any of it is made, a scene whose large buffers will not fit together: the
-/// normal map and its mips made from heights (4/3 of level 0's RGBA8), a texture unit's copy of
-/// it (and of the height map, for embossing), and a tessellation's mesh and vertex-stage output.
-/// Inputs already loaded are not counted. Within about 5% of the peaks measured in
-/// BENCHMARKS.md; each of those buffers is also asked for fallibly, so an estimate too low
-/// still ends in an error rather than an abort.
-fn ensure_room(spec: &bumpmap::SceneSpec, name: TechniqueName) -> Result<(), CliError> {
-    let (w, h) = spec.params.bumps.size();
-    let texels = (w as u64 * h as u64) * 4 / 3;
-    let made = matches!(spec.params.bumps, bumpmap::bumpmap_core::scenes::BumpSource::Heights(_));
-    let embossed = matches!(name, TechniqueName::Emboss | TechniqueName::EmbossUnforced);
-    let mut bytes = if made { texels * 4 } else { 0 };
-    if !name.is_reference() {
-        bytes += bumpmap_cpu::texture_unit_bytes(texels);
-    }
-    if name.parallax_method().is_some() || name == TechniqueName::ReferenceDisplaced {
-        // Heights as geometry: the heights and their bounds, every level (a given file's are
-        // already loaded, but a texture unit or the GPU reads them as they are).
-        bytes += bumpmap::HeightMips::bytes_for(w, h);
-    }
-    if embossed {
-        bytes += texels * 4 + bumpmap_cpu::texture_unit_bytes(texels);
-    }
-    if let Some((u, v)) = spec.params.tessellation {
-        let vertices = (u as u64 + 1) * (v as u64 + 1);
-        let per_vertex = (std::mem::size_of::<bumpmap::bumpmap_core::vertex::Vertex>() + 48) as u64;
-        bytes += vertices * per_vertex + u as u64 * v as u64 * 24;
-    }
-    bumpmap::bumpmap_math::buffer::ensure_available(bytes, "drawing it").map_err(CliError::OutOfMemory)
-}
-
 /// An out-of-memory error with the sizes that caused it: the bump texture's (and `bumps`, the
 /// file or preset it came from) and the tessellation's: what a user can make smaller.
-fn too_big(e: CliError, spec: &bumpmap::SceneSpec, bumps: Option<&str>) -> CliError {
+pub(crate) fn too_big(e: CliError, spec: &bumpmap::SceneSpec, bumps: Option<&str>) -> CliError {
     let CliError::OutOfMemory(oom) = e else { return e };
     let (w, h) = spec.params.bumps.size();
     let from = bumps.map(|b| format!(" from {b}")).unwrap_or_default();
@@ -232,6 +200,15 @@ pub fn draw(
         })
         .map_err(lib_err)?;
     Ok(Frame { image, snapshots: shots })
+}
+
+/// [`lib_err`], but a scene whose maps will not fit is an [`CliError::OutOfMemory`] that
+/// [`too_big`] can name the inputs of.
+pub(crate) fn prepare_err(e: bumpmap::Error) -> CliError {
+    match e {
+        bumpmap::Error::OutOfMemory { source, .. } => CliError::OutOfMemory(source),
+        other => lib_err(other),
+    }
 }
 
 /// A front-door error in the words of the command line.

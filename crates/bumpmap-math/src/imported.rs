@@ -104,6 +104,20 @@ pub enum ImportError {
     /// A scale that is not finite or beyond [`MAX_SCALE`].
     #[error("the normal scale must be a number in [-{MAX_SCALE}, {MAX_SCALE}], got {0}")]
     BadScale(f32),
+    /// The texture-space chain (and, when the levels are made here, the normals they average)
+    /// would not fit in the memory the process may still have.
+    #[error(transparent)]
+    OutOfMemory(#[from] crate::buffer::OutOfMemory),
+}
+
+/// The bytes [`import_normal_map`] works in for a `width`×`height` level 0, besides the levels
+/// given: the RGBA8 chain it returns (4/3 of level 0), and when it makes the smaller levels
+/// itself, level 0's unit normals twice (the vectors and the sums the first level averages,
+/// 12 bytes a texel each), the next level's sums and level 0 encoded once more.
+pub fn import_bytes(width: usize, height: usize, makes_levels: bool) -> u64 {
+    let texels = width as u64 * height as u64;
+    let chain = texels * 4 * 4 / 3;
+    if makes_levels { chain + texels * (12 + 12 + 3 + 4) } else { chain }
 }
 
 /// Brings `levels` (level 0 first; one level for a file without mips) into texture space.
@@ -144,6 +158,8 @@ pub fn import_normal_map<T: Texel>(
     if !(scale.is_finite() && scale.abs() <= MAX_SCALE) {
         return Err(ImportError::BadScale(scale));
     }
+    let stored_mips = levels.len() > 1 && !options.rebuild_mips;
+    crate::buffer::ensure_available(import_bytes(width, height, !stored_mips), "the normal map in texture space")?;
     let mirror = options.y_convention != YConvention::TEXTURE_SPACE;
     let to_texture_space = |t: T| if mirror { t.mirror_green() } else { t };
     let enc = Encoding::Unorm;
@@ -180,7 +196,6 @@ pub fn import_normal_map<T: Texel>(
     };
     let foreign_alpha = level0.texels.iter().any(|t| t.unpack(enc)[3] < OPAQUE_ALPHA);
     let renormalized_mips = levels.len() > 1 && !foreign_alpha && renormalized(levels, &direction);
-    let stored_mips = levels.len() > 1 && !options.rebuild_mips;
     let chain = if stored_mips {
         let mut chain = MipChain { levels: levels.iter().map(convert).collect(), encoding: enc };
         if foreign_alpha {

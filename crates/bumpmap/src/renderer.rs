@@ -75,9 +75,45 @@ pub struct Prepared {
 impl Prepared {
     /// Builds `spec` for `name` with `options`: checks the technique's requirements, makes its
     /// maps and its technique.
+    ///
+    /// Refuses, before any of them is made, maps that will not fit together
+    /// ([`Prepared::bytes_needed`]).
     pub fn new(spec: &SceneSpec, name: TechniqueName, options: &TechniqueOptions) -> Result<Self, Error> {
+        bumpmap_math::buffer::ensure_available(Self::bytes_needed(spec, name), "making its maps")
+            .map_err(|source| Error::OutOfMemory { what: format!("preparing {name}"), source })?;
         let (scene, technique) = name.prepare(spec, options)?;
         Ok(Self { name, scene, technique })
+    }
+
+    /// What preparing `spec` for `name` asks for, in bytes: the normal map and its mips made
+    /// from heights (4/3 of level 0's RGBA8), a texture unit's copy of it (and of the height
+    /// map, for embossing), the heights and their bounds for the techniques that march them, and
+    /// a tessellation's mesh and vertex-stage output. Maps already loaded are not counted.
+    /// Within about 5% of the peaks measured in BENCHMARKS.md; each buffer is also asked for
+    /// fallibly, so an estimate too low still ends in an error rather than an abort.
+    pub fn bytes_needed(spec: &SceneSpec, name: TechniqueName) -> u64 {
+        let (w, h) = spec.params.bumps.size();
+        let texels = (w as u64 * h as u64) * 4 / 3;
+        let made = matches!(spec.params.bumps, bumpmap_core::BumpSource::Heights(_));
+        let embossed = matches!(name, TechniqueName::Emboss | TechniqueName::EmbossUnforced);
+        let mut bytes = if made { texels * 4 } else { 0 };
+        if !name.is_reference() {
+            bytes += bumpmap_cpu::texture_unit_bytes(texels);
+        }
+        if name.parallax_method().is_some() || name == TechniqueName::ReferenceDisplaced {
+            // Heights as geometry: the heights and their bounds, every level (a given file's are
+            // already loaded, but a texture unit or the GPU reads them as they are).
+            bytes += bumpmap_math::HeightMips::bytes_for(w, h);
+        }
+        if embossed {
+            bytes += texels * 4 + bumpmap_cpu::texture_unit_bytes(texels);
+        }
+        if let Some((u, v)) = spec.params.tessellation {
+            let vertices = (u as u64 + 1) * (v as u64 + 1);
+            let per_vertex = (std::mem::size_of::<bumpmap_core::vertex::Vertex>() + 48) as u64;
+            bytes += vertices * per_vertex + u as u64 * v as u64 * 24;
+        }
+        bytes
     }
 }
 

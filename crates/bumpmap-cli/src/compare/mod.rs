@@ -121,7 +121,7 @@ pub fn run(args: &CompareArgs) -> Result<(), CliError> {
     check_output(out)?;
     let (results, inputs) = measure(args, true)?;
     let inputs: Vec<&Path> = inputs.iter().map(PathBuf::as_path).collect();
-    let written = write(out, &results, &inputs)?;
+    let written = write(out, &results, &inputs, &|| false)?;
     let shown = results.outcomes.iter().filter(|o| o.result.is_ok()).count();
     eprintln!(
         "wrote {} files into {} ({shown} techniques against the reference; open {})",
@@ -189,6 +189,18 @@ pub fn measure(args: &CompareArgs, progress: bool) -> Result<(Results, Vec<PathB
             return Err(CliError::Usage(format!("--techniques names {name} twice")));
         }
     }
+    // The scene the references read and one technique's maps are alive at once: refused up
+    // front when they will not fit, rather than aborting in the middle of the work.
+    let largest = wanted
+        .iter()
+        .filter_map(|n| TechniqueName::parse(n).ok())
+        .chain([TechniqueName::ReferenceDisplaced])
+        .map(|t| Prepared::bytes_needed(&spec, t))
+        .max()
+        .unwrap_or(0);
+    let bytes = Prepared::bytes_needed(&spec, TechniqueName::Reference) + largest;
+    bumpmap::bumpmap_math::buffer::ensure_available(bytes, "measuring it")
+        .map_err(|e| crate::render::too_big(CliError::OutOfMemory(e), &spec, Some(&args.height_field)))?;
     let mut backend = crate::render::renderer(args.backend)?;
     // The two references, each technique, convergence and the studies.
     let steps = (wanted.len() + 9) as u64;
@@ -335,8 +347,14 @@ fn convergence(
         .collect())
 }
 
-/// Writes every image, heat map, plot, `results.json` and `report.html` into `out`, all or none.
-pub fn write(out: &Path, results: &Results, inputs: &[&Path]) -> Result<Vec<std::path::PathBuf>, CliError> {
+/// Writes every image, heat map, plot, `results.json` and `report.html` into `out`, all or none;
+/// none when `cancelled`, asked once the files are staged, says the caller gave up.
+pub fn write(
+    out: &Path,
+    results: &Results,
+    inputs: &[&Path],
+    cancelled: &dyn Fn() -> bool,
+) -> Result<Vec<std::path::PathBuf>, CliError> {
     let mut set = FileSet::new(inputs);
     let size = results.size;
     let png = |set: &mut FileSet, name: &str, rgb: &[u8]| {
@@ -370,5 +388,8 @@ pub fn write(out: &Path, results: &Results, inputs: &[&Path]) -> Result<Vec<std:
     set.write(&out.join("results.json"), |w| std::io::Write::write_all(w, json.as_bytes()))?;
     let html = report::html(results);
     set.write(&out.join("report.html"), |w| std::io::Write::write_all(w, html.as_bytes()))?;
+    if cancelled() {
+        return Err(CliError::Interrupted);
+    }
     Ok(set.commit()?)
 }

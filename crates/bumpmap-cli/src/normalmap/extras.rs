@@ -11,6 +11,54 @@ use bumpmap_math::{HeightField, MipChain, MipMode, NormalMapOptions};
 use super::{Chain, make_texels};
 use crate::error::CliError;
 
+/// Bytes a texel of level 0 costs beyond the height field itself, as measured (peak resident
+/// memory of `normalmap bricks@4096 --mips` with each output alone, less the run without it,
+/// over 4096², rounded up): the normal map at 8 and 16 bits (its chain and what making it
+/// takes), and each map written beside it. A horizon map is shared by `--horizon-out`,
+/// `--ao-out` and `--bent-normals-out`; the bent normals cost a little more on top.
+mod per_texel {
+    pub const NORMAL_MAP_8: u64 = 8;
+    pub const NORMAL_MAP_16: u64 = 18;
+    pub const LEAN: u64 = 74;
+    pub const ROUGHNESS: u64 = 20;
+    pub const HEIGHTS: u64 = 24;
+    pub const HORIZONS: u64 = 44;
+    pub const BENT_NORMALS: u64 = 10;
+}
+
+/// Refuses, before any of it is made, what `args` ask of a `width`×`height` height field when
+/// it will not fit in the memory the process may still have (the field itself is loaded).
+/// Every buffer is also asked for fallibly where the library can; this check is what keeps the
+/// rest (the moments as written, the encoders' copies) from aborting.
+pub(super) fn ensure_room(args: &crate::args::NormalmapArgs, width: usize, height: usize) -> Result<(), CliError> {
+    use per_texel::*;
+    let mut per = if args.bits == 16 { NORMAL_MAP_16 } else { NORMAL_MAP_8 };
+    if args.lean_out.is_some() {
+        per += LEAN + if args.bits == 16 { NORMAL_MAP_8 } else { 0 };
+    }
+    if args.roughness_out.is_some() {
+        per += ROUGHNESS;
+    }
+    if args.height_out.is_some() {
+        per += HEIGHTS;
+    }
+    if args.horizon_out.is_some() || args.ao_out.is_some() || args.bent_normals_out.is_some() {
+        per += HORIZONS;
+    }
+    if args.bent_normals_out.is_some() {
+        per += BENT_NORMALS;
+    }
+    let bytes = (width as u64 * height as u64).saturating_mul(per);
+    bumpmap_math::buffer::ensure_available(bytes, "making these maps").map_err(|e| {
+        CliError::Render(format!(
+            "{}: {e} from its {width}x{height} heights, more than this process may use. Fewer outputs at \
+             once (--lean-out, --roughness-out, --height-out, --horizon-out, --ao-out, --bent-normals-out) \
+             or a smaller field need less",
+            args.input
+        ))
+    })
+}
+
 /// `--height-out`'s heights: the field rounded to `bits` first, so the levels and the min–max
 /// bounds are those of the heights stored; a warning where the field leaves [0, 1].
 pub(crate) fn height_levels(field: &HeightField, bits: u8, name: &str) -> Result<bumpmap_math::HeightMips, CliError> {
