@@ -266,7 +266,28 @@ pub fn setup(s: &SceneSetup) -> Result<Setup, CliError> {
     spec.params.lights = lights(s, &spec)?;
 
     let options = technique_options(s, s.technique.technique.0)?;
+    inputs.extend(files_beside(s)?);
     Ok(Setup { spec, options, inputs, notes })
+}
+
+/// The files read beside those the options name (found by name: a roughness map's or a height
+/// map's `.mipK.png` levels, the heights' min–max, a horizon map's second half): no output may
+/// replace one either.
+fn files_beside(s: &SceneSetup) -> Result<Vec<PathBuf>, CliError> {
+    let mut files = Vec::new();
+    if let Some(path) = &s.material.roughness_map {
+        let ext = path.extension().map(|e| e.to_string_lossy().to_ascii_lowercase());
+        if !matches!(ext.as_deref(), Some("dds" | "ktx2")) {
+            files.extend(bumpmap_io::siblings::png_levels(path)?);
+        }
+    }
+    if let Some(path) = &s.heights.height_map {
+        files.extend(bumpmap_io::height_file::files_read(path)?);
+    }
+    if let Some(path) = &s.heights.horizon_map {
+        files.extend(bumpmap_io::horizon_file::files_read(path)?);
+    }
+    Ok(files)
 }
 
 /// Values out of their ranges, found after parsing: usage errors, named by flag.
@@ -334,6 +355,8 @@ fn lights(s: &SceneSetup, spec: &SceneSpec) -> Result<Vec<SceneLight>, CliError>
             Some(Arc::new(Rgba8Mips::single(image)))
         }
     };
+    // The count first: a list too long is refused before any light is looked at.
+    single_pass::validate_lights(&l.lights).map_err(core_err)?;
     let mut lights = l.lights.clone();
     if lights.is_empty() && (l.attenuation.is_some() || l.spot.is_some()) {
         lights.push(SceneLight::white(scenes::default_light(&spec.kind, &spec.params)));
@@ -384,11 +407,7 @@ fn load_roughness_map(path: &Path, layout: RoughnessLayoutArg) -> Result<Rgba8Mi
     let ext = path.extension().map(|e| e.to_string_lossy().to_ascii_lowercase());
     let container = matches!(ext.as_deref(), Some("dds" | "ktx2"));
     if levels.len() == 1 && !container {
-        for k in 1.. {
-            let mip = crate::normalmap::level_path(path, k);
-            if !mip.is_file() {
-                break;
-            }
+        for (k, mip) in (1..).zip(bumpmap_io::siblings::png_levels(path)?) {
             let (w, h) = (levels[k - 1].width, levels[k - 1].height);
             let next = to_rgba8(bumpmap_io::load_texture(&mip)?).swap_remove(0);
             let want = (bumpmap::bumpmap_math::mip::next_size(w), bumpmap::bumpmap_math::mip::next_size(h));

@@ -183,10 +183,10 @@ pub(crate) fn read_levels_checked(
     let mut levels = read(path)?;
     if kind == Container::Png {
         for k in 1.. {
-            let file = level_path(path, k);
-            if !file.is_file() || levels.last().is_some_and(|(w, h, _)| (*w, *h) == (1, 1)) {
+            if levels.last().is_some_and(|(w, h, _)| (*w, *h) == (1, 1)) {
                 break;
             }
+            let Some(file) = crate::siblings::beside(path, &level_path(path, k))? else { break };
             levels.extend(read(&file)?);
         }
     }
@@ -203,6 +203,24 @@ fn read_levels(path: &Path, channels: usize) -> Result<Vec<PairLevel>, IoError> 
     Ok(levels.into_iter().map(|(w, h, t)| (w, h, t.into_iter().map(|p| [p[0], p[channels - 1]]).collect())).collect())
 }
 
+/// Every file [`load_heights`] may read for `path`: `path`, its min–max file, and for PNG the
+/// `.mipK.png` levels beside each (no output may replace one).
+pub fn files_read(path: &Path) -> Result<Vec<PathBuf>, IoError> {
+    let mut files = vec![path.to_path_buf()];
+    let minmax = minmax_path(path);
+    if crate::siblings::beside(path, &minmax)?.is_some() {
+        files.push(minmax.clone());
+    }
+    if container(path)? == Container::Png {
+        let mut levels = crate::siblings::png_levels(path)?;
+        if files.len() == 2 {
+            levels.extend(crate::siblings::png_levels(&minmax)?);
+        }
+        files.extend(levels);
+    }
+    Ok(files)
+}
+
 /// Heights `normalmap --height-out` wrote (or any gray image, `.ktx2` or `.dds` of R8/R16, with
 /// its levels or alone), with the min–max levels from `H.minmax.EXT` where that file is there.
 /// Level counts and sizes are checked, naming the file.
@@ -213,7 +231,7 @@ pub fn load_heights(path: &Path) -> Result<HeightMips, IoError> {
         .map(|(width, height, t)| HeightLevel { width, height, texels: t.into_iter().map(|[v, _]| v).collect() })
         .collect();
     let minmax_file = minmax_path(path);
-    let minmax = if minmax_file.is_file() {
+    let minmax = if crate::siblings::beside(path, &minmax_file)?.is_some() {
         Some(
             read_levels(&minmax_file, 2)?
                 .into_iter()

@@ -134,6 +134,22 @@ fn read_half(path: &Path) -> Result<Vec<RgbaLevel>, IoError> {
     })
 }
 
+/// Every file [`load_horizons`] may read for `path`: `path`, `H.dirs4-7` beside it, and for PNG
+/// the `.mipK.png` levels beside each (no output may replace one).
+pub fn files_read(path: &Path) -> Result<Vec<PathBuf>, IoError> {
+    let second = second_half_path(path);
+    let mut files = vec![path.to_path_buf()];
+    if crate::siblings::beside(path, &second)?.is_some() {
+        files.push(second.clone());
+    }
+    if container(path)? == Container::Png {
+        for file in files.clone() {
+            files.extend(crate::siblings::png_levels(&file)?);
+        }
+    }
+    Ok(files)
+}
+
 /// A horizon map written by [`write_horizons_into`] (or by another tool in the same layout):
 /// `path` (directions 0–3) and `H.dirs4-7` beside it, each level of one the size of the other's,
 /// level 0 alone or a chain (the rest are made). Missing files, textures of other than four
@@ -141,6 +157,12 @@ fn read_half(path: &Path) -> Result<Vec<RgbaLevel>, IoError> {
 pub fn load_horizons(path: &Path) -> Result<HorizonMap, IoError> {
     let bad = |file: &Path, reason: String| IoError::Texture { path: file.to_path_buf(), reason };
     let second = second_half_path(path);
+    if crate::siblings::beside(path, &second)?.is_none() {
+        return Err(bad(
+            &second,
+            "not found: a horizon map is two files of four directions each (H and H.dirs4-7)".into(),
+        ));
+    }
     let (a, b) = (read_half(path)?, read_half(&second)?);
     if a.len() != b.len() {
         return Err(bad(&second, format!("holds {} levels, but {} holds {}", b.len(), path.display(), a.len())));

@@ -28,6 +28,7 @@ pub mod horizon_file;
 pub mod image_file;
 pub mod mesh_file;
 mod obj_read;
+pub mod siblings;
 pub mod texture_file;
 pub mod texture_read;
 

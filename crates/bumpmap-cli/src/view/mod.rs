@@ -32,7 +32,20 @@ pub fn run(args: &ViewArgs) -> Result<(), CliError> {
     let setup = with_file(args)?;
     let named = crate::setup::named_inputs(&setup);
     let inputs: Vec<&Path> = named.iter().map(PathBuf::as_path).collect();
-    for out in [&args.record, &args.screenshot].into_iter().flatten() {
+    for (flag, out, what) in
+        [("--record", &args.record, "an animated PNG"), ("--screenshot", &args.screenshot, "a PNG")]
+    {
+        let Some(out) = out else { continue };
+        // The file is what its name says: an APNG is a PNG (.png, or .apng).
+        let ext = out.extension().map(|e| e.to_string_lossy().to_ascii_lowercase());
+        if !matches!(ext.as_deref(), Some("png") | Some("apng") if flag == "--record" || ext.as_deref() == Some("png"))
+        {
+            return Err(CliError::Usage(format!(
+                "{flag} {}: writes {what}; name it .png{}",
+                out.display(),
+                if flag == "--record" { " or .apng" } else { "" }
+            )));
+        }
         bumpmap_io::atomic::ensure_not_input(out, &inputs)?;
     }
     // --keys presses one key a frame, and the last key's effect shows in the frame after it.

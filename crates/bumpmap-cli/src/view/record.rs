@@ -2,7 +2,7 @@
 //! renderer, no window (so no display is needed). `--keys` are pressed first, so a recording can
 //! start from any technique or toggle.
 
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 use bumpmap_io::atomic::FileSet;
 use bumpmap_io::image_file::save_apng_into;
@@ -46,6 +46,9 @@ pub fn run(args: &ViewArgs, setup: SceneSetup, out: &Path, inputs: &[&Path]) -> 
     bumpmap::bumpmap_math::buffer::ensure_available(bytes, "the recording's frames").map_err(CliError::OutOfMemory)?;
     let backend = setup.backend.backend;
     let mut viewer = Viewer::new(setup)?;
+    let read: Vec<PathBuf> = inputs.iter().map(|p| p.to_path_buf()).chain(viewer.inputs().iter().cloned()).collect();
+    let inputs: Vec<&Path> = read.iter().map(PathBuf::as_path).collect();
+    bumpmap_io::atomic::ensure_not_input(out, &inputs)?;
     for action in super::scripted_keys(args) {
         if !matches!(action, Action::Screenshot | Action::Quit | Action::Backend) {
             viewer.apply(action);
@@ -72,7 +75,7 @@ pub fn run(args: &ViewArgs, setup: SceneSetup, out: &Path, inputs: &[&Path]) -> 
     bar.finish_and_clear();
     let lit = images.iter().any(|frame| frame.iter().any(|&c| c != 0));
     crate::render::ensure_drawn(!lit, out)?;
-    let mut set = FileSet::new(inputs);
+    let mut set = FileSet::new(&inputs);
     save_apng_into(&mut set, out, width, height, &images, args.frame_ms)?;
     set.commit()?;
     eprintln!(

@@ -7,7 +7,7 @@
 //! A change that cannot be drawn (a technique that cannot draw the scene, a file that cannot be
 //! read) is undone: the old scene stays and the reason becomes [`Viewer::message`].
 
-use std::path::Path;
+use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
 use bumpmap::bumpmap_core::parallax::{MAX_LAYERS, ParallaxMethod};
@@ -235,6 +235,12 @@ impl Viewer {
             message: None,
             heights,
         })
+    }
+
+    /// Every file the scene shown was read from (a glTF's buffers and images, levels found
+    /// beside a file): no recording or screenshot may replace one.
+    pub fn inputs(&self) -> &[PathBuf] {
+        &self.base.inputs
     }
 
     /// The technique chosen.
@@ -515,6 +521,12 @@ impl Viewer {
             }
             None => String::new(),
         };
+        // The filter the technique drawn applies (kilgard and emboss apply none, whatever `g`
+        // chose; toksvig and lean apply their own).
+        let filter = match &self.prepared.technique {
+            Technique::SinglePass(o) => o.specular_filter,
+            _ => SpecularFilter::None,
+        };
         format!(
             "{}{heights} | {} | bumps {:.2} | shininess {:.1} | mips {} | {}{}{}{}",
             self.technique().name(),
@@ -524,7 +536,7 @@ impl Viewer {
             c.mips.name(),
             if c.nearest { "nearest" } else { "trilinear" },
             if c.cube { " | cube map" } else { "" },
-            match c.specular_filter {
+            match filter {
                 SpecularFilter::None => "",
                 SpecularFilter::Toksvig => " | toksvig",
                 SpecularFilter::RoughnessMap => " | roughness map",
@@ -598,7 +610,13 @@ fn prepare(
         sp.self_shadow = SelfShadow::Ramp;
         options.reference.self_shadow = SelfShadow::Ramp;
     }
-    Prepared::new(&spec, name, &options)
+    let prepared = Prepared::new(&spec, name, &options)?;
+    // What the technique cannot draw is refused here, so the choice is undone, rather than
+    // when the frame is drawn.
+    if !name.is_reference() {
+        prepared.technique.passes(&prepared.scene)?;
+    }
+    Ok(prepared)
 }
 
 #[cfg(test)]

@@ -274,7 +274,7 @@ impl App {
                 .find(|p| !p.exists())
                 .ok_or_else(|| CliError::Render("bumpmap-view-001..9999.png all exist here".into()))?,
         };
-        let inputs: Vec<&Path> = self.inputs.iter().map(PathBuf::as_path).collect();
+        let inputs: Vec<&Path> = self.inputs.iter().chain(self.viewer.inputs()).map(PathBuf::as_path).collect();
         let mut set = FileSet::new(&inputs);
         let rgb = crate::render::rgb(image);
         save_png_into(&mut set, &path, image.width, image.height, PngLayout::Rgb8, &rgb)?;

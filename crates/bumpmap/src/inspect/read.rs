@@ -72,18 +72,19 @@ impl DecodedMap {
 /// Reads a normal map file as [`DecodedMap`]: PNG (8 or 16 bits), TGA, TIFF, EXR, JPEG, DDS or
 /// KTX2 (their levels, BC5 and BC7 included); floating point as [`DecodedMap::from_float`]. A
 /// PNG's smaller levels are the `NAME.mip1.png`, `NAME.mip2.png`, … beside it, as `bumpmap
-/// normalmap` writes them: regular files in the same folder only (a link is not followed), each
-/// half the size of the level before.
+/// normalmap` writes them, each half the size of the level before, read only from the same
+/// folder ([`bumpmap_io::siblings::beside`]: a link leading elsewhere is an error).
 pub fn read_map(path: &Path) -> Result<DecodedMap, Error> {
     let mut map = read_file(path)?;
     if path.extension().is_some_and(|e| e.eq_ignore_ascii_case("png")) && map.levels.len() == 1 {
         for k in 1.. {
-            let file = bumpmap_io::image_file::level_path(path, k);
-            let regular = std::fs::symlink_metadata(&file).is_ok_and(|m| m.file_type().is_file());
             let last = &map.levels[map.levels.len() - 1];
-            if !regular || (last.width, last.height) == (1, 1) {
+            if (last.width, last.height) == (1, 1) {
                 break;
             }
+            let Some(file) = bumpmap_io::siblings::beside(path, &bumpmap_io::image_file::level_path(path, k))? else {
+                break;
+            };
             let want = (bumpmap_math::mip::next_size(last.width), bumpmap_math::mip::next_size(last.height));
             let level = read_file(&file)?.levels.swap_remove(0);
             if (level.width, level.height) != want {

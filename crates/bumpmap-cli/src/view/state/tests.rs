@@ -19,9 +19,14 @@ fn normal_texels(v: &Viewer) -> Vec<[u8; 4]> {
 #[test]
 fn every_key_changes_what_it_names_and_toggles_come_back() {
     for action in Action::ALL {
-        // The depth keys change heights as geometry, which the default technique has none of.
-        let depth_key = matches!(action, Action::DepthUp | Action::DepthDown);
-        let mut v = viewer(if depth_key { &["--technique", "pom"] } else { &[] });
+        // The depth keys change heights as geometry, which the default technique has none of;
+        // the shininess keys a shininess, which its combiners fix at 8.
+        let extra: &[&str] = match action {
+            Action::DepthUp | Action::DepthDown => &["--technique", "pom"],
+            Action::ShininessUp | Action::ShininessDown => &["--technique", "single-pass"],
+            _ => &[],
+        };
+        let mut v = viewer(extra);
         let (choices, view) = (v.choices.clone(), v.view);
         let effect = v.apply(action);
         match action {
@@ -189,4 +194,35 @@ fn the_horizon_technique_and_the_shadow_key_shadow_by_the_horizon_map() {
     let Technique::SinglePass(o) = &v.prepared.technique else { panic!("pom is a single pass") };
     assert_eq!(o.parallax.expect("pom marches").options.shadow, ParallaxShadow::Horizon);
     assert!(v.status().contains("| horizon shadows"), "{}", v.status());
+}
+
+#[test]
+fn a_key_the_technique_cannot_follow_leaves_the_scene_as_it_was_and_says_why() {
+    // Kilgard's combiners square three times: a shininess of 8 only.
+    let mut v = viewer(&[]);
+    let (choices, status) = (v.choices.clone(), v.status());
+    assert_eq!(v.apply(Action::ShininessUp), Effect::Redraw);
+    assert_eq!(v.choices, choices, "the choice is undone");
+    assert_eq!(v.status(), status);
+    let message = v.message.clone().unwrap_or_default();
+    assert!(message.contains("cannot do a shininess of 12"), "{message}");
+    // The frame still draws: the scene is the one before the key.
+    let mut renderer = bumpmap::Renderer::new(bumpmap::BackendChoice::Cpu).unwrap();
+    renderer.draw(v.frame(), 32, 32).unwrap();
+}
+
+#[test]
+fn the_status_line_names_the_specular_filter_only_where_the_technique_applies_it() {
+    for (technique, presses, shown) in
+        [("kilgard", 3, None), ("single-pass", 3, Some("LEAN")), ("single-pass", 1, Some("toksvig"))]
+    {
+        let mut v = viewer(&["--technique", technique]);
+        for _ in 0..presses {
+            v.apply(Action::SpecularFilter);
+        }
+        let status = v.status();
+        for name in ["toksvig", "roughness map", "LEAN", "CLEAN"] {
+            assert_eq!(status.contains(&format!("| {name}")), shown == Some(name), "{technique}: {status}");
+        }
+    }
 }
