@@ -62,6 +62,8 @@ impl CliError {
             CliError::Usage(_) => 2,
             CliError::NormalMap { source: NormalMapError::BadScale(_), .. } => 2,
             CliError::Io(bumpmap_io::IoError::NotAPreset { out_of_range: true, .. }) => 2,
+            // Two options naming one file, however it was noticed.
+            CliError::Io(bumpmap_io::IoError::SameOutput { .. }) => 2,
             _ => 1,
         }
     }

@@ -81,6 +81,13 @@ pub enum IoError {
         /// The output.
         path: PathBuf,
     },
+    /// Two outputs of one command that name the same file (a level of one output and another
+    /// output, say): a usage error, found before anything is written.
+    #[error("{}: cannot write: two outputs of one command would be the same file", shown(path))]
+    SameOutput {
+        /// The file named twice.
+        path: PathBuf,
+    },
     /// An output whose extension names no format this crate writes there.
     #[error("{}: unsupported output format (use {expected})", shown(path))]
     UnsupportedOutput {

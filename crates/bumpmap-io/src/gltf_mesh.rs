@@ -142,7 +142,9 @@ pub(crate) fn from_gltf(
                 .read_tangents()
                 .map(|r| {
                     r.map(|t| {
-                        let xyz = (linear * Vec3::new(t[0], t[1], t[2])).normalize_or_zero();
+                        // Not finite stays so, for the mesh's check to name it.
+                        let xyz = linear * Vec3::new(t[0], t[1], t[2]);
+                        let xyz = if xyz.is_finite() { xyz.normalize_or_zero() } else { xyz };
                         let w = gltf_handedness(t[3]);
                         xyz.extend(if mirrored { -w } else { w })
                     })

@@ -262,6 +262,28 @@ fn clamp_to_blocks(level: &Rgba8Image) -> Rgba8Image {
 /// writers store. `path` is the file errors name.
 pub fn encode(path: &Path, tex: &TextureLayout, format: TextureFormat) -> Result<Vec<Vec<Vec<u8>>>, IoError> {
     use rayon::prelude::*;
+    // A chain the readers take back: each level half the one before (rounded down, at least
+    // 1), ending at 1×1 at the latest.
+    let refuse = |reason: String| IoError::Write { path: path.to_path_buf(), source: std::io::Error::other(reason) };
+    for face in &tex.faces {
+        let Some(first) = face.first() else { return Err(refuse("a face without levels".into())) };
+        let (w0, h0) = first.size();
+        let most = bumpmap_math::mip::level_count(w0, h0);
+        if face.len() > most {
+            return Err(refuse(format!(
+                "{} levels for a {w0}x{h0} level 0: its chain ends at 1x1 after {most}",
+                face.len()
+            )));
+        }
+        let (mut w, mut h) = (w0, h0);
+        for (k, level) in face.iter().enumerate().skip(1) {
+            (w, h) = (bumpmap_math::mip::next_size(w), bumpmap_math::mip::next_size(h));
+            if level.size() != (w, h) {
+                let (lw, lh) = level.size();
+                return Err(refuse(format!("level {k} is {lw}x{lh}, but a {w0}x{h0} level 0 makes it {w}x{h}")));
+            }
+        }
+    }
     tex.faces.iter().map(|face| face.par_iter().map(|&l| encode_level(path, l, format)).collect()).collect()
 }
 

@@ -225,7 +225,7 @@ fn level_sizes(path: &Path, width: u32, height: u32, levels: u32) -> Result<Vec<
             max: MAX_DIMENSION,
         });
     }
-    let most = 32 - width.max(height).leading_zeros();
+    let most = bumpmap_math::mip::level_count(width as usize, height as usize) as u32;
     if levels > most {
         return Err(bad(
             path,
@@ -343,6 +343,18 @@ fn read_dds(bytes: &[u8], path: &Path) -> Result<StoredTexture, IoError> {
     }
     if h.depth.is_some_and(|d| d > 1) || h.caps2.contains(Caps2::VOLUME) {
         return Err(bad(path, "is a volume texture; a normal map is one 2D texture"));
+    }
+    // DX10's own word for the kind of texture, whatever the legacy header's flags say.
+    if let Some(h10) = &dds.header10
+        && h10.resource_dimension != ddsfile::D3D10ResourceDimension::Texture2D
+    {
+        return Err(bad(
+            path,
+            format!(
+                "is declared a {:?} resource (DX10 header); a normal map is one 2D texture",
+                h10.resource_dimension
+            ),
+        ));
     }
     if let Some(h10) = &dds.header10
         && h10.array_size > 1

@@ -116,6 +116,10 @@ impl Mesh {
         if let Some(i) = self.texcoords.iter().position(|p| !p.is_finite()) {
             return bad("texture coordinate", i, self.texcoords[i].to_string());
         }
+        // A tangent's w is its handedness: NaN there would flip no bump and draw none.
+        if let Some(i) = self.tangents.iter().position(|t| !t.is_finite()) {
+            return bad("tangent", i, self.tangents[i].to_string());
+        }
         Ok(())
     }
 

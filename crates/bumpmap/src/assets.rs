@@ -312,6 +312,18 @@ pub fn load_mesh(path: &Path, options: &MeshLoad) -> Result<MeshAsset, Error> {
         None => None,
         Some(m) => {
             let normal_scale = options.normal_scale.unwrap_or_else(|| m.normal.as_ref().map_or(1.0, |n| n.scale));
+            // The file's own scale out of range is the glTF's fault, not the image's.
+            if options.normal_scale.is_none()
+                && !(normal_scale.is_finite() && normal_scale.abs() <= bumpmap_math::imported::MAX_SCALE)
+            {
+                return Err(Error::Io(bumpmap_io::IoError::Mesh {
+                    path: path.to_path_buf(),
+                    reason: format!(
+                        "the material's normalTexture.scale is {normal_scale}; it must be a number in [-{0}, {0}]",
+                        bumpmap_math::imported::MAX_SCALE
+                    ),
+                }));
+            }
             let normal_map = match &m.normal {
                 Some(t) => {
                     // glTF's normal textures are green up ("+Y is up").

@@ -141,10 +141,25 @@ pub fn validate(scene: &Scene, options: &SinglePassOptions) -> Result<(), CoreEr
     if let Some(p) = &options.parallax {
         validate_parallax(scene, p)?;
     }
-    for light in &scene.lights {
-        validate_light(light)?;
+    validate_lights(&scene.lights)
+}
+
+/// The most lights a scene may have: each is one more pass over the frame (Kilgard §5.4's
+/// multipass, one per light) or one more term per pixel, so the time grows with the count;
+/// 64 is eight times what OpenGL 1.2 guarantees (`GL_MAX_LIGHTS` ≥ 8).
+pub const MAX_LIGHTS: usize = 64;
+
+/// Checks the number of lights against [`MAX_LIGHTS`] (before looking at any of them), then
+/// each light.
+pub fn validate_lights(lights: &[SceneLight]) -> Result<(), CoreError> {
+    if lights.len() > MAX_LIGHTS {
+        return Err(CoreError::out_of_range(
+            "the number of lights",
+            lights.len(),
+            "at most 64 (each light is one more pass over the frame)",
+        ));
     }
-    Ok(())
+    lights.iter().try_for_each(validate_light)
 }
 
 /// Checks heights as geometry: every material has heights (with min–max levels for the exact
@@ -169,6 +184,8 @@ pub fn validate_parallax(scene: &Scene, p: &Parallax) -> Result<(), CoreError> {
     }
     Ok(())
 }
+
+const _: () = assert!(MAX_LIGHTS == 64, "the message of validate_lights says 64");
 
 /// Checks one light's parameters.
 pub fn validate_light(light: &SceneLight) -> Result<(), CoreError> {
