@@ -179,6 +179,14 @@ pub fn to_chain(value: &Bound<'_, PyAny>) -> PyResult<Chain> {
         [h, w, 4] => (*h, *w),
         other => return Err(PyValueError::new_err(format!("level 0 must be {EXPECTED}, got shape {other:?}"))),
     };
+    // A chain ends at 1×1: a DDS or KTX2 file cannot hold more levels (their readers refuse it).
+    let most = bumpmap_math::mip::level_count(w0.max(1), h0.max(1));
+    if arrays.len() > most {
+        return Err(PyValueError::new_err(format!(
+            "{} levels for a {h0}x{w0} level 0: its chain ends at 1x1 after {most} levels",
+            arrays.len()
+        )));
+    }
     for (k, a) in arrays.iter().enumerate() {
         let expected = ((h0 >> k).max(1), (w0 >> k).max(1));
         match a.shape() {

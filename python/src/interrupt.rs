@@ -3,10 +3,14 @@
 //! at once instead of when the work ends.
 //!
 //! What it does not do: stop the work. An interrupted call returns at once; its thread runs on
-//! to its end and its result is dropped. Work that writes files asks [`Cancel::is_set`] before
-//! putting them in place, so an interrupted call leaves no file behind.
+//! to its end and its result is dropped. Work that writes files claims the right to put them in
+//! place ([`Cancel::begin_commit`]) after staging them: an interrupted call has given that right
+//! up, so it writes nothing, and its staged files are removed when the work ends — or, when the
+//! interpreter exits first, by the exit hook the module registers (`abandon_all`). A Ctrl-C
+//! that arrives while files are being renamed into place (a few milliseconds) waits for the
+//! renames and is raised as the call returns: the call happened whole, then the interrupt.
 
-use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::atomic::{AtomicU8, Ordering};
 use std::sync::mpsc::{RecvTimeoutError, channel};
 use std::sync::{Arc, Mutex};
 use std::time::Duration;
@@ -14,14 +18,28 @@ use std::time::Duration;
 use pyo3::exceptions::PyRuntimeError;
 use pyo3::prelude::*;
 
-/// Set when the caller gave up on the work (Ctrl-C).
+/// Whether the caller gave up on the work (Ctrl-C), and whether the work already began to put
+/// its files in place: one of the two wins, never both.
 #[derive(Clone, Default)]
-pub struct Cancel(Arc<AtomicBool>);
+pub struct Cancel(Arc<AtomicU8>);
+
+const RUNNING: u8 = 0;
+const CANCELLED: u8 = 1;
+const COMMITTING: u8 = 2;
 
 impl Cancel {
-    /// Whether the caller gave up.
-    pub fn is_set(&self) -> bool {
-        self.0.load(Ordering::SeqCst)
+    /// Claims the right to put staged files in place: false when the caller gave up (write
+    /// nothing); once claimed, the caller's Ctrl-C waits for the work to end.
+    pub fn begin_commit(&self) -> bool {
+        self.0.compare_exchange(RUNNING, COMMITTING, Ordering::SeqCst, Ordering::SeqCst).is_ok()
+    }
+
+    /// Gives up on the work unless it is already putting files in place; whether it gave up.
+    fn give_up(&self) -> bool {
+        matches!(
+            self.0.compare_exchange(RUNNING, CANCELLED, Ordering::SeqCst, Ordering::SeqCst),
+            Ok(_) | Err(CANCELLED)
+        )
     }
 }
 
@@ -52,8 +70,18 @@ pub fn run<T: Send + 'static>(py: Python<'_>, work: impl FnOnce(&Cancel) -> T + 
             }
             Err(RecvTimeoutError::Timeout) => {
                 if let Err(e) = py.check_signals() {
-                    cancel.0.store(true, Ordering::SeqCst);
-                    return Err(e);
+                    if cancel.give_up() {
+                        return Err(e);
+                    }
+                    // The files are going into place: the call ends as it was going to, and the
+                    // interrupt comes right after it.
+                    let value = py.detach(|| rx.lock().expect("one waiter").recv());
+                    let _ = handle.join();
+                    interrupt_again();
+                    drop(e);
+                    return value.map_err(|_| {
+                        PyRuntimeError::new_err("internal error in bumpmap (a bug; please report it): the worker ended")
+                    });
                 }
             }
             Err(RecvTimeoutError::Disconnected) => {
@@ -71,4 +99,20 @@ pub fn run<T: Send + 'static>(py: Python<'_>, work: impl FnOnce(&Cancel) -> T + 
             }
         }
     }
+}
+
+/// Raises SIGINT's `KeyboardInterrupt` again at the interpreter's next chance: for a Ctrl-C that
+/// came while the call was finishing, so it is not lost.
+fn interrupt_again() {
+    // SAFETY: `PyErr_SetInterrupt` only marks SIGINT as pending for the interpreter (it is
+    // documented as callable from any thread, with or without the GIL).
+    unsafe { pyo3::ffi::PyErr_SetInterrupt() };
+}
+
+/// Removes every staged file and folder not yet in place ([`bumpmap_io::atomic::abandon_all`]):
+/// registered with `atexit`, for work whose caller was interrupted and whose thread is still
+/// running when the interpreter exits.
+#[pyfunction]
+pub fn abandon_all() {
+    bumpmap_io::atomic::abandon_all();
 }

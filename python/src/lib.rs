@@ -212,9 +212,10 @@ fn write_texture(
         }
         (f, false) => f,
     };
-    let written =
-        interrupt::run(py, move |cancel| commands::write_texture(&path, &chain, format, &[], &|| cancel.is_set()))?
-            .map_err(|e| to_py("write_texture", e))?;
+    let written = interrupt::run(py, move |cancel| {
+        commands::write_texture(&path, &chain, format, &[], &|| !cancel.begin_commit())
+    })?
+    .map_err(|e| to_py("write_texture", e))?;
     Ok(written)
 }
 
@@ -320,12 +321,17 @@ fn compare<'py>(
         // Before minutes of work: an output that cannot be a folder.
         commands::check_compare_output(out).map_err(|e| to_py("compare", e))?;
     }
-    let (results, inputs) =
-        interrupt::run(py, move |_| commands::compare(&args, true))?.map_err(|e| to_py("compare", e))?;
-    if let Some(out) = &output {
-        let inputs: Vec<&std::path::Path> = inputs.iter().map(PathBuf::as_path).collect();
-        commands::write_compare(out, &results, &inputs).map_err(|e| to_py("compare", e))?;
-    }
+    // Measured and written on the worker, so Ctrl-C also stops the writing (nothing is put
+    // in place once it came).
+    let results = interrupt::run(py, move |cancel| {
+        let (results, inputs) = commands::compare(&args, true)?;
+        if let Some(out) = &output {
+            let inputs: Vec<&std::path::Path> = inputs.iter().map(PathBuf::as_path).collect();
+            commands::write_compare(out, &results, &inputs, &|| !cancel.begin_commit())?;
+        }
+        Ok::<_, CliError>(results)
+    })?
+    .map_err(|e| to_py("compare", e))?;
     let json = commands::compare_json(&results);
     py.import("json")?.call_method1("loads", (json,))
 }
@@ -419,5 +425,8 @@ fn _bumpmap(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(techniques, m)?)?;
     m.add_function(wrap_pyfunction!(inspect, m)?)?;
     m.add_function(wrap_pyfunction!(height_from_normals, m)?)?;
+    // Files an interrupted call staged, when the interpreter exits before its work ends.
+    let abandon = wrap_pyfunction!(interrupt::abandon_all, m)?;
+    m.py().import("atexit")?.call_method1("register", (abandon,))?;
     Ok(())
 }

@@ -176,12 +176,22 @@ fn words(function: &str, arg: &Arg, key: &str, value: &Bound<'_, PyAny>) -> PyRe
     if repeatable && !is_scalar(value) && !all_numbers(value)? {
         let mut out = Vec::new();
         for item in value.try_iter()? {
+            // An iterator may never end: read no further than any option could use.
+            if out.len() == MAX_VALUES {
+                return Err(PyValueError::new_err(format!(
+                    "{function}(): {key} takes at most {MAX_VALUES} values; this one gave more (an endless iterator?)"
+                )));
+            }
             out.push(format!("--{long}={}", text(function, key, &item?)?));
         }
         return Ok(out);
     }
     Ok(vec![format!("--{long}={}", text(function, key, value)?)])
 }
+
+/// The most values a repeatable option reads from one sequence or iterator: far past what any
+/// takes (64 lights at most), and a bound on an iterator that never ends.
+const MAX_VALUES: usize = 4096;
 
 /// A str, number or path: not a sequence of values.
 fn is_scalar(value: &Bound<'_, PyAny>) -> bool {

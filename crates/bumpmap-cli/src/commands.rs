@@ -48,8 +48,8 @@ pub fn texel_format(args: &NormalmapArgs) -> Result<TextureFormat, CliError> {
 
 /// Writes `chain` as `normalmap -o OUT` does: by the extension, PNG files (`OUT.mip1.png`, …
 /// beside level 0), or one DDS or KTX2 file with every level in `format`; all files or none, none
-/// of them replacing one of `inputs`. When `cancelled` says so once the files are staged,
-/// nothing is put in place ([`CliError::Interrupted`]). Returns the paths written.
+/// of them replacing one of `inputs`. When `cancelled`, asked once right before the files go
+/// into place, says so, nothing is ([`CliError::Interrupted`]). Returns the paths written.
 pub fn write_texture(
     out: &Path,
     chain: &Chain,
@@ -100,8 +100,15 @@ pub fn check_compare_output(out: &Path) -> Result<(), CliError> {
 }
 
 /// Writes `compare`'s folder (images, heat maps, plots, `results.json`, `report.html`) into
-/// `out`, all or none, none of the files replacing one of `inputs`. Returns the paths written.
-pub fn write_compare(out: &Path, results: &Results, inputs: &[&Path]) -> Result<Vec<PathBuf>, CliError> {
+/// `out`, all or none, none of the files replacing one of `inputs`. When `cancelled`, asked once
+/// right before the files go into place, says so, nothing is ([`CliError::Interrupted`]).
+/// Returns the paths written.
+pub fn write_compare(
+    out: &Path,
+    results: &Results,
+    inputs: &[&Path],
+    cancelled: &dyn Fn() -> bool,
+) -> Result<Vec<PathBuf>, CliError> {
     crate::compare::check_output(out)?;
-    crate::compare::write(out, results, inputs)
+    crate::compare::write(out, results, inputs, cancelled)
 }

@@ -166,10 +166,7 @@ impl FileSet {
         ensure_not_input(path, &inputs)?;
         let staged: Vec<&Path> = self.staged.iter().map(|(p, _)| p.as_path()).collect();
         if staged.contains(&path) || ensure_not_input(path, &staged).is_err() {
-            return Err(IoError::Write {
-                path: path.to_path_buf(),
-                source: std::io::Error::other("two outputs of one command would be the same file"),
-            });
+            return Err(IoError::SameOutput { path: path.to_path_buf() });
         }
         let err = |source| IoError::Write { path: path.to_path_buf(), source };
         if path.is_dir() {
@@ -177,7 +174,10 @@ impl FileSet {
         }
         let dir = path.parent().filter(|d| !d.as_os_str().is_empty()).unwrap_or(Path::new("."));
         let name = path.file_name().ok_or_else(|| err(std::io::Error::other("not a file name")))?;
-        let tmp = dir.join(format!(".{}.{}.{}.tmp", name.to_string_lossy(), std::process::id(), self.staged.len()));
+        // Unique in the process: threads writing the same path stage into files of their own.
+        static NEXT: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::new(0);
+        let n = NEXT.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+        let tmp = dir.join(format!(".{}.{}.{n}.tmp", name.to_string_lossy(), std::process::id()));
         // Folders made and the temporary file created under one lock, which a set dropped on
         // another thread also takes to remove the folders it made: it cannot take away a
         // folder between another set's making sure of it and its first file there.

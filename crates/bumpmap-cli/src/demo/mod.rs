@@ -383,7 +383,7 @@ fn write_demo(out: &Path, args: &DemoArgs) -> Result<(), CliError> {
         output: out.join("compare"),
     };
     let (results, _) = crate::compare::measure(&compare, true)?;
-    crate::compare::write(&compare.output, &results, &[])?;
+    crate::compare::write(&compare.output, &results, &[], &|| false)?;
     index += "\n`compare/report.html`: every technique on the torus measured against the reference renderer \
 (RMSE, PSNR, bias, FLIP, SSIM), with FLIP heat maps and the reference's convergence, and the studies: \
 the golf ball at a distance (Kilgard §2.4.2), the highlight at a distance by specular filter (§2.5.3), \
