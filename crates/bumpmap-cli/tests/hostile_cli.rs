@@ -3,7 +3,7 @@
 
 mod common;
 
-use common::{bumpmap, listing, scratch, stderr};
+use common::{bumpmap, limited, listing, scratch, stderr};
 
 /// `ARGS… -o OUT` (`bench` writes no file) in a fresh folder: the exit status, and that
 /// nothing was written.
@@ -93,27 +93,16 @@ fn a_signal_during_a_write_leaves_nothing_behind() {
     }
 }
 
-/// `bumpmap ARGS…` under an address-space limit of `limit_mib` and a 20 s timeout.
-fn limited(limit_mib: u64, args: &[&str]) -> std::process::Output {
-    let script = format!("ulimit -v {}; exec timeout 20 \"$0\" \"$@\"", limit_mib * 1024);
-    std::process::Command::new("sh")
-        .arg("-c")
-        .arg(script)
-        .arg(env!("CARGO_BIN_EXE_bumpmap"))
-        .args(args)
-        .output()
-        .unwrap()
-}
-
 #[test]
 fn a_normal_map_too_big_for_the_memory_is_an_error_with_its_size_and_writes_nothing() {
-    // 8192² heights fit in 600 MiB (256 MiB of floats); the 16-bit level 0 (512 MiB) does not.
+    // 8192² heights fit in 600 MiB (256 MiB of floats); the 16-bit chain and what making it
+    // takes (18 bytes a texel, 1.1 GiB) do not: refused before any of it is made.
     let dir = scratch("out_of_memory");
     let out = dir.join("big.png");
     let o = limited(600, &["normalmap", "bricks@8192", "--bits", "16", "--mips", "-o", out.to_str().unwrap()]);
     let err = stderr(&o);
     assert_eq!(o.status.code(), Some(1), "{err}");
-    assert!(err.contains("bricks@8192: not enough memory:") && err.contains("MiB"), "{err}");
+    assert!(err.contains("bricks@8192: not enough memory: making these maps needs 1.1 GiB"), "{err}");
     assert!(!err.contains("panicked") && !err.contains("memory allocation of"), "{err}");
     assert!(listing(&dir).is_empty(), "nothing may be written: {:?}", listing(&dir));
 }

@@ -8,6 +8,18 @@ pub fn bumpmap(args: &[&str]) -> Output {
     std::process::Command::new(env!("CARGO_BIN_EXE_bumpmap")).args(args).output().expect("run bumpmap")
 }
 
+/// `bumpmap ARGS…` under an address-space limit of `limit_mib` (`ulimit -v`) and a 60 s timeout.
+pub fn limited(limit_mib: u64, args: &[&str]) -> Output {
+    let script = format!("ulimit -v {}; exec timeout 60 \"$0\" \"$@\"", limit_mib * 1024);
+    std::process::Command::new("sh")
+        .arg("-c")
+        .arg(script)
+        .arg(env!("CARGO_BIN_EXE_bumpmap"))
+        .args(args)
+        .output()
+        .unwrap()
+}
+
 pub fn stderr(o: &Output) -> String {
     String::from_utf8_lossy(&o.stderr).into_owned()
 }
