@@ -360,13 +360,22 @@ fn run_folder(
     let format = texel_format(args)?;
     let ext = if format.is_compressed() { "dds" } else { "png" };
     let read_err = |e: std::io::Error| CliError::Path { path: input.to_path_buf(), reason: e.to_string() };
+    // Every image directly in the folder; a link leading out of it (or to what is not a file)
+    // is skipped with a warning: the folder is what the user pointed at.
+    let place = format!("the folder {}", input.display());
     let mut files: Vec<PathBuf> = std::fs::read_dir(input)
         .map_err(read_err)?
         .filter_map(|e| e.ok().map(|e| e.path()))
         .filter(|p| {
-            p.is_file()
-                && p.extension()
-                    .is_some_and(|e| IMAGE_EXTENSIONS.contains(&e.to_string_lossy().to_ascii_lowercase().as_str()))
+            p.extension().is_some_and(|e| IMAGE_EXTENSIONS.contains(&e.to_string_lossy().to_ascii_lowercase().as_str()))
+                && !p.is_dir()
+        })
+        .filter(|p| match bumpmap_io::siblings::in_folder(input, p, &place) {
+            Ok(found) => found.is_some(),
+            Err(e) => {
+                eprintln!("warning: skipped {e}");
+                false
+            }
         })
         .collect();
     files.sort();

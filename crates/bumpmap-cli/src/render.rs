@@ -150,8 +150,12 @@ pub(crate) fn too_big(e: CliError, spec: &bumpmap::SceneSpec, bumps: Option<&str
         Some((u, v)) => format!(", tessellation {u}x{v}"),
         None => String::new(),
     };
+    let decal = match &spec.params.decal {
+        Some(d) if !spec.params.default_decal => format!(", decal {}x{}", d.levels()[0].width, d.levels()[0].height),
+        _ => String::new(),
+    };
     CliError::Render(format!(
-        "this scene (bumps {w}x{h}{from}{mesh}) is too big for the memory this process may use: {oom}. \
+        "this scene (bumps {w}x{h}{from}{decal}{mesh}) is too big for the memory this process may use: {oom}. \
          The README's \"Memory\" section gives what the largest inputs need; a smaller --height-field, \
          --normal-map, --decal, --gloss or --tessellation needs less"
     ))

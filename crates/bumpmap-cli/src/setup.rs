@@ -179,7 +179,7 @@ pub fn setup(s: &SceneSetup) -> Result<Setup, CliError> {
             spec.params.default_decal = false;
         }
         Some(path) => {
-            spec.params.decal = Some(Arc::new(Rgba8Mips::with_box_mipmaps(bumpmap_io::load_rgba8(Path::new(path))?)));
+            spec.params.decal = Some(texture_file(Path::new(path))?);
             spec.params.default_decal = false;
         }
         None => {}
@@ -386,6 +386,19 @@ fn sampler(filter: FilterArg) -> Sampler {
     }
 }
 
+/// An RGBA8 image file with box-filtered mipmaps (`--decal`, `--gloss`): refused, naming the
+/// file, when its levels and a texture unit's copy of them will not fit beside what is loaded.
+fn texture_file(path: &Path) -> Result<Arc<Rgba8Mips>, CliError> {
+    let image = bumpmap_io::load_rgba8(path)?;
+    let texels = (image.width as u64 * image.height as u64) * 4 / 3;
+    bumpmap::bumpmap_math::buffer::ensure_available(
+        texels * 4 + bumpmap_cpu::texture_unit_bytes(texels),
+        "its mipmaps and a texture unit's copy",
+    )
+    .map_err(|e| CliError::Render(format!("{}: {e}; a smaller image needs less", path.display())))?;
+    Ok(Arc::new(Rgba8Mips::with_box_mipmaps(image)))
+}
+
 /// A roughness map for `--roughness-map`: a DDS or KTX2 file's own levels, or a PNG (or other
 /// image) with `NAME.mip1.png`, `NAME.mip2.png`, … beside it as `normalmap --roughness-out`
 /// writes them; each texel's roughness read by `layout` into the gray form the renderers
@@ -518,7 +531,7 @@ fn technique_options(s: &SceneSetup, name: TechniqueName) -> Result<TechniqueOpt
             let g = Rgba8Image::from_gray(256, 256, &bumpmap::bumpmap_math::height::bricks_gloss(256, 256));
             Gloss::Map(Arc::new(Rgba8Mips::with_box_mipmaps(g)))
         }
-        Some(path) => Gloss::Map(Arc::new(Rgba8Mips::with_box_mipmaps(bumpmap_io::load_rgba8(Path::new(path))?))),
+        Some(path) => Gloss::Map(texture_file(Path::new(path))?),
     };
     let roughness_map = match &m.roughness_map {
         None => None,

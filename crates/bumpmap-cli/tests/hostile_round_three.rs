@@ -63,6 +63,12 @@ fn every_path_that_makes_a_chain_from_a_normal_map_refuses_before_it_aborts() {
         let named = names.file_name().unwrap().to_str().unwrap();
         assert!(err.contains(named) || err.contains("n.png"), "{args:?}: the input is named: {err}");
     }
+    // The same image as a decal or a gloss map: its mipmaps and a texture unit's copy (256 MiB)
+    // are asked for before they are made.
+    for flag in ["--decal", "--gloss"] {
+        let o = limited(350, &["render", flag, s(&png), "--technique", "single-pass", "--size", "32", "-o", s(&out)]);
+        refused(&o, &dir, &before, "n.png: not enough memory: its mipmaps and a texture unit's copy needs 256.0 MiB");
+    }
 }
 
 #[test]
@@ -174,6 +180,17 @@ fn a_file_found_by_name_is_read_only_from_the_folder_of_the_file_named() {
         assert!(err.contains(expect) && err.contains("outside the folder of"), "{args:?}: {err}");
         assert!(!out.exists());
     }
+    // A folder given to normalmap: its files are found by listing it, so a link out of it is
+    // skipped, with a warning naming it; the others are made.
+    let heights = root.join("heights");
+    std::fs::create_dir_all(&heights).unwrap();
+    common::write_gray_png(&heights.join("a.png"), 16, 16, |x, y| (x * 9 + y * 5) as u8);
+    common::write_gray_png(&elsewhere.join("secret.png"), 16, 16, |x, _| x as u8);
+    std::os::unix::fs::symlink(elsewhere.join("secret.png"), heights.join("b.png")).unwrap();
+    let made = root.join("made");
+    let err = ok(&["normalmap", s(&heights), "-o", &format!("{}/", s(&made))]);
+    assert!(err.contains("warning: skipped") && err.contains("b.png: is a link to"), "{err}");
+    assert_eq!(listing(&made), ["a.png"]);
     // A link that stays in the folder is followed.
     std::fs::rename(elsewhere.join("r.mip1.png"), here.join("r1.png")).unwrap();
     std::fs::remove_file(here.join("r.mip1.png")).unwrap();
@@ -228,6 +245,18 @@ fn values_that_would_draw_wrong_silently_are_refused_naming_the_element() {
     .unwrap();
     let o = bumpmap(&render);
     refused(&o, &dir, &listing(&dir), "q.gltf: the material's normalTexture.scale is 1000000000");
+    // A baseColorFactor outside [0, 1] is drawn clamped, and said so.
+    std::fs::write(
+        &gltf,
+        json.replace("\"pbrMetallicRoughness\":{", "\"pbrMetallicRoughness\":{\"baseColorFactor\":[-5,1,1,1],"),
+    )
+    .unwrap();
+    let err = ok(&render);
+    assert!(
+        err.contains("baseColorFactor [-5.0, 1.0, 1.0] is outside [0, 1]") && err.contains("drawn clamped"),
+        "{err}"
+    );
+    std::fs::remove_file(&out).unwrap();
     // A DX10 DDS declaring a 3D resource (dimension 4 at byte 132) without the depth flag.
     let dds = dir.join("v.dds");
     ok(&["normalmap", "bricks@16", "--format", "bc5", "-o", s(&dds)]);

@@ -18,20 +18,26 @@ use crate::image_file::level_path;
 /// there is none, the file to read when it is a regular file in `named`'s folder (or a link to
 /// one there), an error naming it otherwise.
 pub fn beside(named: &Path, file: &Path) -> Result<Option<PathBuf>, IoError> {
+    let folder = named.parent().filter(|p| !p.as_os_str().is_empty()).unwrap_or(Path::new("."));
+    in_folder(folder, file, &format!("the folder of {}", named.display()))
+}
+
+/// `file`, an entry of `folder` found by listing it or by name (`place` says which folder, in
+/// words): `Ok(None)` when there is no such entry, the file to read when it is a regular file
+/// or a link to one in `folder`, an error naming it otherwise.
+pub fn in_folder(folder: &Path, file: &Path, place: &str) -> Result<Option<PathBuf>, IoError> {
     let Ok(meta) = std::fs::symlink_metadata(file) else { return Ok(None) };
     let refused = |reason: String| IoError::Texture { path: file.to_path_buf(), reason };
     if meta.file_type().is_symlink() {
-        let folder = named.parent().filter(|p| !p.as_os_str().is_empty()).unwrap_or(Path::new("."));
         let real_folder =
             std::fs::canonicalize(folder).map_err(|source| IoError::Read { path: folder.to_path_buf(), source })?;
         let target =
             std::fs::canonicalize(file).map_err(|source| IoError::Read { path: file.to_path_buf(), source })?;
         if target.parent() != Some(real_folder.as_path()) {
             return Err(refused(format!(
-                "is a link to {}, outside the folder of {}: a file found by name beside the one given is read \
-                 only from that folder (give the file itself, or copy it there)",
-                target.display(),
-                named.display()
+                "is a link to {}, outside {place}: a file found by name rather than given is read only from \
+                 there (give the file itself, or copy it there)",
+                target.display()
             )));
         }
         if !target.is_file() {
@@ -41,8 +47,7 @@ pub fn beside(named: &Path, file: &Path) -> Result<Option<PathBuf>, IoError> {
     }
     if !meta.is_file() {
         return Err(refused(format!(
-            "is not a regular file, but is found by name beside {} and would be read as one of its files",
-            named.display()
+            "is not a regular file, but is found by name in {place} and would be read as one"
         )));
     }
     Ok(Some(file.to_path_buf()))
@@ -82,6 +87,8 @@ mod tests {
         std::os::unix::fs::symlink(elsewhere.join("secret.png"), here.join("r.mip3.png")).unwrap();
         let e = png_levels(&named).unwrap_err().to_string();
         assert!(e.contains("r.mip3.png: is a link to") && e.contains("outside the folder of"), "{e}");
+        assert!(in_folder(&here, &here.join("r.mip3.png"), "here").is_err());
+        assert_eq!(in_folder(&here, &here.join("r.mip2.png"), "here").unwrap(), Some(here.join("r.mip2.png")));
         std::fs::create_dir(here.join("q.mip1.png")).unwrap();
         let e = png_levels(&here.join("q.png")).unwrap_err().to_string();
         assert!(e.contains("q.mip1.png: is not a regular file"), "{e}");

@@ -342,6 +342,15 @@ pub fn load_mesh(path: &Path, options: &MeshLoad) -> Result<MeshAsset, Error> {
             // glTF: the texture is sRGB-encoded and the factor linear; their product is stored
             // sRGB-encoded again, so the decal's bytes look as the file's viewer shows them.
             let factor = m.base_color_factor;
+            if factor[..3].iter().any(|c| !(0.0..=1.0).contains(c)) {
+                warnings.push(Warning::Ignored {
+                    path: path.to_path_buf(),
+                    what: format!(
+                        "the material's baseColorFactor {:?} is outside [0, 1] (glTF 2.0 bounds each component): drawn clamped",
+                        &factor[..3]
+                    ),
+                });
+            }
             let tint = |t: [u8; 4]| {
                 let c = |i: usize| srgb_encode(srgb_decode(t[i]) * factor[i]);
                 [c(0), c(1), c(2), t[3]]
@@ -350,6 +359,13 @@ pub fn load_mesh(path: &Path, options: &MeshLoad) -> Result<MeshAsset, Error> {
                 Some(t) => {
                     let levels: Vec<Rgba8Image> = (&t.texture.levels).into();
                     let level0 = &levels[0];
+                    // The tinted copy and its mipmaps, before either is made.
+                    let texels = level0.width as u64 * level0.height as u64;
+                    bumpmap_math::buffer::ensure_available(
+                        texels * 4 + texels * 4 * 4 / 3,
+                        "the decal and its mipmaps",
+                    )
+                    .map_err(|source| Error::OutOfMemory { what: t.source.display().to_string(), source })?;
                     let image =
                         Rgba8Image::new(level0.width, level0.height, level0.texels.iter().map(|&t| tint(t)).collect());
                     let what = format!("baseColorTexture {}x{} from {}", image.width, image.height, t.source.display());

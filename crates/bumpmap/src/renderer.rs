@@ -108,6 +108,10 @@ impl Prepared {
         if embossed {
             bytes += texels * 4 + bumpmap_cpu::texture_unit_bytes(texels);
         }
+        if let (Some(decal), false) = (&spec.params.decal, name.is_reference()) {
+            let level0 = &decal.levels()[0];
+            bytes += bumpmap_cpu::texture_unit_bytes((level0.width as u64 * level0.height as u64) * 4 / 3);
+        }
         if let Some((u, v)) = spec.params.tessellation {
             let vertices = (u as u64 + 1) * (v as u64 + 1);
             let per_vertex = (std::mem::size_of::<bumpmap_core::vertex::Vertex>() + 48) as u64;
