@@ -60,9 +60,13 @@ pub fn obj(data: &[u8]) {
 }
 
 /// glTF JSON or GLB to a mesh, from memory: only data: URIs and the GLB chunk supply buffers
-/// and the material's images.
+/// and the material's images; then made ready to draw as `render --scene mesh:` makes it
+/// (tangents, the normal texture imported with its scale, the base colour tinted).
 pub fn gltf(data: &[u8]) {
-    let _ = read_mesh(data, Path::new("fuzz.gltf"), MeshFormat::Gltf);
+    let name = Path::new("fuzz.gltf");
+    if let Ok(loaded) = read_mesh(data, name, MeshFormat::Gltf) {
+        let _ = bumpmap::assets::mesh_asset(loaded, name, &bumpmap::assets::MeshLoad::default());
+    }
 }
 
 /// The command line's parser and all its value parsers: words split on NUL, parsed, not run.

@@ -298,7 +298,13 @@ fn srgb_encode(l: f32) -> u8 {
 
 /// Loads a mesh file (OBJ, glTF, GLB) with tangents, and a glTF's material as `options` ask.
 pub fn load_mesh(path: &Path, options: &MeshLoad) -> Result<MeshAsset, Error> {
-    let loaded = bumpmap_io::load_mesh_with(path, &options.mesh)?;
+    mesh_asset(bumpmap_io::load_mesh_with(path, &options.mesh)?, path, options)
+}
+
+/// A mesh already read (`path` names it in messages) made ready to draw as [`load_mesh`] makes
+/// it: tangents where it has none, its material's normal map in texture space and its base
+/// colour as the decal.
+pub fn mesh_asset(loaded: bumpmap_io::LoadedMesh, path: &Path, options: &MeshLoad) -> Result<MeshAsset, Error> {
     let mesh = if loaded.had_tangents {
         loaded.mesh
     } else {
