@@ -483,21 +483,23 @@ fn height_field(img: DynamicImage, path: &Path, channel: Channel) -> Result<Heig
         Channel::Blue => c[2],
         Channel::Alpha => c[3],
     };
+    // Converted by value: the decoded image is dropped once converted, so at most two copies
+    // are alive besides the heights, as `decode` counted.
     let field = if float {
-        let rgba = img.to_rgba32f();
+        let rgba = img.into_rgba32f();
         let heights: Vec<f32> = rgba.pixels().map(|p| pick(p.0)).collect();
         Some(usable(HeightField::new(w, h, heights).expect("decoded image has consistent dimensions"), path)?)
     } else if sixteen {
         if !has_color && channel == Channel::Luminance {
-            HeightField::from_u16(w, h, img.to_luma16().as_raw())
+            HeightField::from_u16(w, h, img.into_luma16().as_raw())
         } else {
-            let rgba = img.to_rgba16();
+            let rgba = img.into_rgba16();
             HeightField::new(w, h, rgba.pixels().map(|p| pick(p.0.map(|v| v as f32 / 65535.0))).collect())
         }
     } else if !has_color && channel == Channel::Luminance {
-        HeightField::from_u8(w, h, img.to_luma8().as_raw())
+        HeightField::from_u8(w, h, img.into_luma8().as_raw())
     } else {
-        let rgba = img.to_rgba8();
+        let rgba = img.into_rgba8();
         HeightField::new(w, h, rgba.pixels().map(|p| pick(p.0.map(|v| v as f32 / 255.0))).collect())
     };
     Ok(field.expect("decoded image has consistent dimensions"))
@@ -515,7 +517,9 @@ pub fn read_rgba8(bytes: &[u8], name: &Path, limits: &DecodeLimits) -> Result<Rg
 }
 
 fn rgba8(img: DynamicImage) -> Rgba8Image {
-    let img = img.to_rgba8();
+    // Converted by value: the decoded image is dropped once converted, so at most two copies
+    // are alive, as `decode` counted.
+    let img = img.into_rgba8();
     let (w, h) = (img.width() as usize, img.height() as usize);
     Rgba8Image::new(w, h, img.pixels().map(|p| p.0).collect())
 }

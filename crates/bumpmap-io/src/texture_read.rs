@@ -318,6 +318,11 @@ fn decode_levels<'a>(
     sizes: &[(usize, usize)],
     data: impl Fn(usize) -> &'a [u8],
 ) -> Result<StoredTexture, IoError> {
+    // Every level's texels, asked for before the first is decoded (BC blocks decode to RGBA8).
+    let texel_bytes = if layout.sixteen() { 8 } else { 4 };
+    let needed: u64 = sizes.iter().map(|&(w, h)| w as u64 * h as u64 * texel_bytes).sum();
+    bumpmap_math::buffer::ensure_available(needed, "decoding its levels")
+        .map_err(|source| IoError::OutOfMemory { path: path.to_path_buf(), source })?;
     let mut eight = Vec::new();
     let mut sixteen = Vec::new();
     for (k, &size) in sizes.iter().enumerate() {
@@ -336,6 +341,9 @@ fn refuse_srgb(path: &Path, name: impl std::fmt::Debug) -> IoError {
 
 fn read_dds(bytes: &[u8], path: &Path) -> Result<StoredTexture, IoError> {
     use ddsfile::{Caps2, DxgiFormat as F, FourCC};
+    // The reader keeps its own copy of the levels' bytes.
+    bumpmap_math::buffer::ensure_available(bytes.len() as u64, "reading it")
+        .map_err(|source| IoError::OutOfMemory { path: path.to_path_buf(), source })?;
     let dds = ddsfile::Dds::read(bytes).map_err(|e| bad(path, format!("not a readable DDS file: {e}")))?;
     let h = &dds.header;
     if h.caps2.contains(Caps2::CUBEMAP) {

@@ -178,26 +178,29 @@ pub fn import_normal_map<T: Texel>(
             (Vec3::new(x, y, z).length() - 1.0).abs() > UNIT_TOLERANCE
         })
         .count();
-    let convert = |level: &Image<T>| -> Image<[u8; 4]> {
-        let texels = level
-            .texels
-            .par_iter()
-            .map(|&t| {
-                if rescaled {
-                    let a = t.to_rgba8()[3];
-                    let [r, g, b, _] = encode_unit::<[u8; 4]>(direction(t).normalize_or(Vec3::Z), enc);
-                    [r, g, b, a]
-                } else {
-                    to_texture_space(t).to_rgba8()
-                }
-            })
-            .collect();
-        Image { width: level.width, height: level.height, texels }
+    // Asked for fallibly as well as estimated above: the estimate probes the address space
+    // once, and what the allocator then hands out can still fall short by a little.
+    const WHAT: &str = "the normal map in texture space";
+    let convert = |level: &Image<T>| -> Result<Image<[u8; 4]>, ImportError> {
+        let mut texels = Vec::new();
+        texels
+            .try_reserve_exact(level.texels.len())
+            .map_err(|_| crate::buffer::OutOfMemory::of::<[u8; 4]>(WHAT, level.texels.len()))?;
+        texels.par_extend(level.texels.par_iter().map(|&t| {
+            if rescaled {
+                let a = t.to_rgba8()[3];
+                let [r, g, b, _] = encode_unit::<[u8; 4]>(direction(t).normalize_or(Vec3::Z), enc);
+                [r, g, b, a]
+            } else {
+                to_texture_space(t).to_rgba8()
+            }
+        }));
+        Ok(Image { width: level.width, height: level.height, texels })
     };
     let foreign_alpha = level0.texels.iter().any(|t| t.unpack(enc)[3] < OPAQUE_ALPHA);
     let renormalized_mips = levels.len() > 1 && !foreign_alpha && renormalized(levels, &direction);
     let chain = if stored_mips {
-        let mut chain = MipChain { levels: levels.iter().map(convert).collect(), encoding: enc };
+        let mut chain = MipChain { levels: levels.iter().map(convert).collect::<Result<_, _>>()?, encoding: enc };
         if foreign_alpha {
             for level in &mut chain.levels[1..] {
                 for t in &mut level.texels {
@@ -209,9 +212,13 @@ pub fn import_normal_map<T: Texel>(
         chain.levels[0].texels.iter_mut().for_each(|t| t[3] = 255);
         chain
     } else {
-        let normals: Vec<Vec3> = level0.texels.par_iter().map(|&t| direction(t).normalize_or(Vec3::Z)).collect();
-        let mut chain = MipChain::<[u8; 4]>::from_normals(width, height, &normals, enc, options.mip_mode);
-        chain.levels[0] = convert(level0);
+        let mut normals: Vec<Vec3> = Vec::new();
+        normals
+            .try_reserve_exact(level0.texels.len())
+            .map_err(|_| crate::buffer::OutOfMemory::of::<Vec3>(WHAT, level0.texels.len()))?;
+        normals.par_extend(level0.texels.par_iter().map(|&t| direction(t).normalize_or(Vec3::Z)));
+        let mut chain = MipChain::<[u8; 4]>::try_from_normals(width, height, &normals, enc, options.mip_mode)?;
+        chain.levels[0] = convert(level0)?;
         chain.levels[0].texels.iter_mut().for_each(|t| t[3] = 255);
         chain
     };

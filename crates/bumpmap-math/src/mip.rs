@@ -311,7 +311,7 @@ impl<T: Texel> MipChain<T> {
         );
 
         // The small levels: reduce the deepest streamed level's sums, level by level.
-        reduce_levels(&shape, deepest, top, &mut bytes, mode, options.encoding);
+        reduce_levels(&shape, deepest, top, &mut bytes, mode, options.encoding).map_err(NormalMapError::OutOfMemory)?;
         let levels = bytes
             .into_iter()
             .enumerate()
@@ -324,18 +324,42 @@ impl<T: Texel> MipChain<T> {
     /// the same averaging and encoding as [`MipChain::from_height`]. Panics if
     /// `normals.len() != width·height` or a dimension is zero.
     pub fn from_normals(width: usize, height: usize, normals: &[Vec3], encoding: Encoding, mode: MipMode) -> Self {
+        Self::try_from_normals(width, height, normals, encoding, mode).unwrap_or_else(|e| {
+            std::alloc::handle_alloc_error(
+                std::alloc::Layout::from_size_align(e.bytes as usize, 16).unwrap_or(std::alloc::Layout::new::<Vec3>()),
+            )
+        })
+    }
+
+    /// [`MipChain::from_normals`] whose buffers sized by the input are asked for fallibly: an
+    /// [`OutOfMemory`](crate::buffer::OutOfMemory) naming the one that would not fit, rather
+    /// than an abort.
+    pub fn try_from_normals(
+        width: usize,
+        height: usize,
+        normals: &[Vec3],
+        encoding: Encoding,
+        mode: MipMode,
+    ) -> Result<Self, crate::buffer::OutOfMemory> {
         assert!(width > 0 && height > 0 && normals.len() == width * height, "{width}x{height} normals");
         let shape = Shape::new(width, height);
-        let mut bytes: Vec<Vec<T>> =
-            (0..shape.levels()).map(|k| crate::buffer::zeroed::<T>(shape.w[k] * shape.h[k])).collect();
-        bytes[0] = normals.iter().map(|&n| encode_unit(n, encoding)).collect();
-        reduce_levels(&shape, 0, normals.to_vec(), &mut bytes, mode, encoding);
+        let mut bytes: Vec<Vec<T>> = (0..shape.levels())
+            .map(|k| crate::buffer::try_zeroed::<T>(shape.w[k] * shape.h[k], "a mip level"))
+            .collect::<Result<_, _>>()?;
+        for (texel, &n) in bytes[0].iter_mut().zip(normals) {
+            *texel = encode_unit(n, encoding);
+        }
+        let mut sums = Vec::new();
+        sums.try_reserve_exact(normals.len())
+            .map_err(|_| crate::buffer::OutOfMemory::of::<Vec3>("the sums of level 0's normals", normals.len()))?;
+        sums.extend_from_slice(normals);
+        reduce_levels(&shape, 0, sums, &mut bytes, mode, encoding)?;
         let levels = bytes
             .into_iter()
             .enumerate()
             .map(|(k, texels)| Image { width: shape.w[k], height: shape.h[k], texels })
             .collect();
-        Self { levels, encoding }
+        Ok(Self { levels, encoding })
     }
 
     /// Number of levels: `1 + floor(log2(max(w, h)))`.
@@ -385,11 +409,14 @@ fn reduce_levels<T: Texel>(
     bytes: &mut [Vec<T>],
     mode: MipMode,
     enc: Encoding,
-) {
+) -> Result<(), crate::buffer::OutOfMemory> {
     let (mut sums, mut w, mut h) = (sums, shape.w[from], shape.h[from]);
     for (k, level) in bytes.iter_mut().enumerate().skip(from + 1) {
         let (nw, nh) = (shape.w[k], shape.h[k]);
-        let mut next = vec![Vec3::ZERO; nw * nh];
+        let mut next = Vec::new();
+        next.try_reserve_exact(nw * nh)
+            .map_err(|_| crate::buffer::OutOfMemory::of::<Vec3>("a mip level's sums", nw * nh))?;
+        next.resize(nw * nh, Vec3::ZERO);
         for j in 0..nh {
             for sy in footprint(j, h) {
                 for i in 0..nw {
@@ -404,6 +431,7 @@ fn reduce_levels<T: Texel>(
         }
         (sums, w, h) = (next, nw, nh);
     }
+    Ok(())
 }
 
 /// The rows of level `k` under row `j` of level `deepest` (footprints composed downward).
