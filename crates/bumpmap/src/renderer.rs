@@ -86,7 +86,8 @@ impl Prepared {
     }
 
     /// What preparing `spec` for `name` asks for, in bytes: the normal map and its mips made
-    /// from heights (4/3 of level 0's RGBA8), a texture unit's copy of it (and of the height
+    /// from heights, or a given map's copy in the scene (4/3 of level 0's RGBA8), a texture
+    /// unit's copy of it (and of the height
     /// map, for embossing), the heights and their bounds for the techniques that march them, and
     /// a tessellation's mesh and vertex-stage output. Maps already loaded are not counted.
     /// Within about 5% of the peaks measured in BENCHMARKS.md; each buffer is also asked for
@@ -94,9 +95,9 @@ impl Prepared {
     pub fn bytes_needed(spec: &SceneSpec, name: TechniqueName) -> u64 {
         let (w, h) = spec.params.bumps.size();
         let texels = (w as u64 * h as u64) * 4 / 3;
-        let made = matches!(spec.params.bumps, bumpmap_core::BumpSource::Heights(_));
         let embossed = matches!(name, TechniqueName::Emboss | TechniqueName::EmbossUnforced);
-        let mut bytes = if made { texels * 4 } else { 0 };
+        // Made from heights, or copied from a map the spec shares into the scene's material.
+        let mut bytes = texels * 4;
         if !name.is_reference() {
             bytes += bumpmap_cpu::texture_unit_bytes(texels);
         }

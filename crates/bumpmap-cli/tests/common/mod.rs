@@ -9,9 +9,19 @@ pub fn bumpmap(args: &[&str]) -> Output {
 }
 
 /// `bumpmap ARGS…` under an address-space limit of `limit_mib` (`ulimit -v`) and a 60 s timeout.
+/// Two worker threads and two malloc arenas whatever the machine: each thread's arena reserves
+/// 64 MiB of address space, so the limits the tests choose mean the same on every machine.
 pub fn limited(limit_mib: u64, args: &[&str]) -> Output {
+    limited_threads(limit_mib, 2, args)
+}
+
+/// [`limited`] with `threads` worker threads: one makes the order of allocations, and so the
+/// outcome at a given limit, the same on every run.
+pub fn limited_threads(limit_mib: u64, threads: usize, args: &[&str]) -> Output {
     let script = format!("ulimit -v {}; exec timeout 60 \"$0\" \"$@\"", limit_mib * 1024);
     std::process::Command::new("sh")
+        .env("RAYON_NUM_THREADS", threads.to_string())
+        .env("MALLOC_ARENA_MAX", "2")
         .arg("-c")
         .arg(script)
         .arg(env!("CARGO_BIN_EXE_bumpmap"))
