@@ -206,17 +206,17 @@ fn read_levels(path: &Path, channels: usize) -> Result<Vec<PairLevel>, IoError> 
 /// Every file [`load_heights`] may read for `path`: `path`, its min–max file, and for PNG the
 /// `.mipK.png` levels beside each (no output may replace one).
 pub fn files_read(path: &Path) -> Result<Vec<PathBuf>, IoError> {
-    let mut files = vec![path.to_path_buf()];
     let minmax = minmax_path(path);
-    if crate::siblings::beside(path, &minmax)?.is_some() {
+    let has_minmax = crate::siblings::beside(path, &minmax)?.is_some();
+    let mut files = vec![path.to_path_buf()];
+    if has_minmax {
         files.push(minmax.clone());
     }
     if container(path)? == Container::Png {
-        let mut levels = crate::siblings::png_levels(path)?;
-        if files.len() == 2 {
-            levels.extend(crate::siblings::png_levels(&minmax)?);
+        files.extend(crate::siblings::png_levels(path)?);
+        if has_minmax {
+            files.extend(crate::siblings::png_levels(&minmax)?);
         }
-        files.extend(levels);
     }
     Ok(files)
 }
