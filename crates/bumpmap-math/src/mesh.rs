@@ -2,6 +2,7 @@
 //! what a mesh file loads as. Pure data; tangent generation lives in `tangent.rs`.
 
 use glam::{Vec2, Vec3, Vec4};
+use rayon::prelude::*;
 
 /// An indexed triangle mesh. Every per-vertex array has `positions.len()` entries (or is empty
 /// where noted). Triangles wind counter-clockwise when seen from the side the normal faces.
@@ -101,23 +102,38 @@ impl Mesh {
                 return Err(MeshError::CountMismatch { what, got, vertices: n });
             }
         }
-        if let Some((triangle, &index)) =
-            self.indices.iter().enumerate().find_map(|(i, t)| t.iter().find(|&&v| v as usize >= n).map(|v| (i, v)))
+        // Each check scans in parallel blocks first (most meshes pass), then finds the first
+        // offender serially.
+        fn any_in_blocks<T: Sync>(values: &[T], bad: impl Fn(&T) -> bool + Sync) -> bool {
+            values.par_chunks(1 << 16).any(|block| block.iter().any(&bad))
+        }
+        let out_of_range = |t: &[u32; 3]| t.iter().any(|&v| v as usize >= n);
+        if any_in_blocks(&self.indices, out_of_range)
+            && let Some((triangle, &index)) =
+                self.indices.iter().enumerate().find_map(|(i, t)| t.iter().find(|&&v| v as usize >= n).map(|v| (i, v)))
         {
             return Err(MeshError::IndexOutOfRange { triangle, index, vertices: n });
         }
         let bad = |what, vertex, value: String| Err(MeshError::NonFinite { what, vertex, value });
-        if let Some(i) = self.positions.iter().position(|p| !p.is_finite()) {
+        if any_in_blocks(&self.positions, |p| !p.is_finite())
+            && let Some(i) = self.positions.iter().position(|p| !p.is_finite())
+        {
             return bad("position", i, self.positions[i].to_string());
         }
-        if let Some(i) = self.normals.iter().position(|p| !p.is_finite()) {
+        if any_in_blocks(&self.normals, |p| !p.is_finite())
+            && let Some(i) = self.normals.iter().position(|p| !p.is_finite())
+        {
             return bad("normal", i, self.normals[i].to_string());
         }
-        if let Some(i) = self.texcoords.iter().position(|p| !p.is_finite()) {
+        if any_in_blocks(&self.texcoords, |p| !p.is_finite())
+            && let Some(i) = self.texcoords.iter().position(|p| !p.is_finite())
+        {
             return bad("texture coordinate", i, self.texcoords[i].to_string());
         }
         // A tangent's w is its handedness: NaN there would flip no bump and draw none.
-        if let Some(i) = self.tangents.iter().position(|t| !t.is_finite()) {
+        if any_in_blocks(&self.tangents, |t| !t.is_finite())
+            && let Some(i) = self.tangents.iter().position(|t| !t.is_finite())
+        {
             return bad("tangent", i, self.tangents[i].to_string());
         }
         Ok(())
