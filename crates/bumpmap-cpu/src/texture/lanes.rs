@@ -204,29 +204,46 @@ mod avx2 {
         (order(_mm256_shuffle_ps::<0b10_00_10_00>(lo, hi)), order(_mm256_shuffle_ps::<0b11_01_11_01>(lo, hi)))
     }
 
-    /// Bilinear filtering of eight lanes on `image`: `Level::linear`'s arithmetic, eight lanes at
-    /// a time.
+    /// The four texels of eight lanes' bilinear lookups, as fetched (RGBA8 words), and the
+    /// weights of the second column and row: what [`filter`] needs. Fetching is split from
+    /// filtering so that a trilinear lookup's eight gathers are all issued before either
+    /// level's arithmetic waits on them.
+    #[derive(Clone, Copy)]
+    struct Taps {
+        t00: __m256i,
+        t10: __m256i,
+        t01: __m256i,
+        t11: __m256i,
+        a: __m256,
+        b: __m256,
+    }
+
+    /// The gathers of a bilinear lookup of eight lanes on `image`.
     #[inline(always)]
-    unsafe fn bilinear(image: Image, sampler: &Sampler, s: __m256, t: __m256) -> [__m256; 4] {
+    unsafe fn fetch(image: Image, sampler: &Sampler, s: __m256, t: __m256) -> Taps {
         let (i0, i1, a) = axis(s, image.width, sampler.wrap_s);
         let (j0, j1, b) = axis(t, image.height, sampler.wrap_t);
         let stride = _mm256_set1_epi32((image.width + image.padded as usize) as i32);
         let r0 = _mm256_add_epi32(image.base, _mm256_mullo_epi32(j0, stride));
         let r1 = _mm256_add_epi32(image.base, _mm256_mullo_epi32(j1, stride));
         let words = image.words;
-        let ((t00, t10), (t01, t11)) = if image.padded {
+        if image.padded {
             // Padded rows hold texel i1 right after i0.
-            let row = |r: __m256i| {
-                let (first, second) = texel_pairs(words, _mm256_add_epi32(r, i0));
-                (unpack(first), unpack(second))
-            };
-            (row(r0), row(r1))
+            let (t00, t10) = texel_pairs(words, _mm256_add_epi32(r0, i0));
+            let (t01, t11) = texel_pairs(words, _mm256_add_epi32(r1, i0));
+            Taps { t00, t10, t01, t11, a, b }
         } else {
-            let tap =
-                |row: __m256i, col: __m256i| unpack(_mm256_i32gather_epi32::<4>(words, _mm256_add_epi32(row, col)));
-            ((tap(r0, i0), tap(r0, i1)), (tap(r1, i0), tap(r1, i1)))
-        };
-        // `Level::linear`: the weighted sum by fused multiply-adds in byte units, then 1/255.
+            let tap = |row: __m256i, col: __m256i| _mm256_i32gather_epi32::<4>(words, _mm256_add_epi32(row, col));
+            Taps { t00: tap(r0, i0), t10: tap(r0, i1), t01: tap(r1, i0), t11: tap(r1, i1), a, b }
+        }
+    }
+
+    /// `Level::linear`'s arithmetic on fetched taps: the weighted sum by fused multiply-adds in
+    /// byte units, then 1/255.
+    #[inline(always)]
+    unsafe fn filter(taps: Taps) -> [__m256; 4] {
+        let Taps { t00, t10, t01, t11, a, b } = taps;
+        let (t00, t10, t01, t11) = (unpack(t00), unpack(t10), unpack(t01), unpack(t11));
         let one = _mm256_set1_ps(1.0);
         let (ca, cb) = (_mm256_sub_ps(one, a), _mm256_sub_ps(one, b));
         let w = [_mm256_mul_ps(ca, cb), _mm256_mul_ps(a, cb), _mm256_mul_ps(ca, b), _mm256_mul_ps(a, b)];
@@ -240,6 +257,13 @@ mod avx2 {
             out[c] = _mm256_mul_ps(v, k);
         }
         out
+    }
+
+    /// Bilinear filtering of eight lanes on `image`: `Level::linear`'s arithmetic, eight lanes at
+    /// a time.
+    #[inline(always)]
+    unsafe fn bilinear(image: Image, sampler: &Sampler, s: __m256, t: __m256) -> [__m256; 4] {
+        filter(fetch(image, sampler, s, t))
     }
 
     #[inline(always)]
@@ -298,12 +322,14 @@ mod avx2 {
                 continue;
             }
             let d = d0 as usize;
-            let t1 = bilinear(Image::level(&tex.levels[d], sampler), sampler, sv, tv);
+            let taps1 = fetch(Image::level(&tex.levels[d], sampler), sampler, sv, tv);
             if _mm256_movemask_ps(_mm256_cmp_ps::<_CMP_GT_OQ>(f, zero)) & live == 0 {
-                store(out, lane, t1);
+                store(out, lane, filter(taps1));
                 continue;
             }
-            let t2 = bilinear(Image::level(&tex.levels[(d + 1).min(q)], sampler), sampler, sv, tv);
+            // Both levels' gathers before either level's arithmetic.
+            let taps2 = fetch(Image::level(&tex.levels[(d + 1).min(q)], sampler), sampler, sv, tv);
+            let (t1, t2) = (filter(taps1), filter(taps2));
             let g = _mm256_sub_ps(_mm256_set1_ps(1.0), f);
             let mut v = [zero; 4];
             for c in 0..4 {
