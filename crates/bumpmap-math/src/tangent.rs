@@ -17,17 +17,19 @@
 
 use std::sync::atomic::{AtomicU8, Ordering};
 
-use glam::{Vec3, Vec3A, Vec4};
+use glam::{Vec3, Vec4};
 use rayon::prelude::*;
 
 use crate::mesh::{Mesh, MeshError};
 
 mod corners;
+mod faces;
 mod mikktspace;
 #[cfg(test)]
 mod tests;
 
 use corners::CornersByVertex;
+use faces::face_frames;
 pub use mikktspace::{MAX_CORNERS_AT_ONE_POSITION, mikktspace_corner_tangents, mikktspace_in_pieces};
 
 /// Which algorithm makes the tangents.
@@ -68,17 +70,6 @@ pub struct TangentReport {
     pub vertices_split: usize,
 }
 
-/// One triangle's contribution: unit tangent in the triangle, handedness, usable or not, and
-/// (when usable) its corner angles, which weight its tangent at each vertex.
-#[derive(Clone, Copy)]
-struct Face {
-    tangent: Vec3,
-    w: f32,
-    ok: bool,
-    geometric: bool,
-    angles: [f32; 3],
-}
-
 /// Generates tangents, returning the mesh (possibly with split vertices) and a report.
 /// Needs normals and texture coordinates; fails on invalid meshes.
 pub fn generate_tangents(mesh: &Mesh, options: &TangentOptions) -> Result<(Mesh, TangentReport), MeshError> {
@@ -95,83 +86,6 @@ pub fn generate_tangents(mesh: &Mesh, options: &TangentOptions) -> Result<(Mesh,
     }
 }
 
-fn face_frame(mesh: &Mesh, tri: [u32; 3]) -> Face {
-    let [a, b, c] = tri.map(|i| i as usize);
-    let (p0, p1, p2) = (mesh.positions[a], mesh.positions[b], mesh.positions[c]);
-    let (t0, t1, t2) = (mesh.texcoords[a], mesh.texcoords[b], mesh.texcoords[c]);
-    let (e1, e2) = (p1 - p0, p2 - p0);
-    let (d1, d2) = (t1 - t0, t2 - t0);
-    let area = e1.cross(e2);
-    let det = d1.x * d2.y - d2.x * d1.y;
-    // Zero area in texture space, relative to the UV edge lengths (scale-free).
-    let uv_scale = d1.length_squared().max(d2.length_squared());
-    // Zero area in space, relative to the edge lengths: a sliver whose sine of angle is below
-    // 1e-6 (such as a pole's fan triangle, two of whose vertices coincide up to rounding).
-    let geometric = area.length_squared() > 1e-12 * e1.length_squared() * e2.length_squared() && area.is_finite();
-    if !(det.abs() > 1e-7 * uv_scale && uv_scale > 0.0 && geometric) {
-        return Face { tangent: Vec3::ZERO, w: 1.0, ok: false, geometric, angles: [0.0; 3] };
-    }
-    // ∂P/∂s = (e1·Δt2 − e2·Δt1) / det; ∂P/∂t = (e2·Δs1 − e1·Δs2) / det. Only ∂P/∂s's
-    // direction and the sign of (area × ∂P/∂s)·∂P/∂t are used, so the division is by the sign
-    // of det alone (the product's sign needs neither: det² > 0).
-    let dp_ds = (e1 * d2.y - e2 * d1.y) * det.signum();
-    let dp_dt = e2 * d1.x - e1 * d2.x;
-    let w = if area.cross(e1 * d2.y - e2 * d1.y).dot(dp_dt) >= 0.0 { 1.0 } else { -1.0 };
-    match dp_ds.try_normalize() {
-        Some(t) => Face { tangent: t, w, ok: true, geometric, angles: corner_angles([p0, p1, p2]) },
-        None => Face { tangent: Vec3::ZERO, w, ok: false, geometric, angles: [0.0; 3] },
-    }
-}
-
-/// The angles of a triangle at its corners 0, 1, 2 (0 at a corner with an edge of zero length),
-/// the three at once.
-fn corner_angles(p: [Vec3; 3]) -> [f32; 3] {
-    // Edge k runs from corner k to corner k + 1; the angle at corner k lies between edge k
-    // and edge k − 1 reversed: cos = −(e_k · e_{k−1}) / (|e_k| |e_{k−1}|).
-    let e = [p[1] - p[0], p[2] - p[1], p[0] - p[2]];
-    let dots = Vec3A::new(e[0].dot(e[2]), e[1].dot(e[0]), e[2].dot(e[1]));
-    let len2 = Vec3A::new(e[0].length_squared(), e[1].length_squared(), e[2].length_squared());
-    let lengths = sqrt(len2 * Vec3A::new(len2.z, len2.x, len2.y));
-    let cos = -dots / lengths;
-    // A zero-length edge (or one too long to square) leaves no angle.
-    let defined = lengths.cmpgt(Vec3A::ZERO) & lengths.is_finite_mask();
-    Vec3A::select(defined, acos(cos), Vec3A::ZERO).to_array()
-}
-
-/// √x lane by lane.
-fn sqrt(x: Vec3A) -> Vec3A {
-    Vec3A::from_array(x.to_array().map(f32::sqrt))
-}
-
-/// arccos of each lane for x in [−1, 1] (clamped; NaN stays NaN), within 2·10⁻⁸ of the exact
-/// value before f32 rounding: Abramowitz & Stegun 4.4.46, √(1 − |x|) times a degree-7
-/// polynomial (evaluated by Estrin's scheme, so its products overlap), reflected for x < 0.
-/// Three lanes at once (a triangle's corners) and several times faster here than the C
-/// library's `acosf`, which took a third of the time of making tangents. Multiplies and adds,
-/// not `mul_add`: the same bits on every target, and no software fma.
-fn acos(x: Vec3A) -> Vec3A {
-    // a₀ is the table's 1.5707963050, one f32 below π/2, not π/2 itself.
-    #[allow(clippy::approx_constant)]
-    const A: [f32; 8] = [
-        1.570_796_3,
-        -0.214_598_8,
-        0.088_978_99,
-        -0.050_174_303,
-        0.030_891_88,
-        -0.017_088_126,
-        0.006_670_09,
-        -0.001_262_491_1,
-    ];
-    let a = x.abs().min(Vec3A::ONE);
-    let pair = |k: usize| Vec3A::splat(A[k]) + Vec3A::splat(A[k + 1]) * a;
-    let a2 = a * a;
-    let low = pair(0) + pair(2) * a2;
-    let high = pair(4) + pair(6) * a2;
-    let poly = low + high * (a2 * a2);
-    let r = sqrt(Vec3A::ONE - a) * poly;
-    Vec3A::select(x.cmplt(Vec3A::ZERO), Vec3A::splat(std::f32::consts::PI) - r, r)
-}
-
 /// A unit vector perpendicular to `n` (for vertices no triangle gives a tangent to).
 fn any_perpendicular(n: Vec3) -> Vec3 {
     let axis = if n.x.abs() < 0.9 { Vec3::X } else { Vec3::Y };
@@ -179,7 +93,7 @@ fn any_perpendicular(n: Vec3) -> Vec3 {
 }
 
 fn ours(mesh: &Mesh, options: &TangentOptions) -> (Mesh, TangentReport) {
-    let faces: Vec<Face> = mesh.indices.par_iter().map(|&t| face_frame(mesh, t)).collect();
+    let faces = face_frames(mesh);
     let mut report = faces
         .par_iter()
         .fold(TangentReport::default, |mut r, f| {

@@ -7,7 +7,8 @@ use glam::Vec4;
 use rayon::prelude::*;
 
 use super::corners::CornersByVertex;
-use super::{Face, TangentReport, any_perpendicular, face_frame};
+use super::faces::face_frames;
+use super::{TangentReport, any_perpendicular};
 use crate::mesh::{Mesh, MeshError};
 
 /// The faces of a mesh (all, or a subset in their original order) as MikkTSpace's callbacks
@@ -184,7 +185,7 @@ pub fn mikktspace_in_pieces(mesh: &Mesh, pieces: usize) -> Result<Vec<Vec4>, Mes
 
 pub(super) fn mikktspace(mesh: &Mesh) -> Result<(Mesh, TangentReport), MeshError> {
     let corner_tangents = mikktspace_corner_tangents(mesh)?;
-    let faces: Vec<Face> = mesh.indices.par_iter().map(|&t| face_frame(mesh, t)).collect();
+    let faces = face_frames(mesh);
     let mut report = TangentReport {
         degenerate_uv: faces.iter().filter(|f| !f.ok && f.geometric).count(),
         degenerate_geometry: faces.iter().filter(|f| !f.geometric).count(),
