@@ -71,6 +71,44 @@ fn mikktspace_in_parallel_pieces_equals_the_whole_mesh_bit_for_bit() {
     }
 }
 
+#[test]
+fn split_vertices_carry_each_corners_tangent_and_nothing_else_changes() {
+    use bumpmap_math::tangent::{TangentMode, TangentOptions, generate_tangents};
+    let options = TangentOptions { mode: TangentMode::MikkTSpace, ..Default::default() };
+    let mut split_somewhere = false;
+    for name in MESHES {
+        let mesh = raw(name);
+        let corners = mikktspace_corner_tangents(&mesh).unwrap();
+        let (out, report) = generate_tangents(&mesh, &options).unwrap();
+        assert_eq!(out.vertex_count(), mesh.vertex_count() + report.vertices_split, "{name}");
+        // One new vertex per vertex and tangent that differs from its first corner's.
+        let mut distinct = std::collections::HashSet::new();
+        let mut first = vec![None; mesh.vertex_count()];
+        for (c, &t) in corners.iter().enumerate() {
+            let v = mesh.indices[c / 3][c % 3] as usize;
+            let bits = t.to_array().map(f32::to_bits);
+            match first[v] {
+                None => first[v] = Some(t),
+                Some(f) if f != t => {
+                    distinct.insert((v, bits));
+                }
+                Some(_) => {}
+            }
+        }
+        assert_eq!(report.vertices_split, distinct.len(), "{name}");
+        split_somewhere |= report.vertices_split > 0;
+        for (c, &t) in corners.iter().enumerate() {
+            let (old, new) = (mesh.indices[c / 3][c % 3] as usize, out.indices[c / 3][c % 3] as usize);
+            let bits = |v: glam::Vec4| v.to_array().map(f32::to_bits);
+            assert_eq!(bits(out.tangents[new]), bits(t), "{name} corner {c}");
+            assert_eq!(out.positions[new], mesh.positions[old], "{name} corner {c}");
+            assert_eq!(out.texcoords[new], mesh.texcoords[old], "{name} corner {c}");
+            assert!(new == old || new >= mesh.vertex_count(), "{name} corner {c}: moved to another old vertex");
+        }
+    }
+    assert!(split_somewhere, "no test mesh split a vertex: the check above saw nothing");
+}
+
 /// Writes each test mesh as the triangle soup the C driver reads (`int32 nverts, int32 ntris,
 /// float pos[3n], nrm[3n], uv[2n], uint32 idx[3t]`), one vertex per corner. Run with
 /// `--ignored` to regenerate the reference: `BUMPMAP_SOUP_DIR=/tmp/mk cargo test -p bumpmap-io

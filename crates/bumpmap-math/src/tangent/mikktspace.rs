@@ -126,60 +126,77 @@ pub fn mikktspace_in_pieces(mesh: &Mesh, pieces: usize) -> Result<Vec<Vec4>, Mes
     if pieces <= 1 || nf < 2 * pieces {
         return run_mikktspace(mesh, &all);
     }
-    // Canonical vertex ids: equal position, normal and texture coordinate are one vertex.
-    let mut canonical = vec![0u32; mesh.vertex_count()];
-    let mut seen: foldhash::HashMap<[u32; 8], u32> =
-        foldhash::HashMap::with_capacity_and_hasher(mesh.vertex_count(), Default::default());
-    for (v, c) in canonical.iter_mut().enumerate() {
-        let (p, n, t) = (mesh.positions[v], mesh.normals[v], mesh.texcoords[v]);
-        let key = [p.x, p.y, p.z, n.x, n.y, n.z, t.x, t.y].map(f32::to_bits);
-        let next = seen.len() as u32;
-        *c = *seen.entry(key).or_insert(next);
-    }
-    // Canonical vertex → faces (in order).
-    let by_vertex = CornersByVertex::new(&mesh.indices, seen.len(), |v| canonical[v as usize] as usize);
-    /// A piece's own faces, the faces it ran (own and halo, in order) and their corner tangents.
-    type Piece = (std::ops::Range<usize>, Vec<u32>, Vec<Vec4>);
-    let results: Vec<Result<Piece, MeshError>> = (0..pieces)
+    // Canonical vertex ids: equal position, normal and texture coordinate are one vertex, named
+    // by its first index. By a parallel sort of the vertices' bits (a hash map's inserts, one
+    // by one, took a seventh of the whole run on two threads).
+    let nv = mesh.vertex_count();
+    let mut keyed: Vec<([u32; 8], u32)> = (0..nv)
         .into_par_iter()
-        .map(|k| {
-            let own = k * nf / pieces..(k + 1) * nf / pieces;
-            // Rings of faces around the piece's vertices, then around theirs: one ring decides
-            // a corner; the others cover degenerate faces that borrow a tangent from a
-            // neighbour (one ring was not enough on `obliterated.obj`; two were; three for margin).
-            let mut taken = vec![false; nf];
-            taken[own.clone()].fill(true);
-            let mut frontier: Vec<u32> = own.clone().map(|f| f as u32).collect();
-            for _ in 0..HALO_RINGS {
-                let mut next = Vec::new();
-                for &f in &frontier {
-                    for &v in &mesh.indices[f as usize] {
-                        for &corner in by_vertex.row(canonical[v as usize] as usize) {
-                            let g = corner / 3;
-                            if !taken[g as usize] {
-                                taken[g as usize] = true;
-                                next.push(g);
-                            }
+        .map(|v| {
+            let (p, n, t) = (mesh.positions[v], mesh.normals[v], mesh.texcoords[v]);
+            ([p.x, p.y, p.z, n.x, n.y, n.z, t.x, t.y].map(f32::to_bits), v as u32)
+        })
+        .collect();
+    keyed.par_sort_unstable();
+    let mut canonical = vec![0u32; nv];
+    let mut first = 0;
+    for (i, &(key, v)) in keyed.iter().enumerate() {
+        if key != keyed[first].0 {
+            first = i;
+        }
+        canonical[v as usize] = keyed[first].1;
+    }
+    drop(keyed);
+    // Canonical vertex → faces (in order).
+    let by_vertex = CornersByVertex::new(&mesh.indices, nv, |v| canonical[v as usize] as usize);
+    // Each piece writes its own faces' corners: consecutive runs of `out`.
+    let mut out = vec![Vec4::ZERO; 3 * nf];
+    let mut slices = Vec::with_capacity(pieces);
+    let mut rest = out.as_mut_slice();
+    for k in 0..pieces {
+        let own = k * nf / pieces..(k + 1) * nf / pieces;
+        let (head, tail) = rest.split_at_mut(3 * own.len());
+        slices.push((own, head));
+        rest = tail;
+    }
+    slices.into_par_iter().try_for_each(|(own, out)| {
+        // Rings of faces around the piece's vertices, then around theirs: one ring decides a
+        // corner; the others cover degenerate faces that borrow a tangent from a neighbour
+        // (one ring was not enough on `obliterated.obj`; two were; three for margin).
+        let mut taken = vec![false; nf];
+        taken[own.clone()].fill(true);
+        let mut frontier: Vec<u32> = own.clone().map(|f| f as u32).collect();
+        let mut halo = Vec::new();
+        for _ in 0..HALO_RINGS {
+            let mut next = Vec::new();
+            for &f in &frontier {
+                for &v in &mesh.indices[f as usize] {
+                    for &corner in by_vertex.row(canonical[v as usize] as usize) {
+                        let g = corner / 3;
+                        if !taken[g as usize] {
+                            taken[g as usize] = true;
+                            next.push(g);
                         }
                     }
                 }
-                frontier = next;
             }
-            // In the original order, which MikkTSpace's sums follow.
-            let faces: Vec<u32> = (0..nf as u32).filter(|&f| taken[f as usize]).collect();
-            let tangents = run_mikktspace(mesh, &faces)?;
-            Ok((own, faces, tangents))
-        })
-        .collect();
-    let mut out = vec![Vec4::ZERO; 3 * nf];
-    for r in results {
-        let (own, faces, tangents) = r?;
-        for (i, &f) in faces.iter().enumerate() {
-            if own.contains(&(f as usize)) {
-                out[3 * f as usize..3 * f as usize + 3].copy_from_slice(&tangents[3 * i..3 * i + 3]);
-            }
+            halo.extend_from_slice(&next);
+            frontier = next;
         }
-    }
+        // In the original order, which MikkTSpace's sums follow: the halo before the piece,
+        // the piece, the halo after it.
+        halo.sort_unstable();
+        let split = halo.partition_point(|&f| (f as usize) < own.start);
+        let faces: Vec<u32> = halo[..split]
+            .iter()
+            .copied()
+            .chain(own.start as u32..own.end as u32)
+            .chain(halo[split..].iter().copied())
+            .collect();
+        let tangents = run_mikktspace(mesh, &faces)?;
+        out.copy_from_slice(&tangents[3 * split..3 * (split + own.len())]);
+        Ok::<_, MeshError>(())
+    })?;
     Ok(out)
 }
 
@@ -193,37 +210,40 @@ pub(super) fn mikktspace(mesh: &Mesh) -> Result<(Mesh, TangentReport), MeshError
         vertices_split: 0,
     };
     report.mirrored = (0..mesh.indices.len()).filter(|&f| corner_tangents[3 * f].w < 0.0).count();
-    // A vertex keeps the first tangent written to it; a corner with another tangent gets a copy.
-    let mut out = mesh.clone();
+    // A vertex keeps its first corner's tangent; a corner with another tangent gets a copy
+    // (one per vertex and tangent). Which corners differ is found in parallel from each vertex's
+    // first corner; the copies are made in corner order.
     let nv = mesh.vertex_count();
-    out.tangents = vec![Vec4::ZERO; nv];
-    let mut assigned = vec![false; nv];
+    let by_vertex = CornersByVertex::new(&mesh.indices, nv, |v| v as usize);
+    let mut tangents: Vec<Vec4> = (0..nv)
+        .into_par_iter()
+        .map(|v| match by_vertex.row(v).first() {
+            Some(&corner) => corner_tangents[corner as usize],
+            // Vertices no triangle uses still need a tangent.
+            None => any_perpendicular(mesh.normals[v]).extend(1.0),
+        })
+        .collect();
+    let differing: Vec<u32> = (0..3 * mesh.indices.len() as u32)
+        .into_par_iter()
+        .filter(|&c| {
+            let v = mesh.indices[c as usize / 3][c as usize % 3] as usize;
+            by_vertex.row(v)[0] != c && corner_tangents[c as usize] != tangents[v]
+        })
+        .collect();
+    let mut out = Mesh { tangents: Vec::new(), ..mesh.clone() };
     let mut copies: foldhash::HashMap<(u32, [u32; 4]), u32> = foldhash::HashMap::default();
-    for (f, tri) in out.indices.iter_mut().enumerate() {
-        for (k, idx) in tri.iter_mut().enumerate() {
-            let t = corner_tangents[3 * f + k];
-            let v = *idx as usize;
-            if !assigned[v] {
-                assigned[v] = true;
-                out.tangents[v] = t;
-            } else if out.tangents[v] != t {
-                let key = (*idx, t.to_array().map(f32::to_bits));
-                *idx = *copies.entry(key).or_insert_with(|| {
-                    out.positions.push(mesh.positions[v]);
-                    out.normals.push(mesh.normals[v]);
-                    out.texcoords.push(mesh.texcoords[v]);
-                    out.tangents.push(t);
-                    report.vertices_split += 1;
-                    (out.positions.len() - 1) as u32
-                });
-            }
-        }
+    for c in differing {
+        let (f, k) = (c as usize / 3, c as usize % 3);
+        let (v, t) = (mesh.indices[f][k], corner_tangents[c as usize]);
+        out.indices[f][k] = *copies.entry((v, t.to_array().map(f32::to_bits))).or_insert_with(|| {
+            out.positions.push(mesh.positions[v as usize]);
+            out.normals.push(mesh.normals[v as usize]);
+            out.texcoords.push(mesh.texcoords[v as usize]);
+            tangents.push(t);
+            report.vertices_split += 1;
+            (out.positions.len() - 1) as u32
+        });
     }
-    // Vertices no triangle uses still need a tangent.
-    for v in 0..nv {
-        if !assigned[v] {
-            out.tangents[v] = any_perpendicular(mesh.normals[v]).extend(1.0);
-        }
-    }
+    out.tangents = tangents;
     Ok((out, report))
 }
