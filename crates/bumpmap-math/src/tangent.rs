@@ -94,30 +94,17 @@ fn any_perpendicular(n: Vec3) -> Vec3 {
 
 fn ours(mesh: &Mesh, options: &TangentOptions) -> (Mesh, TangentReport) {
     let faces = face_frames(mesh);
-    let mut report = faces
-        .par_iter()
-        .fold(TangentReport::default, |mut r, f| {
-            r.degenerate_uv += (!f.ok && f.geometric) as usize;
-            r.degenerate_geometry += !f.geometric as usize;
-            r.mirrored += (f.ok && f.w < 0.0) as usize;
-            r
-        })
-        .reduce(TangentReport::default, |a, b| TangentReport {
-            degenerate_uv: a.degenerate_uv + b.degenerate_uv,
-            degenerate_geometry: a.degenerate_geometry + b.degenerate_geometry,
-            mirrored: a.mirrored + b.mirrored,
-            vertices_split: 0,
-        });
+    let mut report = faces::count(&faces);
     // Vertex → corners (a search for each vertex's corners instead made a vertex shared by k
     // triangles cost k², minutes for one OBJ face of 10⁶ vertices).
     let nv = mesh.vertex_count();
-    let CornersByVertex { start, corners } = CornersByVertex::new(&mesh.indices, nv, |v| v as usize);
+    let by_vertex = CornersByVertex::new(&mesh.indices, nv, |v| v as usize);
     // Per vertex: cluster its corners. Each corner learns its cluster; cluster 0's tangent is
     // the vertex's own, the others' (rare: seams) are listed to become new vertices.
     let cos_split = options.split_angle_degrees.to_radians().cos();
     const CHUNK: usize = 2048;
     // Each corner's cluster, by corner: written by the vertex's worker, each corner once.
-    let cluster_of: Vec<AtomicU8> = (0..corners.len()).map(|_| AtomicU8::new(0)).collect();
+    let cluster_of: Vec<AtomicU8> = (0..by_vertex.corners.len()).map(|_| AtomicU8::new(0)).collect();
     let mut tangents = vec![Vec4::ZERO; nv];
     let mut slices = Vec::new();
     let mut rest = tangents.as_mut_slice();
@@ -135,7 +122,7 @@ fn ours(mesh: &Mesh, options: &TangentOptions) -> (Mesh, TangentReport) {
             for v in range.clone() {
                 let n = mesh.normals[v];
                 sums.clear();
-                for &corner in &corners[start[v] as usize..start[v + 1] as usize] {
+                for &corner in by_vertex.row(v) {
                     let corner = corner as usize;
                     let (ti, k) = (corner / 3, corner % 3);
                     let f = &faces[ti];

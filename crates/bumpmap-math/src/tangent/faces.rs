@@ -20,6 +20,25 @@ pub(super) struct Face {
     pub angles: [f32; 3],
 }
 
+/// What the frames say about the triangles: degenerate in texture space, degenerate in space,
+/// mirrored (no split vertices yet).
+pub(super) fn count(faces: &[Face]) -> super::TangentReport {
+    faces
+        .par_iter()
+        .fold(super::TangentReport::default, |mut r, f| {
+            r.degenerate_uv += (!f.ok && f.geometric) as usize;
+            r.degenerate_geometry += !f.geometric as usize;
+            r.mirrored += (f.ok && f.w < 0.0) as usize;
+            r
+        })
+        .reduce(super::TangentReport::default, |a, b| super::TangentReport {
+            degenerate_uv: a.degenerate_uv + b.degenerate_uv,
+            degenerate_geometry: a.degenerate_geometry + b.degenerate_geometry,
+            mirrored: a.mirrored + b.mirrored,
+            vertices_split: 0,
+        })
+}
+
 /// Triangles per block.
 const BLOCK: usize = 8;
 

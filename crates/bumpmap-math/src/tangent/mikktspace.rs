@@ -7,7 +7,7 @@ use glam::Vec4;
 use rayon::prelude::*;
 
 use super::corners::CornersByVertex;
-use super::faces::face_frames;
+use super::faces::{self, face_frames};
 use super::{TangentReport, any_perpendicular};
 use crate::mesh::{Mesh, MeshError};
 
@@ -202,13 +202,8 @@ pub fn mikktspace_in_pieces(mesh: &Mesh, pieces: usize) -> Result<Vec<Vec4>, Mes
 
 pub(super) fn mikktspace(mesh: &Mesh) -> Result<(Mesh, TangentReport), MeshError> {
     let corner_tangents = mikktspace_corner_tangents(mesh)?;
-    let faces = face_frames(mesh);
-    let mut report = TangentReport {
-        degenerate_uv: faces.iter().filter(|f| !f.ok && f.geometric).count(),
-        degenerate_geometry: faces.iter().filter(|f| !f.geometric).count(),
-        mirrored: 0,
-        vertices_split: 0,
-    };
+    // The degenerate counts from our frames; mirrored as MikkTSpace's handedness says.
+    let mut report = faces::count(&face_frames(mesh));
     report.mirrored = (0..mesh.indices.len()).filter(|&f| corner_tangents[3 * f].w < 0.0).count();
     // A vertex keeps its first corner's tangent; a corner with another tangent gets a copy
     // (one per vertex and tangent). Which corners differ is found in parallel from each vertex's
