@@ -120,8 +120,8 @@ pub fn setup(s: &SceneSetup) -> Result<Setup, CliError> {
             inputs.extend(asset.sources.iter().cloned());
             notes.extend(asset.describe().into_iter().map(|line| format!("{}: {line}", path.display())));
             notes.extend(asset.warnings.iter().map(|w| format!("warning: {w}")));
-            if let Some(m) = &asset.material {
-                if m.normal_map.is_none() && !own_bumps && bump_scale.is_some() {
+            if !asset.materials.is_empty() {
+                if asset.materials.iter().all(|m| m.normal_map.is_none()) && !own_bumps && bump_scale.is_some() {
                     notes.push(format!(
                         "{}: --bump-scale has nothing to scale: the material has no normalTexture (--height-field or --normal-map add bumps)",
                         path.display()
@@ -168,12 +168,18 @@ pub fn setup(s: &SceneSetup) -> Result<Setup, CliError> {
         notes.extend(map.warnings().iter().map(|w| format!("warning: {w}")));
         spec.params.bumps = map.bumps();
         spec.params.default_decal = false;
+        if let Some(parts) = &mut spec.params.parts {
+            Arc::make_mut(parts).replace_bumps();
+        }
     } else if !has_material_bumps || scene.height_field.is_some() {
         let source = HeightSource::parse(scene.height_field.as_deref().unwrap_or("bricks"));
         let is_bricks = matches!(source, HeightSource::Preset { preset: bumpmap::HeightPreset::Bricks, .. });
         spec.params.bumps = BumpSource::Heights(Arc::new(source.load(Channel::Luminance)?));
         spec.params.normal_map.scale = bump_scale.unwrap_or(4.0);
         spec.params.default_decal = is_bricks && spec.params.decal.is_none();
+        if let Some(parts) = &mut spec.params.parts {
+            Arc::make_mut(parts).replace_bumps();
+        }
     }
 
     // The decal: the option's, or none, or what the scene already has.
@@ -181,10 +187,16 @@ pub fn setup(s: &SceneSetup) -> Result<Setup, CliError> {
         Some("none") => {
             spec.params.decal = None;
             spec.params.default_decal = false;
+            if let Some(parts) = &mut spec.params.parts {
+                Arc::make_mut(parts).replace_decals(None);
+            }
         }
         Some(path) => {
             spec.params.decal = Some(texture_file(Path::new(path))?);
             spec.params.default_decal = false;
+            if let Some(parts) = &mut spec.params.parts {
+                Arc::make_mut(parts).replace_decals(spec.params.decal.clone());
+            }
         }
         None => {}
     }

@@ -244,7 +244,7 @@ fn values_that_would_draw_wrong_silently_are_refused_naming_the_element() {
     )
     .unwrap();
     let o = bumpmap(&render);
-    refused(&o, &dir, &listing(&dir), "q.gltf: the material's normalTexture.scale is 1000000000");
+    refused(&o, &dir, &listing(&dir), "q.gltf: material 'bumpmap''s normalTexture.scale is 1000000000");
     // A baseColorFactor outside [0, 1] is drawn clamped, and said so.
     std::fs::write(
         &gltf,

@@ -325,10 +325,11 @@ impl TechniqueName {
         for &requirement in self.requirements() {
             let met = match requirement {
                 Requirement::BuiltInSurface => spec.kind.is_surface(),
-                Requirement::HeightField => matches!(spec.params.bumps, BumpSource::Heights(_)),
+                Requirement::HeightField => spec.params.bump_sources().all(|b| matches!(b, BumpSource::Heights(_))),
                 Requirement::OneLight => spec.params.lights.len() <= 1,
                 Requirement::Heights => {
-                    matches!(spec.params.bumps, BumpSource::Heights(_)) || spec.params.height_mips.is_some()
+                    spec.params.bump_sources().all(|b| matches!(b, BumpSource::Heights(_)))
+                        || spec.params.height_mips.is_some()
                 }
             };
             if !met {
@@ -351,7 +352,12 @@ impl TechniqueName {
         match self {
             TechniqueName::ObjectSpace => params.bump_map = BumpMap::ObjectSpace,
             TechniqueName::MipRenormalized => params.mip_mode = MipMode::Renormalize,
-            TechniqueName::NoBump => params.bumps = base.bumps.flat(),
+            TechniqueName::NoBump => {
+                params.bumps = base.bumps.flat();
+                if let Some(parts) = &mut params.parts {
+                    std::sync::Arc::make_mut(parts).replace_bumps();
+                }
+            }
             TechniqueName::PeercyIndependent => peercy(&mut params, BumpMap::Tangent),
             TechniqueName::PeercyDependent => peercy(&mut params, BumpMap::SurfaceDependent),
             TechniqueName::PeercyBlinn => peercy(&mut params, BumpMap::Derivatives),

@@ -160,6 +160,16 @@ pub enum CoreError {
     /// given as it is does not have.
     #[error("{} is made from a height field, not from a normal map", .0.describe())]
     MapNeedsHeights(crate::bump_maps::BumpMap),
+    /// A model's part names a material the model does not have.
+    #[error("part {part} draws with material {material}, but the model has {materials}")]
+    PartMaterial {
+        /// The part's index.
+        part: usize,
+        /// The material it names.
+        material: usize,
+        /// How many materials the model has.
+        materials: usize,
+    },
     /// The reference is not a list of passes.
     #[error("the reference is not drawn as passes: it samples the exact surface (bumpmap-reference draws it)")]
     NotPasses,

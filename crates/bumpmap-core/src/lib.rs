@@ -7,7 +7,8 @@
 //! No module here rasterizes, samples a texture or evaluates a combiner over pixels.
 //!
 //! - [`catalogue`]: every technique by name — what it is, what it needs, its maps and passes;
-//! - [`scene`], [`scenes`]: scene descriptions and the built-in scenes;
+//! - [`scene`], [`scenes`]: scene descriptions and the built-in scenes; [`parts`]: a loaded
+//!   model's parts, each with its own material;
 //! - [`bump_maps`]: the bump textures the compared techniques read (object-space,
 //!   surface-dependent, offset and derivative maps);
 //! - [`vertex`]: the vertex stage every technique shares (Kilgard §5.1, Appendix C);
@@ -29,6 +30,7 @@ pub mod combiners;
 pub mod error;
 pub mod lane_math;
 pub mod parallax;
+pub mod parts;
 pub mod scene;
 pub mod scenes;
 pub mod setups;
@@ -40,6 +42,7 @@ pub mod vertex;
 pub use bump_maps::BumpMap;
 pub use catalogue::{Requirement, TechniqueName, TechniqueOptions};
 pub use error::{CoreError, Feature};
+pub use parts::{MeshPart, MeshParts, PartMaterial};
 pub use scene::Scene;
 pub use scenes::{BumpSource, SceneKind, SceneParams, SceneSpec};
 pub use technique::{Pass, Program, Technique};

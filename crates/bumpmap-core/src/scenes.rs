@@ -13,6 +13,7 @@ use bumpmap_math::{HeightField, HeightMips, MipChain, MipMode, NormalMapOptions,
 
 use crate::bump_maps::{BumpMap, offset_map, surface_material};
 use crate::error::CoreError;
+use crate::parts::MeshParts;
 use crate::scene::{
     Camera, Material, NormalSpace, NormalTexels, Scene, SceneLight, SceneObject, SurfaceHeights, SurfaceSource,
     ViewerModel,
@@ -221,6 +222,16 @@ pub struct SceneParams {
     /// Whether the material carries the heights as geometry ([`crate::scene::Material::heights`]);
     /// the technique catalogue turns it on for the techniques that read them.
     pub displacement: bool,
+    /// A loaded mesh's parts with their own materials (a glTF's primitives), drawn instead of
+    /// [`SceneKind::Mesh`]'s mesh as one object, which then only frames the camera and light.
+    pub parts: Option<Arc<MeshParts>>,
+}
+
+impl SceneParams {
+    /// Every bump source the scene draws: [`SceneParams::bumps`] and the parts' own.
+    pub fn bump_sources(&self) -> impl Iterator<Item = &BumpSource> {
+        std::iter::once(&self.bumps).chain(self.parts.iter().flat_map(|p| p.own_bumps()))
+    }
 }
 
 impl Default for SceneParams {
@@ -251,6 +262,7 @@ impl Default for SceneParams {
             height_mips: None,
             horizon_map: None,
             displacement: false,
+            parts: None,
         }
     }
 }
@@ -318,20 +330,6 @@ const MAX_DEFAULT_DECAL: usize = 2048;
 /// for a surface is asked of a mesh or one made from heights of a normal map, and when the eye
 /// is at the point looked at.
 pub fn build(kind: &SceneKind, params: &SceneParams) -> Result<Scene, CoreError> {
-    let needs_heights = matches!(params.bump_map, BumpMap::Offset | BumpMap::Derivatives | BumpMap::SurfaceDependent);
-    let (chain, heights) = match &params.bumps {
-        BumpSource::Heights(field) => {
-            (Arc::new(MipChain::<[u8; 4]>::from_height(field, &params.normal_map, params.mip_mode)?), Some(field))
-        }
-        BumpSource::NormalMap(_) if needs_heights => return Err(CoreError::MapNeedsHeights(params.bump_map)),
-        BumpSource::NormalMap(chain) if params.mip_mode == MipMode::Renormalize => {
-            (Arc::new(chain.with_opaque_alpha()), None)
-        }
-        BumpSource::NormalMap(chain) => (chain.clone(), None),
-    };
-    // The chain becomes the material's texture; copied only when the caller still holds it.
-    let encoding = chain.encoding;
-    let normal_map = Arc::new(Arc::try_unwrap(chain).map_or_else(|shared| shared.to_mips(), MipChain::into_mips));
     let decal = match (&params.decal, params.default_decal) {
         (Some(d), _) => Some(d.clone()),
         (None, true) => {
@@ -345,50 +343,7 @@ pub fn build(kind: &SceneKind, params: &SceneParams) -> Result<Scene, CoreError>
         }
         (None, false) => None,
     };
-    let mut material = Material {
-        normal_map,
-        normal_space: NormalSpace::Tangent,
-        normal_texels: NormalTexels::UnitVector,
-        decal,
-        ambient: params.ambient,
-        diffuse: params.diffuse,
-        specular: params.specular,
-        shininess: params.shininess,
-        height_map: heights.filter(|_| params.height_map).map(|field| {
-            Arc::new(Rgba8Mips::with_box_mipmaps(Rgba8Image::from_gray(field.width(), field.height(), &field.to_u8())))
-        }),
-        bump_scale: params.normal_map.scale,
-        heights: None,
-        depth: 0.0,
-    };
-    if params.displacement {
-        if let Some(d) = params.depth
-            && !(d.is_finite() && d > 0.0)
-        {
-            return Err(CoreError::out_of_range("the depth", d, "a positive number of object units"));
-        }
-        let mut mips = match (&params.height_mips, heights) {
-            (Some(given), _) => Some(given.clone()),
-            (None, Some(field)) => Some(Arc::new(HeightMips::from_field(field)?)),
-            // A normal map given without heights: the catalogue's requirement names what is missing.
-            (None, None) => None,
-        };
-        if let (Some(m), Some(horizons)) = (&mips, &params.horizon_map) {
-            mips = Some(Arc::new((**m).clone().with_horizons(horizons.clone())?));
-        }
-        if let Some(h) = &mips {
-            let (hs, ns) = ((h.width(), h.height()), (material.normal_map.width(), material.normal_map.height()));
-            if hs != ns {
-                return Err(CoreError::HeightsSize { heights: hs, normal_map: ns });
-            }
-        }
-        material.heights = mips;
-    }
-    if let (BumpMap::Offset | BumpMap::Derivatives, Some(field)) = (params.bump_map, heights) {
-        let (map, range) = offset_map(field, &params.normal_map)?;
-        material.normal_map = Arc::new(map);
-        material.normal_texels = NormalTexels::Offset { range };
-    }
+    let (material, encoding, heights) = material(params, &params.bumps, decal)?;
     let object = |surface: Surface, tess: (usize, usize), repeat: Vec2, world_from_object: Mat4| {
         let repeat = params.repeat.unwrap_or(repeat);
         let mut material = surface_material(params, &material, &surface, repeat, encoding);
@@ -458,26 +413,52 @@ pub fn build(kind: &SceneKind, params: &SceneParams) -> Result<Scene, CoreError>
         SceneKind::Mesh(mesh) => {
             // The mesh stays in its own units and axes; the default camera frames its bounds.
             let frame = MeshFrame::new(mesh, params.up.unwrap_or(Vec3::Y));
-            let mut material = material.clone();
-            let st_derivatives = match &material.heights {
-                Some(h) => {
-                    let made = || {
-                        let side = mesh.mean_texel_side((h.width(), h.height())).unwrap_or(frame.radius / 1024.0);
-                        side * params.normal_map.scale.abs()
-                    };
-                    material.depth = params.depth.unwrap_or_else(made).min(0.1 * frame.radius).max(frame.radius * 1e-7);
-                    Some(Arc::new(mesh.st_derivatives()))
+            let placed = |mesh: &Arc<Mesh>, mut material: Material| {
+                let st_derivatives = match &material.heights {
+                    Some(h) => {
+                        let made = || {
+                            let side = mesh.mean_texel_side((h.width(), h.height())).unwrap_or(frame.radius / 1024.0);
+                            side * params.normal_map.scale.abs()
+                        };
+                        material.depth =
+                            params.depth.unwrap_or_else(made).min(0.1 * frame.radius).max(frame.radius * 1e-7);
+                        Some(Arc::new(mesh.st_derivatives()))
+                    }
+                    None => None,
+                };
+                SceneObject {
+                    mesh: mesh.clone(),
+                    world_from_object: Mat4::IDENTITY,
+                    material,
+                    source: None,
+                    st_derivatives,
                 }
-                None => None,
             };
-            let object = SceneObject {
-                mesh: mesh.clone(),
-                world_from_object: Mat4::IDENTITY,
-                material,
-                source: None,
-                st_derivatives,
+            let objects = match &params.parts {
+                None => vec![placed(mesh, material.clone())],
+                Some(parts) => {
+                    // Each part material's maps once, however many parts draw with it.
+                    let mut made: Vec<Option<Material>> = vec![None; parts.materials.len()];
+                    let mut objects = Vec::with_capacity(parts.parts.len());
+                    for part in &parts.parts {
+                        let own = parts.materials.get(part.material).ok_or(CoreError::PartMaterial {
+                            part: objects.len(),
+                            material: part.material,
+                            materials: parts.materials.len(),
+                        })?;
+                        if made[part.material].is_none() {
+                            made[part.material] = Some(match &own.bumps {
+                                None => Material { decal: own.decal.clone(), ..material.clone() },
+                                Some(bumps) => self::material(params, bumps, own.decal.clone())?.0,
+                            });
+                        }
+                        let m = made[part.material].clone().expect("made above");
+                        objects.push(placed(&part.mesh, m));
+                    }
+                    objects
+                }
             };
-            (vec![object], frame.eye(params.fov_y_degrees), frame.centre, frame.up)
+            (objects, frame.eye(params.fov_y_degrees), frame.centre, frame.up)
         }
     };
     let lights = if params.lights.is_empty() {
@@ -496,6 +477,75 @@ pub fn build(kind: &SceneKind, params: &SceneParams) -> Result<Scene, CoreError>
         lights,
         objects,
     })
+}
+
+/// The material `bumps` and `decal` make under `params`: the normal map and its mip chain, the
+/// heights as geometry where asked for, the offset map where the bump map is one; with the
+/// chain's encoding and the height field behind it, if any.
+fn material<'a>(
+    params: &SceneParams,
+    bumps: &'a BumpSource,
+    decal: Option<Arc<Rgba8Mips>>,
+) -> Result<(Material, bumpmap_math::Encoding, Option<&'a Arc<HeightField>>), CoreError> {
+    let needs_heights = matches!(params.bump_map, BumpMap::Offset | BumpMap::Derivatives | BumpMap::SurfaceDependent);
+    let (chain, heights) = match bumps {
+        BumpSource::Heights(field) => {
+            (Arc::new(MipChain::<[u8; 4]>::from_height(field, &params.normal_map, params.mip_mode)?), Some(field))
+        }
+        BumpSource::NormalMap(_) if needs_heights => return Err(CoreError::MapNeedsHeights(params.bump_map)),
+        BumpSource::NormalMap(chain) if params.mip_mode == MipMode::Renormalize => {
+            (Arc::new(chain.with_opaque_alpha()), None)
+        }
+        BumpSource::NormalMap(chain) => (chain.clone(), None),
+    };
+    // The chain becomes the material's texture; copied only when the caller still holds it.
+    let encoding = chain.encoding;
+    let normal_map = Arc::new(Arc::try_unwrap(chain).map_or_else(|shared| shared.to_mips(), MipChain::into_mips));
+    let mut material = Material {
+        normal_map,
+        normal_space: NormalSpace::Tangent,
+        normal_texels: NormalTexels::UnitVector,
+        decal,
+        ambient: params.ambient,
+        diffuse: params.diffuse,
+        specular: params.specular,
+        shininess: params.shininess,
+        height_map: heights.filter(|_| params.height_map).map(|field| {
+            Arc::new(Rgba8Mips::with_box_mipmaps(Rgba8Image::from_gray(field.width(), field.height(), &field.to_u8())))
+        }),
+        bump_scale: params.normal_map.scale,
+        heights: None,
+        depth: 0.0,
+    };
+    if params.displacement {
+        if let Some(d) = params.depth
+            && !(d.is_finite() && d > 0.0)
+        {
+            return Err(CoreError::out_of_range("the depth", d, "a positive number of object units"));
+        }
+        let mut mips = match (&params.height_mips, heights) {
+            (Some(given), _) => Some(given.clone()),
+            (None, Some(field)) => Some(Arc::new(HeightMips::from_field(field)?)),
+            // A normal map given without heights: the catalogue's requirement names what is missing.
+            (None, None) => None,
+        };
+        if let (Some(m), Some(horizons)) = (&mips, &params.horizon_map) {
+            mips = Some(Arc::new((**m).clone().with_horizons(horizons.clone())?));
+        }
+        if let Some(h) = &mips {
+            let (hs, ns) = ((h.width(), h.height()), (material.normal_map.width(), material.normal_map.height()));
+            if hs != ns {
+                return Err(CoreError::HeightsSize { heights: hs, normal_map: ns });
+            }
+        }
+        material.heights = mips;
+    }
+    if let (BumpMap::Offset | BumpMap::Derivatives, Some(field)) = (params.bump_map, heights) {
+        let (map, range) = offset_map(field, &params.normal_map)?;
+        material.normal_map = Arc::new(map);
+        material.normal_texels = NormalTexels::Offset { range };
+    }
+    Ok((material, encoding, heights))
 }
 
 /// The near and far planes for an eye at `eye`: 0.5 and 50 (the built-in scenes' own) where

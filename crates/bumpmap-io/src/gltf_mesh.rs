@@ -1,8 +1,9 @@
-//! A glTF document's meshes as one mesh: the scene's nodes place each instance (its own copy,
-//! in world space; a mirroring transform turns the winding and the tangents' handedness), only
-//! triangle lists are read, and every primitive is merged. With [`MeshOptions`] asking for
-//! them, the first primitive's material gives its normal and base-colour textures
-//! ([`MeshMaterial`]); the mesh is then read with the normal texture's `TEXCOORD_n`.
+//! A glTF document's meshes as one mesh of parts: the scene's nodes place each instance (its
+//! own copy, in world space; a mirroring transform turns the winding and the tangents'
+//! handedness), and every triangle primitive of every instance becomes a [`MeshPart`] with its
+//! own material. Triangle strips and fans become lists; points and lines are left out with a
+//! note. Each part's texture coordinates are the set its material's textures read, through
+//! their `KHR_texture_transform` (`gltf_material`); a part without that set gets zeros.
 //!
 //! What this module does not do: check the container, buffers and accessors (`gltf_read` did),
 //! or interpret a texture's texels (green up, unit length: `bumpmap_math::imported`).
@@ -13,7 +14,8 @@ use bumpmap_math::mesh::{MAX_ELEMENTS, Mesh, MeshError};
 use glam::{Vec2, Vec3, Vec4};
 
 use crate::error::IoError;
-use crate::mesh_file::{LoadedMesh, MaterialTexture, MeshMaterial, MeshOptions, gltf_handedness, mesh_err};
+use crate::gltf_material::{self, MaterialReads, TextureRead};
+use crate::mesh_file::{LoadedMesh, MeshOptions, MeshPart, gltf_handedness, mesh_err};
 
 /// The meshes to read and the world transform of each: the default scene's nodes (or the
 /// first scene's; or, with no scene, every node that is no other's child), each mesh once per
@@ -51,7 +53,18 @@ fn instances(path: &Path, doc: &gltf::Document) -> Result<Vec<(usize, glam::Mat4
             ));
         }
         let node = &nodes[i];
-        let world = parent * glam::Mat4::from_cols_array_2d(&node.transform().matrix());
+        let local = glam::Mat4::from_cols_array_2d(&node.transform().matrix());
+        if !local.is_finite() {
+            return Err(mesh_err(
+                path,
+                format!(
+                    "node {i}{} has a transform that is not finite ({:?})",
+                    node.name().map_or(String::new(), |n| format!(" ('{n}')")),
+                    node.transform().decomposed()
+                ),
+            ));
+        }
+        let world = parent * local;
         if let Some(mesh) = node.mesh() {
             out.push((mesh.index(), world));
         }
@@ -69,7 +82,6 @@ pub(crate) fn from_gltf(
 ) -> Result<LoadedMesh, IoError> {
     let document = file.document.clone();
     let instances = instances(path, &document)?;
-    let (material, tex_coord, mut notes) = chosen_material(&document, &instances, options);
     for accessor in document.accessors() {
         if accessor.count() > MAX_ELEMENTS {
             return Err(mesh_err(
@@ -92,9 +104,13 @@ pub(crate) fn from_gltf(
             ));
         }
     }
-    let mut mesh = Mesh::default();
-    let (mut had_normals, mut had_tangents, mut has_texcoords) = (true, true, true);
     let meshes: Vec<gltf::Mesh> = document.meshes().collect();
+    let (plans, mut notes) = material_plans(path, &document, &meshes, &instances, options)?;
+    let mut mesh = Mesh::default();
+    let mut parts = Vec::new();
+    let (mut had_normals, mut had_tangents, mut any_texcoords) = (true, true, false);
+    let mut turned = false;
+    let mut left_out: Vec<(gltf::mesh::Mode, usize)> = Vec::new();
     let buffers = std::mem::take(&mut file.buffers);
     for &(mesh_index, world_from_local) in &instances {
         let gmesh = &meshes[mesh_index];
@@ -104,20 +120,21 @@ pub(crate) fn from_gltf(
         let normal_matrix = linear.inverse().transpose();
         let mirrored = linear.determinant() < 0.0;
         for prim in gmesh.primitives() {
-            if prim.mode() != gltf::mesh::Mode::Triangles {
-                return Err(mesh_err(
-                    path,
-                    format!(
-                        "mesh '{}' has a {:?} primitive; only triangle lists are supported",
-                        gmesh.name().unwrap_or("?"),
-                        prim.mode()
-                    ),
-                ));
+            let mode = prim.mode();
+            if !matches!(
+                mode,
+                gltf::mesh::Mode::Triangles | gltf::mesh::Mode::TriangleStrip | gltf::mesh::Mode::TriangleFan
+            ) {
+                match left_out.iter_mut().find(|(m, _)| *m == mode) {
+                    Some((_, n)) => *n += 1,
+                    None => left_out.push((mode, 1)),
+                }
+                continue;
             }
             let reader = prim.reader(|b| buffers.get(b.index()).map(|d| &d[..]));
             let positions: Vec<Vec3> = reader
                 .read_positions()
-                .ok_or_else(|| mesh_err(path, "a primitive has no POSITION"))?
+                .ok_or_else(|| mesh_err(path, format!("mesh {mesh_index} has a primitive without POSITION")))?
                 .map(|p| world_from_local.transform_point3(Vec3::from(p)))
                 .collect();
             let n = positions.len();
@@ -136,8 +153,13 @@ pub(crate) fn from_gltf(
                 .read_normals()
                 .map(|r| r.map(|v| (normal_matrix * Vec3::from(v)).normalize_or_zero()).collect())
                 .unwrap_or_default();
-            let texcoords: Vec<Vec2> =
-                reader.read_tex_coords(tex_coord).map(|r| r.into_f32().map(Vec2::from).collect()).unwrap_or_default();
+            let material = prim.material().index().and_then(|i| plans.iter().position(|p| p.index == i));
+            let read = material.map_or_else(TextureRead::default, |m| plans[m].read);
+            turned |= read.transform.turns_or_mirrors();
+            let texcoords: Vec<Vec2> = reader
+                .read_tex_coords(read.set)
+                .map(|r| r.into_f32().map(|uv| read.transform.apply(Vec2::from(uv))).collect())
+                .unwrap_or_default();
             let tangents: Vec<Vec4> = reader
                 .read_tangents()
                 .map(|r| {
@@ -151,158 +173,170 @@ pub(crate) fn from_gltf(
                     .collect()
                 })
                 .unwrap_or_default();
-            let indices: Vec<u32> = match reader.read_indices() {
+            let listed: Vec<u32> = match reader.read_indices() {
                 Some(r) => r.into_u32().collect(),
                 None => (0..n as u32).collect(),
             };
-            if !indices.len().is_multiple_of(3) {
-                return Err(mesh_err(path, format!("{} indices is not a whole number of triangles", indices.len())));
+            let indices = triangle_list(mode, &listed);
+            if mode == gltf::mesh::Mode::Triangles && !listed.len().is_multiple_of(3) {
+                return Err(mesh_err(
+                    path,
+                    format!("mesh {mesh_index}: {} indices is not a whole number of triangles", listed.len()),
+                ));
             }
-            if let Some(&bad) = indices.iter().find(|&&i| i as usize >= n) {
-                return Err(mesh_err(path, format!("index {bad} is out of range for a primitive of {n} vertices")));
+            if let Some(&bad) = listed.iter().find(|&&i| i as usize >= n) {
+                return Err(mesh_err(
+                    path,
+                    format!("mesh {mesh_index}: index {bad} is out of range for a primitive of {n} vertices"),
+                ));
             }
-            if indices.len() / 3 + mesh.indices.len() > MAX_ELEMENTS {
+            if indices.len() + mesh.indices.len() > MAX_ELEMENTS {
                 return Err(mesh_err(
                     path,
                     MeshError::TooLarge {
                         what: "triangles (all instances)",
-                        count: (indices.len() / 3 + mesh.indices.len()) as u64,
+                        count: (indices.len() + mesh.indices.len()) as u64,
                         max: MAX_ELEMENTS,
                     },
                 ));
             }
+            let textured = texcoords.len() == n;
+            any_texcoords |= textured;
             had_normals &= normals.len() == n;
-            has_texcoords &= texcoords.len() == n;
             had_tangents &= tangents.len() == n;
             mesh.positions.extend(positions);
             mesh.normals.extend(normals);
-            mesh.texcoords.extend(texcoords);
+            if textured {
+                mesh.texcoords.extend(texcoords);
+            } else {
+                mesh.texcoords.extend(std::iter::repeat_n(Vec2::ZERO, n));
+            }
             mesh.tangents.extend(tangents);
-            mesh.indices.extend(indices.chunks_exact(3).map(|t| {
+            let start = mesh.indices.len();
+            mesh.indices.extend(indices.into_iter().map(|t| {
                 if mirrored { [base + t[0], base + t[2], base + t[1]] } else { [base + t[0], base + t[1], base + t[2]] }
             }));
+            parts.push(MeshPart { triangles: start..mesh.indices.len(), material, textured });
         }
+    }
+    for (mode, count) in &left_out {
+        notes.push(format!("{count} {mode:?} primitive(s) left out: only triangles are drawn"));
+    }
+    if parts.is_empty() {
+        return Err(mesh_err(
+            path,
+            if left_out.is_empty() {
+                "the scene holds no mesh primitives: nothing to draw".to_string()
+            } else {
+                format!("the scene holds no triangles, only {}", notes.last().map_or("", String::as_str))
+            },
+        ));
     }
     if !had_normals {
         mesh.normals.clear();
     }
-    if !has_texcoords {
+    if !any_texcoords {
         mesh.texcoords.clear();
     }
     if !had_tangents {
         mesh.tangents.clear();
     }
-    if material.is_some() && !has_texcoords && tex_coord > 0 {
-        return Err(mesh_err(
-            path,
-            format!("the material's textures read TEXCOORD_{tex_coord}, which not every primitive has"),
+    if had_tangents && turned {
+        // The file's tangents follow the untransformed coordinates' +s; new ones follow the
+        // texture as it is drawn.
+        mesh.tangents.clear();
+        had_tangents = false;
+        notes.push(
+            "the file's TANGENT attributes are set aside: a KHR_texture_transform turns or mirrors the texture, so tangents are made from the transformed coordinates"
+                .into(),
+        );
+    }
+    let untextured = parts.iter().filter(|p| !p.textured).count();
+    if any_texcoords && untextured > 0 {
+        notes.push(format!(
+            "{untextured} of {} primitive(s) lack the texture coordinates their material reads: drawn unbumped and untextured",
+            parts.len()
         ));
+    }
+    for e in document.extensions_used().filter(|e| *e != "KHR_texture_transform") {
+        notes.push(format!("extension {e} is not read"));
     }
     file.buffers = buffers;
-    let material = match material {
-        Some(m) => Some(read_material(path, &mut file, &m, tex_coord, options, &mut notes)?),
-        None => None,
-    };
+    let materials: Vec<gltf::Material> = document.materials().collect();
+    let mut read = Vec::with_capacity(plans.len());
+    for plan in &plans {
+        read.push(gltf_material::read(path, &mut file, &materials[plan.index], &plan.reads, plan.read.set, options)?);
+    }
     let mut sources = vec![path.to_path_buf()];
     sources.extend(file.files);
-    Ok(LoadedMesh { mesh, had_normals, had_tangents, sources, material, notes })
+    Ok(LoadedMesh { mesh, had_normals, had_tangents, sources, materials: read, parts, notes })
 }
 
-/// The material the mesh is drawn with — the first primitive's, in the order the instances are
-/// read — the texture-coordinate set to read (that of the normal texture if it is read, else
-/// that of the base colour if it is read, else 0), and notes on what else the file asked for.
-fn chosen_material<'a>(
-    doc: &'a gltf::Document,
+/// A glTF triangle primitive's indices as a list of triangles (glTF 2.0 §3.7.2.1): a strip's
+/// triangle i is (i, i + 1 + i % 2, i + 2 − i % 2), a fan's (i + 1, i + 2, 0).
+fn triangle_list(mode: gltf::mesh::Mode, listed: &[u32]) -> Vec<[u32; 3]> {
+    match mode {
+        gltf::mesh::Mode::TriangleStrip => (0..listed.len().saturating_sub(2))
+            .map(|i| [listed[i], listed[i + 1 + i % 2], listed[i + 2 - i % 2]])
+            .collect(),
+        gltf::mesh::Mode::TriangleFan => {
+            (0..listed.len().saturating_sub(2)).map(|i| [listed[i + 1], listed[i + 2], listed[0]]).collect()
+        }
+        _ => listed.chunks_exact(3).map(|t| [t[0], t[1], t[2]]).collect(),
+    }
+}
+
+/// A material the parts draw with: its index in the file, its texture reads, and the set and
+/// transform the mesh is read with for it.
+struct MaterialPlan {
+    index: usize,
+    reads: MaterialReads,
+    read: TextureRead,
+}
+
+/// The materials the instances' primitives use, in order of first use, each checked; and notes
+/// on what they ask for that is not drawn (each note once).
+fn material_plans(
+    path: &Path,
+    doc: &gltf::Document,
+    meshes: &[gltf::Mesh],
     instances: &[(usize, glam::Mat4)],
     options: &MeshOptions,
-) -> (Option<gltf::Material<'a>>, u32, Vec<String>) {
+) -> Result<(Vec<MaterialPlan>, Vec<String>), IoError> {
+    let materials: Vec<gltf::Material> = doc.materials().collect();
+    let mut plans: Vec<MaterialPlan> = Vec::new();
     let mut notes = Vec::new();
-    let meshes: Vec<gltf::Mesh> = doc.meshes().collect();
-    let mut used: Vec<Option<usize>> = Vec::new();
     for &(m, _) in instances {
         for prim in meshes[m].primitives() {
-            let index = prim.material().index();
-            if !used.contains(&index) {
-                used.push(index);
+            let Some(index) = prim.material().index() else { continue };
+            if plans.iter().any(|p| p.index == index) {
+                continue;
             }
+            let material = &materials[index];
+            gltf_material::check(path, material, &mut notes)?;
+            let reads = gltf_material::reads(path, doc, material)?;
+            let (read, note) = gltf_material::mesh_read(&reads, options, &gltf_material::material_name(material));
+            notes.extend(note);
+            plans.push(MaterialPlan { index, reads, read });
         }
     }
-    let chosen = used.first().copied().flatten().and_then(|i| doc.materials().nth(i));
-    if used.len() > 1 {
-        notes.push(format!(
-            "the primitives use {} materials; all are drawn with the first's ({})",
-            used.len(),
-            chosen.as_ref().map_or("none".into(), material_name)
-        ));
+    // One line per kind of thing left out, naming every material that asked for it.
+    let mut merged: Vec<(String, Vec<String>)> = Vec::new();
+    for note in notes {
+        match note.split_once(" (material ") {
+            Some((what, who)) => {
+                let who = who.trim_end_matches(')').to_string();
+                match merged.iter_mut().find(|(w, _)| w == what) {
+                    Some((_, names)) => names.push(who),
+                    None => merged.push((what.to_string(), vec![who])),
+                }
+            }
+            None => merged.push((note, Vec::new())),
+        }
     }
-    let Some(material) = chosen else { return (None, 0, notes) };
-    let normal_set = material.normal_texture().filter(|_| options.read_normal_texture).map(|t| t.tex_coord());
-    let color_set = material
-        .pbr_metallic_roughness()
-        .base_color_texture()
-        .filter(|_| options.read_base_color_texture)
-        .map(|t| t.tex_coord());
-    let set = normal_set.or(color_set).unwrap_or(0);
-    if let (Some(n), Some(c)) = (normal_set, color_set)
-        && n != c
-    {
-        notes.push(format!(
-            "the baseColorTexture reads TEXCOORD_{c} but the normalTexture TEXCOORD_{n}; both are drawn with TEXCOORD_{n}"
-        ));
-    }
-    if doc.extensions_used().any(|e| e == "KHR_texture_transform") {
-        notes.push("KHR_texture_transform is not applied: textures are drawn untransformed".into());
-    }
-    (Some(material), set, notes)
-}
-
-fn material_name(m: &gltf::Material) -> String {
-    match (m.name(), m.index()) {
-        (Some(n), _) => format!("'{n}'"),
-        (None, Some(i)) => format!("material {i}"),
-        (None, None) => "the default material".into(),
-    }
-}
-
-/// Reads the textures `options` asks for of `material`.
-fn read_material(
-    path: &Path,
-    file: &mut crate::gltf_read::GltfFile,
-    material: &gltf::Material,
-    tex_coord: u32,
-    options: &MeshOptions,
-    notes: &mut Vec<String>,
-) -> Result<MeshMaterial, IoError> {
-    let texture = |file: &mut crate::gltf_read::GltfFile, texture: gltf::Texture, what: &str, scale: f32| {
-        let image = texture.source();
-        let what = format!("{what} (image {})", image.index());
-        // Errors name the glTF and the texture, then the image file's own error.
-        let named = |e: IoError| match e {
-            IoError::Mesh { .. } => e,
-            other => mesh_err(path, format!("{what}: {other}")),
-        };
-        let (bytes, source) = file.image_bytes(path, &image, &what).map_err(named)?;
-        let limits = crate::image_file::DecodeLimits::default();
-        let decoded = crate::texture_read::read_texture(&bytes, &source, &limits).map_err(named)?;
-        Ok::<_, IoError>(MaterialTexture { texture: decoded, scale, source })
-    };
-    let normal = match material.normal_texture() {
-        Some(n) if options.read_normal_texture => Some(texture(file, n.texture(), "normalTexture", n.scale())?),
-        _ => None,
-    };
-    let pbr = material.pbr_metallic_roughness();
-    let base_color = match pbr.base_color_texture() {
-        Some(c) if options.read_base_color_texture => Some(texture(file, c.texture(), "baseColorTexture", 1.0)?),
-        _ => None,
-    };
-    if material.emissive_texture().is_some() || material.occlusion_texture().is_some() {
-        notes.push("the material's occlusion and emissive textures are not drawn".into());
-    }
-    Ok(MeshMaterial {
-        name: material_name(material),
-        normal,
-        base_color,
-        base_color_factor: pbr.base_color_factor(),
-        tex_coord,
-    })
+    let notes = merged
+        .into_iter()
+        .map(|(what, who)| if who.is_empty() { what } else { format!("{what} (materials {})", who.join(", ")) })
+        .collect();
+    Ok((plans, notes))
 }

@@ -3,7 +3,9 @@
 //! - `obj_read`: OBJ (via `tobj`), v flipped into this crate's texture space ([`ObjTexcoords`]);
 //! - `gltf_read`: a glTF or GLB file read without trusting it (container, buffers, accessors);
 //! - `gltf_mesh`: its scene's meshes placed by their node transforms and merged into one mesh,
-//!   with the first primitive's material ([`MeshMaterial`]) when asked for;
+//!   each primitive of each node a [`MeshPart`] of it with its own material ([`MeshMaterial`]);
+//! - `gltf_material`: a material's texture reads (`texCoord`, `KHR_texture_transform`), checks
+//!   and textures;
 //! - `gltf_write`: glTF or GLB out, with a TANGENT attribute ([`save_gltf_into`]).
 //!
 //! glTF's texture coordinates are this crate's as they are; its TANGENT handedness is ours
@@ -33,10 +35,27 @@ pub struct LoadedMesh {
     /// Every file read: the mesh file and, for glTF, its buffer and image files. An output must
     /// replace none of them.
     pub sources: Vec<PathBuf>,
-    /// A glTF's material, when [`MeshOptions`] asked for its textures and the mesh has one.
-    pub material: Option<MeshMaterial>,
-    /// What the reader left out, in words (a second material, a texture transform, …).
+    /// The glTF materials the parts draw with, each once (their textures read where
+    /// [`MeshOptions`] asks for them). Empty for OBJ.
+    pub materials: Vec<MeshMaterial>,
+    /// Which triangles of [`LoadedMesh::mesh`] each glTF primitive (of each node that holds it)
+    /// is, in the order read, and its material. Empty for OBJ: one part, no material.
+    pub parts: Vec<MeshPart>,
+    /// What the reader left out, in words (an alpha mode, a line primitive, …).
     pub notes: Vec<String>,
+}
+
+/// One glTF primitive of one node: a run of the merged mesh's triangles and its material.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct MeshPart {
+    /// Its triangles: a range of [`Mesh::indices`].
+    pub triangles: std::ops::Range<usize>,
+    /// Its material, an index into [`LoadedMesh::materials`]; `None` for glTF's default
+    /// material (no textures, white, single-sided).
+    pub material: Option<usize>,
+    /// Whether it has the texture-coordinate set its material reads. Without it the part's
+    /// texture coordinates are zeros and it can only be drawn unbumped and untextured.
+    pub textured: bool,
 }
 
 /// What a glTF material gives a renderer.
@@ -53,6 +72,32 @@ pub struct MeshMaterial {
     /// The texture-coordinate set the mesh was read with (`TEXCOORD_n`): the normal texture's
     /// when it is read, else the base colour's when that is read, else 0.
     pub tex_coord: u32,
+    /// `doubleSided`: back faces drawn, lit with the normal and the tangent frame reversed
+    /// (glTF 2.0 §3.9.6); otherwise culled.
+    pub double_sided: bool,
+    /// The `KHR_texture_transform` already applied to the parts' texture coordinates (the
+    /// normal texture's when it is read, else the base colour's), when it changes anything.
+    pub texture_transform: Option<TextureTransform>,
+}
+
+/// `KHR_texture_transform` on a texture reference: `uv' = T·R·S·uv`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct TextureTransform {
+    /// T's translation, in texture coordinates.
+    pub offset: glam::Vec2,
+    /// R's angle in radians, counter-clockwise in the image as displayed.
+    pub rotation: f32,
+    /// S's scale along u and v.
+    pub scale: glam::Vec2,
+    /// The texture-coordinate set it reads instead of the reference's own `texCoord`.
+    pub tex_coord: Option<u32>,
+}
+
+impl Default for TextureTransform {
+    /// The identity.
+    fn default() -> Self {
+        Self { offset: glam::Vec2::ZERO, rotation: 0.0, scale: glam::Vec2::ONE, tex_coord: None }
+    }
 }
 
 /// One of a material's textures, decoded.
@@ -64,6 +109,8 @@ pub struct MaterialTexture {
     pub scale: f32,
     /// Where it came from: the image's file, or the glTF with the image's index.
     pub source: PathBuf,
+    /// The glTF image's index: materials that share an image share it.
+    pub image: usize,
 }
 
 pub(crate) fn mesh_err(path: &Path, reason: impl std::fmt::Display) -> IoError {

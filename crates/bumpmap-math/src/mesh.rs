@@ -4,6 +4,8 @@
 use glam::{Vec2, Vec3, Vec4};
 use rayon::prelude::*;
 
+mod parts;
+
 /// An indexed triangle mesh. Every per-vertex array has `positions.len()` entries (or is empty
 /// where noted). Triangles wind counter-clockwise when seen from the side the normal faces.
 #[derive(Clone, Debug, Default, PartialEq)]

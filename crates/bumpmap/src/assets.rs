@@ -10,7 +10,7 @@ use std::fmt;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
-use bumpmap_core::{BumpSource, SceneKind, SceneSpec};
+use bumpmap_core::{BumpSource, MeshPart, MeshParts, PartMaterial, SceneKind, SceneSpec};
 use bumpmap_io::texture_file::TextureFormat;
 use bumpmap_io::{MeshOptions, StoredLevels, StoredTexture};
 use bumpmap_math::imported::{ImportOptions, UNIT_TOLERANCE, import_normal_map};
@@ -213,19 +213,39 @@ pub struct MaterialAsset {
     pub decal_source: Option<String>,
     /// The texture-coordinate set the mesh was read with.
     pub tex_coord: u32,
+    /// `doubleSided`: its parts' back faces are drawn, lit from their own side.
+    pub double_sided: bool,
+    /// The `KHR_texture_transform` applied to its parts' texture coordinates, if any.
+    pub texture_transform: Option<bumpmap_io::TextureTransform>,
+}
+
+/// One glTF primitive of one node, ready to draw.
+#[derive(Clone, Debug)]
+pub struct PartAsset {
+    /// Its geometry with tangents; a double-sided material's back faces are copies of its
+    /// triangles wound the other way, with the normal and the tangent frame reversed.
+    pub mesh: Arc<Mesh>,
+    /// An index into [`MeshAsset::materials`], or `None` for glTF's default material.
+    pub material: Option<usize>,
+    /// Whether it has the texture coordinates its material reads (without, it is drawn
+    /// unbumped and untextured).
+    pub textured: bool,
 }
 
 /// A mesh file, ready to draw.
 #[derive(Clone, Debug)]
 pub struct MeshAsset {
-    /// The mesh, in the file's own units and axes, with tangents.
+    /// The whole mesh, in the file's own units and axes, with tangents.
     pub mesh: Arc<Mesh>,
     /// Whether the tangents are the file's (glTF's TANGENT) or were made here.
     pub tangents_from_file: bool,
     /// Whether the normals are the file's or were made from the faces.
     pub normals_from_file: bool,
-    /// The glTF material, when the file has one and its textures were asked for.
-    pub material: Option<MaterialAsset>,
+    /// The glTF materials the parts draw with.
+    pub materials: Vec<MaterialAsset>,
+    /// The glTF primitives, each with its own material; empty for a file without materials
+    /// (an OBJ), which is drawn as one mesh with the scene's bumps.
+    pub parts: Vec<PartAsset>,
     /// Every file read (the mesh, its buffers and images): no output may replace one.
     pub sources: Vec<PathBuf>,
     /// What the file asked for that is not drawn, and maps that look wrong.
@@ -233,20 +253,63 @@ pub struct MeshAsset {
 }
 
 impl MeshAsset {
-    /// The scene as the file describes it: the mesh, its material's normal map (none, no
+    /// The scene as the file describes it: each part with its material's normal map (none, no
     /// bumps: a material without a `normalTexture` is flat) and base colour. A file without a
     /// material keeps the default bumps (the paper's bricks) so that bump mapping shows.
     pub fn spec(&self) -> SceneSpec {
         let mut spec = SceneSpec::new(SceneKind::Mesh(self.mesh.clone()));
-        if let Some(m) = &self.material {
-            spec.params.bumps = match &m.normal_map {
-                Some(map) => map.bumps(),
-                None => BumpSource::flat_map(1, 1),
-            };
-            spec.params.decal = m.decal.clone();
-            spec.params.default_decal = false;
+        if self.parts.is_empty() {
+            return spec;
         }
+        let flat = || BumpSource::flat_map(1, 1);
+        let mut materials: Vec<PartMaterial> = self
+            .materials
+            .iter()
+            .map(|m| PartMaterial {
+                name: m.name.clone(),
+                bumps: Some(m.normal_map.as_ref().map_or_else(flat, LoadedNormalMap::bumps)),
+                decal: m.decal.clone(),
+            })
+            .collect();
+        // glTF's default material, and each material without texture coordinates to read its
+        // maps with: no bumps, and only a decal of one texel (the base colour factor).
+        let mut plain: Vec<Option<usize>> = vec![None; self.materials.len() + 1];
+        let parts = self
+            .parts
+            .iter()
+            .map(|part| {
+                let material = match (part.material, part.textured) {
+                    (Some(m), true) => m,
+                    (m, _) => {
+                        let slot = m.unwrap_or(self.materials.len());
+                        *plain[slot].get_or_insert_with(|| {
+                            let decal = m
+                                .and_then(|m| self.materials[m].decal.clone())
+                                .filter(|d| d.levels()[0].width == 1 && d.levels()[0].height == 1);
+                            let name = m.map_or("the default material".into(), |m| self.materials[m].name.clone());
+                            materials.push(PartMaterial { name, bumps: Some(flat()), decal });
+                            materials.len() - 1
+                        })
+                    }
+                };
+                MeshPart { mesh: part.mesh.clone(), material }
+            })
+            .collect();
+        // The scene's own bumps are the first normal map's (what a technique's requirements and
+        // an explicit option's notes look at); its decal is none.
+        spec.params.bumps =
+            self.materials.iter().find_map(|m| m.normal_map.as_ref()).map_or_else(flat, LoadedNormalMap::bumps);
+        spec.params.default_decal = false;
+        spec.params.parts = Some(Arc::new(MeshParts { materials, parts }));
         spec
+    }
+
+    /// How many parts draw without bumps (no `normalTexture`, or no texture coordinates).
+    pub fn unbumped_parts(&self) -> usize {
+        self.parts
+            .iter()
+            .filter(|p| !p.textured || p.material.is_none_or(|m| self.materials[m].normal_map.is_none()))
+            .count()
     }
 
     /// Which of the file's parts are drawn, a line each, for the user.
@@ -257,7 +320,15 @@ impl MeshAsset {
             if self.tangents_from_file { "the file's TANGENT attribute" } else { "generated (the file has none)" },
             if self.normals_from_file { "the file's" } else { "computed from the faces (the file has none)" }
         )];
-        if let Some(m) = &self.material {
+        if self.parts.len() > 1 || self.materials.len() > 1 {
+            lines.push(format!(
+                "{} primitive(s) drawn with {} material(s); {} of them unbumped (no normalTexture or no texture coordinates)",
+                self.parts.len(),
+                self.materials.len(),
+                self.unbumped_parts()
+            ));
+        }
+        for m in &self.materials {
             lines.push(match &m.normal_map {
                 Some(map) => format!(
                     "material {}: normalTexture {} (scale {}, TEXCOORD_{}) as the normal map",
@@ -278,6 +349,18 @@ impl MeshAsset {
                     m.name
                 ),
             });
+            if m.double_sided {
+                lines.push(format!("material {}: double-sided, back faces lit from their own side", m.name));
+            }
+            if let Some(t) = &m.texture_transform {
+                lines.push(format!(
+                    "material {}: KHR_texture_transform applied (offset {:?}, rotation {} rad, scale {:?})",
+                    m.name,
+                    t.offset.to_array(),
+                    t.rotation,
+                    t.scale.to_array()
+                ));
+            }
         }
         lines
     }
@@ -314,91 +397,139 @@ pub fn mesh_asset(loaded: bumpmap_io::LoadedMesh, path: &Path, options: &MeshLoa
     };
     let mut warnings: Vec<Warning> =
         loaded.notes.iter().map(|what| Warning::Ignored { path: path.to_path_buf(), what: what.clone() }).collect();
-    let material = match &loaded.material {
-        None => None,
-        Some(m) => {
-            let normal_scale = options.normal_scale.unwrap_or_else(|| m.normal.as_ref().map_or(1.0, |n| n.scale));
-            // The file's own scale out of range is the glTF's fault, not the image's.
-            if options.normal_scale.is_none()
-                && !(normal_scale.is_finite() && normal_scale.abs() <= bumpmap_math::imported::MAX_SCALE)
-            {
-                return Err(Error::Io(bumpmap_io::IoError::Mesh {
-                    path: path.to_path_buf(),
-                    reason: format!(
-                        "the material's normalTexture.scale is {normal_scale}; it must be a number in [-{0}, {0}]",
-                        bumpmap_math::imported::MAX_SCALE
-                    ),
-                }));
-            }
-            let normal_map = match &m.normal {
-                Some(t) => {
-                    // glTF's normal textures are green up ("+Y is up").
-                    let import_options = ImportOptions {
-                        y_convention: YConvention::YUp,
-                        scale: normal_scale,
-                        mip_mode: options.mip_mode,
-                        rebuild_mips: false,
-                    };
-                    let map = import(&t.texture, &t.source, &import_options)?;
-                    warnings.extend(map.warnings());
-                    Some(map)
-                }
-                None => None,
-            };
-            // glTF: the texture is sRGB-encoded and the factor linear; their product is stored
-            // sRGB-encoded again, so the decal's bytes look as the file's viewer shows them.
-            let factor = m.base_color_factor;
-            if factor[..3].iter().any(|c| !(0.0..=1.0).contains(c)) {
-                warnings.push(Warning::Ignored {
-                    path: path.to_path_buf(),
-                    what: format!(
-                        "the material's baseColorFactor {:?} is outside [0, 1] (glTF 2.0 bounds each component): drawn clamped",
-                        &factor[..3]
-                    ),
-                });
-            }
-            let tint = |t: [u8; 4]| {
-                let c = |i: usize| srgb_encode(srgb_decode(t[i]) * factor[i]);
-                [c(0), c(1), c(2), t[3]]
-            };
-            let (decal, decal_source) = match &m.base_color {
-                Some(t) => {
-                    let levels: Vec<Rgba8Image> = (&t.texture.levels).into();
-                    let level0 = &levels[0];
-                    // The tinted copy and its mipmaps, before either is made.
-                    let texels = level0.width as u64 * level0.height as u64;
-                    bumpmap_math::buffer::ensure_available(
-                        texels * 4 + texels * 4 * 4 / 3,
-                        "the decal and its mipmaps",
-                    )
-                    .map_err(|source| Error::OutOfMemory { what: t.source.display().to_string(), source })?;
-                    let image =
-                        Rgba8Image::new(level0.width, level0.height, level0.texels.iter().map(|&t| tint(t)).collect());
-                    let what = format!("baseColorTexture {}x{} from {}", image.width, image.height, t.source.display());
-                    (Some(Arc::new(Rgba8Mips::with_box_mipmaps(image))), Some(what))
-                }
-                None if factor[..3] != [1.0; 3] => {
-                    let image = Rgba8Image::new(1, 1, vec![tint([255; 4])]);
-                    (Some(Arc::new(Rgba8Mips::single(image))), Some(format!("baseColorFactor {:?}", &factor[..3])))
-                }
-                None => (None, None),
-            };
-            Some(MaterialAsset {
-                name: m.name.clone(),
-                normal_map,
-                normal_scale,
-                decal,
-                decal_source,
-                tex_coord: m.tex_coord,
-            })
-        }
-    };
+    let mut materials = Vec::with_capacity(loaded.materials.len());
+    // Maps shared by several materials are imported once.
+    let mut imported: Vec<(usize, f32, LoadedNormalMap)> = Vec::new();
+    for m in &loaded.materials {
+        materials.push(material_asset(m, path, options, &mut imported, &mut warnings)?);
+    }
+    let mesh = Arc::new(mesh);
+    let parts = split_parts(&mesh, &loaded.parts, &materials);
+    if parts.is_empty() {
+        materials.clear();
+    }
     Ok(MeshAsset {
-        mesh: Arc::new(mesh),
+        mesh,
         tangents_from_file: loaded.had_tangents,
         normals_from_file: loaded.had_normals,
-        material,
+        materials,
+        parts,
         sources: loaded.sources,
         warnings,
+    })
+}
+
+/// The parts' own meshes cut from `mesh` (the whole mesh, shared, where one part is all of it
+/// and single-sided), with a double-sided material's back faces added; none without materials.
+fn split_parts(mesh: &Arc<Mesh>, parts: &[bumpmap_io::MeshPart], materials: &[MaterialAsset]) -> Vec<PartAsset> {
+    if materials.is_empty() {
+        return Vec::new();
+    }
+    let double_sided = |p: &bumpmap_io::MeshPart| p.material.is_some_and(|m| materials[m].double_sided);
+    if let [only] = parts
+        && only.triangles == (0..mesh.indices.len())
+        && !double_sided(only)
+    {
+        return vec![PartAsset { mesh: mesh.clone(), material: only.material, textured: only.textured }];
+    }
+    parts
+        .iter()
+        .map(|p| {
+            let triangles = &mesh.indices[p.triangles.clone()];
+            let mut part = mesh.submesh(triangles);
+            if double_sided(p) {
+                part.add_back_faces();
+            }
+            PartAsset { mesh: Arc::new(part), material: p.material, textured: p.textured }
+        })
+        .collect()
+}
+
+/// A glTF material made ready to draw: its normal texture imported (once per image and scale,
+/// `imported` remembers), its base colour tinted by the factor as the decal.
+fn material_asset(
+    m: &bumpmap_io::MeshMaterial,
+    path: &Path,
+    options: &MeshLoad,
+    imported: &mut Vec<(usize, f32, LoadedNormalMap)>,
+    warnings: &mut Vec<Warning>,
+) -> Result<MaterialAsset, Error> {
+    let normal_scale = options.normal_scale.unwrap_or_else(|| m.normal.as_ref().map_or(1.0, |n| n.scale));
+    // The file's own scale out of range is the glTF's fault, not the image's.
+    if options.normal_scale.is_none()
+        && !(normal_scale.is_finite() && normal_scale.abs() <= bumpmap_math::imported::MAX_SCALE)
+    {
+        return Err(Error::Io(bumpmap_io::IoError::Mesh {
+            path: path.to_path_buf(),
+            reason: format!(
+                "material {}'s normalTexture.scale is {normal_scale}; it must be a number in [-{1}, {1}]",
+                m.name,
+                bumpmap_math::imported::MAX_SCALE
+            ),
+        }));
+    }
+    let normal_map = match &m.normal {
+        Some(t) => match imported.iter().find(|(image, scale, _)| *image == t.image && *scale == normal_scale) {
+            Some((_, _, map)) => Some(map.clone()),
+            None => {
+                // glTF's normal textures are green up ("+Y is up").
+                let import_options = ImportOptions {
+                    y_convention: YConvention::YUp,
+                    scale: normal_scale,
+                    mip_mode: options.mip_mode,
+                    rebuild_mips: false,
+                };
+                let map = import(&t.texture, &t.source, &import_options)?;
+                warnings.extend(map.warnings());
+                imported.push((t.image, normal_scale, map.clone()));
+                Some(map)
+            }
+        },
+        None => None,
+    };
+    // glTF: the texture is sRGB-encoded and the factor linear; their product is stored
+    // sRGB-encoded again, so the decal's bytes look as the file's viewer shows them.
+    let factor = m.base_color_factor;
+    if factor[..3].iter().any(|c| !(0.0..=1.0).contains(c)) {
+        warnings.push(Warning::Ignored {
+            path: path.to_path_buf(),
+            what: format!(
+                "material {}'s baseColorFactor {:?} is outside [0, 1] (glTF 2.0 bounds each component): drawn clamped",
+                m.name,
+                &factor[..3]
+            ),
+        });
+    }
+    let tint = |t: [u8; 4]| {
+        let c = |i: usize| srgb_encode(srgb_decode(t[i]) * factor[i]);
+        [c(0), c(1), c(2), t[3]]
+    };
+    let (decal, decal_source) = match &m.base_color {
+        Some(t) => {
+            let levels: Vec<Rgba8Image> = (&t.texture.levels).into();
+            let level0 = &levels[0];
+            // The tinted copy and its mipmaps, before either is made.
+            let texels = level0.width as u64 * level0.height as u64;
+            bumpmap_math::buffer::ensure_available(texels * 4 + texels * 4 * 4 / 3, "the decal and its mipmaps")
+                .map_err(|source| Error::OutOfMemory { what: t.source.display().to_string(), source })?;
+            let image = Rgba8Image::new(level0.width, level0.height, level0.texels.iter().map(|&t| tint(t)).collect());
+            let what = format!("baseColorTexture {}x{} from {}", image.width, image.height, t.source.display());
+            (Some(Arc::new(Rgba8Mips::with_box_mipmaps(image))), Some(what))
+        }
+        None if factor[..3] != [1.0; 3] => {
+            let image = Rgba8Image::new(1, 1, vec![tint([255; 4])]);
+            (Some(Arc::new(Rgba8Mips::single(image))), Some(format!("baseColorFactor {:?}", &factor[..3])))
+        }
+        None => (None, None),
+    };
+    Ok(MaterialAsset {
+        name: m.name.clone(),
+        normal_map,
+        normal_scale,
+        decal,
+        decal_source,
+        tex_coord: m.tex_coord,
+        double_sided: m.double_sided,
+        texture_transform: m.texture_transform,
     })
 }

@@ -94,7 +94,8 @@ impl Prepared {
     /// fallibly, so an estimate too low still ends in an error rather than an abort.
     pub fn bytes_needed(spec: &SceneSpec, name: TechniqueName) -> u64 {
         let (w, h) = spec.params.bumps.size();
-        let texels = (w as u64 * h as u64) * 4 / 3;
+        // Every bump source: the scene's, and a model's parts' own.
+        let texels = spec.params.bump_sources().map(|b| b.size().0 as u64 * b.size().1 as u64).sum::<u64>() * 4 / 3;
         let embossed = matches!(name, TechniqueName::Emboss | TechniqueName::EmbossUnforced);
         // Made from heights, or copied from a map the spec shares into the scene's material.
         let mut bytes = texels * 4;
