@@ -196,13 +196,9 @@ pub fn draw(
     snapshots: bool,
 ) -> Result<Frame, CliError> {
     let mut shots = Vec::new();
-    let image = renderer
-        .draw_scene(scene, technique, width, height, |name, image| {
-            if snapshots {
-                shots.push((name.to_string(), image.clone()));
-            }
-        })
-        .map_err(lib_err)?;
+    let mut keep = |name: &str, image: &bumpmap::Rgba8Image| shots.push((name.to_string(), image.clone()));
+    let on_pass: Option<bumpmap::renderer::OnPass> = if snapshots { Some(&mut keep) } else { None };
+    let image = renderer.draw_scene(scene, technique, width, height, on_pass).map_err(lib_err)?;
     Ok(Frame { image, snapshots: shots })
 }
 

@@ -6,6 +6,7 @@
 //! pipeline (`bumpmap-cpu`), wgpu (`bumpmap-gpu`), or, for ground truth, a reference renderer.
 //! No module here rasterizes, samples a texture or evaluates a combiner over pixels.
 //!
+//! - [`cache`]: what a backend makes of shared scene data, kept per `Arc` while it is used;
 //! - [`catalogue`]: every technique by name — what it is, what it needs, its maps and passes;
 //! - [`scene`], [`scenes`]: scene descriptions and the built-in scenes; [`parts`]: a loaded
 //!   model's parts, each with its own material;
@@ -25,6 +26,7 @@
 #![warn(missing_docs)]
 
 pub mod bump_maps;
+pub mod cache;
 pub mod catalogue;
 pub mod combiners;
 pub mod error;

@@ -142,17 +142,16 @@ pub struct RoughnessTextures {
 }
 
 impl RoughnessTextures {
-    /// Kept at most; past it the store starts again.
-    const MAX: usize = 16;
+    /// Drops what was made of normal maps nothing but this store holds any more.
+    pub fn evict_unused(&mut self) {
+        self.made.retain(|(m, ..)| Arc::strong_count(m) > 1);
+    }
 
     /// The roughness texture of `normal_map` for exponent `shininess`.
     pub fn get(&mut self, normal_map: &Arc<Rgba8Mips>, shininess: f32) -> Arc<Rgba8Mips> {
         let bits = shininess.to_bits();
         if let Some((_, _, r)) = self.made.iter().find(|(m, s, _)| Arc::ptr_eq(m, normal_map) && *s == bits) {
             return r.clone();
-        }
-        if self.made.len() >= Self::MAX {
-            self.made.clear();
         }
         let r = Arc::new(roughness_texture(normal_map, shininess));
         self.made.push((normal_map.clone(), bits, r.clone()));

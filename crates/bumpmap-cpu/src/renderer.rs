@@ -12,6 +12,8 @@ use bumpmap_core::technique::{Binding as CoreBinding, Gloss, Normalize, Program,
 use bumpmap_core::{Scene, vertex::Vertex};
 use bumpmap_math::{Encoding, LeanMips, NormalizationCubeMap, Rgba8Mips};
 
+use bumpmap_core::cache::ArcCache;
+
 use crate::combiners::Combiners;
 use crate::error::CpuError;
 use crate::fixed_function::{Binding, FixedFunction, TextureUnit};
@@ -20,16 +22,13 @@ use crate::raster::{DrawState, Rasterizer};
 use crate::single_pass::SinglePass;
 use crate::texture::{MomentTexture, Texture2d, TextureCube};
 
-/// Texture copies kept at most; past it the cache starts again.
-const MAX_CACHED_TEXTURES: usize = 32;
-
 /// Renders scenes on the CPU pipeline, reusing its buffers and textures from frame to frame.
 #[derive(Debug, Default)]
 pub struct CpuRenderer {
     raster: Rasterizer,
-    textures: Vec<(Arc<Rgba8Mips>, Arc<Texture2d>)>,
+    textures: ArcCache<Rgba8Mips, Arc<Texture2d>>,
     /// LEAN moments, keyed by the normal map they were made from.
-    moments: Vec<(Arc<Rgba8Mips>, Arc<MomentTexture>)>,
+    moments: ArcCache<Rgba8Mips, Arc<MomentTexture>>,
     /// Roughness maps made for the roughness-map filter.
     roughness: RoughnessTextures,
     cubes: Vec<((usize, Encoding), Arc<TextureCube>)>,
@@ -52,6 +51,10 @@ impl CpuRenderer {
         mut on_snapshot: impl FnMut(&str, &Framebuffer),
     ) -> Result<(), CpuError> {
         let passes = technique.passes(scene)?;
+        // What an earlier scene used and nothing holds any more.
+        self.textures.evict_unused();
+        self.moments.evict_unused();
+        self.roughness.evict_unused();
         fb.clear([0, 0, 0, 0], 1.0);
         let aspect = fb.width as f32 / fb.height as f32;
         // The vertex stage of the (object, light) the last pass drew: the passes of one light
@@ -128,30 +131,16 @@ impl CpuRenderer {
 
     /// The texture unit's copy of `mips`, made once per `Arc`.
     fn texture(&mut self, mips: &Arc<Rgba8Mips>) -> Result<Arc<Texture2d>, CpuError> {
-        if let Some((_, t)) = self.textures.iter().find(|(m, _)| Arc::ptr_eq(m, mips)) {
-            return Ok(t.clone());
-        }
-        if self.textures.len() >= MAX_CACHED_TEXTURES {
-            self.textures.clear();
-        }
-        let t = Arc::new(Texture2d::try_from_mips(mips)?);
-        self.textures.push((mips.clone(), t.clone()));
-        Ok(t)
+        self.textures.get_or_try_make(mips, |m| Ok(Arc::new(Texture2d::try_from_mips(m)?)))
     }
 
     /// The LEAN moments of `normal_map`'s level 0 (unorm texels, as a material's are), made
     /// once per `Arc`.
     fn moments(&mut self, normal_map: &Arc<Rgba8Mips>) -> Result<Arc<MomentTexture>, CpuError> {
-        if let Some((_, t)) = self.moments.iter().find(|(m, _)| Arc::ptr_eq(m, normal_map)) {
-            return Ok(t.clone());
-        }
-        if self.moments.len() >= MAX_CACHED_TEXTURES {
-            self.moments.clear();
-        }
-        let lean = LeanMips::from_normal_map(normal_map, Encoding::Unorm)?;
-        let t = Arc::new(MomentTexture::try_from_mips(&lean)?);
-        self.moments.push((normal_map.clone(), t.clone()));
-        Ok(t)
+        self.moments.get_or_try_make(normal_map, |m| {
+            let lean = LeanMips::from_normal_map(m, Encoding::Unorm)?;
+            Ok(Arc::new(MomentTexture::try_from_mips(&lean)?))
+        })
     }
 
     /// The normalization cube map of face size `size`, built once.

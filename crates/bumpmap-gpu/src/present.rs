@@ -150,7 +150,7 @@ impl GpuRenderer {
                 overlay.width, overlay.height
             )));
         }
-        let encoder = self.encode(scene, technique, width, height, |_, _| {})?;
+        let encoder = self.encode(scene, technique, width, height, None)?;
         self.show(surface, encoder, overlay)
     }
 

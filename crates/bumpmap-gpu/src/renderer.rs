@@ -8,6 +8,7 @@
 use std::sync::Arc;
 
 use bumpmap_core::Scene;
+use bumpmap_core::cache::ArcCache;
 use bumpmap_core::technique::{
     Binding, CombinerProgram, Gloss, LitProgram, Normalize, Program, SpecularFilter, Technique,
 };
@@ -28,7 +29,7 @@ pub struct GpuRenderer {
     pipelines: Pipelines,
     textures: Textures,
     target: Option<Target>,
-    meshes: Vec<(Arc<Mesh>, wgpu::Buffer, u32)>,
+    meshes: ArcCache<Mesh, (wgpu::Buffer, u32)>,
     pub(crate) ctx: Context,
 }
 
@@ -51,12 +52,15 @@ pub(crate) struct Target {
     padded_row: u32,
 }
 
+/// What sees the image after each named pass (Kilgard Figure 12).
+pub(crate) type SnapshotSink<'a> = &'a mut dyn FnMut(&str, &Rgba8Image);
+
 impl GpuRenderer {
     /// Opens the first adapter wgpu finds (see [`Context::new`]).
     pub fn new() -> Result<Self, GpuError> {
         let ctx = Context::new()?;
         let pipelines = Pipelines::new(&ctx);
-        Ok(Self { ctx, pipelines, textures: Textures::default(), target: None, meshes: Vec::new() })
+        Ok(Self { ctx, pipelines, textures: Textures::default(), target: None, meshes: ArcCache::default() })
     }
 
     /// The adapter's name and backend, e.g. `llvmpipe (LLVM 15.0.6, 256 bits) (Vulkan)`.
@@ -83,33 +87,50 @@ impl GpuRenderer {
         technique: &Technique,
         width: usize,
         height: usize,
-        on_snapshot: impl FnMut(&str, &Rgba8Image),
+        mut on_snapshot: impl FnMut(&str, &Rgba8Image),
     ) -> Result<Rgba8Image, GpuError> {
-        let encoder = self.encode(scene, technique, width, height, on_snapshot)?;
+        let encoder = self.encode(scene, technique, width, height, Some(&mut on_snapshot))?;
+        self.read_back(encoder)
+    }
+
+    /// [`GpuRenderer::render`] without the snapshots: every pass recorded into one render pass,
+    /// nothing read back before the end (a three-pass frame of a hundred parts has 300 named
+    /// passes).
+    pub fn render_frame(
+        &mut self,
+        scene: &Scene,
+        technique: &Technique,
+        width: usize,
+        height: usize,
+    ) -> Result<Rgba8Image, GpuError> {
+        let encoder = self.encode(scene, technique, width, height, None)?;
         self.read_back(encoder)
     }
 
     /// Draws a frame as [`GpuRenderer::render`] does and waits until the GPU has finished it,
     /// without reading it back (what `glFinish` after a frame measures).
     pub fn draw(&mut self, scene: &Scene, technique: &Technique, width: usize, height: usize) -> Result<(), GpuError> {
-        let encoder = self.encode(scene, technique, width, height, |_, _| {})?;
+        let encoder = self.encode(scene, technique, width, height, None)?;
         let submission = self.ctx.queue.submit([encoder.finish()]);
         let polled = self.ctx.device.poll(wgpu::PollType::Wait { submission_index: Some(submission), timeout: None });
         self.ctx.check()?;
         polled.map(|_| ()).map_err(|e| GpuError::Wgpu(e.to_string()))
     }
 
-    /// Records the frame's passes; snapshots are read back on the way.
+    /// Records the frame's passes; with `on_snapshot`, snapshots are read back on the way.
     pub(crate) fn encode(
         &mut self,
         scene: &Scene,
         technique: &Technique,
         width: usize,
         height: usize,
-        mut on_snapshot: impl FnMut(&str, &Rgba8Image),
+        mut on_snapshot: Option<SnapshotSink<'_>>,
     ) -> Result<wgpu::CommandEncoder, GpuError> {
         self.ctx.check()?;
         let passes = technique.passes(scene)?;
+        // What an earlier scene used and nothing holds any more.
+        self.textures.evict_unused();
+        self.meshes.evict_unused();
         self.ensure_target(width, height)?;
         let aspect = width as f32 / height as f32;
         // Every pass's resources first; then the passes are recorded into as few render passes
@@ -145,15 +166,16 @@ impl GpuRenderer {
         let mut first = true;
         let mut start = 0;
         for (i, pass) in passes.iter().enumerate() {
-            if pass.snapshot.is_none() && i + 1 < passes.len() {
+            let snapshot = pass.snapshot.filter(|_| on_snapshot.is_some());
+            if snapshot.is_none() && i + 1 < passes.len() {
                 continue;
             }
             record(&mut encoder, self.target.as_ref().expect("made above"), first, &draws[start..=i]);
             (first, start) = (false, i + 1);
-            if let Some(name) = pass.snapshot {
+            if let (Some(name), Some(f)) = (snapshot, on_snapshot.as_mut()) {
                 let done = std::mem::replace(&mut encoder, self.ctx.device.create_command_encoder(&Default::default()));
                 let image = self.read_back(done)?;
-                on_snapshot(name, &image);
+                f(name, &image);
             }
         }
         if first {
@@ -217,20 +239,18 @@ impl GpuRenderer {
 
     /// The mesh's index buffer, uploaded once per `Arc`.
     fn indices(&mut self, mesh: &Arc<Mesh>) -> (wgpu::Buffer, u32) {
-        if let Some((_, b, n)) = self.meshes.iter().find(|(m, ..)| Arc::ptr_eq(m, mesh)) {
-            return (b.clone(), *n);
-        }
-        let flat: Vec<u32> = mesh.indices.iter().flatten().copied().collect();
-        let buffer = self.ctx.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-            label: Some("indices"),
-            contents: bytes(&flat),
-            usage: wgpu::BufferUsages::INDEX,
+        let device = &self.ctx.device;
+        let made = self.meshes.get_or_try_make(mesh, |mesh| {
+            let flat: Vec<u32> = mesh.indices.iter().flatten().copied().collect();
+            let buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some("indices"),
+                contents: bytes(&flat),
+                usage: wgpu::BufferUsages::INDEX,
+            });
+            Ok::<_, std::convert::Infallible>((buffer, flat.len() as u32))
         });
-        if self.meshes.len() >= 16 {
-            self.meshes.clear();
-        }
-        self.meshes.push((mesh.clone(), buffer.clone(), flat.len() as u32));
-        (buffer, flat.len() as u32)
+        let Ok(made) = made;
+        made
     }
 
     fn lit_bind_group(&mut self, p: &LitProgram) -> Result<wgpu::BindGroup, GpuError> {

@@ -8,23 +8,21 @@
 
 use std::sync::Arc;
 
+use bumpmap_core::cache::ArcCache;
 use bumpmap_core::state::{MagFilter, MinFilter, Sampler, WrapMode};
 use bumpmap_math::{Encoding, HeightMips, HorizonMap, LeanMips, NormalizationCubeMap, Rgba8Image, Rgba8Mips};
 
 use crate::context::Context;
 use crate::error::GpuError;
 
-/// Uploads kept at most; past it the cache starts again.
-const MAX_CACHED: usize = 32;
-
 /// The device's copies of textures and samplers.
 #[derive(Default)]
 pub struct Textures {
-    mips: Vec<(Arc<Rgba8Mips>, wgpu::TextureView)>,
+    mips: ArcCache<Rgba8Mips, wgpu::TextureView>,
     /// LEAN moments, keyed by the normal map they were made from.
-    moments: Vec<(Arc<Rgba8Mips>, [wgpu::TextureView; 2])>,
+    moments: ArcCache<Rgba8Mips, [wgpu::TextureView; 2]>,
     /// CLEAN moments, likewise.
-    clean: Vec<(Arc<Rgba8Mips>, wgpu::TextureView)>,
+    clean: ArcCache<Rgba8Mips, wgpu::TextureView>,
     /// Roughness maps made for the roughness-map filter (uploaded as any other chain).
     pub roughness: bumpmap_core::shading::RoughnessTextures,
     cubes: Vec<((usize, Encoding), wgpu::TextureView)>,
@@ -158,26 +156,34 @@ fn half_texture<const N: usize>(
     levels_texture(ctx, label, format, 2 * N as u32, &bytes)
 }
 
+/// Uploads `mips`, every level; refused when larger than the adapter allows.
+fn upload_mips(ctx: &Context, mips: &Arc<Rgba8Mips>) -> Result<wgpu::TextureView, GpuError> {
+    let max = ctx.max_texture_side();
+    if mips.width() > max as usize || mips.height() > max as usize {
+        return Err(GpuError::TooLarge { what: "a texture", width: mips.width(), height: mips.height(), max });
+    }
+    let t = texture(ctx, "texture", mips.width(), mips.height(), 1, mips.levels().len() as u32);
+    for (k, level) in mips.levels().iter().enumerate() {
+        write_level(ctx, &t, k as u32, 0, level);
+    }
+    let view = t.create_view(&wgpu::TextureViewDescriptor::default());
+    Ok(view)
+}
+
 impl Textures {
     /// The device's copy of `mips`, every level; refused when larger than the adapter allows.
     pub fn mips(&mut self, ctx: &Context, mips: &Arc<Rgba8Mips>) -> Result<wgpu::TextureView, GpuError> {
-        if let Some((_, v)) = self.mips.iter().find(|(m, _)| Arc::ptr_eq(m, mips)) {
-            return Ok(v.clone());
-        }
-        let max = ctx.max_texture_side();
-        if mips.width() > max as usize || mips.height() > max as usize {
-            return Err(GpuError::TooLarge { what: "a texture", width: mips.width(), height: mips.height(), max });
-        }
-        let t = texture(ctx, "texture", mips.width(), mips.height(), 1, mips.levels().len() as u32);
-        for (k, level) in mips.levels().iter().enumerate() {
-            write_level(ctx, &t, k as u32, 0, level);
-        }
-        let view = t.create_view(&wgpu::TextureViewDescriptor::default());
-        if self.mips.len() >= MAX_CACHED {
-            self.mips.clear();
-        }
-        self.mips.push((mips.clone(), view.clone()));
-        Ok(view)
+        self.mips.get_or_try_make(mips, |mips| upload_mips(ctx, mips))
+    }
+
+    /// Drops the uploads of maps nothing but this store holds any more.
+    pub fn evict_unused(&mut self) {
+        self.mips.evict_unused();
+        self.moments.evict_unused();
+        self.clean.evict_unused();
+        self.roughness.evict_unused();
+        self.heights.retain(|(h, _)| Arc::strong_count(h) > 1);
+        self.horizons.retain(|(h, _)| Arc::strong_count(h) > 1);
     }
 
     /// The LEAN moments of `normal_map`'s level 0 (`bumpmap_math::lean`), every level, as two
@@ -185,34 +191,22 @@ impl Textures {
     /// (Bx, By, Mxx, Myy) and `Rg16Float` (Mxy, J). Half floats keep 11 bits: M − BBᵀ loses about
     /// 10⁻³·M to rounding, small beside the lobe's own 1/s for the exponents used here.
     pub fn moments(&mut self, ctx: &Context, normal_map: &Arc<Rgba8Mips>) -> Result<[wgpu::TextureView; 2], GpuError> {
-        if let Some((_, v)) = self.moments.iter().find(|(m, _)| Arc::ptr_eq(m, normal_map)) {
-            return Ok(v.clone());
-        }
-        let lean = lean_mips(ctx, normal_map)?;
-        let views = [
-            half_texture(ctx, "LEAN B, Mxx, Myy", &lean, |t| [t.b.x, t.b.y, t.m.x, t.m.z]),
-            half_texture(ctx, "LEAN Mxy, J", &lean, |t| [t.m.y, t.j]),
-        ];
-        if self.moments.len() >= MAX_CACHED {
-            self.moments.clear();
-        }
-        self.moments.push((normal_map.clone(), views.clone()));
-        Ok(views)
+        self.moments.get_or_try_make(normal_map, |normal_map| {
+            let lean = lean_mips(ctx, normal_map)?;
+            Ok([
+                half_texture(ctx, "LEAN B, Mxx, Myy", &lean, |t| [t.b.x, t.b.y, t.m.x, t.m.z]),
+                half_texture(ctx, "LEAN Mxy, J", &lean, |t| [t.m.y, t.j]),
+            ])
+        })
     }
 
     /// CLEAN's moments of `normal_map` (`bumpmap_math::lean::LeanMoments::isotropic`), every
     /// level, as one `Rgba16Float` texture: (Bx, By, Mxx + Myy, J), where LEAN needs two.
     pub fn clean_moments(&mut self, ctx: &Context, normal_map: &Arc<Rgba8Mips>) -> Result<wgpu::TextureView, GpuError> {
-        if let Some((_, v)) = self.clean.iter().find(|(m, _)| Arc::ptr_eq(m, normal_map)) {
-            return Ok(v.clone());
-        }
-        let lean = lean_mips(ctx, normal_map)?;
-        let view = half_texture(ctx, "CLEAN B, Mxx + Myy, J", &lean, |t| [t.b.x, t.b.y, t.m.x + t.m.z, t.j]);
-        if self.clean.len() >= MAX_CACHED {
-            self.clean.clear();
-        }
-        self.clean.push((normal_map.clone(), view.clone()));
-        Ok(view)
+        self.clean.get_or_try_make(normal_map, |normal_map| {
+            let lean = lean_mips(ctx, normal_map)?;
+            Ok(half_texture(ctx, "CLEAN B, Mxx + Myy, J", &lean, |t| [t.b.x, t.b.y, t.m.x + t.m.z, t.j]))
+        })
     }
 
     /// The normalization cube map of face size `size` (faces +X, −X, +Y, −Y, +Z, −Z: wgpu's
@@ -261,9 +255,6 @@ impl Textures {
             None => self.no_heights(ctx)[1].clone(),
         };
         let views = [float_texture::<1>(ctx, "heights", &levels), bounds];
-        if self.heights.len() >= MAX_CACHED {
-            self.heights.clear();
-        }
         self.heights.push((heights.clone(), views.clone()));
         Ok(views)
     }
@@ -295,9 +286,6 @@ impl Textures {
             float_texture::<4>(ctx, label, &refs)
         };
         let views = [texture(0, "horizons 0-3"), texture(1, "horizons 4-7")];
-        if self.horizons.len() >= MAX_CACHED {
-            self.horizons.clear();
-        }
         self.horizons.push((horizons.clone(), views.clone()));
         Ok(views)
     }

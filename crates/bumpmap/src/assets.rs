@@ -328,7 +328,10 @@ impl MeshAsset {
                 self.unbumped_parts()
             ));
         }
-        for m in &self.materials {
+        // Every material of a small file; of a large one the first few and a count.
+        const LISTED: usize = 4;
+        let listed = if self.materials.len() > LISTED + 1 { LISTED } else { self.materials.len() };
+        for m in &self.materials[..listed] {
             lines.push(match &m.normal_map {
                 Some(map) => format!(
                     "material {}: normalTexture {} (scale {}, TEXCOORD_{}) as the normal map",
@@ -361,6 +364,17 @@ impl MeshAsset {
                     t.scale.to_array()
                 ));
             }
+        }
+        if listed < self.materials.len() {
+            let rest = &self.materials[listed..];
+            lines.push(format!(
+                "and {} more materials: {} with a normalTexture, {} with a base colour, {} double-sided, {} with a KHR_texture_transform",
+                rest.len(),
+                rest.iter().filter(|m| m.normal_map.is_some()).count(),
+                rest.iter().filter(|m| m.decal.is_some()).count(),
+                rest.iter().filter(|m| m.double_sided).count(),
+                rest.iter().filter(|m| m.texture_transform.is_some()).count()
+            ));
         }
         lines
     }

@@ -123,6 +123,9 @@ impl Prepared {
     }
 }
 
+/// What sees the framebuffer after each named pass ([`Renderer::draw_scene`]).
+pub type OnPass<'a> = &'a mut dyn FnMut(&str, &Rgba8Image);
+
 /// Draws scenes on one backend.
 ///
 /// ```
@@ -206,20 +209,21 @@ impl Renderer {
     /// Draws a prepared scene: the image, row 0 the top of the picture (alpha is whatever the
     /// technique left there: the three-pass technique's s_self, not coverage).
     pub fn draw(&mut self, prepared: &Prepared, width: usize, height: usize) -> Result<Rgba8Image, Error> {
-        self.draw_scene(&prepared.scene, &prepared.technique, width, height, |_, _| {})
+        self.draw_scene(&prepared.scene, &prepared.technique, width, height, None)
     }
 
-    /// Draws `technique`'s passes of `scene` (or the reference), calling `on_pass` with the
-    /// framebuffer after each pass that has a name (Kilgard Figure 12: `decal`, `diffuse`,
-    /// `specular`; the reference has no passes). What [`Renderer::draw`] does with a
-    /// [`Prepared`]; for a scene and technique made by hand.
+    /// Draws `technique`'s passes of `scene` (or the reference); with `on_pass`, calls it with
+    /// the framebuffer after each pass that has a name (Kilgard Figure 12: `decal`, `diffuse`,
+    /// `specular`, once per object; the reference has no passes). What [`Renderer::draw`] does
+    /// with a [`Prepared`]; for a scene and technique made by hand. Without `on_pass` no pass
+    /// image is made (the GPU records the frame in one go).
     pub fn draw_scene(
         &mut self,
         scene: &Scene,
         technique: &Technique,
         width: usize,
         height: usize,
-        mut on_pass: impl FnMut(&str, &Rgba8Image),
+        mut on_pass: Option<OnPass<'_>>,
     ) -> Result<Rgba8Image, Error> {
         Self::check_size(width, height)?;
         if let Technique::Reference(options) = technique {
@@ -229,11 +233,16 @@ impl Renderer {
             Inner::Cpu { renderer, framebuffer } => {
                 let fb = framebuffer_of(framebuffer, width, height)?;
                 renderer.render(scene, technique, fb, |name, fb| {
-                    on_pass(name, &Rgba8Image::new(fb.width, fb.height, fb.to_rgba8()));
+                    if let Some(f) = on_pass.as_mut() {
+                        f(name, &Rgba8Image::new(fb.width, fb.height, fb.to_rgba8()));
+                    }
                 })?;
                 Ok(Rgba8Image::new(width, height, fb.to_rgba8()))
             }
-            Inner::Gpu(g) => Ok(g.render(scene, technique, width, height, on_pass)?),
+            Inner::Gpu(g) => Ok(match on_pass {
+                Some(f) => g.render(scene, technique, width, height, f)?,
+                None => g.render_frame(scene, technique, width, height)?,
+            }),
         }
     }
 
