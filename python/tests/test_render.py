@@ -73,3 +73,67 @@ def test_errors_name_the_keyword():
         bumpmap.render(size=16, width=8, height=8)
     with pytest.raises(FileNotFoundError, match="missing.png"):
         bumpmap.render(size=16, normal_map="missing.png")
+
+
+def _quads_gltf(path, maps, double_sided=False):
+    """Quads side by side, one primitive and one material each, material i with normal
+    texture `maps[i]` (PNG bytes), as a glTF whose buffer and images are data URIs."""
+    import base64
+    import json
+
+    bin_, views, accessors, prims = bytearray(), [], [], []
+
+    def accessor(data, component, count, kind, **extra):
+        while len(bin_) % 4:
+            bin_.append(0)
+        views.append({"buffer": 0, "byteOffset": len(bin_), "byteLength": len(data)})
+        bin_.extend(data)
+        accessors.append({"bufferView": len(views) - 1, "componentType": component, "count": count, "type": kind, **extra})
+        return len(accessors) - 1
+
+    for i in range(len(maps)):
+        x0 = 2.2 * i - 1.1 * (len(maps) - 1)
+        p = np.array([[x0 - 1, -1, 0], [x0 + 1, -1, 0], [x0 + 1, 1, 0], [x0 - 1, 1, 0]], "<f4")
+        prims.append({
+            "attributes": {
+                "POSITION": accessor(p.tobytes(), 5126, 4, "VEC3", min=p.min(0).tolist(), max=p.max(0).tolist()),
+                "NORMAL": accessor(np.tile(np.array([0, 0, 1], "<f4"), 4).tobytes(), 5126, 4, "VEC3"),
+                "TEXCOORD_0": accessor(np.array([0, 1, 1, 1, 1, 0, 0, 0], "<f4").tobytes(), 5126, 4, "VEC2"),
+            },
+            "indices": accessor(np.array([0, 1, 2, 0, 2, 3], "<u2").tobytes(), 5123, 6, "SCALAR"),
+            "material": i,
+        })
+    doc = {
+        "asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}], "nodes": [{"mesh": 0}],
+        "meshes": [{"primitives": prims}],
+        "materials": [{"normalTexture": {"index": i}, "doubleSided": double_sided} for i in range(len(maps))],
+        "textures": [{"source": i} for i in range(len(maps))],
+        "images": [{"uri": "data:image/png;base64," + base64.b64encode(m).decode()} for m in maps],
+        "buffers": [{"byteLength": len(bin_), "uri": "data:application/octet-stream;base64," + base64.b64encode(bytes(bin_)).decode()}],
+        "bufferViews": views, "accessors": accessors,
+    }
+    path.write_text(json.dumps(doc))
+
+
+def test_a_gltf_of_two_materials_renders_each_part_with_its_own_map(tmp_path, cli):
+    # Two normal maps made here: ridges across and along; each quad of the file reads its own.
+    pngs = []
+    for name, h in [("across", lambda x, y: np.sin(x / 4)), ("along", lambda x, y: np.sin(y / 4))]:
+        heights = np.fromfunction(h, (64, 64), dtype=np.float32).T.astype(np.float32) * 0.5 + 0.5
+        (path,) = bumpmap.write_texture(tmp_path / f"{name}.png", bumpmap.normal_map(heights, scale=6))
+        pngs.append(path.read_bytes())
+    scene = tmp_path / "two.gltf"
+    _quads_gltf(scene, pngs)
+    args = dict(scene=f"mesh:{scene}", technique="single-pass", width=96, height=48, eye=(0, 0, 4.5),
+                light=["dir:-1,0.6,0.5"], specular=0)
+    got = bumpmap.render(backend="cpu", **args)
+    out = tmp_path / "two.png"
+    done = cli("render", "--backend", "cpu", "--scene", f"mesh:{scene}", "--technique", "single-pass",
+               "--width", "96", "--height", "48", "--eye", "0,0,4.5", "--light", "dir:-1,0.6,0.5",
+               "--specular", "0", "-o", out)
+    assert "2 primitive(s) drawn with 2 material(s)" in done.stderr, done.stderr
+    assert np.array_equal(got[..., :3], read_png(out))
+    # Each half shows its own ridges: the left varies across its columns, the right down its rows.
+    left, right = got[14:34, 23:45, :3].astype(float), got[14:34, 51:73, :3].astype(float)
+    assert left.std(axis=1).mean() > 3 * left.std(axis=0).mean()
+    assert right.std(axis=0).mean() > 3 * right.std(axis=1).mean()

@@ -141,12 +141,13 @@ fn read_of(tex_coord: u32, transform: Option<TextureTransform>) -> TextureRead {
     TextureRead { set: transform.tex_coord.unwrap_or(tex_coord), transform }
 }
 
-/// The material's name for messages: `'name'`, `material i`, or the default material.
+/// The material's name for messages, after the word "material": `'name'`, its index, or
+/// `(default)` for glTF's default material.
 pub(crate) fn material_name(m: &gltf::Material) -> String {
     match (m.name(), m.index()) {
         (Some(n), _) => format!("'{n}'"),
-        (None, Some(i)) => format!("material {i}"),
-        (None, None) => "the default material".into(),
+        (None, Some(i)) => i.to_string(),
+        (None, None) => "(default)".into(),
     }
 }
 

@@ -61,7 +61,7 @@ pub struct MeshPart {
 /// What a glTF material gives a renderer.
 #[derive(Clone, Debug, PartialEq)]
 pub struct MeshMaterial {
-    /// The material's name, or its index in words.
+    /// How messages name it after the word "material": `'its name'`, else its index.
     pub name: String,
     /// `normalTexture`, with its `scale`.
     pub normal: Option<MaterialTexture>,

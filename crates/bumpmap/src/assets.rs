@@ -198,7 +198,7 @@ impl Default for MeshLoad {
 /// A glTF material, ready to draw.
 #[derive(Clone, Debug)]
 pub struct MaterialAsset {
-    /// Its name, or its index in words.
+    /// How messages name it after the word "material": `'its name'`, else its index.
     pub name: String,
     /// `normalTexture` in texture space (glTF's green is up), scaled.
     pub normal_map: Option<LoadedNormalMap>,
@@ -286,7 +286,7 @@ impl MeshAsset {
                             let decal = m
                                 .and_then(|m| self.materials[m].decal.clone())
                                 .filter(|d| d.levels()[0].width == 1 && d.levels()[0].height == 1);
-                            let name = m.map_or("the default material".into(), |m| self.materials[m].name.clone());
+                            let name = m.map_or("(default)".into(), |m| self.materials[m].name.clone());
                             materials.push(PartMaterial { name, bumps: Some(flat()), decal });
                             materials.len() - 1
                         })

@@ -580,6 +580,9 @@ fn prepare(
     if !c.decal {
         params.decal = None;
         params.default_decal = false;
+        if let Some(parts) = &mut params.parts {
+            Arc::make_mut(parts).replace_decals(None);
+        }
     }
     if !c.diffuse {
         params.diffuse = Vec3::ZERO;
