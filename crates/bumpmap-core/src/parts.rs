@@ -33,6 +33,8 @@ pub struct PartMaterial {
     pub bumps: Option<BumpSource>,
     /// Its decal (the base colour), or `None` for none.
     pub decal: Option<Arc<Rgba8Mips>>,
+    /// Its textures' wrap modes and filters (a glTF sampler's).
+    pub sampler: crate::state::MaterialSampler,
 }
 
 /// One part: its geometry (with normals, texture coordinates and tangents) and its material.

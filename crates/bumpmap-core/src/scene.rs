@@ -240,6 +240,9 @@ pub struct Material {
     /// Object units along the normal per unit of height: how deep the heights carve
     /// ([`crate::scenes::SceneParams::depth`]).
     pub depth: f32,
+    /// The material's own wrap modes (and filters, where it names them) for its normal map
+    /// and decal: a glTF sampler's; repeating otherwise.
+    pub sampler: crate::state::MaterialSampler,
 }
 
 /// A mesh placed in the world. The mesh must have normals, texture coordinates and tangents.

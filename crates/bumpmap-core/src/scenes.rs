@@ -447,10 +447,12 @@ pub fn build(kind: &SceneKind, params: &SceneParams) -> Result<Scene, CoreError>
                             materials: parts.materials.len(),
                         })?;
                         if made[part.material].is_none() {
-                            made[part.material] = Some(match &own.bumps {
+                            let mut m = match &own.bumps {
                                 None => Material { decal: own.decal.clone(), ..material.clone() },
                                 Some(bumps) => self::material(params, bumps, own.decal.clone())?.0,
-                            });
+                            };
+                            m.sampler = own.sampler;
+                            made[part.material] = Some(m);
                         }
                         let m = made[part.material].clone().expect("made above");
                         objects.push(placed(&part.mesh, m));
@@ -516,6 +518,7 @@ fn material<'a>(
         bump_scale: params.normal_map.scale,
         heights: None,
         depth: 0.0,
+        sampler: Default::default(),
     };
     if params.displacement {
         if let Some(d) = params.depth

@@ -179,6 +179,83 @@ pub enum WrapMode {
     Repeat,
     /// `GL_CLAMP_TO_EDGE`.
     ClampToEdge,
+    /// `GL_MIRRORED_REPEAT` (GL 1.4): every other repeat mirrored. The same lookups as
+    /// CLAMP_TO_EDGE at the coordinate folded into [0, 1] ([`WrapMode::mirror`]), filters and
+    /// levels included (GL 4.6 §8.14.2's integer form gives the same texels and weights).
+    MirroredRepeat,
+}
+
+impl WrapMode {
+    /// The mode a GL enum names (`GL_REPEAT` 10497, `GL_CLAMP_TO_EDGE` 33071,
+    /// `GL_MIRRORED_REPEAT` 33648: the numbers glTF's samplers store), if it is one.
+    pub fn from_gl(code: u32) -> Option<Self> {
+        match code {
+            10497 => Some(WrapMode::Repeat),
+            33071 => Some(WrapMode::ClampToEdge),
+            33648 => Some(WrapMode::MirroredRepeat),
+            _ => None,
+        }
+    }
+
+    /// MIRRORED_REPEAT's fold of a texture coordinate into [0, 1]: `s` on even repeats,
+    /// `1 − frac(s)` on odd ones (a NaN stays NaN, for the lookup's own handling).
+    ///
+    /// ```
+    /// use bumpmap_core::state::WrapMode;
+    /// assert_eq!([0.25, 1.25, 2.25, -0.25].map(WrapMode::mirror), [0.25, 0.75, 0.25, 0.25]);
+    /// ```
+    #[inline(always)]
+    pub fn mirror(s: f32) -> f32 {
+        let t = s - 2.0 * (0.5 * s).floor();
+        1.0 - (t - 1.0).abs()
+    }
+}
+
+/// A material's own sampler state, a glTF sampler's: wrap modes, and filters where the file
+/// names them (else the technique's own).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct MaterialSampler {
+    /// `wrapS`.
+    pub wrap_s: WrapMode,
+    /// `wrapT`.
+    pub wrap_t: WrapMode,
+    /// `minFilter`, if named.
+    pub min: Option<MinFilter>,
+    /// `magFilter`, if named.
+    pub mag: Option<MagFilter>,
+}
+
+impl Default for MaterialSampler {
+    /// Repeating, the technique's filters: what a glTF texture without a sampler gets.
+    fn default() -> Self {
+        Self { wrap_s: WrapMode::Repeat, wrap_t: WrapMode::Repeat, min: None, mag: None }
+    }
+}
+
+impl MinFilter {
+    /// The filter a GL enum names (`GL_NEAREST` 9728 … `GL_LINEAR_MIPMAP_LINEAR` 9987), if any.
+    pub fn from_gl(code: u32) -> Option<Self> {
+        Some(match code {
+            9728 => MinFilter::Nearest,
+            9729 => MinFilter::Linear,
+            9984 => MinFilter::NearestMipmapNearest,
+            9985 => MinFilter::LinearMipmapNearest,
+            9986 => MinFilter::NearestMipmapLinear,
+            9987 => MinFilter::LinearMipmapLinear,
+            _ => return None,
+        })
+    }
+}
+
+impl MagFilter {
+    /// The filter a GL enum names (`GL_NEAREST` 9728, `GL_LINEAR` 9729), if any.
+    pub fn from_gl(code: u32) -> Option<Self> {
+        match code {
+            9728 => Some(MagFilter::Nearest),
+            9729 => Some(MagFilter::Linear),
+            _ => None,
+        }
+    }
 }
 
 /// Filter and wrap state of a texture unit.
@@ -230,6 +307,11 @@ impl Sampler {
     #[inline(always)]
     pub fn nearest_level(lambda: f32, last: usize) -> usize {
         if lambda <= 0.5 { 0 } else { ((lambda + 0.5).ceil() - 1.0).min(last as f32) as usize }
+    }
+
+    /// This state with a material's own: its wrap modes, and its filters where it names them.
+    pub fn for_material(self, m: &MaterialSampler) -> Sampler {
+        Sampler { min: m.min.unwrap_or(self.min), mag: m.mag.unwrap_or(self.mag), wrap_s: m.wrap_s, wrap_t: m.wrap_t }
     }
 
     /// Whether the minification filter reads mip levels.

@@ -60,7 +60,7 @@ pub(crate) fn pad_rows(texels: &[[u8; 4]], width: usize, wrap: WrapMode) -> Resu
     out.extend(texels.chunks_exact(width).flat_map(|row| {
         let extra = match wrap {
             WrapMode::Repeat => row[0],
-            WrapMode::ClampToEdge => row[width - 1],
+            WrapMode::ClampToEdge | WrapMode::MirroredRepeat => row[width - 1],
         };
         row.iter().copied().chain(std::iter::once(extra))
     }));
@@ -125,6 +125,7 @@ fn nearest_index(s: f32, n: usize, wrap: WrapMode) -> usize {
     let i = match wrap {
         WrapMode::Repeat => ((s - s.floor()) * nf) as usize,
         WrapMode::ClampToEdge => (s * nf).max(0.0) as usize,
+        WrapMode::MirroredRepeat => (WrapMode::mirror(s) * nf).max(0.0) as usize,
     };
     i.min(n - 1)
 }
@@ -137,6 +138,7 @@ fn linear_indices(s: f32, n: usize, wrap: WrapMode) -> (usize, usize, f32) {
         WrapMode::Repeat => (s - s.floor()) * nf - 0.5,
         // s ∈ [1/2N, 1 − 1/2N] at every level, so the filter never leaves the image.
         WrapMode::ClampToEdge => (s * nf).clamp(0.5, nf - 0.5) - 0.5,
+        WrapMode::MirroredRepeat => (WrapMode::mirror(s) * nf).clamp(0.5, nf - 0.5) - 0.5,
     };
     let f = u.floor();
     let a = u - f;
@@ -147,7 +149,7 @@ fn linear_indices(s: f32, n: usize, wrap: WrapMode) -> (usize, usize, f32) {
             let i0 = if i < 0 { n - 1 } else { (i as usize).min(n - 1) };
             (i0, if i0 + 1 == n { 0 } else { i0 + 1 }, a)
         }
-        WrapMode::ClampToEdge => {
+        WrapMode::ClampToEdge | WrapMode::MirroredRepeat => {
             let i0 = (i.max(0) as usize).min(n - 1);
             (i0, (i0 + 1).min(n - 1), a)
         }
@@ -455,5 +457,29 @@ mod tests {
         // λ from a quad whose s grows by one texel per pixel is 0; two texels, 1.
         assert_eq!(lambda_2d(&tex, [0.0, 0.5, 0.0], [0.0, 0.0, 0.5]), 0.0);
         assert_eq!(lambda_2d(&tex, [0.0, 1.0, 0.0], [0.0, 0.0, 0.25]), 1.0);
+    }
+
+    #[test]
+    fn mirrored_repeat_is_repeat_over_the_texture_and_its_mirror_image() {
+        // GL's MIRRORED_REPEAT of T at s is REPEAT of [T | T flipped] (twice as wide) at s/2,
+        // at level 0 with either filter: an independent model of the definition.
+        let (w, h) = (5, 3);
+        let tex = ramp(w, h);
+        let texels: Vec<[u8; 4]> = (0..h)
+            .flat_map(|y| (0..2 * w).map(move |x| if x < w { (x, y) } else { (2 * w - 1 - x, y) }))
+            .map(|(x, y)| [(x * 10) as u8, (y * 10) as u8, 0, 255])
+            .collect();
+        let doubled = Texture2d::from_rgba8(2 * w, h, texels);
+        for (mirror, repeat) in [
+            (Sampler { wrap_s: WrapMode::MirroredRepeat, ..Sampler::LINEAR_REPEAT }, Sampler::LINEAR_REPEAT),
+            (Sampler { wrap_s: WrapMode::MirroredRepeat, ..Sampler::NEAREST_REPEAT }, Sampler::NEAREST_REPEAT),
+        ] {
+            for i in -70..70 {
+                let s = i as f32 * 0.061 + 0.013;
+                let a = sample_2d(&tex, &mirror, s, 0.5, 0.0) * 255.0;
+                let b = sample_2d(&doubled, &repeat, s / 2.0, 0.5, 0.0) * 255.0;
+                assert!((a - b).abs().max_element() < 1e-3, "{:?} at s = {s}: {a} vs {b}", mirror.min);
+            }
+        }
     }
 }

@@ -350,6 +350,7 @@ impl Textures {
         let address = |w| match w {
             WrapMode::Repeat => wgpu::AddressMode::Repeat,
             WrapMode::ClampToEdge => wgpu::AddressMode::ClampToEdge,
+            WrapMode::MirroredRepeat => wgpu::AddressMode::MirrorRepeat,
         };
         let filter = |linear| if linear { wgpu::FilterMode::Linear } else { wgpu::FilterMode::Nearest };
         let (min, mip) = match s.min {

@@ -9,7 +9,7 @@ use std::path::Path;
 use glam::Vec2;
 
 use crate::error::IoError;
-use crate::mesh_file::{MaterialTexture, MeshMaterial, MeshOptions, TextureTransform, mesh_err};
+use crate::mesh_file::{MaterialTexture, MeshMaterial, MeshOptions, TextureSampler, TextureTransform, mesh_err};
 
 impl TextureTransform {
     /// `KHR_texture_transform`'s `uv' = T·R·S·uv`, with `R = [[cos r, sin r], [−sin r, cos r]]`
@@ -190,6 +190,7 @@ pub(crate) fn read(
     reads: &MaterialReads,
     set: u32,
     options: &MeshOptions,
+    notes: &mut Vec<String>,
 ) -> Result<MeshMaterial, IoError> {
     let texture = |file: &mut crate::gltf_read::GltfFile, texture: gltf::Texture, what: &str, scale: f32| {
         let image = texture.source();
@@ -214,6 +215,27 @@ pub(crate) fn read(
         _ => None,
     };
     let transform = |r: Option<TextureRead>| r.map(|r| r.transform).filter(|t| !t.is_identity());
+    let sampler_of = |t: gltf::Texture| {
+        let s = t.sampler();
+        TextureSampler {
+            wrap_s: s.wrap_s().as_gl_enum(),
+            wrap_t: s.wrap_t().as_gl_enum(),
+            mag_filter: s.mag_filter().map(|f| f.as_gl_enum()),
+            min_filter: s.min_filter().map(|f| f.as_gl_enum()),
+        }
+    };
+    let normal_sampler =
+        material.normal_texture().filter(|_| options.read_normal_texture).map(|n| sampler_of(n.texture()));
+    let color_sampler =
+        pbr.base_color_texture().filter(|_| options.read_base_color_texture).map(|c| sampler_of(c.texture()));
+    if let (Some(n), Some(c)) = (normal_sampler, color_sampler)
+        && n != c
+    {
+        notes.push(format!(
+            "material {}: the baseColorTexture's sampler differs from the normalTexture's; both are drawn with the normalTexture's",
+            material_name(material)
+        ));
+    }
     Ok(MeshMaterial {
         name: material_name(material),
         normal,
@@ -226,6 +248,7 @@ pub(crate) fn read(
         } else {
             transform(reads.base_color)
         },
+        sampler: normal_sampler.or(color_sampler).unwrap_or_default(),
     })
 }
 

@@ -265,7 +265,15 @@ pub(crate) fn from_gltf(
     let materials: Vec<gltf::Material> = document.materials().collect();
     let mut read = Vec::with_capacity(plans.len());
     for plan in &plans {
-        read.push(gltf_material::read(path, &mut file, &materials[plan.index], &plan.reads, plan.read.set, options)?);
+        read.push(gltf_material::read(
+            path,
+            &mut file,
+            &materials[plan.index],
+            &plan.reads,
+            plan.read.set,
+            options,
+            &mut notes,
+        )?);
     }
     let mut sources = vec![path.to_path_buf()];
     sources.extend(file.files);

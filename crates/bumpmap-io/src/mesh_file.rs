@@ -78,6 +78,29 @@ pub struct MeshMaterial {
     /// The `KHR_texture_transform` already applied to the parts' texture coordinates (the
     /// normal texture's when it is read, else the base colour's), when it changes anything.
     pub texture_transform: Option<TextureTransform>,
+    /// The sampler its textures are drawn with (the normal texture's when it is read, else the
+    /// base colour's).
+    pub sampler: TextureSampler,
+}
+
+/// A glTF sampler as the file stores it: GL enums (`bumpmap_core::state` reads them).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct TextureSampler {
+    /// `wrapS` (default `GL_REPEAT`, 10497).
+    pub wrap_s: u32,
+    /// `wrapT` (default `GL_REPEAT`).
+    pub wrap_t: u32,
+    /// `magFilter`, if given.
+    pub mag_filter: Option<u32>,
+    /// `minFilter`, if given.
+    pub min_filter: Option<u32>,
+}
+
+impl Default for TextureSampler {
+    /// A texture without a sampler: repeating, filters left to the renderer.
+    fn default() -> Self {
+        Self { wrap_s: 10497, wrap_t: 10497, mag_filter: None, min_filter: None }
+    }
 }
 
 /// `KHR_texture_transform` on a texture reference: `uv' = T·R·S·uv`.

@@ -10,6 +10,7 @@ use std::fmt;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
+use bumpmap_core::state::{MagFilter, MaterialSampler, MinFilter, WrapMode};
 use bumpmap_core::{BumpSource, MeshPart, MeshParts, PartMaterial, SceneKind, SceneSpec};
 use bumpmap_io::texture_file::TextureFormat;
 use bumpmap_io::{MeshOptions, StoredLevels, StoredTexture};
@@ -217,6 +218,8 @@ pub struct MaterialAsset {
     pub double_sided: bool,
     /// The `KHR_texture_transform` applied to its parts' texture coordinates, if any.
     pub texture_transform: Option<bumpmap_io::TextureTransform>,
+    /// Its textures' wrap modes, and filters where the file names them.
+    pub sampler: MaterialSampler,
 }
 
 /// One glTF primitive of one node, ready to draw.
@@ -269,6 +272,7 @@ impl MeshAsset {
                 name: m.name.clone(),
                 bumps: Some(m.normal_map.as_ref().map_or_else(flat, LoadedNormalMap::bumps)),
                 decal: m.decal.clone(),
+                sampler: m.sampler,
             })
             .collect();
         // glTF's default material, and each material without texture coordinates to read its
@@ -287,7 +291,12 @@ impl MeshAsset {
                                 .and_then(|m| self.materials[m].decal.clone())
                                 .filter(|d| d.levels()[0].width == 1 && d.levels()[0].height == 1);
                             let name = m.map_or("(default)".into(), |m| self.materials[m].name.clone());
-                            materials.push(PartMaterial { name, bumps: Some(flat()), decal });
+                            materials.push(PartMaterial {
+                                name,
+                                bumps: Some(flat()),
+                                decal,
+                                sampler: Default::default(),
+                            });
                             materials.len() - 1
                         })
                     }
@@ -354,6 +363,17 @@ impl MeshAsset {
             });
             if m.double_sided {
                 lines.push(format!("material {}: double-sided, back faces lit from their own side", m.name));
+            }
+            if m.sampler != MaterialSampler::default() {
+                let s = &m.sampler;
+                lines.push(format!(
+                    "material {}: its sampler wraps {:?} × {:?}, filters {} / {}",
+                    m.name,
+                    s.wrap_s,
+                    s.wrap_t,
+                    s.min.map_or("the technique's".to_string(), |f| format!("{f:?}")),
+                    s.mag.map_or("the technique's".to_string(), |f| format!("{f:?}"))
+                ));
             }
             if let Some(t) = &m.texture_transform {
                 lines.push(format!(
@@ -431,6 +451,41 @@ pub fn mesh_asset(loaded: bumpmap_io::LoadedMesh, path: &Path, options: &MeshLoa
         sources: loaded.sources,
         warnings,
     })
+}
+
+/// A glTF sampler's GL enums as sampler state; a value glTF does not allow is said and replaced
+/// by the default (repeat, the technique's filter), as a viewer would draw it.
+fn material_sampler(m: &bumpmap_io::MeshMaterial, path: &Path, warnings: &mut Vec<Warning>) -> MaterialSampler {
+    let s = m.sampler;
+    let mut bad = |what: &str, code: u32| {
+        warnings.push(Warning::Ignored {
+            path: path.to_path_buf(),
+            what: format!(
+                "material {}: its sampler's {what} is {code}, which glTF 2.0 does not allow; drawn with the default",
+                m.name
+            ),
+        })
+    };
+    let mut wrap = |what: &str, code: u32| {
+        WrapMode::from_gl(code).unwrap_or_else(|| {
+            bad(what, code);
+            WrapMode::Repeat
+        })
+    };
+    let (wrap_s, wrap_t) = (wrap("wrapS", s.wrap_s), wrap("wrapT", s.wrap_t));
+    let min = s.min_filter.and_then(|c| {
+        MinFilter::from_gl(c).or_else(|| {
+            bad("minFilter", c);
+            None
+        })
+    });
+    let mag = s.mag_filter.and_then(|c| {
+        MagFilter::from_gl(c).or_else(|| {
+            bad("magFilter", c);
+            None
+        })
+    });
+    MaterialSampler { wrap_s, wrap_t, min, mag }
 }
 
 /// The parts' own meshes cut from `mesh` (the whole mesh, shared, where one part is all of it
@@ -545,5 +600,6 @@ fn material_asset(
         tex_coord: m.tex_coord,
         double_sided: m.double_sided,
         texture_transform: m.texture_transform,
+        sampler: material_sampler(m, path, warnings),
     })
 }

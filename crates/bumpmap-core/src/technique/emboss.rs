@@ -88,7 +88,10 @@ pub fn passes(scene: &Scene, options: &EmbossOptions) -> Result<Vec<Pass>, CoreE
             BackFacing::Forced => var::EMBOSS,
             BackFacing::Unforced => var::EMBOSS_UNFORCED,
         };
-        let unit = |texture, s, t| TextureUnit { binding: Binding::TwoD { texture, s, t }, sampler: options.sampler };
+        let unit = |texture, s, t| TextureUnit {
+            binding: Binding::TwoD { texture, s, t },
+            sampler: options.sampler.for_material(&m.sampler),
+        };
         let cube = TextureUnit {
             binding: Binding::NormalizationCube {
                 size: options.cube_size,

@@ -115,7 +115,7 @@ pub fn passes(scene: &Scene, options: &KilgardOptions) -> Result<Vec<Pass>, Core
         let m = &object.material;
         let unit_2d = |texture| TextureUnit {
             binding: Binding::TwoD { texture, s: var::S, t: var::T },
-            sampler: options.sampler,
+            sampler: options.sampler.for_material(&m.sampler),
         };
         let normal_unit = unit_2d(m.normal_map.clone());
         let decal_unit = m.decal.clone().map(unit_2d);

@@ -248,7 +248,7 @@ pub fn passes(scene: &Scene, options: &SinglePassOptions) -> Result<Vec<Pass>, C
                     SpecularFilter::RoughnessMap => options.roughness_map.clone(),
                     _ => None,
                 },
-                sampler: options.sampler,
+                sampler: options.sampler.for_material(&m.sampler),
                 terms,
                 normalize: options.normalize,
                 cube_size: options.cube_size,

@@ -106,6 +106,18 @@ mod avx2 {
                 let c = _mm256_min_ps(_mm256_max_ps(_mm256_mul_ps(coord, nf), half), _mm256_sub_ps(nf, half));
                 _mm256_sub_ps(c, half)
             }
+            WrapMode::MirroredRepeat => {
+                // WrapMode::mirror, then CLAMP_TO_EDGE: 1 − |s − 2·floor(s/2) − 1|.
+                let one = _mm256_set1_ps(1.0);
+                let t = _mm256_sub_ps(
+                    coord,
+                    _mm256_mul_ps(_mm256_set1_ps(2.0), _mm256_floor_ps(_mm256_mul_ps(coord, half))),
+                );
+                let d = _mm256_sub_ps(t, one);
+                let folded = _mm256_sub_ps(one, _mm256_andnot_ps(_mm256_set1_ps(-0.0), d));
+                let c = _mm256_min_ps(_mm256_max_ps(_mm256_mul_ps(folded, nf), half), _mm256_sub_ps(nf, half));
+                _mm256_sub_ps(c, half)
+            }
         };
         let f = _mm256_floor_ps(u);
         let a = _mm256_sub_ps(u, f);
@@ -120,7 +132,7 @@ mod avx2 {
                 let i1 = _mm256_andnot_si256(_mm256_cmpeq_epi32(i0, last), _mm256_add_epi32(i0, one));
                 (i0, i1, a)
             }
-            WrapMode::ClampToEdge => {
+            WrapMode::ClampToEdge | WrapMode::MirroredRepeat => {
                 let i0 = _mm256_min_epi32(_mm256_max_epi32(i, _mm256_setzero_si256()), last);
                 (i0, _mm256_min_epi32(_mm256_add_epi32(i0, one), last), a)
             }
@@ -428,7 +440,7 @@ mod tests {
         (0..4).all(|c| batch[c][lane].to_bits() == scalar[c].to_bits())
     }
 
-    const SAMPLERS: [Sampler; 3] = [
+    const SAMPLERS: [Sampler; 5] = [
         Sampler::TRILINEAR_REPEAT,
         Sampler::LINEAR_REPEAT,
         Sampler {
@@ -436,6 +448,18 @@ mod tests {
             mag: MagFilter::Linear,
             wrap_s: WrapMode::ClampToEdge,
             wrap_t: WrapMode::Repeat,
+        },
+        Sampler {
+            min: MinFilter::LinearMipmapLinear,
+            mag: MagFilter::Linear,
+            wrap_s: WrapMode::MirroredRepeat,
+            wrap_t: WrapMode::MirroredRepeat,
+        },
+        Sampler {
+            min: MinFilter::Linear,
+            mag: MagFilter::Linear,
+            wrap_s: WrapMode::Repeat,
+            wrap_t: WrapMode::MirroredRepeat,
         },
     ];
 
@@ -448,7 +472,7 @@ mod tests {
             lambda_base in -2.0f32..12.0,
             spread in prop::sample::select(vec![0.0f32, 0.3, 4.0]),
             n in 0usize..=LANES,
-            which in 0usize..3,
+            which in 0usize..SAMPLERS.len(),
             size in prop::sample::select(vec![(64usize, 64usize), (37, 5), (1, 1)]),
         ) {
             let tex = noisy(size.0, size.1);

@@ -13,6 +13,9 @@ pub struct Gltf {
     pub nodes: Vec<String>,
     pub materials: Vec<String>,
     images: Vec<String>,
+    /// Each texture's sampler, if any; and the samplers.
+    texture_samplers: Vec<Option<usize>>,
+    samplers: Vec<String>,
     /// The root nodes of the scene; every node when empty.
     pub roots: Vec<usize>,
     pub extensions_used: Vec<&'static str>,
@@ -74,7 +77,17 @@ impl Gltf {
     /// A PNG image and a texture of it; returns the texture index.
     pub fn texture(&mut self, png: &[u8]) -> usize {
         self.images.push(format!(r#"{{"uri":"data:image/png;base64,{}"}}"#, base64_encode(png)));
+        self.texture_samplers.push(None);
         self.images.len() - 1
+    }
+
+    /// A PNG image and a texture of it with a sampler of its own (its JSON members); returns
+    /// the texture index.
+    pub fn texture_sampled(&mut self, png: &[u8], sampler: &str) -> usize {
+        let t = self.texture(png);
+        self.samplers.push(format!("{{{sampler}}}"));
+        self.texture_samplers[t] = Some(self.samplers.len() - 1);
+        t
     }
 
     /// A material (its JSON members); returns its index.
@@ -88,19 +101,25 @@ impl Gltf {
         let roots: Vec<usize> =
             if self.roots.is_empty() { (0..self.nodes.len()).collect() } else { self.roots.clone() };
         let list = |v: &[String]| v.join(",");
-        let textures: Vec<String> = (0..self.images.len()).map(|i| format!(r#"{{"source":{i}}}"#)).collect();
+        let textures: Vec<String> = (0..self.images.len())
+            .map(|i| match self.texture_samplers[i] {
+                Some(s) => format!(r#"{{"source":{i},"sampler":{s}}}"#),
+                None => format!(r#"{{"source":{i}}}"#),
+            })
+            .collect();
         let used = if self.extensions_used.is_empty() {
             String::new()
         } else {
             format!(r#","extensionsUsed":{:?}"#, self.extensions_used)
         };
         format!(
-            r#"{{"asset":{{"version":"2.0"}},"scene":0,"scenes":[{{"nodes":{roots:?}}}],"nodes":[{}],"meshes":[{}],"materials":[{}],"textures":[{}],"images":[{}],"buffers":[{{"byteLength":{},"uri":"data:application/octet-stream;base64,{}"}}],"bufferViews":[{}],"accessors":[{}]{used}}}"#,
+            r#"{{"asset":{{"version":"2.0"}},"scene":0,"scenes":[{{"nodes":{roots:?}}}],"nodes":[{}],"meshes":[{}],"materials":[{}],"textures":[{}],"images":[{}],"samplers":[{}],"buffers":[{{"byteLength":{},"uri":"data:application/octet-stream;base64,{}"}}],"bufferViews":[{}],"accessors":[{}]{used}}}"#,
             list(&self.nodes),
             list(&self.meshes),
             list(&self.materials),
             list(&textures),
             list(&self.images),
+            list(&self.samplers),
             self.bin.len(),
             base64_encode(&self.bin),
             list(&self.views),
@@ -122,6 +141,15 @@ pub fn normal_png(size: usize, h: impl Fn(f32, f32) -> f32) -> Vec<u8> {
     let mut png = Vec::new();
     image::RgbImage::from_raw(size as u32, size as u32, rgb)
         .expect("size")
+        .write_to(&mut std::io::Cursor::new(&mut png), image::ImageFormat::Png)
+        .expect("PNG");
+    png
+}
+
+/// A PNG whose red grows with the column (0 to 255 over `width` columns), green 60, blue 30.
+pub fn ramp_png(width: usize) -> Vec<u8> {
+    let mut png = Vec::new();
+    image::RgbImage::from_fn(width as u32, 4, |x, _| image::Rgb([(x as usize * 255 / (width - 1)) as u8, 60, 30]))
         .write_to(&mut std::io::Cursor::new(&mut png), image::ImageFormat::Png)
         .expect("PNG");
     png

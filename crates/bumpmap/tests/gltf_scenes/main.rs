@@ -7,7 +7,7 @@ mod builder;
 
 use std::path::PathBuf;
 
-use builder::{Gltf, color_png, normal_png};
+use builder::{Gltf, color_png, normal_png, ramp_png};
 use bumpmap::assets::{MeshAsset, MeshLoad, load_mesh};
 use bumpmap::{BackendChoice, Light, Renderer, Rgba8Image, SceneLight, SceneSpec, TechniqueName, ViewerModel};
 use bumpmap_testkit::{assert_has_content, assert_psnr, output_dir, psnr, write_png};
@@ -323,6 +323,84 @@ fn a_primitive_without_texture_coordinates_is_drawn_unbumped_beside_a_bumped_one
     assert!(distinct(&right) <= 4, "the right quad is flat ({} colours)", distinct(&right));
     let r0 = right[right.len() / 2];
     assert!(r0[0] > 40 && r0[0].abs_diff(r0[1]) < 4, "and untextured: grey-white, not the red texture ({r0:?})");
+}
+
+#[test]
+fn each_wrap_mode_of_a_sampler_repeats_mirrors_or_clamps_the_texture() {
+    // A base colour ramp (red left to right) read three times across the quad
+    // (KHR_texture_transform scale 3), through a sampler of each wrap mode.
+    let quad = |wrap: u32| {
+        let mut g = Gltf::default();
+        let t = g.texture_sampled(
+            &ramp_png(16),
+            &format!(r#""wrapS":{wrap},"wrapT":33071,"magFilter":9729,"minFilter":9729"#),
+        );
+        let m = g.material(&format!(
+            r#""pbrMetallicRoughness":{{"baseColorTexture":{{"index":{t},"extensions":{{"KHR_texture_transform":{{"scale":[3,1]}}}}}}}}"#
+        ));
+        let mesh = g.quad(FRONT, TOWARD_Z, Some(m));
+        g.node(&format!(r#""mesh":{mesh}"#));
+        g.extensions_used.push("KHR_texture_transform");
+        g
+    };
+    let modes = [("repeat", 10497u32), ("mirrored", 33648), ("clamp", 33071)];
+    let assets: Vec<MeshAsset> = modes.iter().map(|(name, wrap)| load(&format!("wrap_{name}"), &quad(*wrap))).collect();
+    let (eye, light) = (Vec3::new(0.0, 0.0, 1.5), Vec3::new(0.0, 0.0, 1.0));
+    let mut images: Vec<Vec<Rgba8Image>> = Vec::new();
+    for (backend, mut r) in renderers() {
+        let mut row = Vec::new();
+        for ((name, _), asset) in modes.iter().zip(&assets) {
+            let image = draw(&mut r, &spec(asset, eye, light), TechniqueName::SinglePass, (120, 60));
+            keep(&format!("wrap_{name}_{backend}"), &image);
+            // The red across the middle row, where the quad covers it: 3 ramps up (repeat),
+            // up-down-up (mirrored), one ramp then the last texel (clamp).
+            let reds: Vec<i32> =
+                (0..120).map(|x| image.texel(x, 30)).filter(|t| t[1] > 8).map(|t| t[0] as i32).collect();
+            assert!(reds.len() > 80, "{backend} {name}: the quad covers the row ({} pixels)", reds.len());
+            // Runs of falling red: (length in pixels, total fall).
+            let mut runs: Vec<(usize, i32)> = Vec::new();
+            let mut run = (0, 0);
+            for d in reds.windows(2).map(|w| w[1] - w[0]) {
+                if d < 0 {
+                    run = (run.0 + 1, run.1 - d);
+                } else if run.0 > 0 {
+                    runs.push(std::mem::take(&mut run));
+                }
+            }
+            if run.0 > 0 {
+                runs.push(run);
+            }
+            let falls: Vec<&(usize, i32)> = runs.iter().filter(|r| r.1 > 150).collect();
+            let n = reds.len();
+            match *name {
+                "repeat" => assert!(
+                    falls.len() == 2 && falls.iter().all(|r| r.0 <= 4),
+                    "{backend}: two sudden falls back to dark red: {runs:?} in {reds:?}"
+                ),
+                "mirrored" => assert!(
+                    falls.len() == 1 && falls[0].0 > n / 5,
+                    "{backend}: one slow fall, the middle ramp mirrored: {runs:?} in {reds:?}"
+                ),
+                _ => assert!(
+                    falls.is_empty() && reds[n / 2..n - 2].iter().all(|&r| r >= 250),
+                    "{backend}: one ramp, then its last texel: {reds:?}"
+                ),
+            }
+            row.push(image);
+        }
+        images.push(row);
+    }
+    if let [cpu, gpu] = &images[..] {
+        for (k, (name, _)) in modes.iter().enumerate() {
+            // Not assert_psnr: the clamped image is mostly one colour, which its content guard
+            // refuses; the rows above already showed each image's ramps.
+            let db = psnr(&cpu[k], &gpu[k]);
+            assert!(
+                db > 35.0,
+                "{name}: CPU and GPU {db:.1} dB apart (the same lookups; lavapipe filters in its own fixed point)"
+            );
+        }
+    }
 }
 
 /// The message `load_mesh` refuses `json` with (the builder's file with `edit` applied).
