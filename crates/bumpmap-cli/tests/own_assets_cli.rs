@@ -339,3 +339,35 @@ fn renormalized_stored_mips_get_a_warning_naming_the_fix_and_rebuild_mips_applie
     let (near_own, far_own) = (psnr(&rebuilt, &with_own), psnr(&with_renormalized, &with_own));
     assert!(near_own > far_own + 3.0, "rebuilt {near_own:.1} dB from the own levels, renormalized {far_own:.1} dB");
 }
+
+#[test]
+fn a_gltf_scene_that_cannot_be_drawn_as_written_fails_cleanly() {
+    let dir = scratch("own_scene_bad");
+    let out = dir.join("o.png");
+    let o = out.to_str().unwrap();
+    for (name, material, node, expect) in [
+        ("cutoff", r#","materials":[{"alphaMode":"MASK","alphaCutoff":2}]"#, "", "alphaCutoff is 2"),
+        ("node", "", r#","translation":[1e39,0,0]"#, "not finite"),
+        (
+            "transform",
+            r#","materials":[{"normalTexture":{"index":0,"extensions":{"KHR_texture_transform":{"rotation":1e39}}}}],"textures":[{"source":0}],"images":[{"uri":"n.png"}]"#,
+            "",
+            "KHR_texture_transform",
+        ),
+    ] {
+        let file = dir.join(format!("{name}.gltf"));
+        let material_index = (!material.is_empty()).then_some(0);
+        gltf(
+            &file,
+            &[[-1.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 2.0, 0.0]],
+            &[[0.0, 0.0, 1.0]; 3],
+            &[[0.0, 1.0], [1.0, 1.0], [0.5, 0.0]],
+            &[0, 1, 2],
+            node,
+            material,
+            material_index,
+        );
+        let scene = format!("mesh:{}", file.display());
+        fails_cleanly(&dir, &["render", "--scene", &scene, "-o", o], &file, expect);
+    }
+}
