@@ -151,13 +151,13 @@ pub(crate) fn material_name(m: &gltf::Material) -> String {
     }
 }
 
-/// Checks what the specification bounds (an `alphaCutoff` in [0, 1]) and lists what the
+/// Checks what the specification bounds (an `alphaCutoff` in [0, 1]) and returns what the
 /// material asks for that is not drawn.
-pub(crate) fn check(path: &Path, material: &gltf::Material, notes: &mut Vec<String>) -> Result<(), IoError> {
-    let name = material_name(material);
+pub(crate) fn check(path: &Path, material: &gltf::Material) -> Result<Vec<&'static str>, IoError> {
     if let Some(cutoff) = material.alpha_cutoff()
         && !(0.0..=1.0).contains(&cutoff)
     {
+        let name = material_name(material);
         return Err(mesh_err(path, format!("material {name}'s alphaCutoff is {cutoff}; glTF 2.0 wants it in [0, 1]")));
     }
     let mut left_out = Vec::new();
@@ -175,10 +175,7 @@ pub(crate) fn check(path: &Path, material: &gltf::Material, notes: &mut Vec<Stri
     if material.pbr_metallic_roughness().metallic_roughness_texture().is_some() {
         left_out.push("metallicRoughnessTexture");
     }
-    for what in left_out {
-        notes.push(format!("{what}: not drawn by a Blinn–Phong bump renderer (material {name})"));
-    }
-    Ok(())
+    Ok(left_out)
 }
 
 /// Reads the textures `options` asks for of `material`; `set` is the texture-coordinate set

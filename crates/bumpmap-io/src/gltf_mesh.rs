@@ -314,6 +314,8 @@ fn material_plans(
     let materials: Vec<gltf::Material> = doc.materials().collect();
     let mut plans: Vec<MaterialPlan> = Vec::new();
     let mut notes = Vec::new();
+    // What is not drawn, each kind once, with every material that asked for it.
+    let mut left_out: Vec<(&'static str, Vec<String>)> = Vec::new();
     for &(m, _) in instances {
         for prim in meshes[m].primitives() {
             let Some(index) = prim.material().index() else { continue };
@@ -321,30 +323,21 @@ fn material_plans(
                 continue;
             }
             let material = &materials[index];
-            gltf_material::check(path, material, &mut notes)?;
+            let name = gltf_material::material_name(material);
+            for what in gltf_material::check(path, material)? {
+                match left_out.iter_mut().find(|(w, _)| *w == what) {
+                    Some((_, names)) => names.push(name.clone()),
+                    None => left_out.push((what, vec![name.clone()])),
+                }
+            }
             let reads = gltf_material::reads(path, doc, material)?;
-            let (read, note) = gltf_material::mesh_read(&reads, options, &gltf_material::material_name(material));
+            let (read, note) = gltf_material::mesh_read(&reads, options, &name);
             notes.extend(note);
             plans.push(MaterialPlan { index, reads, read });
         }
     }
-    // One line per kind of thing left out, naming every material that asked for it.
-    let mut merged: Vec<(String, Vec<String>)> = Vec::new();
-    for note in notes {
-        match note.split_once(" (material ") {
-            Some((what, who)) => {
-                let who = who.trim_end_matches(')').to_string();
-                match merged.iter_mut().find(|(w, _)| w == what) {
-                    Some((_, names)) => names.push(who),
-                    None => merged.push((what.to_string(), vec![who])),
-                }
-            }
-            None => merged.push((note, Vec::new())),
-        }
-    }
-    let notes = merged
-        .into_iter()
-        .map(|(what, who)| if who.is_empty() { what } else { format!("{what} (materials {})", who.join(", ")) })
-        .collect();
+    notes.extend(left_out.into_iter().map(|(what, names)| {
+        format!("{what}: not drawn by a Blinn–Phong bump renderer (materials {})", names.join(", "))
+    }));
     Ok((plans, notes))
 }

@@ -38,7 +38,7 @@ pub use image_file::{
     Channel, DecodeLimits, HeightSource, load_height_field, load_rgba8, read_height_field, read_rgba8,
 };
 pub use mesh_file::{
-    LoadedMesh, MaterialTexture, MeshFormat, MeshMaterial, MeshOptions, MeshPart, ObjTexcoords, TextureTransform,
-    load_mesh, load_mesh_with, read_mesh, save_gltf,
+    LoadedMesh, MaterialTexture, MeshFormat, MeshMaterial, MeshOptions, MeshPart, ObjTexcoords, TextureSampler,
+    TextureTransform, load_mesh, load_mesh_with, read_mesh, save_gltf,
 };
 pub use texture_read::{AnyTexture, StoredLevels, StoredTexture, load_any_texture, load_texture, read_texture};

@@ -453,39 +453,15 @@ pub fn mesh_asset(loaded: bumpmap_io::LoadedMesh, path: &Path, options: &MeshLoa
     })
 }
 
-/// A glTF sampler's GL enums as sampler state; a value glTF does not allow is said and replaced
-/// by the default (repeat, the technique's filter), as a viewer would draw it.
-fn material_sampler(m: &bumpmap_io::MeshMaterial, path: &Path, warnings: &mut Vec<Warning>) -> MaterialSampler {
-    let s = m.sampler;
-    let mut bad = |what: &str, code: u32| {
-        warnings.push(Warning::Ignored {
-            path: path.to_path_buf(),
-            what: format!(
-                "material {}: its sampler's {what} is {code}, which glTF 2.0 does not allow; drawn with the default",
-                m.name
-            ),
-        })
-    };
-    let mut wrap = |what: &str, code: u32| {
-        WrapMode::from_gl(code).unwrap_or_else(|| {
-            bad(what, code);
-            WrapMode::Repeat
-        })
-    };
-    let (wrap_s, wrap_t) = (wrap("wrapS", s.wrap_s), wrap("wrapT", s.wrap_t));
-    let min = s.min_filter.and_then(|c| {
-        MinFilter::from_gl(c).or_else(|| {
-            bad("minFilter", c);
-            None
-        })
-    });
-    let mag = s.mag_filter.and_then(|c| {
-        MagFilter::from_gl(c).or_else(|| {
-            bad("magFilter", c);
-            None
-        })
-    });
-    MaterialSampler { wrap_s, wrap_t, min, mag }
+/// A glTF sampler's GL enums as sampler state (the glTF reader has refused any value glTF does
+/// not allow, so the defaults below are never reached from a file).
+fn material_sampler(s: &bumpmap_io::TextureSampler) -> MaterialSampler {
+    MaterialSampler {
+        wrap_s: WrapMode::from_gl(s.wrap_s).unwrap_or(WrapMode::Repeat),
+        wrap_t: WrapMode::from_gl(s.wrap_t).unwrap_or(WrapMode::Repeat),
+        min: s.min_filter.and_then(MinFilter::from_gl),
+        mag: s.mag_filter.and_then(MagFilter::from_gl),
+    }
 }
 
 /// The parts' own meshes cut from `mesh` (the whole mesh, shared, where one part is all of it
@@ -600,6 +576,6 @@ fn material_asset(
         tex_coord: m.tex_coord,
         double_sided: m.double_sided,
         texture_transform: m.texture_transform,
-        sampler: material_sampler(m, path, warnings),
+        sampler: material_sampler(&m.sampler),
     })
 }

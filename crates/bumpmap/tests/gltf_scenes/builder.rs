@@ -107,19 +107,21 @@ impl Gltf {
                 None => format!(r#"{{"source":{i}}}"#),
             })
             .collect();
+        // glTF wants no empty arrays (the validator's EMPTY_ENTITY): samplers only when some.
+        let samplers =
+            if self.samplers.is_empty() { String::new() } else { format!(r#","samplers":[{}]"#, list(&self.samplers)) };
         let used = if self.extensions_used.is_empty() {
             String::new()
         } else {
             format!(r#","extensionsUsed":{:?}"#, self.extensions_used)
         };
         format!(
-            r#"{{"asset":{{"version":"2.0"}},"scene":0,"scenes":[{{"nodes":{roots:?}}}],"nodes":[{}],"meshes":[{}],"materials":[{}],"textures":[{}],"images":[{}],"samplers":[{}],"buffers":[{{"byteLength":{},"uri":"data:application/octet-stream;base64,{}"}}],"bufferViews":[{}],"accessors":[{}]{used}}}"#,
+            r#"{{"asset":{{"version":"2.0"}},"scene":0,"scenes":[{{"nodes":{roots:?}}}],"nodes":[{}],"meshes":[{}],"materials":[{}],"textures":[{}],"images":[{}]{samplers},"buffers":[{{"byteLength":{},"uri":"data:application/octet-stream;base64,{}"}}],"bufferViews":[{}],"accessors":[{}]{used}}}"#,
             list(&self.nodes),
             list(&self.meshes),
             list(&self.materials),
             list(&textures),
             list(&self.images),
-            list(&self.samplers),
             self.bin.len(),
             base64_encode(&self.bin),
             list(&self.views),

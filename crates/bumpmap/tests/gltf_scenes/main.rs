@@ -430,6 +430,13 @@ fn scenes_that_cannot_be_drawn_as_written_are_refused_naming_the_element() {
         j.replace(r#""doubleSided":false"#, r#""doubleSided":false,"alphaMode":"MASK","alphaCutoff":2"#)
     });
     assert!(cutoff.contains("alphaCutoff is 2"), "{cutoff}");
+    let wrap = refusal("sampler_wrap", &g, |j| {
+        j.replace(
+            r#""textures":[{"source":0}]"#,
+            r#""textures":[{"source":0,"sampler":0}],"samplers":[{"wrapS":12345}]"#,
+        )
+    });
+    assert!(wrap.contains("samplers[0].wrapS"), "{wrap}");
     let material = refusal("material_index", &g, |j| j.replace(r#""material":0"#, r#""material":7"#));
     assert!(material.contains("material"), "{material}");
     let huge = refusal(
