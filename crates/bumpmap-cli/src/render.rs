@@ -251,6 +251,7 @@ pub fn core_err(e: CoreError) -> CliError {
         Feature::LeanFilter => "--specular-filter lean on this map".into(),
         Feature::RoughnessFilter => "--specular-filter roughness-map on this map".into(),
         Feature::Parallax => "heights as geometry on this map".into(),
+        Feature::MaskWithDepth => "a glTF material with alphaMode MASK under --write-depth or --silhouettes".into(),
     }
     };
     match e {

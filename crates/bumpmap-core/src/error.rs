@@ -45,6 +45,8 @@ pub enum Feature {
     RoughnessFilter,
     /// Heights as geometry under a map that is not a tangent-space map of unit normals.
     Parallax,
+    /// A cut-out material (alpha MASK) with heights as geometry that write their own depth.
+    MaskWithDepth,
 }
 
 impl std::fmt::Display for Feature {
@@ -71,6 +73,9 @@ impl std::fmt::Display for Feature {
             ),
             Feature::Parallax => f.write_str(
                 "heights as geometry with an object-space, offset or derivative map (the marches read a tangent-space map of unit normals at the hit)",
+            ),
+            Feature::MaskWithDepth => f.write_str(
+                "a cut-out (alpha MASK) material with heights as geometry writing their depth (the cut is a depth pass the march would move)",
             ),
             Feature::SurfaceMap => f.write_str(
                 "a normal map made for one surface (its passes read every texture with the repeating coordinates)",

@@ -35,6 +35,15 @@ pub struct PartMaterial {
     pub decal: Option<Arc<Rgba8Mips>>,
     /// Its textures' wrap modes and filters (a glTF sampler's).
     pub sampler: crate::state::MaterialSampler,
+    /// Opaque, cut out or blended by the decal's alpha.
+    pub alpha: crate::scene::AlphaMode,
+    /// What multiplies the ambient term, in red ([`crate::scene::Material::occlusion`]).
+    pub occlusion: Option<Arc<Rgba8Mips>>,
+    /// Light given off, added ([`crate::scene::Material::emission`]).
+    pub emission: Option<Arc<Rgba8Mips>>,
+    /// Perceptual roughness in red, at its normal map's size
+    /// ([`crate::scene::Material::roughness_map`]).
+    pub roughness_map: Option<Arc<Rgba8Mips>>,
 }
 
 /// One part: its geometry (with normals, texture coordinates and tangents) and its material.

@@ -10,6 +10,7 @@ use std::sync::Arc;
 use glam::{Mat4, Vec3};
 
 use bumpmap_math::lighting::Light;
+pub use bumpmap_math::mesh::AlphaMode;
 use bumpmap_math::mesh::Mesh;
 use bumpmap_math::surface::Surface;
 use bumpmap_math::{HeightField, HeightMips, NormalMapOptions, Rgba8Mips};
@@ -243,6 +244,18 @@ pub struct Material {
     /// The material's own wrap modes (and filters, where it names them) for its normal map
     /// and decal: a glTF sampler's; repeating otherwise.
     pub sampler: crate::state::MaterialSampler,
+    /// Opaque, cut out by the decal's alpha, or blended over what is behind by it.
+    pub alpha: AlphaMode,
+    /// What multiplies the ambient term per texel, in red (a glTF `occlusionTexture` with its
+    /// strength folded in), read with the decal's coordinates; `None`: 1.
+    pub occlusion: Option<Arc<Rgba8Mips>>,
+    /// Light the surface gives off, added to the lit colour (a glTF `emissiveTexture` times
+    /// `emissiveFactor`), read with the decal's coordinates; `None`: none.
+    pub emission: Option<Arc<Rgba8Mips>>,
+    /// Perceptual roughness in red at the normal map's size (a glTF `metallicRoughnessTexture`'s
+    /// green times `roughnessFactor`), read by `SpecularFilter::RoughnessMap` in place of the one
+    /// made from the normal map; `None`: made from the normal map.
+    pub roughness_map: Option<Arc<Rgba8Mips>>,
 }
 
 /// A mesh placed in the world. The mesh must have normals, texture coordinates and tangents.

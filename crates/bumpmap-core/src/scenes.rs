@@ -15,8 +15,8 @@ use crate::bump_maps::{BumpMap, offset_map, surface_material};
 use crate::error::CoreError;
 use crate::parts::MeshParts;
 use crate::scene::{
-    Camera, Material, NormalSpace, NormalTexels, Scene, SceneLight, SceneObject, SurfaceHeights, SurfaceSource,
-    ViewerModel,
+    AlphaMode, Camera, Material, NormalSpace, NormalTexels, Scene, SceneLight, SceneObject, SurfaceHeights,
+    SurfaceSource, ViewerModel,
 };
 
 /// Which geometry a scene shows.
@@ -452,6 +452,13 @@ pub fn build(kind: &SceneKind, params: &SceneParams) -> Result<Scene, CoreError>
                                 Some(bumps) => self::material(params, bumps, own.decal.clone())?.0,
                             };
                             m.sampler = own.sampler;
+                            m.alpha = own.alpha;
+                            m.occlusion = own.occlusion.clone();
+                            m.emission = own.emission.clone();
+                            // The file's roughness belongs to its own normal map: where an
+                            // explicit one replaced it, the roughness is made from that instead.
+                            let size = |t: &Rgba8Mips| (t.width(), t.height());
+                            m.roughness_map = own.roughness_map.clone().filter(|r| size(r) == size(&m.normal_map));
                             made[part.material] = Some(m);
                         }
                         let m = made[part.material].clone().expect("made above");
@@ -519,6 +526,10 @@ fn material<'a>(
         heights: None,
         depth: 0.0,
         sampler: Default::default(),
+        alpha: AlphaMode::Opaque,
+        occlusion: None,
+        emission: None,
+        roughness_map: None,
     };
     if params.displacement {
         if let Some(d) = params.depth

@@ -27,6 +27,31 @@ pub fn decal() -> CombinerSetup {
     CombinerSetup { stages: vec![stage], final_combiner, constant0: Vec4::ZERO, constant1: Vec4::ZERO }
 }
 
+/// A material's emission added after its lit passes (glTF `emissiveTexture`, the factor folded
+/// into the texels): texture 0's RGB; alpha texture 1's (the decal's, for a blended material,
+/// under `glBlendFunc(GL_SRC_ALPHA, GL_ONE)`) or 1.
+pub fn emission(alpha_from_texture1: bool) -> CombinerSetup {
+    let mut setup = decal();
+    setup.final_combiner.g = if alpha_from_texture1 {
+        FinalInput::reg(Texture1, Alpha)
+    } else {
+        FinalInput { mapping: UnsignedInvert, ..FinalInput::reg(Zero, Alpha) }
+    };
+    setup
+}
+
+/// `setup` (Appendix G's, [`ambient_and_diffuse`]) with the ambient term multiplied by
+/// texture 2's RGB, an occlusion map: stage 1's free C·D makes `spare1 = I_ambient · occlusion`,
+/// which the final combiner adds in place of the constant.
+pub fn with_ambient_occlusion(mut setup: CombinerSetup) -> CombinerSetup {
+    let rgb = &mut setup.stages[1].rgb;
+    rgb.c = Input::new(ConstantColor0, UnsignedIdentity, Rgb);
+    rgb.d = Input::new(Texture2, UnsignedIdentity, Rgb);
+    rgb.outputs.cd = Some(Spare1);
+    setup.final_combiner.d = FinalInput::reg(Spare1, Rgb);
+    setup
+}
+
 /// The RGB portion both appendices open with: `spare0rgb = expand(texture0) · expand(texture1)`,
 /// the normal map's N' dotted with the cube map's normalized L (Appendix G) or H (Appendix H).
 fn normal_dot_cube() -> Portion {

@@ -3,8 +3,9 @@
 //!
 //! These are the definitions; a backend maps them onto its own machinery (the CPU pipeline's
 //! vector loops, wgpu's pipeline state) and is tested against the functions here. Only the
-//! state the techniques use is described: no stencil, no alpha test, no logic ops, no border
-//! colour (CLAMP without _TO_EDGE), no LOD bias, no anisotropy.
+//! state the techniques use is described: no stencil, no logic ops, no border colour (CLAMP
+//! without _TO_EDGE), no LOD bias, no anisotropy; the alpha test only as `GL_GEQUAL` (a glTF
+//! `alphaMode` MASK's cut).
 
 use crate::lane_math::clamp_lo;
 
@@ -121,6 +122,10 @@ pub struct PassState {
     pub color_mask: [bool; 4],
     /// `glEnable(GL_CULL_FACE)` with `glCullFace(GL_BACK)`, counter-clockwise front faces.
     pub cull_back: bool,
+    /// `glEnable(GL_ALPHA_TEST)` with `glAlphaFunc(GL_GEQUAL, cutoff)`: a fragment whose alpha
+    /// (clamped to [0, 1]) is below the cutoff is discarded, its depth not written; `None`:
+    /// disabled.
+    pub alpha_test: Option<f32>,
 }
 
 impl PassState {
@@ -131,11 +136,25 @@ impl PassState {
         blend: Blend::REPLACE,
         color_mask: [true; 4],
         cull_back: true,
+        alpha_test: None,
     };
 
     /// Depth EQUAL without writes, blended by `blend`: a later pass over the same surfaces.
     pub const fn equal(blend: Blend) -> PassState {
-        PassState { depth_func: DepthFunc::Equal, depth_write: false, blend, color_mask: [true; 4], cull_back: true }
+        PassState {
+            depth_func: DepthFunc::Equal,
+            depth_write: false,
+            blend,
+            color_mask: [true; 4],
+            cull_back: true,
+            alpha_test: None,
+        }
+    }
+
+    /// Whether a fragment of alpha `a` passes this pass's alpha test (always, where disabled).
+    #[inline(always)]
+    pub fn alpha_passes(&self, a: f32) -> bool {
+        self.alpha_test.is_none_or(|cutoff| a.clamp(0.0, 1.0) >= cutoff)
     }
 }
 

@@ -732,6 +732,20 @@ fn flush<S: FragmentShader>(tile: &mut Tile, state: &DrawState, shader: &S, task
     }
     batch.list_live(tile.width);
     shader.shade(batch, scratch, colors);
+    if state.pass.alpha_test.is_some() {
+        // The alpha test: a fragment that fails it is discarded as a NaN depth is.
+        let mut depth = [0.0; crate::combiners::LANES];
+        let shader_depth = shader.depth(scratch);
+        let live = batch.live();
+        for (j, z) in depth[..live.len()].iter_mut().enumerate() {
+            let own = shader_depth.map_or(batch.depth[live[j] as usize], |d| d[j]);
+            *z = if state.pass.alpha_passes(colors[3][j]) { own } else { f32::NAN };
+        }
+        write_tested(tile, state, batch, colors, &depth);
+        batch.quads = 0;
+        *pending = [0; TILE];
+        return;
+    }
     if let Some(depth) = shader.depth(scratch) {
         // The late depth test on the shader's depth; discarded fragments (NaN) fail it.
         write_tested(tile, state, batch, colors, depth);

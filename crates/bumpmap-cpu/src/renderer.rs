@@ -98,6 +98,7 @@ impl CpuRenderer {
                             _ => None,
                         },
                         decal: program.decal.as_ref().map(|d| self.texture(d)).transpose()?,
+                        occlusion: program.occlusion.as_ref().map(|d| self.texture(d)).transpose()?,
                         gloss: match &program.gloss {
                             Gloss::Map(g) => Some(self.texture(g)?),
                             _ => None,

@@ -42,6 +42,8 @@ pub(crate) struct SinglePass<'a> {
     /// [`SpecularFilter::RoughnessMap`].
     pub roughness: Option<Arc<Texture2d>>,
     pub decal: Option<Arc<Texture2d>>,
+    /// The material's occlusion map (what multiplies the ambient term, in red).
+    pub occlusion: Option<Arc<Texture2d>>,
     pub gloss: Option<Arc<Texture2d>>,
     pub pattern: Option<Arc<Texture2d>>,
 }
@@ -52,10 +54,12 @@ pub(crate) struct SinglePass<'a> {
 pub struct Scratch {
     /// s, t, λ of the lookup being made.
     coords: [Lanes; 3],
-    /// The filtered normal map (RGB range-compressed, A = |N'|), the decal, the gloss texture.
+    /// The filtered normal map (RGB range-compressed, A = |N'|), the decal, the gloss texture,
+    /// the occlusion map.
     normal: [Lanes; 4],
     decal: [Lanes; 4],
     gloss: [Lanes; 4],
+    occlusion_map: [Lanes; 4],
     /// The filtered LEAN moments (Bx, By, Mxx, Myy, Mxy, J), when the filter reads them.
     moments: [Lanes; 6],
     /// The filtered roughness map (roughness in red), when the filter reads it.
@@ -101,6 +105,7 @@ impl Scratch {
             normal: [z; 4],
             decal: [z; 4],
             gloss: [z; 4],
+            occlusion_map: [z; 4],
             moments: [z; 6],
             roughness: [z; 4],
             l: [z; 3],
@@ -200,6 +205,7 @@ impl SinglePass<'_> {
             Tex::Normal => &mut sc.normal,
             Tex::Decal => &mut sc.decal,
             Tex::Gloss => &mut sc.gloss,
+            Tex::Occlusion => &mut sc.occlusion_map,
         };
         let [s, t, lambda] = &sc.coords;
         sample_2d_lanes(tex, &self.program.sampler, s, t, lambda, n, out);
@@ -243,6 +249,7 @@ enum Tex {
     Normal,
     Decal,
     Gloss,
+    Occlusion,
 }
 
 /// `acc ← x^k` for a whole k ≥ 0 by binary powering, lanes `0..n` (the order of compiler-rt's
@@ -335,10 +342,15 @@ impl FragmentShader for SinglePass<'_> {
         }
         match (&o.gloss, &self.gloss) {
             (Gloss::Map(_), Some(g)) => {
-                self.sample(g, batch, [1.0, 1.0], sc, live_n, Tex::Gloss, last == (size(g), [1.0, 1.0]))
+                self.sample(g, batch, [1.0, 1.0], sc, live_n, Tex::Gloss, last == (size(g), [1.0, 1.0]));
+                last = (size(g), [1.0, 1.0]);
             }
             (Gloss::DecalAlpha, _) => sc.gloss[0] = sc.decal[3],
             _ => sc.gloss[0].fill(1.0),
+        }
+        if let Some(occlusion) = &self.occlusion {
+            let same = last == (size(occlusion), [1.0, 1.0]);
+            self.sample(occlusion, batch, [1.0, 1.0], sc, live_n, Tex::Occlusion, same);
         }
         if o.parallax.is_some() {
             // L and V where the ray met the heights; H from them per fragment.
@@ -400,7 +412,16 @@ impl FragmentShader for SinglePass<'_> {
         } else {
             sc.occlusion[..n].fill(1.0);
         }
+        if self.occlusion.is_some() {
+            for j in 0..n {
+                sc.occlusion[j] *= sc.occlusion_map[0][j];
+            }
+        }
         lighting_lanes(&o.terms, sc, object_space, n, out);
+        if o.decal_alpha {
+            // A blended material's pass: the decal's alpha weighs it against what is behind.
+            out[3][..n].copy_from_slice(&sc.decal[3][..n]);
+        }
     }
 
     fn writes_depth(&self) -> bool {

@@ -393,7 +393,9 @@ pub fn fragment_shader(p: &bumpmap_core::technique::CombinerProgram) -> String {
             }
         };
     }
-    s += "    return combiners(regs);\n}\n";
+    s +=
+        "    let color = combiners(regs);\n    if clamp(color.a, 0.0, 1.0) < ALPHA_CUTOFF {\n        discard;\n    }\n";
+    s += "    return color;\n}\n";
     s
 }
 

@@ -182,6 +182,8 @@ pub struct LitVariant {
     ambient_occlusion: bool,
     height_mipmaps: bool,
     positional_light: bool,
+    occlusion_map: bool,
+    decal_alpha: bool,
 }
 
 impl Default for LitVariant {
@@ -207,6 +209,8 @@ impl Default for LitVariant {
             ambient_occlusion: false,
             height_mipmaps: false,
             positional_light: false,
+            occlusion_map: false,
+            decal_alpha: false,
         }
     }
 }
@@ -236,6 +240,8 @@ impl LitVariant {
             ambient_occlusion: p.parallax.as_ref().is_some_and(|x| x.parallax.options.ambient_occlusion),
             height_mipmaps: p.parallax.is_some() && p.sampler.has_mipmaps(),
             positional_light: matches!(p.light.light, bumpmap_math::lighting::Light::Positional(_)),
+            occlusion_map: p.occlusion.is_some(),
+            decal_alpha: p.decal_alpha,
         }
     }
 
@@ -246,7 +252,7 @@ impl LitVariant {
 
     /// The override constants by their names in `lit.wgsl`, with their values: the one list
     /// the pipeline's constants and the prelude's declarations are made from.
-    pub(crate) fn overrides(&self) -> [(&'static str, Override); 19] {
+    pub(crate) fn overrides(&self) -> [(&'static str, Override); 21] {
         use Override::{Code, Flag, Float};
         [
             (SELF_SHADOW.name, Code(self.self_shadow)),
@@ -268,6 +274,8 @@ impl LitVariant {
             ("AMBIENT_OCCLUSION", Flag(self.ambient_occlusion)),
             ("HEIGHT_MIPMAPS", Flag(self.height_mipmaps)),
             ("POSITIONAL_LIGHT", Flag(self.positional_light)),
+            ("OCCLUSION_MAP", Flag(self.occlusion_map)),
+            ("DECAL_ALPHA", Flag(self.decal_alpha)),
         ]
     }
 

@@ -2,7 +2,8 @@
 // texture lookups, per-fragment renormalization, attenuation and spotlight that make a
 // Fragment, then shading.wgsl's shade(). Texture units: the normal map, the decal, the gloss
 // map (white 1x1 textures where absent), the spotlight pattern, the normalization cube map,
-// LEAN's two moment textures, the roughness map, the heights and their min-max bounds.
+// LEAN's two moment textures, the roughness map, the heights and their min-max bounds, the
+// horizon map, the occlusion map.
 
 struct Lit {
     ambient: vec4<f32>,
@@ -50,6 +51,9 @@ struct Lit {
 // read texel by texel (1x1 stand-ins where unused).
 @group(0) @binding(13) var horizons_0123: texture_2d<f32>;
 @group(0) @binding(14) var horizons_4567: texture_2d<f32>;
+
+// The material's occlusion map: what multiplies the ambient term, in red (white where unused).
+@group(0) @binding(15) var occlusion_map: texture_2d<f32>;
 
 fn horizon_texel(x: i32, y: i32, level: u32, half: u32) -> vec4<f32> {
     if half == 0u {
@@ -282,17 +286,34 @@ fn lit(f: Varyings) -> LitOut {
     if SPECULAR_FILTER == SPECULAR_FILTER_ROUGHNESS_MAP {
         roughness = sample_map(roughness_map, st * scale, dx * scale, dy * scale).r;
     }
-    let frag = Fragment(normal, decal.rgb, gloss, l, h, l_n, h_n, light, lean_b, lean_m, lean_j, roughness, par.occlusion);
+    var occlusion = par.occlusion;
+    if OCCLUSION_MAP {
+        occlusion = occlusion * sample_map(occlusion_map, st, dx, dy).r;
+    }
+    let frag = Fragment(normal, decal.rgb, gloss, l, h, l_n, h_n, light, lean_b, lean_m, lean_j, roughness, occlusion);
     var depth = f.position.z;
     if WRITE_DEPTH {
         depth = displaced_depth(f.position.z, par.kappa, u.parallax.z);
     }
-    return LitOut(vec4<f32>(shade(t, frag), 1.0), depth);
+    // A blended material's pass: the decal's alpha weighs it against what is behind.
+    var alpha = 1.0;
+    if DECAL_ALPHA {
+        alpha = decal.a;
+    }
+    return LitOut(vec4<f32>(shade(t, frag), alpha), depth);
+}
+
+// The pass's alpha test (ALPHA_CUTOFF < 0: none).
+fn alpha_tested(c: vec4<f32>) -> vec4<f32> {
+    if clamp(c.a, 0.0, 1.0) < ALPHA_CUTOFF {
+        discard;
+    }
+    return c;
 }
 
 @fragment
 fn fs_lit(f: Varyings) -> @location(0) vec4<f32> {
-    return lit(f).color;
+    return alpha_tested(lit(f).color);
 }
 
 struct LitDepthOut {
@@ -304,5 +325,5 @@ struct LitDepthOut {
 @fragment
 fn fs_lit_depth(f: Varyings) -> LitDepthOut {
     let o = lit(f);
-    return LitDepthOut(o.color, o.depth);
+    return LitDepthOut(alpha_tested(o.color), o.depth);
 }

@@ -23,6 +23,9 @@ pub const DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
 pub const VERTEX_FLOATS: usize = 4 + MAX_VARYINGS;
 /// Texture units of a combiner program.
 pub const UNITS: usize = 4;
+/// The override constant both kinds of fragment program discard below: a pass's alpha test
+/// cutoff, or −1 (none). Declared by the prelude's vertex stage.
+pub(crate) const ALPHA_CUTOFF: &str = "ALPHA_CUTOFF";
 
 /// The lit program's fragment stage, after the prelude and the model.
 pub(crate) const LIT_WGSL: &str = include_str!("lit.wgsl");
@@ -70,6 +73,8 @@ struct StateKey {
     blend: (BlendKey, BlendKey),
     color_mask: [bool; 4],
     cull_back: bool,
+    /// The alpha test's cutoff's bits.
+    alpha_test: Option<u32>,
 }
 
 type DepthFuncKey = u8;
@@ -89,6 +94,7 @@ impl StateKey {
             blend: (s.blend.src as u8, s.blend.dst as u8),
             color_mask: s.color_mask,
             cull_back: s.cull_back,
+            alpha_test: s.alpha_test.map(f32::to_bits),
         }
     }
 }
@@ -190,6 +196,8 @@ impl Pipelines {
                 // The horizon map: directions 0–3 and 4–7, Rgba32Float, every level, likewise.
                 unfiltered_entry(13),
                 unfiltered_entry(14),
+                // The material's occlusion map.
+                texture_entry(15, D2),
             ],
         });
         let mut entries = Vec::new();
@@ -260,10 +268,11 @@ impl Pipelines {
             step_mode: wgpu::VertexStepMode::Vertex,
             attributes: &attributes,
         })];
-        let constants = match shader {
+        let mut constants = match shader {
             Shader::Lit(v) => v.constants(),
             Shader::Combiners(_) => Vec::new(),
         };
+        constants.push((ALPHA_CUTOFF, state.alpha_test.map_or(-1.0, f64::from)));
         let blend = (state.blend.src, state.blend.dst) != (BlendFactor::One, BlendFactor::Zero);
         let component = wgpu::BlendComponent {
             src_factor: blend_factor(state.blend.src),

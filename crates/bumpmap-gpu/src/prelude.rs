@@ -91,6 +91,11 @@ pub(crate) fn vertex_stage() -> String {
     for (name, slot) in SLOTS {
         let _ = writeln!(s, "const {name}: u32 = {slot}u;");
     }
+    let _ = writeln!(
+        s,
+        "// The pass's alpha test (glAlphaFunc(GL_GEQUAL, cutoff)), or -1: none.\noverride {}: f32 = -1.0;",
+        crate::pipelines::ALPHA_CUTOFF
+    );
     s
 }
 
@@ -183,7 +188,8 @@ mod tests {
         for (name, _) in LitVariant::default().constants() {
             assert!(overrides.contains(&name), "the pipeline sets {name}, which the program does not declare");
         }
-        assert_eq!(overrides.len(), LitVariant::default().constants().len(), "{overrides:?}");
+        assert!(overrides.contains(&crate::pipelines::ALPHA_CUTOFF));
+        assert_eq!(overrides.len(), LitVariant::default().constants().len() + 1, "{overrides:?}");
     }
 
     #[test]

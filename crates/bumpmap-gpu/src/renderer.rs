@@ -265,6 +265,10 @@ impl GpuRenderer {
             Gloss::Map(g) => t.mips(ctx, g)?,
             _ => t.white_2d(ctx),
         };
+        let occlusion = match &p.occlusion {
+            Some(o) => t.mips(ctx, o)?,
+            None => t.white_2d(ctx),
+        };
         let pattern = match p.light.spot.as_ref().and_then(|s| s.pattern.as_ref()) {
             Some(pattern) => t.mips(ctx, pattern)?,
             None => t.white_2d(ctx),
@@ -319,6 +323,7 @@ impl GpuRenderer {
             wgpu::BindGroupEntry { binding: 12, resource: TextureView(&height_bounds) },
             wgpu::BindGroupEntry { binding: 13, resource: TextureView(&horizons_0123) },
             wgpu::BindGroupEntry { binding: 14, resource: TextureView(&horizons_4567) },
+            wgpu::BindGroupEntry { binding: 15, resource: TextureView(&occlusion) },
         ];
         Ok(ctx.device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("lit"),

@@ -6,6 +6,7 @@
 
 use std::path::Path;
 
+use bumpmap_math::mesh::AlphaMode;
 use glam::Vec2;
 
 use crate::error::IoError;
@@ -92,48 +93,64 @@ fn transform_of(
     }))
 }
 
+const KHR: &str = "KHR_texture_transform";
+
 /// The set and transform each texture of `material` reads, keyed by the texture's role.
 pub(crate) struct MaterialReads {
     pub normal: Option<TextureRead>,
     pub base_color: Option<TextureRead>,
+    /// The other textures of its look, by their names in the file: they are drawn as the base
+    /// colour is.
+    pub others: Vec<(&'static str, TextureRead)>,
 }
 
 /// The texture references' sets and transforms, with the transforms checked.
 pub(crate) fn reads(path: &Path, doc: &gltf::Document, material: &gltf::Material) -> Result<MaterialReads, IoError> {
     let name = material_name(material);
     let json = material.index().and_then(|i| doc.as_json().materials.get(i));
+    // The gltf crate keeps a normalTexture's and an occlusionTexture's extensions as JSON.
+    let json_read = |role: &str, tex_coord: u32, transform: Option<&gltf::json::Value>| {
+        let what = format!("material {name}'s {role}");
+        let t = transform_of(path, &what, transform)?;
+        Ok::<_, IoError>(read_of(tex_coord, t))
+    };
     let normal = match (material.normal_texture(), json.and_then(|m| m.normal_texture.as_ref())) {
         (Some(n), Some(j)) => {
-            let what = format!("material {name}'s normalTexture");
-            // The gltf crate keeps a normalTexture's extensions as JSON.
-            let t =
-                transform_of(path, &what, j.extensions.as_ref().and_then(|e| e.others.get("KHR_texture_transform")))?;
-            Some(read_of(n.tex_coord(), t))
+            Some(json_read("normalTexture", n.tex_coord(), j.extensions.as_ref().and_then(|e| e.others.get(KHR)))?)
         }
         _ => None,
     };
-    let base_color = match material.pbr_metallic_roughness().base_color_texture() {
-        Some(info) => {
-            let what = format!("material {name}'s baseColorTexture");
-            let t = info.texture_transform().map(|t| TextureTransform {
-                offset: Vec2::from(t.offset()),
-                rotation: t.rotation(),
-                scale: Vec2::from(t.scale()),
-                tex_coord: t.tex_coord(),
-            });
-            if let Some(t) = &t
-                && !(t.offset.is_finite() && t.rotation.is_finite() && t.scale.is_finite())
-            {
-                return Err(mesh_err(
-                    path,
-                    format!("{what}: KHR_texture_transform {}: it must be finite", describe(t)),
-                ));
-            }
-            Some(read_of(info.tex_coord(), t))
+    let info_read = |role: &str, info: &gltf::texture::Info| {
+        let what = format!("material {name}'s {role}");
+        let t = info.texture_transform().map(|t| TextureTransform {
+            offset: Vec2::from(t.offset()),
+            rotation: t.rotation(),
+            scale: Vec2::from(t.scale()),
+            tex_coord: t.tex_coord(),
+        });
+        if let Some(t) = &t
+            && !(t.offset.is_finite() && t.rotation.is_finite() && t.scale.is_finite())
+        {
+            return Err(mesh_err(path, format!("{what}: KHR_texture_transform {}: it must be finite", describe(t))));
         }
-        None => None,
+        Ok(read_of(info.tex_coord(), t))
     };
-    Ok(MaterialReads { normal, base_color })
+    let pbr = material.pbr_metallic_roughness();
+    let base_color = pbr.base_color_texture().map(|i| info_read("baseColorTexture", &i)).transpose()?;
+    let mut others = Vec::new();
+    if let (Some(o), Some(j)) = (material.occlusion_texture(), json.and_then(|m| m.occlusion_texture.as_ref())) {
+        others.push((
+            "occlusionTexture",
+            json_read("occlusionTexture", o.tex_coord(), j.extensions.as_ref().and_then(|e| e.others.get(KHR)))?,
+        ));
+    }
+    if let Some(i) = material.emissive_texture() {
+        others.push(("emissiveTexture", info_read("emissiveTexture", &i)?));
+    }
+    if let Some(i) = pbr.metallic_roughness_texture() {
+        others.push(("metallicRoughnessTexture", info_read("metallicRoughnessTexture", &i)?));
+    }
+    Ok(MaterialReads { normal, base_color, others })
 }
 
 fn read_of(tex_coord: u32, transform: Option<TextureTransform>) -> TextureRead {
@@ -161,19 +178,9 @@ pub(crate) fn check(path: &Path, material: &gltf::Material) -> Result<Vec<&'stat
         return Err(mesh_err(path, format!("material {name}'s alphaCutoff is {cutoff}; glTF 2.0 wants it in [0, 1]")));
     }
     let mut left_out = Vec::new();
-    match material.alpha_mode() {
-        gltf::material::AlphaMode::Opaque => {}
-        gltf::material::AlphaMode::Mask => left_out.push("alphaMode MASK (drawn opaque, not cut out)"),
-        gltf::material::AlphaMode::Blend => left_out.push("alphaMode BLEND (drawn opaque)"),
-    }
-    if material.occlusion_texture().is_some() {
-        left_out.push("occlusionTexture");
-    }
-    if material.emissive_texture().is_some() || material.emissive_factor() != [0.0; 3] {
-        left_out.push("emission");
-    }
-    if material.pbr_metallic_roughness().metallic_roughness_texture().is_some() {
-        left_out.push("metallicRoughnessTexture");
+    let pbr = material.pbr_metallic_roughness();
+    if pbr.metallic_roughness_texture().is_some() && pbr.metallic_factor() > 0.0 {
+        left_out.push("metalness (metallicRoughnessTexture's blue: reflections of an environment)");
     }
     Ok(left_out)
 }
@@ -211,6 +218,24 @@ pub(crate) fn read(
         Some(c) if options.read_base_color_texture => Some(texture(file, c.texture(), "baseColorTexture", 1.0)?),
         _ => None,
     };
+    let look = options.read_base_color_texture;
+    let occlusion = match material.occlusion_texture() {
+        Some(o) if look => Some(texture(file, o.texture(), "occlusionTexture", o.strength())?),
+        _ => None,
+    };
+    let emissive = match material.emissive_texture() {
+        Some(e) if look => Some(texture(file, e.texture(), "emissiveTexture", 1.0)?),
+        _ => None,
+    };
+    let metallic_roughness = match pbr.metallic_roughness_texture() {
+        Some(t) if look => Some(texture(file, t.texture(), "metallicRoughnessTexture", 1.0)?),
+        _ => None,
+    };
+    let alpha_mode = match material.alpha_mode() {
+        gltf::material::AlphaMode::Opaque => AlphaMode::Opaque,
+        gltf::material::AlphaMode::Mask => AlphaMode::Mask { cutoff: material.alpha_cutoff().unwrap_or(0.5) },
+        gltf::material::AlphaMode::Blend => AlphaMode::Blend,
+    };
     let transform = |r: Option<TextureRead>| r.map(|r| r.transform).filter(|t| !t.is_identity());
     let sampler_of = |t: gltf::Texture| {
         let s = t.sampler();
@@ -246,26 +271,47 @@ pub(crate) fn read(
             transform(reads.base_color)
         },
         sampler: normal_sampler.or(color_sampler).unwrap_or_default(),
+        alpha_mode,
+        occlusion,
+        emissive,
+        emissive_factor: material.emissive_factor(),
+        metallic_roughness,
+        roughness_factor: pbr.roughness_factor(),
     })
 }
 
 /// The set and transform the mesh is read with for `reads`: the normal texture's when it is
-/// read, else the base colour's when that is read, else set 0 untransformed; and a note when
-/// the base colour would have read the mesh otherwise.
+/// read, else the base colour's when that is read, else the first other texture's, else set 0
+/// untransformed; and a note naming every texture that would have read the mesh otherwise.
 pub(crate) fn mesh_read(reads: &MaterialReads, options: &MeshOptions, name: &str) -> (TextureRead, Option<String>) {
     let normal = reads.normal.filter(|_| options.read_normal_texture);
     let color = reads.base_color.filter(|_| options.read_base_color_texture);
-    let chosen = normal.or(color).unwrap_or_default();
-    let note = match (normal, color) {
-        (Some(n), Some(c)) if n != c => Some(format!(
-            "material {name}: the baseColorTexture reads TEXCOORD_{} {}, the normalTexture TEXCOORD_{} {}; both are drawn as the normalTexture reads",
-            c.set,
-            describe(&c.transform),
-            n.set,
-            describe(&n.transform)
-        )),
-        _ => None,
+    let others: &[(&'static str, TextureRead)] = if options.read_base_color_texture { &reads.others } else { &[] };
+    let (chosen_role, chosen) = match (normal, color, others.first()) {
+        (Some(n), _, _) => ("normalTexture", n),
+        (None, Some(c), _) => ("baseColorTexture", c),
+        (None, None, Some(&(role, r))) => (role, r),
+        (None, None, None) => ("", TextureRead::default()),
     };
+    // Every other texture read is drawn as the chosen one: say which read otherwise.
+    let mut differing: Vec<(&str, TextureRead)> = Vec::new();
+    if let (Some(_), Some(c)) = (normal, color) {
+        differing.push(("baseColorTexture", c));
+    }
+    differing.extend(others.iter().copied());
+    differing.retain(|(_, r)| *r != chosen);
+    let note = (!differing.is_empty()).then(|| {
+        let each: Vec<String> = differing
+            .iter()
+            .map(|(role, r)| format!("the {role} reads TEXCOORD_{} {}", r.set, describe(&r.transform)))
+            .collect();
+        format!(
+            "material {name}: {}, the {chosen_role} TEXCOORD_{} {}; all are drawn as the {chosen_role} reads",
+            each.join(", "),
+            chosen.set,
+            describe(&chosen.transform)
+        )
+    });
     (chosen, note)
 }
 

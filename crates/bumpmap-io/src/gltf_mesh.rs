@@ -111,6 +111,7 @@ pub(crate) fn from_gltf(
     let (mut had_normals, mut had_tangents, mut any_texcoords) = (true, true, false);
     let mut turned = false;
     let mut left_out: Vec<(gltf::mesh::Mode, usize)> = Vec::new();
+    let mut coloured = 0;
     let buffers = std::mem::take(&mut file.buffers);
     for &(mesh_index, world_from_local) in &instances {
         let gmesh = &meshes[mesh_index];
@@ -130,6 +131,9 @@ pub(crate) fn from_gltf(
                     None => left_out.push((mode, 1)),
                 }
                 continue;
+            }
+            if prim.get(&gltf::Semantic::Colors(0)).is_some() {
+                coloured += 1;
             }
             let reader = prim.reader(|b| buffers.get(b.index()).map(|d| &d[..]));
             let positions: Vec<Vec3> = reader
@@ -221,6 +225,11 @@ pub(crate) fn from_gltf(
     }
     for (mode, count) in &left_out {
         notes.push(format!("{count} {mode:?} primitive(s) left out: only triangles are drawn"));
+    }
+    if coloured > 0 {
+        notes.push(format!(
+            "COLOR_0 (vertex colours) of {coloured} primitive(s): not drawn; their base colour is their material's alone"
+        ));
     }
     if parts.is_empty() {
         return Err(mesh_err(

@@ -16,7 +16,7 @@
 
 use std::path::{Path, PathBuf};
 
-use bumpmap_math::mesh::Mesh;
+use bumpmap_math::mesh::{AlphaMode, Mesh};
 
 use crate::error::IoError;
 use crate::texture_read::StoredTexture;
@@ -81,6 +81,18 @@ pub struct MeshMaterial {
     /// The sampler its textures are drawn with (the normal texture's when it is read, else the
     /// base colour's).
     pub sampler: TextureSampler,
+    /// `alphaMode` with `alphaCutoff` (default 0.5).
+    pub alpha_mode: AlphaMode,
+    /// `occlusionTexture`, its `strength` as the scale; its red channel is the occlusion.
+    pub occlusion: Option<MaterialTexture>,
+    /// `emissiveTexture` (sRGB-encoded).
+    pub emissive: Option<MaterialTexture>,
+    /// `emissiveFactor` (linear; it multiplies the texture).
+    pub emissive_factor: [f32; 3],
+    /// `pbrMetallicRoughness.metallicRoughnessTexture`: roughness in green, metalness in blue.
+    pub metallic_roughness: Option<MaterialTexture>,
+    /// `pbrMetallicRoughness.roughnessFactor` (it multiplies the texture's green).
+    pub roughness_factor: f32,
 }
 
 /// A glTF sampler as the file stores it: GL enums (`bumpmap_core::state` reads them).
@@ -128,7 +140,7 @@ impl Default for TextureTransform {
 pub struct MaterialTexture {
     /// The image's texels.
     pub texture: StoredTexture,
-    /// `normalTexture.scale` (1 for other textures): X and Y are multiplied by it.
+    /// `normalTexture.scale`, `occlusionTexture.strength` (1 for other textures).
     pub scale: f32,
     /// Where it came from: the image's file, or the glTF with the image's index.
     pub source: PathBuf,
@@ -150,7 +162,9 @@ pub struct MeshOptions {
     pub obj_texcoords: ObjTexcoords,
     /// Read a glTF material's `normalTexture` (an error if it cannot be read).
     pub read_normal_texture: bool,
-    /// Read a glTF material's `baseColorTexture` (an error if it cannot be read).
+    /// Read a glTF material's `baseColorTexture`, and with it the other textures of its look:
+    /// `occlusionTexture`, `emissiveTexture` and `metallicRoughnessTexture` (an error if one
+    /// cannot be read).
     pub read_base_color_texture: bool,
 }
 

@@ -6,6 +6,8 @@ use rayon::prelude::*;
 
 mod parts;
 
+pub use parts::AlphaMode;
+
 /// An indexed triangle mesh. Every per-vertex array has `positions.len()` entries (or is empty
 /// where noted). Triangles wind counter-clockwise when seen from the side the normal faces.
 #[derive(Clone, Debug, Default, PartialEq)]

@@ -10,6 +10,7 @@ use std::fmt;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
+use bumpmap_core::scene::AlphaMode;
 use bumpmap_core::state::{MagFilter, MaterialSampler, MinFilter, WrapMode};
 use bumpmap_core::{BumpSource, MeshPart, MeshParts, PartMaterial, SceneKind, SceneSpec};
 use bumpmap_io::texture_file::TextureFormat;
@@ -20,6 +21,8 @@ use bumpmap_math::tangent::{TangentOptions, generate_tangents};
 use bumpmap_math::{MipChain, MipMode, Rgba8Image, Rgba8Mips, YConvention};
 
 use crate::error::Error;
+
+mod look;
 
 /// The fraction of texels off unit length above which a normal map gets a
 /// [`Warning::NotUnitLength`]: a baked map's empty background can be a few percent; a photograph
@@ -207,8 +210,8 @@ pub struct MaterialAsset {
     pub normal_scale: f32,
     /// `baseColorTexture` times `baseColorFactor`'s RGB (or the factor alone, when it is not
     /// white), as the decal, with box-filtered mipmaps; sRGB-encoded as the texture is (the
-    /// renderers, like the hardware they emulate, take the decal's bytes as they are). The
-    /// factor's alpha is not used: the surfaces are opaque.
+    /// renderers, like the hardware they emulate, take the decal's bytes as they are). Its
+    /// alpha is the texture's, times the factor's for a cut-out or blended material.
     pub decal: Option<Arc<Rgba8Mips>>,
     /// Where the decal came from, in words.
     pub decal_source: Option<String>,
@@ -220,6 +223,15 @@ pub struct MaterialAsset {
     pub texture_transform: Option<bumpmap_io::TextureTransform>,
     /// Its textures' wrap modes, and filters where the file names them.
     pub sampler: MaterialSampler,
+    /// `alphaMode` with its cutoff.
+    pub alpha: AlphaMode,
+    /// `occlusionTexture` with its strength folded in: what multiplies the ambient term.
+    pub occlusion: Option<Arc<Rgba8Mips>>,
+    /// `emissiveTexture · emissiveFactor`, added to the lit colour.
+    pub emission: Option<Arc<Rgba8Mips>>,
+    /// `metallicRoughnessTexture`'s roughness at the normal map's size, for the roughness-map
+    /// filter.
+    pub roughness_map: Option<Arc<Rgba8Mips>>,
 }
 
 /// One glTF primitive of one node, ready to draw.
@@ -273,10 +285,14 @@ impl MeshAsset {
                 bumps: Some(m.normal_map.as_ref().map_or_else(flat, LoadedNormalMap::bumps)),
                 decal: m.decal.clone(),
                 sampler: m.sampler,
+                alpha: m.alpha,
+                occlusion: m.occlusion.clone(),
+                emission: m.emission.clone(),
+                roughness_map: m.roughness_map.clone(),
             })
             .collect();
         // glTF's default material, and each material without texture coordinates to read its
-        // maps with: no bumps, and only a decal of one texel (the base colour factor).
+        // maps with: no bumps, and only maps of one texel (the base colour and emissive factors).
         let mut plain: Vec<Option<usize>> = vec![None; self.materials.len() + 1];
         let parts = self
             .parts
@@ -287,15 +303,19 @@ impl MeshAsset {
                     (m, _) => {
                         let slot = m.unwrap_or(self.materials.len());
                         *plain[slot].get_or_insert_with(|| {
-                            let decal = m
-                                .and_then(|m| self.materials[m].decal.clone())
-                                .filter(|d| d.levels()[0].width == 1 && d.levels()[0].height == 1);
-                            let name = m.map_or("(default)".into(), |m| self.materials[m].name.clone());
+                            let one_texel = |d: &Arc<Rgba8Mips>| d.levels()[0].width == 1 && d.levels()[0].height == 1;
+                            let own = m.map(|m| &self.materials[m]);
+                            let decal = own.and_then(|m| m.decal.clone()).filter(one_texel);
+                            let name = own.map_or("(default)".into(), |m| m.name.clone());
                             materials.push(PartMaterial {
                                 name,
                                 bumps: Some(flat()),
                                 decal,
                                 sampler: Default::default(),
+                                alpha: own.map_or(AlphaMode::Opaque, |m| m.alpha),
+                                occlusion: None,
+                                emission: own.and_then(|m| m.emission.clone()).filter(one_texel),
+                                roughness_map: None,
                             });
                             materials.len() - 1
                         })
@@ -375,6 +395,26 @@ impl MeshAsset {
                     s.mag.map_or("the technique's".to_string(), |f| format!("{f:?}"))
                 ));
             }
+            match m.alpha {
+                AlphaMode::Opaque => {}
+                AlphaMode::Mask { cutoff } => {
+                    lines.push(format!("material {}: alphaMode MASK, cut out where alpha < {cutoff}", m.name))
+                }
+                AlphaMode::Blend => lines.push(format!(
+                    "material {}: alphaMode BLEND, blended over what is behind (by single-pass techniques; \
+                     the multipass ones draw it opaque)",
+                    m.name
+                )),
+            }
+            for (map, what) in [
+                (&m.occlusion, "occlusionTexture on the ambient term"),
+                (&m.emission, "emission added"),
+                (&m.roughness_map, "metallicRoughnessTexture's roughness for the roughness-map filter"),
+            ] {
+                if map.is_some() {
+                    lines.push(format!("material {}: {what}", m.name));
+                }
+            }
             if let Some(t) = &m.texture_transform {
                 lines.push(format!(
                     "material {}: KHR_texture_transform applied (offset {:?}, rotation {} rad, scale {:?})",
@@ -388,12 +428,16 @@ impl MeshAsset {
         if listed < self.materials.len() {
             let rest = &self.materials[listed..];
             lines.push(format!(
-                "and {} more materials: {} with a normalTexture, {} with a base colour, {} double-sided, {} with a KHR_texture_transform",
+                "and {} more materials: {} with a normalTexture, {} with a base colour, {} double-sided, {} with a KHR_texture_transform, \
+                 {} cut out or blended, {} emissive, {} with occlusion",
                 rest.len(),
                 rest.iter().filter(|m| m.normal_map.is_some()).count(),
                 rest.iter().filter(|m| m.decal.is_some()).count(),
                 rest.iter().filter(|m| m.double_sided).count(),
-                rest.iter().filter(|m| m.texture_transform.is_some()).count()
+                rest.iter().filter(|m| m.texture_transform.is_some()).count(),
+                rest.iter().filter(|m| m.alpha != AlphaMode::Opaque).count(),
+                rest.iter().filter(|m| m.emission.is_some()).count(),
+                rest.iter().filter(|m| m.occlusion.is_some()).count()
             ));
         }
         lines
@@ -545,9 +589,12 @@ fn material_asset(
             ),
         });
     }
+    let alpha = m.alpha_mode;
+    // Alpha is linear; an opaque material's is left as the texture has it (a gloss, say).
+    let alpha_factor = if alpha == AlphaMode::Opaque { 1.0 } else { factor[3].clamp(0.0, 1.0) };
     let tint = |t: [u8; 4]| {
         let c = |i: usize| srgb_encode(srgb_decode(t[i]) * factor[i]);
-        [c(0), c(1), c(2), t[3]]
+        [c(0), c(1), c(2), (t[3] as f32 * alpha_factor).round() as u8]
     };
     let (decal, decal_source) = match &m.base_color {
         Some(t) => {
@@ -561,11 +608,19 @@ fn material_asset(
             let what = format!("baseColorTexture {}x{} from {}", image.width, image.height, t.source.display());
             (Some(Arc::new(Rgba8Mips::with_box_mipmaps(image))), Some(what))
         }
-        None if factor[..3] != [1.0; 3] => {
+        None if factor[..3] != [1.0; 3] || alpha_factor != 1.0 => {
             let image = Rgba8Image::new(1, 1, vec![tint([255; 4])]);
-            (Some(Arc::new(Rgba8Mips::single(image))), Some(format!("baseColorFactor {:?}", &factor[..3])))
+            (Some(Arc::new(Rgba8Mips::single(image))), Some(format!("baseColorFactor {factor:?}")))
         }
         None => (None, None),
+    };
+    // The roughness the roughness-map filter reads with the normal map's coordinates and levels.
+    let roughness_map = match &m.metallic_roughness {
+        Some(t) => {
+            let size = normal_map.as_ref().map_or((1, 1), |n| (n.chain.levels[0].width, n.chain.levels[0].height));
+            Some(look::roughness_map(t, m.roughness_factor, size)?)
+        }
+        None => None,
     };
     Ok(MaterialAsset {
         name: m.name.clone(),
@@ -577,5 +632,9 @@ fn material_asset(
         double_sided: m.double_sided,
         texture_transform: m.texture_transform,
         sampler: material_sampler(&m.sampler),
+        alpha,
+        occlusion: m.occlusion.as_ref().map(look::occlusion_map).transpose()?,
+        emission: look::emission_map(m.emissive.as_ref(), m.emissive_factor)?,
+        roughness_map,
     })
 }

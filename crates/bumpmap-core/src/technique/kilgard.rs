@@ -11,6 +11,9 @@
 //! (`k_diffuse · light colour`), its s_self into alpha alone (colour mask), and its specular by
 //! destination alpha. The first light's colour scales `k_diffuse` (constant colour 1); specular
 //! is white, as the paper's combiners leave no multiplier for a specular colour.
+//!
+//! A material's occlusion map multiplies the ambient term in pass 2 from a third texture unit
+//! (`setups::with_ambient_occlusion`).
 
 use glam::{Vec3, Vec4};
 
@@ -140,7 +143,16 @@ pub fn passes(scene: &Scene, options: &KilgardOptions) -> Result<Vec<Pass>, Core
                 // Pass 2: ambient + diffuse, s_self to alpha.
                 let state = if decal_unit.is_some() { equal(Blend::MODULATE) } else { PassState::OPAQUE };
                 let setup = diffuse_setup(options.self_shadow, ambient, kd);
-                pass(named(1), state, vec![normal_unit.clone(), cube(var::L)], setup)?;
+                let mut units = vec![normal_unit.clone(), cube(var::L)];
+                // An occlusion map multiplies the ambient term only, from a third unit.
+                let setup = match &m.occlusion {
+                    Some(occlusion) => {
+                        units.push(unit_2d(occlusion.clone()));
+                        setups::with_ambient_occlusion(setup)
+                    }
+                    None => setup,
+                };
+                pass(named(1), state, units, setup)?;
             } else {
                 // Extra light, pass a: decal · s_self · k_d · max(0, L·N') · |N'|, added.
                 let setup = decal_times_diffuse(options.self_shadow, decal_unit.is_some());

@@ -14,6 +14,7 @@
 
 pub mod emboss;
 pub mod kilgard;
+mod materials;
 pub mod reference;
 pub mod single_pass;
 
@@ -61,13 +62,27 @@ impl Technique {
     /// The passes that render `scene`, in order; the first clears nothing (backends clear to
     /// black, alpha 0, depth 1 before the first pass). Fails when the technique cannot render
     /// the scene as asked, and for [`Technique::Reference`], which is not a pass list.
+    ///
+    /// Each material's alpha, emission and place in the order are applied here for every
+    /// technique alike (`materials`): a cut-out material's depth is laid by its decal's alpha
+    /// first, emission is added after its lit passes, and blended materials are drawn last,
+    /// the farthest first.
     pub fn passes(&self, scene: &Scene) -> Result<Vec<Pass>, CoreError> {
-        match self {
-            Technique::Kilgard(o) => kilgard::passes(scene, o),
-            Technique::SinglePass(o) => single_pass::passes(scene, o),
-            Technique::Emboss(o) => emboss::passes(scene, o),
-            Technique::Reference(_) => Err(CoreError::NotPasses),
-        }
+        let (passes, sampler) = match self {
+            Technique::Kilgard(o) => (kilgard::passes(scene, o)?, o.sampler),
+            Technique::SinglePass(o) => (single_pass::passes(scene, o)?, o.sampler),
+            Technique::Emboss(o) => (emboss::passes(scene, o)?, o.sampler),
+            Technique::Reference(_) => return Err(CoreError::NotPasses),
+        };
+        materials::finish(self.name(), scene, passes, sampler, self.blends())
+    }
+
+    /// Whether the technique draws a blended material ([`crate::scene::AlphaMode::Blend`]) over
+    /// what is behind it. Only the single pass can: the multipass techniques build each pixel's
+    /// colour in the framebuffer itself (the decal, then the lighting multiplied onto it), so
+    /// there is no surface colour apart from what is behind to blend; they draw it opaque.
+    pub fn blends(&self) -> bool {
+        matches!(self, Technique::SinglePass(_))
     }
 }
 
@@ -176,8 +191,13 @@ pub struct LitProgram {
     /// the backend samples [`crate::shading::roughness_texture`] of the normal map and the
     /// terms' shininess. Read with the normal map's coordinates and sampler.
     pub roughness_map: Option<Arc<Rgba8Mips>>,
-    /// The filtering of the normal map, decal and gloss map.
+    /// The filtering of the normal map, decal, gloss and occlusion maps.
     pub sampler: Sampler,
+    /// What multiplies the ambient term, in red, read with the decal's coordinates
+    /// ([`crate::scene::Material::occlusion`]); `None`: 1.
+    pub occlusion: Option<Arc<Rgba8Mips>>,
+    /// Whether the fragment's alpha is the decal's (a blended material's pass), else 1.
+    pub decal_alpha: bool,
     /// The lighting coefficients and switches, per pass.
     pub terms: crate::shading::LitTerms,
     /// How L and H are renormalized per fragment.

@@ -12,10 +12,10 @@ use bumpmap_math::Rgba8Mips;
 
 use crate::error::{CoreError, Feature};
 use crate::parallax::{MAX_LAYERS, Parallax, ParallaxMethod};
-use crate::scene::{Attenuation, Scene, SceneLight};
+use crate::scene::{AlphaMode, Attenuation, Scene, SceneLight};
 use crate::shading::LitTerms;
 pub use crate::shading::{SelfShadow, SpecularFilter, SpecularShadow};
-use crate::state::{Blend, PassState, Sampler};
+use crate::state::{Blend, BlendFactor, PassState, Sampler};
 use crate::technique::{LitProgram, ParallaxProgram, Pass, Program};
 
 /// The technique's name.
@@ -131,7 +131,7 @@ pub fn validate(scene: &Scene, options: &SinglePassOptions) -> Result<(), CoreEr
                 return Err(CoreError::Unsupported { technique: "single-pass", feature: Feature::RoughnessFilter });
             }
             let size = |t: &Rgba8Mips| (t.width(), t.height());
-            if let Some(r) = &options.roughness_map
+            if let Some(r) = options.roughness_map.as_ref().or(m.roughness_map.as_ref())
                 && size(r) != size(&m.normal_map)
             {
                 return Err(CoreError::RoughnessSize { roughness: size(r), normal_map: size(&m.normal_map) });
@@ -235,6 +235,7 @@ pub fn passes(scene: &Scene, options: &SinglePassOptions) -> Result<Vec<Pass>, C
     let mut passes = Vec::new();
     for (o, object) in scene.objects.iter().enumerate() {
         let m = &object.material;
+        let blended = m.alpha == AlphaMode::Blend;
         for (l, light) in scene.lights.iter().enumerate() {
             let terms =
                 LitTerms::of(m, light, l == 0, options.self_shadow, options.specular_shadow, options.specular_filter);
@@ -244,11 +245,15 @@ pub fn passes(scene: &Scene, options: &SinglePassOptions) -> Result<Vec<Pass>, C
                 normal_texels: m.normal_texels,
                 decal: m.decal.clone(),
                 gloss: options.gloss.clone(),
+                // A map given explicitly, else the material's own (a glTF's roughness), else none:
+                // the backend makes one from the normal map.
                 roughness_map: match options.specular_filter {
-                    SpecularFilter::RoughnessMap => options.roughness_map.clone(),
+                    SpecularFilter::RoughnessMap => options.roughness_map.clone().or_else(|| m.roughness_map.clone()),
                     _ => None,
                 },
                 sampler: options.sampler.for_material(&m.sampler),
+                occlusion: m.occlusion.clone(),
+                decal_alpha: blended,
                 terms,
                 normalize: options.normalize,
                 cube_size: options.cube_size,
@@ -269,7 +274,16 @@ pub fn passes(scene: &Scene, options: &SinglePassOptions) -> Result<Vec<Pass>, C
                     None => None,
                 },
             };
-            let state = if l == 0 { PassState::OPAQUE } else { PassState::equal(Blend::ADD) };
+            let state = match (l == 0, blended) {
+                (true, false) => PassState::OPAQUE,
+                (false, false) => PassState::equal(Blend::ADD),
+                // α·surface + (1 − α)·behind, each further light's terms added times α.
+                (true, true) => PassState {
+                    blend: Blend::new(BlendFactor::SrcAlpha, BlendFactor::OneMinusSrcAlpha),
+                    ..PassState::OPAQUE
+                },
+                (false, true) => PassState::equal(Blend::new(BlendFactor::SrcAlpha, BlendFactor::One)),
+            };
             passes.push(Pass { object: o, light: l, snapshot: None, state, program: Program::Lit(Box::new(program)) });
         }
     }

@@ -55,6 +55,7 @@ fn shared_edges_have_no_gaps_and_no_double_hits() {
         blend: Blend::new(BlendFactor::One, BlendFactor::One),
         color_mask: [true; 4],
         cull_back: true,
+        alpha_test: None,
     };
     let state = DrawState::new(pass, 1);
     draw(&mut fb, &verts, &tris, &state, &Show(1.0 / 255.0));

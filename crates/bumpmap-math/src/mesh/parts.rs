@@ -1,9 +1,27 @@
 //! Cutting a mesh into parts and giving a part back faces: what a glTF primitive with its own
-//! material, and a double-sided one (glTF 2.0 §3.9.6), need of the geometry.
+//! material, and a double-sided one (glTF 2.0 §3.9.6), need of the geometry; and how a part's
+//! surface covers what is behind it ([`AlphaMode`]).
 
 use std::collections::HashMap;
 
 use super::Mesh;
+
+/// How a part's alpha (its base colour's) shows: glTF 2.0 §3.9.4's `alphaMode`, with
+/// `alphaCutoff` for MASK. The file reader and the renderers share this one definition.
+#[derive(Clone, Copy, Debug, PartialEq, Default)]
+pub enum AlphaMode {
+    /// `OPAQUE`: alpha ignored; the surface hides what is behind it.
+    #[default]
+    Opaque,
+    /// `MASK`: cut out where the alpha is below `cutoff`, opaque elsewhere.
+    Mask {
+        /// `alphaCutoff`, in [0, 1] (glTF's default 0.5).
+        cutoff: f32,
+    },
+    /// `BLEND`: `alpha · surface + (1 − alpha) · behind`, drawn after the opaque parts, the
+    /// farthest first.
+    Blend,
+}
 
 impl Mesh {
     /// A mesh of `triangles` (indices into this mesh) and only the vertices they use, every

@@ -107,21 +107,25 @@ impl Gltf {
                 None => format!(r#"{{"source":{i}}}"#),
             })
             .collect();
-        // glTF wants no empty arrays (the validator's EMPTY_ENTITY): samplers only when some.
+        // glTF wants no empty arrays (the validator's EMPTY_ENTITY): samplers, textures and images
+        // only when some.
         let samplers =
             if self.samplers.is_empty() { String::new() } else { format!(r#","samplers":[{}]"#, list(&self.samplers)) };
+        let images = if self.images.is_empty() {
+            String::new()
+        } else {
+            format!(r#","textures":[{}],"images":[{}]"#, list(&textures), list(&self.images))
+        };
         let used = if self.extensions_used.is_empty() {
             String::new()
         } else {
             format!(r#","extensionsUsed":{:?}"#, self.extensions_used)
         };
         format!(
-            r#"{{"asset":{{"version":"2.0"}},"scene":0,"scenes":[{{"nodes":{roots:?}}}],"nodes":[{}],"meshes":[{}],"materials":[{}],"textures":[{}],"images":[{}]{samplers},"buffers":[{{"byteLength":{},"uri":"data:application/octet-stream;base64,{}"}}],"bufferViews":[{}],"accessors":[{}]{used}}}"#,
+            r#"{{"asset":{{"version":"2.0"}},"scene":0,"scenes":[{{"nodes":{roots:?}}}],"nodes":[{}],"meshes":[{}],"materials":[{}]{images}{samplers},"buffers":[{{"byteLength":{},"uri":"data:application/octet-stream;base64,{}"}}],"bufferViews":[{}],"accessors":[{}]{used}}}"#,
             list(&self.nodes),
             list(&self.meshes),
             list(&self.materials),
-            list(&textures),
-            list(&self.images),
             self.bin.len(),
             base64_encode(&self.bin),
             list(&self.views),
@@ -168,4 +172,13 @@ pub fn color_png(rgb: [u8; 3]) -> Vec<u8> {
 
 fn base64_encode(bytes: &[u8]) -> String {
     base64::encode(bytes)
+}
+
+/// A 16×4 RGBA PNG whose texel in column `x` is `f(x)`.
+pub fn columns_png(f: impl Fn(usize) -> [u8; 4]) -> Vec<u8> {
+    let mut png = Vec::new();
+    image::RgbaImage::from_fn(16, 4, |x, _| image::Rgba(f(x as usize)))
+        .write_to(&mut std::io::Cursor::new(&mut png), image::ImageFormat::Png)
+        .expect("PNG");
+    png
 }
