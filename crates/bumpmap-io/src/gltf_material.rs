@@ -168,17 +168,28 @@ pub(crate) fn material_name(m: &gltf::Material) -> String {
     }
 }
 
-/// Checks what the specification bounds (an `alphaCutoff` in [0, 1]) and returns what the
-/// material asks for that is not drawn.
+/// Checks what the specification bounds to [0, 1] and is drawn (`alphaCutoff`, the occlusion's
+/// `strength`, `emissiveFactor`, `roughnessFactor`) and returns what the material asks for that
+/// is not drawn.
 pub(crate) fn check(path: &Path, material: &gltf::Material) -> Result<Vec<&'static str>, IoError> {
-    if let Some(cutoff) = material.alpha_cutoff()
-        && !(0.0..=1.0).contains(&cutoff)
-    {
-        let name = material_name(material);
-        return Err(mesh_err(path, format!("material {name}'s alphaCutoff is {cutoff}; glTF 2.0 wants it in [0, 1]")));
+    let pbr = material.pbr_metallic_roughness();
+    let emissive = material.emissive_factor();
+    let bounded = [
+        ("alphaCutoff", material.alpha_cutoff()),
+        ("occlusionTexture.strength", material.occlusion_texture().map(|o| o.strength())),
+        ("emissiveFactor", emissive.into_iter().find(|c| !(0.0..=1.0).contains(c))),
+        ("pbrMetallicRoughness.roughnessFactor", Some(pbr.roughness_factor())),
+    ];
+    for (what, value) in bounded {
+        if let Some(v) = value
+            && !(0.0..=1.0).contains(&v)
+        {
+            let name = material_name(material);
+            let v = if what == "emissiveFactor" { format!("{emissive:?}") } else { v.to_string() };
+            return Err(mesh_err(path, format!("material {name}'s {what} is {v}; glTF 2.0 wants it in [0, 1]")));
+        }
     }
     let mut left_out = Vec::new();
-    let pbr = material.pbr_metallic_roughness();
     if pbr.metallic_roughness_texture().is_some() && pbr.metallic_factor() > 0.0 {
         left_out.push("metalness (metallicRoughnessTexture's blue: reflections of an environment)");
     }

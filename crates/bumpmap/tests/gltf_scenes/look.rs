@@ -241,3 +241,35 @@ fn the_roughness_of_a_metallic_roughness_texture_reaches_the_roughness_map_techn
         assert!(apart < 30.0, "{backend}: the two roughnesses draw differently ({apart:.1} dB)");
     }
 }
+
+#[test]
+fn a_look_the_specification_bounds_otherwise_is_refused_naming_the_material_and_the_value() {
+    let g = occluded(Some(1.0));
+    let strength = refusal("occlusion_strength", &g, |j| j.replace(r#""strength":1"#, r#""strength":2"#));
+    assert!(strength.contains("occlusionTexture.strength is 2"), "{strength}");
+    let member =
+        |extra: &'static str| move |j: String| j.replace(r#""strength":1}"#, &format!(r#""strength":1}}{extra}"#));
+    let emissive = refusal("emissive_factor", &g, member(r#","emissiveFactor":[2,0,0]"#));
+    assert!(emissive.contains("emissiveFactor is [2.0, 0.0, 0.0]"), "{emissive}");
+    let roughness = refusal("roughness_factor", &g, member(r#","pbrMetallicRoughness":{"roughnessFactor":-1}"#));
+    assert!(roughness.contains("roughnessFactor is -1"), "{roughness}");
+    let transform = refusal("occlusion_transform", &g, |j| {
+        j.replace(r#""strength":1}"#, r#""strength":1,"extensions":{"KHR_texture_transform":{"scale":[1e39,1]}}}"#)
+    });
+    assert!(transform.contains("occlusionTexture") && transform.contains("finite"), "{transform}");
+    let emissive_transform = refusal(
+        "emissive_transform",
+        &g,
+        member(r#","emissiveTexture":{"index":0,"extensions":{"KHR_texture_transform":{"rotation":1e39}}}"#),
+    );
+    assert!(
+        emissive_transform.contains("emissiveTexture") && emissive_transform.contains("finite"),
+        "{emissive_transform}"
+    );
+    let missing = refusal("occlusion_missing", &g, |j| {
+        let start = j.find(r#""images":[{"uri":""#).expect("an image") + r#""images":[{"uri":""#.len();
+        let end = start + j[start..].find('"').expect("the URI ends");
+        format!("{}missing.png{}", &j[..start], &j[end..])
+    });
+    assert!(missing.contains("occlusionTexture") && missing.contains("missing.png"), "{missing}");
+}
