@@ -34,6 +34,11 @@ pub(super) fn finish(
     sampler: Sampler,
     blends: bool,
 ) -> Result<Vec<Pass>, CoreError> {
+    // Most scenes have nothing to add or reorder: their pass list is returned as it is.
+    let plain = |m: &crate::scene::Material| m.alpha == AlphaMode::Opaque && m.emission.is_none();
+    if scene.objects.iter().all(|o| plain(&o.material)) {
+        return Ok(passes);
+    }
     let mut groups: Vec<(usize, Vec<Pass>)> = Vec::new();
     for pass in passes {
         match groups.last_mut() {
