@@ -253,7 +253,14 @@ fn tangents<'py>(
         }
     }
     let computed = normals.is_empty();
-    let mut mesh = Mesh { positions, normals, texcoords, tangents: Vec::new(), indices: arrays::triangles(indices)? };
+    let mut mesh = Mesh {
+        positions,
+        normals,
+        texcoords,
+        tangents: Vec::new(),
+        colors: Vec::new(),
+        indices: arrays::triangles(indices)?,
+    };
     mesh.validate().map_err(|e| PyValueError::new_err(format!("tangents(): {e}")))?;
     if computed {
         mesh.compute_normals();

@@ -413,6 +413,21 @@ pub struct CombinerSetup {
     pub constant1: Vec4,
 }
 
+impl CombinerSetup {
+    /// Whether any variable of a general stage or of the final combiner reads `register`
+    /// (`GL_SPARE0_PLUS_SECONDARY_COLOR_NV` reads SPARE0 and SECONDARY_COLOR).
+    pub fn reads(&self, register: Register) -> bool {
+        let stages = self.stages.iter().flat_map(|s| [s.rgb, s.alpha]).flat_map(|p| [p.a, p.b, p.c, p.d]);
+        let f = &self.final_combiner;
+        stages.clone().any(|i| i.register == register)
+            || [f.a, f.b, f.c, f.d, f.e, f.f, f.g].iter().any(|i| match i.source {
+                FinalSource::Register(r) => r == register,
+                FinalSource::ETimesF => false,
+                FinalSource::Spare0PlusSecondary => matches!(register, Register::Spare0 | Register::SecondaryColor),
+            })
+    }
+}
+
 impl Default for CombinerSetup {
     fn default() -> Self {
         Self {

@@ -27,6 +27,25 @@ pub fn decal() -> CombinerSetup {
     CombinerSetup { stages: vec![stage], final_combiner, constant0: Vec4::ZERO, constant1: Vec4::ZERO }
 }
 
+/// Pass 1 for vertices with colours: the decal times the interpolated colour, RGB and alpha
+/// (`texture0 · PRIMARY_COLOR`, what `GL_MODULATE` gives with a colour array; glTF's
+/// `baseColorTexture · COLOR_0`), or the colour alone without a texture (`textured` false).
+pub fn vertex_colored_decal(textured: bool) -> CombinerSetup {
+    let texel = |usage| if textured { Input::new(Texture0, UnsignedIdentity, usage) } else { Input::one(usage) };
+    let times_color = |usage| Portion {
+        a: texel(usage),
+        b: Input::new(PrimaryColor, UnsignedIdentity, usage),
+        c: Input::zero(usage),
+        d: Input::zero(usage),
+        outputs: Outputs { ab: Some(Spare0), ..Outputs::DISCARD },
+    };
+    let mut setup = decal();
+    setup.stages[0] = GeneralStage { rgb: times_color(Rgb), alpha: times_color(Alpha) };
+    setup.final_combiner.d = FinalInput::reg(Spare0, Rgb);
+    setup.final_combiner.g = FinalInput::reg(Spare0, Alpha);
+    setup
+}
+
 /// A material's emission added after its lit passes (glTF `emissiveTexture`, the factor folded
 /// into the texels): texture 0's RGB; alpha texture 1's (the decal's, for a blended material,
 /// under `glBlendFunc(GL_SRC_ALPHA, GL_ONE)`) or 1.

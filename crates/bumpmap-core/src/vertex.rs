@@ -55,12 +55,15 @@ pub mod var {
     /// How far the surface falls below its tangent plane, in heights per unit of s² and t²
     /// (2 slots): `−½ N·∂²P/∂s² / depth`, likewise for t; zero on flat surfaces and meshes.
     pub const CURVATURE: usize = 38;
+    /// The vertex colour, linear RGBA (4 slots): what multiplies the base colour, for meshes
+    /// with colours only (glTF `COLOR_0`); a pass reads it where its program says so.
+    pub const COLOR: usize = 40;
     /// Slots in use.
-    pub const COUNT: usize = 40;
+    pub const COUNT: usize = 44;
 }
 
-/// Varyings per vertex (texture coordinates, light and half-angle vectors, …): ten vec4s.
-pub const MAX_VARYINGS: usize = 40;
+/// Varyings per vertex (texture coordinates, light and half-angle vectors, …): eleven vec4s.
+pub const MAX_VARYINGS: usize = 44;
 
 /// A vertex after the vertex stage: clip-space position and its varyings.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -117,7 +120,7 @@ impl Scene {
 
     /// The vertex stage for one object and one light: clip position, texture coordinates and
     /// the tangent-space L, H and V of every vertex. Fails, rather than aborting, when the
-    /// machine cannot hold the outputs (176 bytes a vertex).
+    /// machine cannot hold the outputs (192 bytes a vertex).
     pub fn vertices(&self, object: &SceneObject, light: &SceneLight, aspect: f32) -> Result<Vec<Vertex>, CoreError> {
         use rayon::prelude::*;
         let mesh = &object.mesh;
@@ -177,6 +180,9 @@ impl Scene {
                 varyings[var::SPOT..var::SPOT + 3].copy_from_slice(&axis.to_array());
                 let c = spot.clip_from_world(at) * (object.world_from_object * p.extend(1.0));
                 varyings[var::PROJ..var::PROJ + 3].copy_from_slice(&[0.5 * (c.x + c.w), 0.5 * (c.y + c.w), c.w]);
+            }
+            if let Some(color) = mesh.colors.get(i) {
+                varyings[var::COLOR..var::COLOR + 4].copy_from_slice(&color.to_array());
             }
             Vertex { clip: clip_from_object * p.extend(1.0), varyings }
         }));

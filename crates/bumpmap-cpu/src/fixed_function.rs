@@ -3,8 +3,8 @@
 //!
 //! Each unit reads its coordinates from named varyings, samples a 2D texture (λ from the quad's
 //! derivatives, once per quad) or a cube map, and loads `TEXTURE<i>`; SPARE0's alpha starts as
-//! texture 0's alpha, PRIMARY_COLOR is white and SECONDARY_COLOR black (the techniques here do
-//! not use per-vertex colour); then the combiners run over the whole batch.
+//! texture 0's alpha, PRIMARY_COLOR is the interpolated vertex colour where the pass asks for
+//! it and white otherwise, SECONDARY_COLOR black; then the combiners run over the whole batch.
 
 use std::sync::Arc;
 
@@ -33,6 +33,8 @@ pub struct TextureUnit {
 pub struct FixedFunction {
     pub units: Vec<TextureUnit>,
     pub combiners: Combiners,
+    /// The first of four varying slots holding PRIMARY_COLOR (RGBA), or `None`: white.
+    pub primary_color: Option<usize>,
 }
 
 /// Per-thread working memory: the register file and packed texture coordinates.
@@ -159,6 +161,12 @@ impl FragmentShader for FixedFunction {
         }
         if self.combiners.writes(Register::PrimaryColor) || self.combiners.writes(Register::SecondaryColor) {
             load_colors(regs, n8);
+        }
+        if let Some(first) = self.primary_color {
+            let primary = regs.reg_mut(Register::PrimaryColor);
+            for (c, lanes) in primary.iter_mut().enumerate() {
+                batch.pack(first + c, lanes);
+            }
         }
         self.combiners.run(regs, n, out);
     }

@@ -77,7 +77,8 @@ impl CpuRenderer {
                         .map(|u| Ok(TextureUnit { binding: self.binding(&u.binding)?, sampler: u.sampler }))
                         .collect::<Result<_, CpuError>>()?;
                     let combiners = Combiners::new(program.setup.clone(), program.precision)?;
-                    let shader = FixedFunction { units, combiners };
+                    let primary_color = program.vertex_color.then_some(bumpmap_core::vertex::var::COLOR);
+                    let shader = FixedFunction { units, combiners, primary_color };
                     self.raster.draw(fb, verts, indices, &state, &shader);
                 }
                 Program::Lit(program) => {

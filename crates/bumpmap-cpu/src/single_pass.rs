@@ -395,6 +395,16 @@ impl FragmentShader for SinglePass<'_> {
                 sc.occlusion[j] *= sc.occlusion_map[0][j];
             }
         }
+        if o.vertex_color {
+            // The base colour, alpha too, times the interpolated vertex colour (after every
+            // lookup: the packed coordinates are free).
+            for c in 0..4 {
+                batch.pack(var::COLOR + c, &mut sc.coords[0]);
+                for j in 0..n {
+                    sc.decal[c][j] *= sc.coords[0][j];
+                }
+            }
+        }
         lighting_lanes(&o.terms, sc, object_space, n, out);
         if o.decal_alpha {
             // A blended material's pass: the decal's alpha weighs it against what is behind.

@@ -355,8 +355,8 @@ impl Gen {
 
 /// The whole fragment shader of a combiner pass: each texture unit samples its texture (2D at
 /// varyings (s, t) with implicit derivatives, or the cube map at varyings (r, r+1, r+2), level
-/// 0) into `TEXTURE<i>`, PRIMARY_COLOR is white and SECONDARY_COLOR black (the techniques use no
-/// per-vertex colour), SPARE0's alpha starts as texture 0's alpha (0 without units), then
+/// 0) into `TEXTURE<i>`, PRIMARY_COLOR is the interpolated vertex colour where the program asks
+/// for it and white otherwise, SECONDARY_COLOR black, SPARE0's alpha starts as texture 0's alpha (0 without units), then
 /// [`combiners_wgsl`]'s function. Binding 3i is unit i's 2D texture, 3i + 1 its cube texture,
 /// 3i + 2 its sampler. Precondition: at most four units and a setup that validates.
 pub fn fragment_shader(p: &bumpmap_core::technique::CombinerProgram) -> String {
@@ -373,7 +373,13 @@ pub fn fragment_shader(p: &bumpmap_core::technique::CombinerProgram) -> String {
     }
     s += &combiners_wgsl(&p.setup, p.precision);
     s += "\n@fragment\nfn fs_combiners(f: Varyings) -> @location(0) vec4<f32> {\n    var regs: Registers;\n";
-    s += "    regs.primary = vec4<f32>(1.0);\n    regs.secondary = vec4<f32>(0.0);\n";
+    let primary = if p.vertex_color {
+        let k = bumpmap_core::vertex::var::COLOR;
+        format!("vec4<f32>({}, {}, {}, {})", slot(k), slot(k + 1), slot(k + 2), slot(k + 3))
+    } else {
+        "vec4<f32>(1.0)".to_string()
+    };
+    let _ = writeln!(s, "    regs.primary = {primary};\n    regs.secondary = vec4<f32>(0.0);");
     for (i, unit) in p.units.iter().enumerate().take(4) {
         let _ = match unit.binding {
             Binding::TwoD { s: ks, t: kt, .. } => writeln!(

@@ -184,6 +184,7 @@ pub struct LitVariant {
     positional_light: bool,
     occlusion_map: bool,
     decal_alpha: bool,
+    vertex_color: bool,
 }
 
 impl Default for LitVariant {
@@ -211,6 +212,7 @@ impl Default for LitVariant {
             positional_light: false,
             occlusion_map: false,
             decal_alpha: false,
+            vertex_color: false,
         }
     }
 }
@@ -242,6 +244,7 @@ impl LitVariant {
             positional_light: matches!(p.light.light, bumpmap_math::lighting::Light::Positional(_)),
             occlusion_map: p.occlusion.is_some(),
             decal_alpha: p.decal_alpha,
+            vertex_color: p.vertex_color,
         }
     }
 
@@ -252,7 +255,7 @@ impl LitVariant {
 
     /// The override constants by their names in `lit.wgsl`, with their values: the one list
     /// the pipeline's constants and the prelude's declarations are made from.
-    pub(crate) fn overrides(&self) -> [(&'static str, Override); 21] {
+    pub(crate) fn overrides(&self) -> [(&'static str, Override); 22] {
         use Override::{Code, Flag, Float};
         [
             (SELF_SHADOW.name, Code(self.self_shadow)),
@@ -276,6 +279,7 @@ impl LitVariant {
             ("POSITIONAL_LIGHT", Flag(self.positional_light)),
             ("OCCLUSION_MAP", Flag(self.occlusion_map)),
             ("DECAL_ALPHA", Flag(self.decal_alpha)),
+            ("VERTEX_COLOR", Flag(self.vertex_color)),
         ]
     }
 

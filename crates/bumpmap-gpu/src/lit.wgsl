@@ -236,12 +236,16 @@ fn lit(f: Varyings) -> LitOut {
             normal = blinn_from_derivatives(normal, u.texels.x, u.texels.yz, vary3(f, VAR_PARAM_FRAME));
         }
     }
-    let decal = sample_map(decal_map, st, dx, dy);
+    var decal = sample_map(decal_map, st, dx, dy);
     var gloss = 1.0;
     if GLOSS == GLOSS_DECAL_ALPHA {
         gloss = decal.a;
     } else if GLOSS == GLOSS_MAP {
         gloss = sample_map(gloss_map, st, dx, dy).r;
+    }
+    // The base colour, alpha too, times the interpolated vertex colour (glTF COLOR_0).
+    if VERTEX_COLOR {
+        decal = decal * vec4<f32>(vary3(f, VAR_COLOR), vary(f, VAR_COLOR + 3u));
     }
     var l: vec3<f32>;
     var h: vec3<f32>;

@@ -19,7 +19,7 @@ use bumpmap_core::vertex::{MAX_VARYINGS, var};
 use crate::lit::{self, LitVariant, Override};
 
 /// The varying slots by the names WGSL uses.
-pub(crate) const SLOTS: [(&str, usize); 17] = [
+pub(crate) const SLOTS: [(&str, usize); 18] = [
     ("VAR_S", var::S),
     ("VAR_T", var::T),
     ("VAR_L", var::L),
@@ -36,6 +36,7 @@ pub(crate) const SLOTS: [(&str, usize); 17] = [
     ("VAR_TEX_LIGHT", var::TEX_LIGHT),
     ("VAR_TANGENT_FROM_TEX", var::TANGENT_FROM_TEX),
     ("VAR_CURVATURE", var::CURVATURE),
+    ("VAR_COLOR", var::COLOR),
     ("VAR_COUNT", var::COUNT),
 ];
 

@@ -166,8 +166,16 @@ fn paper_setups() -> Vec<(String, CombinerSetup)> {
         ("specular_ramp".into(), setups::specular_ramp()),
         ("GL initial state".into(), CombinerSetup::default()),
     ];
-    for (shadow, decal) in [(false, false), (false, true), (true, false), (true, true)] {
-        v.push((format!("decal_times_diffuse(shadow={shadow}, decal={decal})"), decal_times_diffuse(shadow, decal)));
+    for shadow in [false, true] {
+        for decal in [false, true] {
+            for color in [false, true] {
+                let name = format!("decal_times_diffuse(shadow={shadow}, decal={decal}, vertex colour={color})");
+                v.push((name, decal_times_diffuse(shadow, decal, color)));
+            }
+        }
+    }
+    for textured in [false, true] {
+        v.push((format!("vertex_colored_decal(textured={textured})"), setups::vertex_colored_decal(textured)));
     }
     v
 }

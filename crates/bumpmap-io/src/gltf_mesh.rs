@@ -111,7 +111,6 @@ pub(crate) fn from_gltf(
     let (mut had_normals, mut had_tangents, mut any_texcoords) = (true, true, false);
     let mut turned = false;
     let mut left_out: Vec<(gltf::mesh::Mode, usize)> = Vec::new();
-    let mut coloured = 0;
     let buffers = std::mem::take(&mut file.buffers);
     for &(mesh_index, world_from_local) in &instances {
         let gmesh = &meshes[mesh_index];
@@ -131,9 +130,6 @@ pub(crate) fn from_gltf(
                     None => left_out.push((mode, 1)),
                 }
                 continue;
-            }
-            if prim.get(&gltf::Semantic::Colors(0)).is_some() {
-                coloured += 1;
             }
             let reader = prim.reader(|b| buffers.get(b.index()).map(|d| &d[..]));
             let positions: Vec<Vec3> = reader
@@ -177,6 +173,15 @@ pub(crate) fn from_gltf(
                     .collect()
                 })
                 .unwrap_or_default();
+            // Linear RGB(A), normalized integers to [0, 1], RGB with alpha 1 (glTF 2.0 §3.7.2.1).
+            let colors: Vec<Vec4> =
+                reader.read_colors(0).map(|r| r.into_rgba_f32().map(Vec4::from).collect()).unwrap_or_default();
+            if !colors.is_empty() && colors.len() != n {
+                return Err(mesh_err(
+                    path,
+                    format!("mesh {mesh_index}: COLOR_0 has {} entries for {n} vertices", colors.len()),
+                ));
+            }
             let listed: Vec<u32> = match reader.read_indices() {
                 Some(r) => r.into_u32().collect(),
                 None => (0..n as u32).collect(),
@@ -216,6 +221,13 @@ pub(crate) fn from_gltf(
                 mesh.texcoords.extend(std::iter::repeat_n(Vec2::ZERO, n));
             }
             mesh.tangents.extend(tangents);
+            // White for the vertices of primitives without colours, once one has them.
+            if !colors.is_empty() {
+                mesh.colors.resize(base as usize, Vec4::ONE);
+                mesh.colors.extend(colors);
+            } else if !mesh.colors.is_empty() {
+                mesh.colors.resize(mesh.positions.len(), Vec4::ONE);
+            }
             let start = mesh.indices.len();
             mesh.indices.extend(indices.into_iter().map(|t| {
                 if mirrored { [base + t[0], base + t[2], base + t[1]] } else { [base + t[0], base + t[1], base + t[2]] }
@@ -225,11 +237,6 @@ pub(crate) fn from_gltf(
     }
     for (mode, count) in &left_out {
         notes.push(format!("{count} {mode:?} primitive(s) left out: only triangles are drawn"));
-    }
-    if coloured > 0 {
-        notes.push(format!(
-            "COLOR_0 (vertex colours) of {coloured} primitive(s): not drawn; their base colour is their material's alone"
-        ));
     }
     if parts.is_empty() {
         return Err(mesh_err(

@@ -145,6 +145,9 @@ pub fn save_gltf_into(
         let tangents = &mut tangents.iter().flat_map(|t| t.truncate().extend(gltf_handedness(t.w)).to_array());
         add("TANGENT", "VEC4", floats(tangents), &mut push);
     }
+    if !mesh.colors.is_empty() {
+        add("COLOR_0", "VEC4", floats(&mut mesh.colors.iter().flat_map(|c| c.to_array())), &mut push);
+    }
     let index_view = accessors.len();
     push(mesh.indices.iter().flatten().flat_map(|i| i.to_le_bytes()).collect(), 34963);
     accessors.push(format!(

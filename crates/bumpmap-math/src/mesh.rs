@@ -21,6 +21,10 @@ pub struct Mesh {
     /// `xyz` = unit tangent T (along increasing s), `w` = ±1 handedness: `B = w · (N × T)`.
     /// Empty until generated or loaded.
     pub tangents: Vec<Vec4>,
+    /// RGBA vertex colours multiplying the base colour (the decal), in the decal's encoding
+    /// (a glTF's `COLOR_0`, linear in the file, is sRGB-encoded when loaded to draw); empty
+    /// when the file has none (white).
+    pub colors: Vec<Vec4>,
     /// Triangles as vertex indices.
     pub indices: Vec<[u32; 3]>,
 }
@@ -101,6 +105,7 @@ impl Mesh {
             ("normals", self.normals.len()),
             ("texture coordinates", self.texcoords.len()),
             ("tangents", self.tangents.len()),
+            ("colours", self.colors.len()),
         ] {
             if got != 0 && got != n {
                 return Err(MeshError::CountMismatch { what, got, vertices: n });
@@ -140,6 +145,11 @@ impl Mesh {
         {
             return bad("tangent", i, self.tangents[i].to_string());
         }
+        if any_in_blocks(&self.colors, |c| !c.is_finite())
+            && let Some(i) = self.colors.iter().position(|c| !c.is_finite())
+        {
+            return bad("colour", i, self.colors[i].to_string());
+        }
         Ok(())
     }
 
@@ -155,6 +165,11 @@ impl Mesh {
             }
         }
         self.normals = sums.into_iter().map(|n| n.normalize_or(Vec3::Z)).collect();
+    }
+
+    /// Whether the vertices carry colours ([`Mesh::colors`]).
+    pub fn has_colors(&self) -> bool {
+        !self.colors.is_empty()
     }
 
     /// Vertices.

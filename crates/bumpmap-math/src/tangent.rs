@@ -177,6 +177,7 @@ fn ours(mesh: &Mesh, options: &TangentOptions) -> (Mesh, TangentReport) {
     }
     let (mut positions, mut normals, mut texcoords) =
         (copy(&mesh.positions, total), copy(&mesh.normals, total), copy(&mesh.texcoords, total));
+    let mut colors = copy(&mesh.colors, if mesh.colors.is_empty() { 0 } else { total });
     tangents.reserve_exact(report.vertices_split);
     let mut first_new = vec![0u32; nv];
     for &(v, t) in extra.iter().flatten() {
@@ -187,6 +188,9 @@ fn ours(mesh: &Mesh, options: &TangentOptions) -> (Mesh, TangentReport) {
         positions.push(mesh.positions[v]);
         normals.push(mesh.normals[v]);
         texcoords.push(mesh.texcoords[v]);
+        if !mesh.colors.is_empty() {
+            colors.push(mesh.colors[v]);
+        }
         tangents.push(t);
     }
     let indices = mesh
@@ -201,5 +205,5 @@ fn ours(mesh: &Mesh, options: &TangentOptions) -> (Mesh, TangentReport) {
             })
         })
         .collect();
-    (Mesh { positions, normals, texcoords, tangents, indices }, report)
+    (Mesh { positions, normals, texcoords, tangents, colors, indices }, report)
 }

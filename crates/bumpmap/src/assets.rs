@@ -452,9 +452,13 @@ fn srgb_decode(b: u8) -> f32 {
 
 /// Linear light as an sRGB-encoded byte (clamped to [0, 1]).
 fn srgb_encode(l: f32) -> u8 {
+    (srgb_encode_unit(l) * 255.0).round() as u8
+}
+
+/// Linear light (clamped to [0, 1]) sRGB-encoded, in [0, 1].
+fn srgb_encode_unit(l: f32) -> f32 {
     let l = l.clamp(0.0, 1.0);
-    let c = if l <= 0.0031308 { l * 12.92 } else { 1.055 * l.powf(1.0 / 2.4) - 0.055 };
-    (c * 255.0).round() as u8
+    if l <= 0.0031308 { l * 12.92 } else { 1.055 * l.powf(1.0 / 2.4) - 0.055 }
 }
 
 /// Loads a mesh file (OBJ, glTF, GLB) with tangents, and a glTF's material as `options` ask.
@@ -473,6 +477,12 @@ pub fn mesh_asset(loaded: bumpmap_io::LoadedMesh, path: &Path, options: &MeshLoa
             .map_err(|e| bumpmap_io::IoError::Mesh { path: path.to_path_buf(), reason: e.to_string() })?
             .0
     };
+    // COLOR_0 is linear light; it multiplies the decal, whose texels (like the framebuffer) are
+    // sRGB-encoded, so it is encoded the same way (as the base colour factor is).
+    let mut mesh = mesh;
+    for c in &mut mesh.colors {
+        *c = glam::Vec4::new(srgb_encode_unit(c.x), srgb_encode_unit(c.y), srgb_encode_unit(c.z), c.w.clamp(0.0, 1.0));
+    }
     let mut warnings: Vec<Warning> =
         loaded.notes.iter().map(|what| Warning::Ignored { path: path.to_path_buf(), what: what.clone() }).collect();
     let mut materials = Vec::with_capacity(loaded.materials.len());

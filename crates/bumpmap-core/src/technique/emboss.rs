@@ -12,7 +12,7 @@
 
 use glam::Vec3;
 
-use crate::combiners::{Precision, Scale};
+use crate::combiners::{Precision, Register, Scale};
 use crate::error::{CoreError, Feature};
 use crate::scene::{Attenuation, Scene};
 use crate::setups;
@@ -101,16 +101,23 @@ pub fn passes(scene: &Scene, options: &EmbossOptions) -> Result<Vec<Pass>, CoreE
             sampler: Sampler::LINEAR_CLAMP,
         };
         let color = scene.lights.first().map_or(Vec3::ONE, |l| l.color);
+        let colored = object.mesh.has_colors();
         let mut push = |state, units, setup: crate::combiners::CombinerSetup| {
             setup.validate()?;
-            let program = Program::Combiners(CombinerProgram { units, setup, precision: Precision::Float });
+            let vertex_color = colored && setup.reads(Register::PrimaryColor);
+            let program =
+                Program::Combiners(CombinerProgram { units, setup, precision: Precision::Float, vertex_color });
             passes.push(Pass { object: o, light: 0, snapshot: None, state, program });
             Ok::<_, CoreError>(())
         };
-        if let Some(decal) = &m.decal {
-            push(PassState::OPAQUE, vec![unit(decal.clone(), var::S, var::T)], setups::decal())?;
+        // The decal, times the vertex colours where the mesh has them.
+        let units: Vec<TextureUnit> = m.decal.iter().map(|decal| unit(decal.clone(), var::S, var::T)).collect();
+        if colored {
+            push(PassState::OPAQUE, units, setups::vertex_colored_decal(m.decal.is_some()))?;
+        } else if !units.is_empty() {
+            push(PassState::OPAQUE, units, setups::decal())?;
         }
-        let state = if m.decal.is_some() { PassState::equal(Blend::MODULATE) } else { PassState::OPAQUE };
+        let state = if m.decal.is_some() || colored { PassState::equal(Blend::MODULATE) } else { PassState::OPAQUE };
         let units = vec![unit(heights.clone(), var::S, var::T), unit(heights, shifted, shifted + 1), cube];
         push(state, units, setups::emboss(scale, m.ambient.extend(0.0), (m.diffuse * color).extend(0.0)))?;
     }

@@ -20,7 +20,12 @@ use glam::{Vec3, Vec4};
 use bumpmap_math::Encoding;
 
 use crate::combiners::{
-    CombinerSetup, ComponentUsage::*, FinalInput, InputMapping::UnsignedInvert, Precision, Register::*,
+    CombinerSetup,
+    ComponentUsage::*,
+    FinalInput, Input,
+    InputMapping::{UnsignedIdentity, UnsignedInvert},
+    Precision,
+    Register::*,
 };
 use crate::error::{CoreError, Feature};
 use crate::scene::{Attenuation, NormalSpace, Scene};
@@ -123,11 +128,14 @@ pub fn passes(scene: &Scene, options: &KilgardOptions) -> Result<Vec<Pass>, Core
         let normal_unit = unit_2d(m.normal_map.clone());
         let decal_unit = m.decal.clone().map(unit_2d);
         let has_specular = m.specular.max_element() > 0.0;
+        let colored = object.mesh.has_colors();
         let equal = |blend| PassState::equal(blend);
         for (l, light) in scene.lights.iter().enumerate() {
             let mut pass = |snapshot, state, units, setup: CombinerSetup| {
                 setup.validate()?;
-                let program = Program::Combiners(CombinerProgram { units, setup, precision: options.precision });
+                let vertex_color = colored && setup.reads(PrimaryColor);
+                let program =
+                    Program::Combiners(CombinerProgram { units, setup, precision: options.precision, vertex_color });
                 passes.push(Pass { object: o, light: l, snapshot, state, program });
                 Ok::<_, CoreError>(())
             };
@@ -136,12 +144,15 @@ pub fn passes(scene: &Scene, options: &KilgardOptions) -> Result<Vec<Pass>, Core
             let kd = (m.diffuse * light.color).extend(0.0);
             let ambient = m.ambient.extend(0.0);
             if first {
-                // Pass 1: the decal.
-                if let Some(decal) = &decal_unit {
-                    pass(named(0), PassState::OPAQUE, vec![decal.clone()], setups::decal())?;
+                // Pass 1: the decal (times the vertex colours, where the mesh has them).
+                let units: Vec<TextureUnit> = decal_unit.iter().cloned().collect();
+                if colored {
+                    pass(named(0), PassState::OPAQUE, units, setups::vertex_colored_decal(decal_unit.is_some()))?;
+                } else if !units.is_empty() {
+                    pass(named(0), PassState::OPAQUE, units, setups::decal())?;
                 }
                 // Pass 2: ambient + diffuse, s_self to alpha.
-                let state = if decal_unit.is_some() { equal(Blend::MODULATE) } else { PassState::OPAQUE };
+                let state = if decal_unit.is_some() || colored { equal(Blend::MODULATE) } else { PassState::OPAQUE };
                 let setup = diffuse_setup(options.self_shadow, ambient, kd);
                 let mut units = vec![normal_unit.clone(), cube(var::L)];
                 // An occlusion map multiplies the ambient term only, from a third unit.
@@ -155,7 +166,7 @@ pub fn passes(scene: &Scene, options: &KilgardOptions) -> Result<Vec<Pass>, Core
                 pass(named(1), state, units, setup)?;
             } else {
                 // Extra light, pass a: decal · s_self · k_d · max(0, L·N') · |N'|, added.
-                let setup = decal_times_diffuse(options.self_shadow, decal_unit.is_some());
+                let setup = decal_times_diffuse(options.self_shadow, decal_unit.is_some(), colored);
                 let mut units = vec![normal_unit.clone(), cube(var::L)];
                 units.extend(decal_unit.clone());
                 let blend = Blend {
@@ -193,20 +204,31 @@ fn diffuse_setup(self_shadow: bool, ambient: Vec4, diffuse: Vec4) -> CombinerSet
 }
 
 /// Appendix G's first stage, then `spare0 = max(0, L·N')·|N'|`, and in the final combiner
-/// `s_self · spare0 · decal` (texture 2) with alpha 0.
-pub fn decal_times_diffuse(self_shadow: bool, has_decal: bool) -> CombinerSetup {
+/// `s_self · spare0 · decal` (texture 2) with alpha 0. With `vertex_color` the decal is
+/// multiplied by `PRIMARY_COLOR` first, in stage 1's free C·D (`spare1`).
+pub fn decal_times_diffuse(self_shadow: bool, has_decal: bool, vertex_color: bool) -> CombinerSetup {
     let mut setup = diffuse_setup(self_shadow, Vec4::ZERO, Vec4::ONE);
-    let f = &mut setup.final_combiner;
-    f.a = FinalInput::reg(Spare0, Alpha);
-    f.b = FinalInput::E_TIMES_F;
-    f.c = FinalInput::ZERO;
-    f.d = FinalInput::ZERO;
-    f.e = FinalInput::reg(Spare0, Rgb);
-    f.f = if has_decal {
+    let decal = if has_decal {
         FinalInput::reg(Texture2, Rgb)
     } else {
         FinalInput { mapping: UnsignedInvert, ..FinalInput::ZERO }
     };
-    f.g = FinalInput::reg(Zero, Alpha);
+    let f = if vertex_color {
+        let rgb = &mut setup.stages[1].rgb;
+        rgb.c = if has_decal { Input::new(Texture2, UnsignedIdentity, Rgb) } else { Input::one(Rgb) };
+        rgb.d = Input::new(PrimaryColor, UnsignedIdentity, Rgb);
+        rgb.outputs.cd = Some(Spare1);
+        FinalInput::reg(Spare1, Rgb)
+    } else {
+        decal
+    };
+    let fc = &mut setup.final_combiner;
+    fc.a = FinalInput::reg(Spare0, Alpha);
+    fc.b = FinalInput::E_TIMES_F;
+    fc.c = FinalInput::ZERO;
+    fc.d = FinalInput::ZERO;
+    fc.e = FinalInput::reg(Spare0, Rgb);
+    fc.f = f;
+    fc.g = FinalInput::reg(Zero, Alpha);
     setup
 }

@@ -52,10 +52,16 @@ pub(super) fn finish(
             binding: Binding::TwoD { texture, s: var::S, t: var::T },
             sampler: sampler.for_material(&m.sampler),
         };
-        let combiners =
-            |units, setup| Program::Combiners(CombinerProgram { units, setup, precision: Precision::Float });
-        // Without a decal the alpha is the factor's, already 1 (the texel's product): nothing to cut.
-        if let (AlphaMode::Mask { cutoff }, Some(decal)) = (m.alpha, &m.decal) {
+        let colored = scene.objects[*o].mesh.has_colors();
+        let combiners = |units, setup: crate::combiners::CombinerSetup| {
+            let vertex_color = colored && setup.reads(crate::combiners::Register::PrimaryColor);
+            Program::Combiners(CombinerProgram { units, setup, precision: Precision::Float, vertex_color })
+        };
+        // Without a decal or vertex colours the alpha is the factor's, already 1 (the texel's
+        // product): nothing to cut.
+        if let AlphaMode::Mask { cutoff } = m.alpha
+            && (m.decal.is_some() || colored)
+        {
             if group.iter().any(writes_depth) {
                 return Err(CoreError::Unsupported { technique, feature: Feature::MaskWithDepth });
             }
@@ -64,7 +70,9 @@ pub(super) fn finish(
                 pass.state.depth_write = false;
             }
             let state = PassState { color_mask: [false; 4], alpha_test: Some(cutoff), ..PassState::OPAQUE };
-            let program = combiners(vec![unit(decal.clone())], setups::decal());
+            let units: Vec<TextureUnit> = m.decal.iter().map(|d| unit(d.clone())).collect();
+            let setup = if colored { setups::vertex_colored_decal(m.decal.is_some()) } else { setups::decal() };
+            let program = combiners(units, setup);
             group.insert(0, Pass { object: *o, light: 0, snapshot: None, state, program });
         }
         if let Some(emission) = &m.emission {

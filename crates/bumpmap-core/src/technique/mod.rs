@@ -114,7 +114,10 @@ impl Program {
     /// How many varyings (from slot 0) the program reads: a backend need not interpolate more.
     pub fn varyings_read(&self) -> usize {
         match self {
-            Program::Combiners(c) => c.units.iter().map(|u| u.binding.varyings_read()).max().unwrap_or(0),
+            Program::Combiners(c) => {
+                let units = c.units.iter().map(|u| u.binding.varyings_read()).max().unwrap_or(0);
+                if c.vertex_color { units.max(var::COLOR + 4) } else { units }
+            }
             Program::Lit(l) => l.varyings_read(),
         }
     }
@@ -129,6 +132,9 @@ pub struct CombinerProgram {
     pub setup: CombinerSetup,
     /// The datapath's precision.
     pub precision: Precision,
+    /// Whether `PRIMARY_COLOR` is the interpolated vertex colour ([`var::COLOR`], as
+    /// `glColorPointer` feeds it); otherwise white.
+    pub vertex_color: bool,
 }
 
 /// What a texture unit has bound, and its sampler state.
@@ -198,6 +204,9 @@ pub struct LitProgram {
     pub occlusion: Option<Arc<Rgba8Mips>>,
     /// Whether the fragment's alpha is the decal's (a blended material's pass), else 1.
     pub decal_alpha: bool,
+    /// Whether the decal (colour and alpha) is multiplied by the interpolated vertex colour
+    /// ([`var::COLOR`]); the gloss read from the decal's alpha is the texture's alone.
+    pub vertex_color: bool,
     /// The lighting coefficients and switches, per pass.
     pub terms: crate::shading::LitTerms,
     /// How L and H are renormalized per fragment.
@@ -232,8 +241,13 @@ pub struct ParallaxProgram {
 impl LitProgram {
     /// How many varyings (from slot 0) the program reads.
     pub fn varyings_read(&self) -> usize {
+        let read = self.varyings_read_uncoloured();
+        if self.vertex_color { read.max(var::COLOR + 4) } else { read }
+    }
+
+    fn varyings_read_uncoloured(&self) -> usize {
         if self.parallax.is_some() {
-            var::COUNT
+            var::CURVATURE + 2
         } else if matches!(self.normal_texels, crate::scene::NormalTexels::Derivatives { .. }) {
             var::PARAM_FRAME + 3
         } else if self.normal_space.is_object() {

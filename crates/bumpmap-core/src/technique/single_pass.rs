@@ -254,6 +254,7 @@ pub fn passes(scene: &Scene, options: &SinglePassOptions) -> Result<Vec<Pass>, C
                 sampler: options.sampler.for_material(&m.sampler),
                 occlusion: m.occlusion.clone(),
                 decal_alpha: blended,
+                vertex_color: object.mesh.has_colors(),
                 terms,
                 normalize: options.normalize,
                 cube_size: options.cube_size,

@@ -57,6 +57,7 @@ impl Mesh {
             normals: cut(&self.normals, &order),
             texcoords: cut(&self.texcoords, &order),
             tangents: cut(&self.tangents, &order),
+            colors: cut(&self.colors, &order),
             indices,
         }
     }
@@ -81,6 +82,7 @@ impl Mesh {
         for t in &mut self.tangents[tangents..] {
             *t = -*t;
         }
+        self.colors.extend_from_within(..);
         let triangles = self.indices.len();
         self.indices.extend_from_within(..);
         for t in &mut self.indices[triangles..] {

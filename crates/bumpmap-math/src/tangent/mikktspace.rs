@@ -234,6 +234,9 @@ pub(super) fn mikktspace(mesh: &Mesh) -> Result<(Mesh, TangentReport), MeshError
             out.positions.push(mesh.positions[v as usize]);
             out.normals.push(mesh.normals[v as usize]);
             out.texcoords.push(mesh.texcoords[v as usize]);
+            if !mesh.colors.is_empty() {
+                out.colors.push(mesh.colors[v as usize]);
+            }
             tangents.push(t);
             report.vertices_split += 1;
             (out.positions.len() - 1) as u32

@@ -179,3 +179,32 @@ fn corner_angles_of_a_right_triangle() {
     );
     assert_eq!(corner_angles([Vec3::ZERO, Vec3::ZERO, Vec3::Y])[0], 0.0);
 }
+
+#[test]
+fn vertex_colours_follow_their_vertices_through_splits_parts_and_back_faces() {
+    // Each vertex's colour names its position, so a colour left behind by a copy shows.
+    let mut mesh = mirrored_pair();
+    mesh.colors = mesh.positions.iter().map(|p| p.extend(1.0) * 0.5 + 0.5).collect();
+    let colour_of = |m: &Mesh, i: usize| m.positions[i].extend(1.0) * 0.5 + 0.5;
+    let check = |what: &str, m: &Mesh| {
+        m.validate().unwrap_or_else(|e| panic!("{what}: {e}"));
+        assert!(m.has_colors(), "{what}");
+        for i in 0..m.vertex_count() {
+            assert_eq!(m.colors[i], colour_of(m, i), "{what}: vertex {i}");
+        }
+    };
+    for mode in [TangentMode::Ours, TangentMode::MikkTSpace] {
+        let (split, report) = generate_tangents(&mesh, &TangentOptions { mode, ..Default::default() }).unwrap();
+        assert!(report.vertices_split > 0, "{mode:?}: the seam splits");
+        check(&format!("{mode:?}"), &split);
+        let mut part = split.submesh(&split.indices[2..]);
+        check("a part", &part);
+        part.add_back_faces();
+        check("with back faces", &part);
+    }
+    let mut short = mesh.clone();
+    short.colors.pop();
+    assert!(matches!(short.validate(), Err(MeshError::CountMismatch { what: "colours", .. })));
+    mesh.colors[3].y = f32::NAN;
+    assert!(matches!(mesh.validate(), Err(MeshError::NonFinite { what: "colour", vertex: 3, .. })));
+}

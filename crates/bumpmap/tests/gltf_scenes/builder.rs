@@ -44,6 +44,22 @@ impl Gltf {
         self.meshes.len() - 1
     }
 
+    /// [`Gltf::quad`] with `COLOR_0` (float RGBA, linear) at its corners.
+    pub fn quad_colored(
+        &mut self,
+        corners: [[f32; 3]; 4],
+        normal: [f32; 3],
+        material: Option<usize>,
+        colors: [[f32; 4]; 4],
+    ) -> usize {
+        let bytes: Vec<u8> = colors.as_flattened().iter().flat_map(|x| x.to_le_bytes()).collect();
+        let c = self.accessor(&bytes, 5126, 4, "VEC4", "");
+        let primitive = self.quad_primitive(corners, normal, material, true);
+        let primitive = primitive.replacen(r#""NORMAL":"#, &format!(r#""COLOR_0":{c},"NORMAL":"#), 1);
+        self.meshes.push(format!(r#"{{"primitives":[{primitive}]}}"#));
+        self.meshes.len() - 1
+    }
+
     /// The quad's primitive JSON (see [`Gltf::quad`]), with or without TEXCOORD_0.
     pub fn quad_primitive(
         &mut self,

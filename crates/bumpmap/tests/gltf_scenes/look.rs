@@ -243,6 +243,63 @@ fn the_roughness_of_a_metallic_roughness_texture_reaches_the_roughness_map_techn
 }
 
 #[test]
+fn vertex_colours_multiply_the_base_colour_on_every_pass_that_draws_it() {
+    // sRGB-encoded like the decal's texels: COLOR_0 is linear light.
+    let encode = |l: f32| 255.0 * (1.055 * l.powf(1.0 / 2.4) - 0.055);
+    let tint = [0.2f32, 0.6, 1.0];
+    let build = |colors: [[f32; 4]; 4], members: &str, base: Option<&[u8]>| {
+        let mut g = in_front_of_green(r#""name":"unused""#, true);
+        // The near quad again, now coloured, with a material of its own; the first is dropped.
+        let t = base.map(|png| g.texture(png));
+        let texture =
+            t.map_or(String::new(), |t| format!(r#","pbrMetallicRoughness":{{"baseColorTexture":{{"index":{t}}}}}"#));
+        let m = g.material(&format!(r#""name":"painted"{texture}{members}"#));
+        let mesh = g.quad_colored(NEAR, TOWARD_Z, Some(m), colors);
+        g.nodes[0] = format!(r#"{{"mesh":{mesh}}}"#);
+        g
+    };
+    let uniform = load("colors", &build([[tint[0], tint[1], tint[2], 1.0]; 4], "", None));
+    // Left corners red, right corners blue, over a decal whose red channel is 128.
+    let (red, blue) = ([1.0, 0.0, 0.0, 1.0], [0.0, 0.0, 1.0, 1.0]);
+    let decal = columns_png(|_| [128, 255, 255, 255]);
+    let ramp = load("colors_ramp", &build([red, blue, blue, red], "", Some(&decal)));
+    // Alpha 0 at the left corners, 1 at the right: the left half is cut out.
+    let (clear, solid) = ([1.0, 0.0, 0.0, 0.0], [1.0, 0.0, 0.0, 1.0]);
+    let cut = r#","alphaMode":"MASK","alphaCutoff":0.5"#;
+    let masked = load("colors_mask", &build([clear, solid, solid, clear], cut, None));
+    for (backend, mut r) in renderers() {
+        for technique in [TechniqueName::SinglePass, TechniqueName::Kilgard] {
+            let name = format!("{backend}_{technique:?}");
+            let image = draw(&mut r, &head_on(&uniform, 0.1, 0.8), technique, SIZE);
+            keep(&format!("colors_{name}"), &image);
+            let want = tint.map(|c| 0.9 * encode(c));
+            close(&format!("{name}: the vertex colour"), at(&image, 0), want, 2.0);
+            // Two lights (kilgard's second adds decal · diffuse in a pass of its own).
+            let mut two = head_on(&uniform, 0.1, 0.4);
+            two.params.lights.push(two.params.lights[0].clone());
+            let image = draw(&mut r, &two, technique, SIZE);
+            close(&format!("{name}: two lights"), at(&image, 0), want, 3.0);
+
+            let image = draw(&mut r, &head_on(&ramp, 0.1, 0.8), technique, SIZE);
+            keep(&format!("colors_ramp_{name}"), &image);
+            // The vertex colour's red and blue at a pixel, the decal's 128 in red undone.
+            let weights = |p: [u8; 4]| (p[0] as f32 / 128.0, p[2] as f32 / 255.0);
+            let ((lr, lb), (rr, rb)) = (weights(at(&image, -20)), weights(at(&image, 20)));
+            assert!(lr > 2.0 * lb && rb > 2.0 * rr, "{name}: red to blue, ({lr}, {lb}) to ({rr}, {rb})");
+            // Interpolated between the corners (in their encoded values, as GL interpolates a
+            // colour array), times the decal's 128 in red.
+            let mid = at(&image, 0);
+            close(&format!("{name}: the ramp's middle"), mid, [0.9 * 0.5 * 128.0, 0.0, 0.9 * 0.5 * 255.0], 4.0);
+
+            let image = draw(&mut r, &head_on(&masked, 0.1, 0.8), technique, SIZE);
+            keep(&format!("colors_mask_{name}"), &image);
+            close(&format!("{name}: cut where COLOR_0's alpha < 0.5"), at(&image, -16), [0.0, 0.9 * 255.0, 0.0], 2.0);
+            close(&format!("{name}: kept where it is above"), at(&image, 16), [0.9 * 255.0, 0.0, 0.0], 2.0);
+        }
+    }
+}
+
+#[test]
 fn a_look_the_specification_bounds_otherwise_is_refused_naming_the_material_and_the_value() {
     let g = occluded(Some(1.0));
     let strength = refusal("occlusion_strength", &g, |j| j.replace(r#""strength":1"#, r#""strength":2"#));
@@ -272,4 +329,9 @@ fn a_look_the_specification_bounds_otherwise_is_refused_naming_the_material_and_
         format!("{}missing.png{}", &j[..start], &j[end..])
     });
     assert!(missing.contains("occlusionTexture") && missing.contains("missing.png"), "{missing}");
+    let mut coloured = Gltf::default();
+    let mesh = coloured.quad_colored(FRONT, TOWARD_Z, None, [[1.0, f32::NAN, 0.0, 1.0]; 4]);
+    coloured.node(&format!(r#""mesh":{mesh}"#));
+    let nan = refusal("colour_not_finite", &coloured, |j| j);
+    assert!(nan.contains("colour of vertex 0 is not finite"), "{nan}");
 }
