@@ -17,6 +17,8 @@ and they make the same bytes the command writes from the same options:
 - ``read_height_field(path, **options)``: an image file or a preset (``"bricks@512"``);
 - ``write_texture(path, levels, **options)``: PNG (``.mip1.png``, ... beside level 0), DDS or
   KTX2, BC5/BC7 included;
+- ``read_texture(path)``: what ``write_texture`` wrote (or any PNG, DDS, KTX2), read back: every
+  level as arrays, the format and the Y convention the texels show;
 - ``tangents(positions, normals, uvs, indices, **options)``: tangent frames with glTF's ``w``
   (``bumpmap tangents``);
 - ``render(**options)``: any scene and technique of the catalogue on the CPU or GPU
@@ -51,6 +53,7 @@ __all__ = [
     "horizon_maps",
     "read_height_field",
     "write_texture",
+    "read_texture",
     "tangents",
     "render",
     "compare",
@@ -168,6 +171,19 @@ def write_texture(path, levels, **options):
     All files are written or none. Returns the paths written.
     """
     return _bumpmap.write_texture(path, levels, options)
+
+
+def read_texture(path):
+    """A texture file read back, the inverse of ``write_texture``: a dict of
+
+    - ``levels``: every level, level 0 first, each an (H, W, 4) array of uint8 (uint16 for a
+      16-bit file): a DDS's or KTX2's own levels (BC5 and BC7 decoded; BC5's Z rebuilt as
+      ``sqrt(1 - x² - y²)``), a PNG's with the ``NAME.mip1.png``, ... files beside it;
+    - ``format``: how the file stores them (``"rgba8"``, ``"rgba16"``, ``"bc5"``, ``"bc7"``);
+    - ``y_convention``: ``"opengl"`` or ``"directx"``, as level 0's texels show it (the curl
+      test of ``inspect``), or ``None`` where it cannot be told.
+    """
+    return _bumpmap.read_texture(path)
 
 
 def tangents(positions, normals, uvs, indices, **options):

@@ -1,6 +1,7 @@
 # Type stubs for bumpmap. The defaults written here are the command line's; a test
 # (tests/test_stubs.py) checks each against the options the native module reports.
 from os import PathLike
+from pathlib import Path
 from typing import Any, Literal, Optional, Sequence, TypedDict, Union
 
 import numpy as np
@@ -61,7 +62,14 @@ def horizon_maps(
     bits: Literal[8, 16] = 8,
 ) -> HorizonMaps: ...
 def read_height_field(path: _Path, *, channel: _Channel = "luminance") -> _Heights: ...
-def write_texture(path: _Path, levels: Union[_Levels, Sequence[_Levels]], *, format: _Format = "rgba8") -> list[str]: ...
+def write_texture(path: _Path, levels: Union[_Levels, Sequence[_Levels]], *, format: _Format = "rgba8") -> list[Path]: ...
+
+class Texture(TypedDict):
+    levels: list[_Levels]
+    format: _Format
+    y_convention: Optional[Literal["opengl", "directx"]]
+
+def read_texture(path: _Path) -> Texture: ...
 
 class _TangentReport(TypedDict):
     degenerate_uv: int

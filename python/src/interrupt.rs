@@ -43,6 +43,11 @@ impl Cancel {
     }
 }
 
+/// The error of a pool that could not be started.
+fn no_threads(why: String) -> PyErr {
+    PyRuntimeError::new_err(format!("cannot start bumpmap's worker threads: {why}"))
+}
+
 /// The worker's stack: as large as a main thread's, for the deep recursion some inputs bring.
 const STACK_BYTES: usize = 64 << 20;
 
@@ -58,15 +63,21 @@ pub fn run<T: Send + 'static>(py: Python<'_>, work: impl FnOnce(&Cancel) -> T + 
     let handle = std::thread::Builder::new()
         .name("bumpmap".into())
         .stack_size(STACK_BYTES)
-        .spawn(move || {
-            let _ = tx.send(work(&worker_cancel));
+        .spawn(move || match crate::pool::current(STACK_BYTES) {
+            // On this process's own pool, so the parallel loops inside survive a fork.
+            Ok(pool) => {
+                let _ = tx.send(Ok(pool.install(|| work(&worker_cancel))));
+            }
+            Err(e) => {
+                let _ = tx.send(Err(e.to_string()));
+            }
         })
         .map_err(|e| PyRuntimeError::new_err(format!("cannot start a worker thread: {e}")))?;
     loop {
         match py.detach(|| rx.lock().expect("one waiter").recv_timeout(Duration::from_millis(50))) {
             Ok(value) => {
                 let _ = handle.join();
-                return Ok(value);
+                return value.map_err(no_threads);
             }
             Err(RecvTimeoutError::Timeout) => {
                 if let Err(e) = py.check_signals() {
@@ -79,9 +90,13 @@ pub fn run<T: Send + 'static>(py: Python<'_>, work: impl FnOnce(&Cancel) -> T + 
                     let _ = handle.join();
                     interrupt_again();
                     drop(e);
-                    return value.map_err(|_| {
-                        PyRuntimeError::new_err("internal error in bumpmap (a bug; please report it): the worker ended")
-                    });
+                    return value
+                        .map_err(|_| {
+                            PyRuntimeError::new_err(
+                                "internal error in bumpmap (a bug; please report it): the worker ended",
+                            )
+                        })?
+                        .map_err(no_threads);
                 }
             }
             Err(RecvTimeoutError::Disconnected) => {

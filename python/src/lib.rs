@@ -9,7 +9,8 @@
 //! - `options`: keyword arguments → command-line options → the command's parsed arguments;
 //! - `arrays`: NumPy arrays in and out, their dtype, shape and byte order checked;
 //! - `interrupt`: long work with the GIL released, Ctrl-C honoured;
-//! - `errors`: the command line's errors as Python exceptions.
+//! - `errors`: the command line's errors as Python exceptions;
+//! - `pool`: the threads the work runs on, one pool per process (so a forked child works).
 //!
 //! What it does not do: any image, mesh or rendering work of its own.
 
@@ -17,9 +18,11 @@ mod arrays;
 mod errors;
 mod interrupt;
 mod options;
+mod pool;
 
 use std::path::PathBuf;
 
+use bumpmap::inspect::StoredAs;
 use bumpmap_cli::args::Command;
 use bumpmap_cli::commands;
 use bumpmap_cli::error::CliError;
@@ -219,6 +222,43 @@ fn write_texture(
     Ok(written)
 }
 
+/// A texture file read back: its levels as (H, W, 4) arrays (uint8, or uint16 for a 16-bit
+/// file), level 0 first — a DDS's or KTX2's own, a PNG's with the `NAME.mipK.png` files beside
+/// it — the format it stores them in, and the Y convention its texels show (the curl test
+/// `inspect` runs; `None` where it cannot decide). The inverse of `write_texture`.
+#[pyfunction]
+fn read_texture<'py>(py: Python<'py>, path: PathBuf) -> PyResult<Bound<'py, PyDict>> {
+    let (texture, convention) = interrupt::run(py, move |_| {
+        let texture = bumpmap_io::load_texture_chain(&path)?;
+        let level0 = match &texture.levels {
+            bumpmap_io::StoredLevels::Rgba8(l) => bumpmap::inspect::DecodedMap::from_unorm(&l[..1], StoredAs::Unorm8),
+            bumpmap_io::StoredLevels::Rgba16(l) => bumpmap::inspect::DecodedMap::from_unorm(&l[..1], StoredAs::Unorm16),
+        };
+        let convention = bumpmap_math::inspect::detect_convention(&level0.levels[0]).convention.ok();
+        Ok::<_, bumpmap_io::IoError>((texture, convention))
+    })?
+    .map_err(|e| to_py("read_texture", CliError::from(e)))?;
+    // By the name `write_texture(format=)` takes: the command line's.
+    let format = <bumpmap_cli::args::FormatArg as clap::ValueEnum>::value_variants()
+        .iter()
+        .find(|f| TextureFormat::from(**f) == texture.format)
+        .and_then(clap::ValueEnum::to_possible_value)
+        .map_or_else(|| texture.format.name().to_string(), |v| v.get_name().to_string());
+    let chain = match texture.levels {
+        bumpmap_io::StoredLevels::Rgba8(levels) => {
+            commands::Chain::Rgba8(bumpmap_math::MipChain { levels, encoding: Default::default() })
+        }
+        bumpmap_io::StoredLevels::Rgba16(levels) => {
+            commands::Chain::Rgba16(bumpmap_math::MipChain { levels, encoding: Default::default() })
+        }
+    };
+    let out = PyDict::new(py);
+    out.set_item("levels", PyList::new(py, arrays::from_chain(py, chain)?)?)?;
+    out.set_item("format", format)?;
+    out.set_item("y_convention", convention.map(|y| y.name()))?;
+    Ok(out)
+}
+
 /// Tangents for a mesh given as arrays, made as `bumpmap tangents` makes them; returns the mesh
 /// out (vertices may be split) as its glTF file has it: normals and tangents unit length (rebuilt
 /// where they cannot be), tangents perpendicular to the normals, glTF's `w`.
@@ -261,12 +301,14 @@ fn tangents<'py>(
         colors: Vec::new(),
         indices: arrays::triangles(indices)?,
     };
-    mesh.validate().map_err(|e| PyValueError::new_err(format!("tangents(): {e}")))?;
-    if computed {
-        mesh.compute_normals();
-    }
-    let (out, report) =
-        interrupt::run(py, move |_| commands::tangents(&args, &mesh))?.map_err(|e| to_py("tangents", e))?;
+    // Checked on the worker's pool too: the check's loops are parallel.
+    let (out, report) = interrupt::run(py, move |_| {
+        mesh.validate().map_err(|e| PyValueError::new_err(format!("tangents(): {e}")))?;
+        if computed {
+            mesh.compute_normals();
+        }
+        commands::tangents(&args, &mesh).map_err(|e| to_py("tangents", e))
+    })??;
     // What the command writes into its glTF: unit vectors, tangents perpendicular to the normals.
     let (normals, tangents, repairs) = bumpmap_io::mesh_file::gltf_normals_and_tangents(&out);
     let dict = PyDict::new(py);
@@ -425,6 +467,7 @@ fn _bumpmap(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(horizon_maps, m)?)?;
     m.add_function(wrap_pyfunction!(read_height_field, m)?)?;
     m.add_function(wrap_pyfunction!(write_texture, m)?)?;
+    m.add_function(wrap_pyfunction!(read_texture, m)?)?;
     m.add_function(wrap_pyfunction!(tangents, m)?)?;
     m.add_function(wrap_pyfunction!(render, m)?)?;
     m.add_function(wrap_pyfunction!(compare, m)?)?;

@@ -41,4 +41,6 @@ pub use mesh_file::{
     LoadedMesh, MaterialTexture, MeshFormat, MeshMaterial, MeshOptions, MeshPart, ObjTexcoords, TextureSampler,
     TextureTransform, load_mesh, load_mesh_with, read_mesh, save_gltf,
 };
-pub use texture_read::{AnyTexture, StoredLevels, StoredTexture, load_any_texture, load_texture, read_texture};
+pub use texture_read::{
+    AnyTexture, StoredLevels, StoredTexture, load_any_texture, load_texture, load_texture_chain, read_texture,
+};
