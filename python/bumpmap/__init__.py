@@ -275,6 +275,31 @@ def height_from_normals(normals, **options):
     return _bumpmap.height_from_normals(normals, options)
 
 
-for _f in (normal_map, mip_chain, height_mips, horizon_maps, read_height_field, write_texture, tangents, render, compare, height_from_normals):
+def _default(text):
+    """A default as the command line writes it, as the Python value a caller would pass."""
+    for kind in (int, float):
+        try:
+            return kind(text)
+        except ValueError:
+            pass
+    return text
+
+
+def _signature(function, leading):
+    """``function``'s real signature: its leading parameters (kept as the wrapper has them),
+    then every option as a keyword-only parameter with the command line's default (a flag's is
+    False; an option with no default, None)."""
+    own = _inspect.signature(function)
+    params = [p for p in own.parameters.values() if p.kind is not _inspect.Parameter.VAR_KEYWORD]
+    params = params[:leading]
+    for name, default, _help, _choices, flag in _bumpmap.options(function.__name__):
+        value = False if flag else None if default is None else _default(default)
+        params.append(_inspect.Parameter(name, _inspect.Parameter.KEYWORD_ONLY, default=value))
+    return _inspect.Signature(params)
+
+
+for _f, _leading in ((normal_map, 1), (mip_chain, 1), (height_mips, 1), (horizon_maps, 1), (read_height_field, 1),
+                     (write_texture, 2), (tangents, 4), (render, 0), (compare, 1), (height_from_normals, 1)):
     _f.__doc__ = _inspect.cleandoc(_f.__doc__ or "") + _options_doc(_f.__name__)
-del _f
+    _f.__signature__ = _signature(_f, _leading)
+del _f, _leading

@@ -1,8 +1,16 @@
-"""The type stubs say what the functions take: every keyword a stub names is an option of the
-function, with the command line's default."""
+"""The type stubs say what the functions take: every option of each function, with the command
+line's default; each closed set as a Literal generated from the native module (so from the Rust
+definitions); a type checker accepts typical calls and rejects misspelt ones. And the functions
+say it at run time: `inspect.signature` lists every keyword with its default."""
 
 import ast
+import importlib.util
+import inspect
+import subprocess
+import sys
 from pathlib import Path
+
+import pytest
 
 import bumpmap
 from bumpmap import _bumpmap
@@ -37,7 +45,89 @@ def test_stub_defaults_are_the_cli_defaults():
             value = ast.literal_eval(default)
             assert same_default(value, cli_default, is_flag), f"{name}({arg.arg}={value!r}): the CLI's is {cli_default!r}"
             checked += 1
-        if name not in ("render", "compare"):
-            # The short lists are complete.
-            assert {a.arg for a in node.args.kwonlyargs} == set(options), name
-    assert checked > 30
+        assert {a.arg for a in node.args.kwonlyargs} == set(options), f"{name}: every option, and no other"
+    assert checked > 80
+
+
+REPO = Path(__file__).resolve().parents[2]
+FUNCTIONS = ["normal_map", "mip_chain", "height_mips", "horizon_maps", "read_height_field", "write_texture", "tangents",
+             "render", "compare", "height_from_normals"]
+
+
+def literals_script():
+    spec = importlib.util.spec_from_file_location("python_stub_literals", REPO / "scripts" / "python_stub_literals.py")
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
+def test_the_closed_sets_are_the_native_modules():
+    script = literals_script()
+    made = script.block()
+    assert "_Technique = Literal[" in made and '"height-exact"' in made
+    assert script.current(STUB.read_text()) == made, "run scripts/python_stub_literals.py --write"
+
+
+def test_every_option_with_a_closed_set_is_typed_by_it():
+    functions = stub_functions()
+    for (function, option), (alias, _choices) in literals_script().aliases().items():
+        arg = next(a for a in functions[function].args.kwonlyargs if a.arg == option)
+        assert alias in ast.unparse(arg.annotation), f"{function}({option}=): {ast.unparse(arg.annotation)}, not {alias}"
+
+
+def test_signatures_list_every_keyword_with_its_default():
+    for name in FUNCTIONS:
+        params = inspect.signature(getattr(bumpmap, name)).parameters
+        for option, default, _help, _choices, flag in _bumpmap.options(name):
+            p = params[option]
+            assert p.kind is inspect.Parameter.KEYWORD_ONLY, (name, option)
+            assert same_default(p.default, default, flag), f"{name}({option}={p.default!r}): the CLI's is {default!r}"
+    render = inspect.signature(bumpmap.render).parameters
+    assert render["technique"].default == "kilgard" and render["size"].default == 512
+    assert list(inspect.signature(bumpmap.tangents).parameters)[:4] == ["positions", "normals", "uvs", "indices"]
+
+
+TYPICAL = """
+import numpy as np
+import bumpmap
+
+heights = bumpmap.read_height_field("bricks@64")
+normals = bumpmap.normal_map(heights, scale=6, kernel="sobel3", y_convention="directx")
+chain = bumpmap.mip_chain(heights, bits=16)
+paths = bumpmap.write_texture("n.ktx2", chain, format="bc7")
+first: str = paths[0].name
+back = bumpmap.read_texture(paths[0])
+levels = back["levels"]
+image = bumpmap.render(technique="pom", backend="auto", size=64, eye=(0, -6, 3), light=["4,0,3", "dir:-1,0,1"])
+lit = bumpmap.render(light=(1.0, 2.0, 3.0), specular_filter="lean", filter="nearest")
+ok: bool = bool(image.any())
+results = bumpmap.compare(techniques=["kilgard", "single-pass"], studies="none")
+"""
+
+# Each line must be refused by the type checker: (line, what it gets wrong).
+WRONG = [
+    ('bumpmap.render(technique="kilgrad")', "a misspelt technique"),
+    ('bumpmap.write_texture("n.dds", np.zeros((4, 4, 4), np.uint8), format="BC5")', "a format in the wrong case"),
+    ('bumpmap.normal_map(bumpmap.read_height_field("bricks"), kernel="sobel")', "a kernel that does not exist"),
+    ('bumpmap.render(size="64")', "a size as text"),
+    ('bumpmap.render(no_such_option=1)', "an option that does not exist"),
+    ('x: str = bumpmap.write_texture("n.png", np.zeros((4, 4, 4), np.uint8))[0]', "paths are not str"),
+]
+
+
+def test_a_type_checker_accepts_typical_calls_and_refuses_wrong_ones(tmp_path):
+    pytest.importorskip("mypy", reason="mypy is not installed in this environment")
+    (tmp_path / "typical.py").write_text(TYPICAL)
+    wrong = "import numpy as np\nimport bumpmap\n" + "\n".join(line for line, _ in WRONG) + "\n"
+    (tmp_path / "wrong.py").write_text(wrong)
+
+    def mypy(file):
+        done = subprocess.run([sys.executable, "-m", "mypy", "--no-incremental", "--strict", "--no-error-summary",
+                               "--cache-dir", str(tmp_path / "cache"), str(file)],
+                              capture_output=True, text=True, cwd=tmp_path)
+        return done.stdout + done.stderr
+
+    assert mypy("typical.py").strip() == "", "typical calls refused:\n" + mypy("typical.py")
+    out = mypy("wrong.py")
+    for k, (line, what) in enumerate(WRONG):
+        assert f"wrong.py:{k + 3}:" in out, f"{what} passed the type checker: {line}\n{out}"
