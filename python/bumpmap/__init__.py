@@ -23,6 +23,10 @@ and they make the same bytes the command writes from the same options:
   (``bumpmap tangents``);
 - ``render(**options)``: any scene and technique of the catalogue on the CPU or GPU
   (``bumpmap render``) -> an (H, W, 4) uint8 image;
+- ``Renderer(backend="cpu")``: a backend opened once; ``renderer.prepare(**options)`` sets up
+  a ``Scene`` once (the options of ``render``) and ``scene.render(light=(x, y, z), eye=...)``
+  draws frame after frame of it with the light or the eye moved, the maps and the GPU's
+  device kept;
 - ``compare(output=None, **options)``: every technique against the reference
   (``bumpmap compare``) -> the results as a dict;
 - ``techniques()``: the catalogue, name by name;
@@ -30,6 +34,10 @@ and they make the same bytes the command writes from the same options:
   map at all, its mips, its seam (``bumpmap inspect --json``) -> a dict;
 - ``height_from_normals(normals, **options)``: a normal map's slopes integrated back into
   heights (``bumpmap height``) -> an (H, W) float32 array.
+
+``render`` and ``Renderer.prepare`` take a NumPy array where the command line takes a file, for
+``normal_map`` ((H, W, 4) uint8 or uint16, or a list of levels), ``height_field`` ((H, W)) and
+``decal`` ((H, W, 4) uint8): the array is used exactly as the file holding it would be.
 
 Errors are exceptions carrying the library's message: ``ValueError`` for values, ``TypeError``
 for arrays of the wrong dtype or options that do not exist, ``OSError`` for files
@@ -60,6 +68,8 @@ __all__ = [
     "techniques",
     "inspect",
     "height_from_normals",
+    "Renderer",
+    "Scene",
     "__version__",
 ]
 
@@ -275,6 +285,56 @@ def height_from_normals(normals, **options):
     return _bumpmap.height_from_normals(normals, options)
 
 
+Scene = _bumpmap.Scene
+
+
+class Renderer:
+    """A backend opened once (``backend``: ``"cpu"``, ``"gpu"`` or ``"auto"``): the GPU's adapter,
+    device and pipelines, and every backend's texture caches, are kept between frames.
+
+    ``prepare(**options)`` sets a scene up once from ``render``'s options (arrays or files) and
+    returns a ``Scene``, whose ``render(light=(x, y, z), eye=(x, y, z))`` draws a frame, with
+    the first light or the camera moved there (world space), as an (H, W, 4) uint8 array::
+
+        renderer = bumpmap.Renderer("gpu")
+        scene = renderer.prepare(scene="sphere", technique="pom", size=512)
+        frames = [scene.render(light=(4 * math.cos(a), 4 * math.sin(a), 3)) for a in angles]
+
+    A scene keeps its renderer. ``close()`` (or leaving a ``with`` block) frees the device;
+    drawing afterwards raises ``RuntimeError``.
+    """
+
+    def __init__(self, backend="cpu"):
+        self._native = _bumpmap.Renderer(backend)
+
+    def prepare(self, **options):
+        """A ``Scene`` set up once from ``render``'s options (but ``backend``: the renderer's)."""
+        return self._native.prepare(options)
+
+    def render(self, **options):
+        """One frame of ``prepare(**options)``: ``render(**options)`` on this renderer."""
+        return self._native.prepare(options).render()
+
+    def describe(self):
+        """What it draws on, in words."""
+        return self._native.describe()
+
+    def close(self):
+        """Frees the device and caches; drawing afterwards raises ``RuntimeError``."""
+        self._native.close()
+
+    @property
+    def closed(self):
+        """Whether ``close()`` was called."""
+        return self._native.closed
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc):
+        self.close()
+
+
 def _default(text):
     """A default as the command line writes it, as the Python value a caller would pass."""
     for kind in (int, float):
@@ -303,3 +363,7 @@ for _f, _leading in ((normal_map, 1), (mip_chain, 1), (height_mips, 1), (horizon
     _f.__doc__ = _inspect.cleandoc(_f.__doc__ or "") + _options_doc(_f.__name__)
     _f.__signature__ = _signature(_f, _leading)
 del _f, _leading
+Renderer.prepare.__signature__ = _inspect.Signature(
+    [_inspect.Parameter("self", _inspect.Parameter.POSITIONAL_OR_KEYWORD)]
+    + [p for p in render.__signature__.parameters.values() if p.name != "backend"]
+)

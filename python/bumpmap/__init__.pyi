@@ -126,12 +126,12 @@ def render(
     size: int = 512,
     width: Optional[int] = None,
     height: Optional[int] = None,
-    height_field: Optional[str] = None,
-    normal_map: Optional[_Path] = None,
+    height_field: Union[None, str, _Heights] = None,
+    normal_map: Union[None, _Path, _Image, Sequence[_Image]] = None,
     y_convention: _YConvention = "opengl",
     rebuild_mips: bool = False,
     bump_scale: Optional[float] = None,
-    decal: Optional[str] = None,
+    decal: Union[None, str, npt.NDArray[np.uint8]] = None,
     torus_radii: _Vec2 = "2,0.7",
     tessellation: Optional[_Vec2] = None,
     repeat: Optional[_Vec2] = None,
@@ -175,6 +175,28 @@ def render(
     write_depth: bool = False,
     ambient_occlusion: bool = False,
 ) -> npt.NDArray[np.uint8]: ...
+_Image = Union[npt.NDArray[np.uint8], npt.NDArray[np.uint16]]
+
+class Scene:
+    def render(self, light: Optional[Sequence[float]] = None, eye: Optional[Sequence[float]] = None) -> npt.NDArray[np.uint8]: ...
+    @property
+    def size(self) -> tuple[int, int]: ...
+    @property
+    def technique(self) -> _Technique: ...
+    @property
+    def notes(self) -> list[str]: ...
+
+class Renderer:
+    def __init__(self, backend: _Backend = "cpu") -> None: ...
+    def prepare(self, **options: Any) -> Scene: ...
+    def render(self, **options: Any) -> npt.NDArray[np.uint8]: ...
+    def describe(self) -> str: ...
+    def close(self) -> None: ...
+    @property
+    def closed(self) -> bool: ...
+    def __enter__(self) -> Renderer: ...
+    def __exit__(self, *exc: object) -> None: ...
+
 def compare(
     output: Optional[_Path] = None,
     *,

@@ -55,6 +55,17 @@ const STACK_BYTES: usize = 64 << 20;
 /// that raises (Ctrl-C's `KeyboardInterrupt`) ends the wait at once, with the work's [`Cancel`]
 /// set. A panic in the work is a `RuntimeError` naming it a bug.
 pub fn run<T: Send + 'static>(py: Python<'_>, work: impl FnOnce(&Cancel) -> T + Send + 'static) -> PyResult<T> {
+    run_beside_pool(py, move |cancel, pool| pool.install(|| work(cancel)))
+}
+
+/// [`run`], but `work` runs on the worker thread itself, beside this process's pool, and enters
+/// it (`pool.install`) where it chooses: for work that must take a lock first. A pool thread
+/// waiting on a lock can be the one another job's parallel loop needs (a thread idle in a
+/// `join` runs whatever job is queued, the one that waits included): locks are taken outside.
+pub fn run_beside_pool<T: Send + 'static>(
+    py: Python<'_>,
+    work: impl FnOnce(&Cancel, &rayon::ThreadPool) -> T + Send + 'static,
+) -> PyResult<T> {
     let cancel = Cancel::default();
     let (tx, rx) = channel();
     // Waited on with the GIL released, from whichever thread the closure runs on.
@@ -66,7 +77,7 @@ pub fn run<T: Send + 'static>(py: Python<'_>, work: impl FnOnce(&Cancel) -> T + 
         .spawn(move || match crate::pool::current(STACK_BYTES) {
             // On this process's own pool, so the parallel loops inside survive a fork.
             Ok(pool) => {
-                let _ = tx.send(Ok(pool.install(|| work(&worker_cancel))));
+                let _ = tx.send(Ok(work(&worker_cancel, &pool)));
             }
             Err(e) => {
                 let _ = tx.send(Err(e.to_string()));

@@ -10,7 +10,8 @@
 //! - `arrays`: NumPy arrays in and out, their dtype, shape and byte order checked;
 //! - `interrupt`: long work with the GIL released, Ctrl-C honoured;
 //! - `errors`: the command line's errors as Python exceptions;
-//! - `pool`: the threads the work runs on, one pool per process (so a forked child works).
+//! - `pool`: the threads the work runs on, one pool per process (so a forked child works);
+//! - `renderer`: `Renderer` and `Scene`, kept between frames, and the arrays `render` takes.
 //!
 //! What it does not do: any image, mesh or rendering work of its own.
 
@@ -19,6 +20,7 @@ mod errors;
 mod interrupt;
 mod options;
 mod pool;
+mod renderer;
 
 use std::path::PathBuf;
 
@@ -337,19 +339,14 @@ fn tangents<'py>(
 #[pyfunction]
 #[pyo3(signature = (options = None))]
 fn render<'py>(py: Python<'py>, options: Option<&Bound<'py, PyDict>>) -> PyResult<Bound<'py, PyAny>> {
-    let args = match parse(&options::RENDER, &[], options)? {
+    let (options, given) = renderer::given(py, "render", options)?;
+    let args = match parse(&options::RENDER, &[], options.as_ref())? {
         Command::Render(a) => a,
         _ => unreachable!("render's options parse as render"),
     };
-    let drawn = interrupt::run(py, move |_| commands::render(&args, true))?.map_err(|e| to_py("render", e))?;
-    let mut image = drawn.frame.image;
-    // The framebuffer's alpha holds s_self, not coverage; the command line's PNG leaves it out.
-    for t in &mut image.texels {
-        t[3] = 255;
-    }
-    let level = bumpmap_math::Image::new(image.width, image.height, image.texels);
-    let chain = commands::Chain::Rgba8(bumpmap_math::MipChain { levels: vec![level], encoding: Default::default() });
-    Ok(arrays::from_chain(py, chain)?.swap_remove(0))
+    let drawn =
+        interrupt::run(py, move |_| commands::render_given(&args, true, &given))?.map_err(|e| to_py("render", e))?;
+    renderer::frame_array(py, drawn.frame.image)
 }
 
 /// Every technique measured against the reference, as `bumpmap compare` does; returns
@@ -475,6 +472,8 @@ fn _bumpmap(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(techniques, m)?)?;
     m.add_function(wrap_pyfunction!(inspect, m)?)?;
     m.add_function(wrap_pyfunction!(height_from_normals, m)?)?;
+    m.add_class::<renderer::Renderer>()?;
+    m.add_class::<renderer::Scene>()?;
     // Files an interrupted call staged, when the interpreter exits before its work ends.
     let abandon = wrap_pyfunction!(interrupt::abandon_all, m)?;
     m.py().import("atexit")?.call_method1("register", (abandon,))?;

@@ -20,7 +20,9 @@ use crate::error::CliError;
 
 pub use crate::compare::{Outcome, Rendered, Results, Scores};
 pub use crate::normalmap::Chain;
+pub use crate::render::PreparedArgs;
 pub use crate::render::{Drawn, Frame};
+pub use crate::setup::{Given, Setup};
 
 /// `normalmap`'s chain for `field`: level 0, or every level with `--mips`, at the depth
 /// `--bits` and `--format` ask for; `name` names the field in errors.
@@ -69,7 +71,23 @@ pub fn write_texture(
 /// `render`'s image (and passes, with `--passes`), drawn as the command draws it, without the
 /// output file; with `progress`, the reference shows a progress bar on stderr.
 pub fn render(args: &RenderArgs, progress: bool) -> Result<Drawn, CliError> {
-    crate::render::draw_args(args, progress)
+    crate::render::draw_args(args, progress, &Given::default())
+}
+
+/// [`render`] with the inputs `given` in memory in place of the files their options name.
+pub fn render_given(args: &RenderArgs, progress: bool, given: &Given) -> Result<Drawn, CliError> {
+    crate::render::draw_args(args, progress, given)
+}
+
+/// The renderer `--backend` opens (with `auto`, the reason for drawing on the CPU on stderr).
+pub fn open_renderer(backend: crate::args::BackendArg) -> Result<bumpmap::Renderer, CliError> {
+    crate::render::renderer(backend)
+}
+
+/// What `render` would draw, set up and prepared once, for drawing many frames of it (moving
+/// the light or the eye) with a [`bumpmap::Renderer`] kept between them.
+pub fn prepare_render(args: &RenderArgs, given: &Given) -> Result<PreparedArgs, CliError> {
+    crate::render::prepare_args(args, given)
 }
 
 /// `tangents`' mesh for `mesh`: the tangents made by `--mode` (vertices split where `--split-angle`

@@ -28,7 +28,7 @@ pub struct Frame {
 pub fn run(args: &RenderArgs) -> Result<(), CliError> {
     let named = crate::setup::named_inputs(&args.setup);
     ensure_not_input(&args.output, &named.iter().map(PathBuf::as_path).collect::<Vec<_>>())?;
-    let drawn = draw_args(args, true)?;
+    let drawn = draw_args(args, true, &crate::setup::Given::default())?;
     let inputs: Vec<&Path> = drawn.inputs.iter().map(PathBuf::as_path).collect();
     let written = write_frame(&drawn.frame, &args.output, &inputs)?;
     eprintln!(
@@ -49,10 +49,23 @@ pub struct Drawn {
     pub inputs: Vec<PathBuf>,
 }
 
-/// Draws what `args` describe: the scene set up, the technique prepared, the frame drawn on
-/// `--backend` (the reference always on the CPU, with a progress bar on stderr when `progress`).
-/// The notes the assets bring (what a glTF's material gave) go to stderr.
-pub fn draw_args(args: &RenderArgs, progress: bool) -> Result<Drawn, CliError> {
+/// What `args` describe, set up and prepared once: the frame's size, the scene with the
+/// technique's maps made, and how its inputs were read. A frame that would not fit, `--passes`
+/// without passes, a bad option or input: refused before any drawing.
+pub struct PreparedArgs {
+    /// `--width`×`--height`, or `--size` squared.
+    pub size: (usize, usize),
+    /// The scene with the technique's maps.
+    pub prepared: Prepared,
+    /// The setup it came from (its notes for stderr, the files it read).
+    pub setup: crate::setup::Setup,
+    /// What `--depth` did, for stderr.
+    pub depth_notes: Vec<String>,
+}
+
+/// Sets up and prepares what `args` describe, with the inputs `given` in memory in place of
+/// their options' files.
+pub fn prepare_args(args: &RenderArgs, given: &crate::setup::Given) -> Result<PreparedArgs, CliError> {
     let (width, height) = match (args.width, args.height) {
         (Some(w), Some(h)) => (w, h),
         _ => (args.size, args.size),
@@ -66,17 +79,27 @@ pub fn draw_args(args: &RenderArgs, progress: bool) -> Result<Drawn, CliError> {
             if name.is_reference() { "no passes (it samples the exact surface)" } else { "one pass per light" }
         )));
     }
-    let setup = crate::setup::setup(&args.setup)?;
-    for note in &setup.notes {
+    let setup = crate::setup::setup_given(&args.setup, given)?;
+    let scene = &args.setup.scene;
+    let bumps = scene.height_field.clone().or_else(|| scene.normal_map.as_ref().map(|p| p.display().to_string()));
+    let prepared = Prepared::new(&setup.spec, name, &setup.options)
+        .map_err(|e| too_big(prepare_err(e), &setup.spec, bumps.as_deref()))?;
+    let depth_notes = depth_notes(&args.setup, &setup.spec, &prepared);
+    Ok(PreparedArgs { size: (width, height), prepared, setup, depth_notes })
+}
+
+/// Draws what `args` describe: the scene set up, the technique prepared, the frame drawn on
+/// `--backend` (the reference always on the CPU, with a progress bar on stderr when `progress`).
+/// The notes the assets bring (what a glTF's material gave) go to stderr.
+pub fn draw_args(args: &RenderArgs, progress: bool, given: &crate::setup::Given) -> Result<Drawn, CliError> {
+    let name = args.setup.technique.technique.0;
+    let PreparedArgs { size: (width, height), prepared, setup, depth_notes } = prepare_args(args, given)?;
+    for note in setup.notes.iter().chain(&depth_notes) {
         eprintln!("{note}");
     }
     let scene = &args.setup.scene;
     let bumps = scene.height_field.clone().or_else(|| scene.normal_map.as_ref().map(|p| p.display().to_string()));
     let too_big = |e| too_big(e, &setup.spec, bumps.as_deref());
-    let prepared = Prepared::new(&setup.spec, name, &setup.options).map_err(|e| too_big(prepare_err(e)))?;
-    for note in depth_notes(&args.setup, &setup.spec, &prepared) {
-        eprintln!("{note}");
-    }
     let mut renderer = if name.is_reference() {
         // The reference runs on the CPU whatever the backend; no device need open for it.
         let mut r = Renderer::new(BackendChoice::Cpu).map_err(lib_err)?;

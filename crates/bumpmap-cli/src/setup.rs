@@ -32,7 +32,7 @@ use crate::render::{core_err, lib_err};
 
 mod files;
 
-use files::{files_beside, load_roughness_map, texture_file};
+use files::{decal_mips, files_beside, load_roughness_map, texture_file};
 
 /// What the options describe.
 pub struct Setup {
@@ -84,9 +84,27 @@ pub fn named_inputs(s: &SceneSetup) -> Vec<PathBuf> {
     files
 }
 
+/// Inputs given in memory instead of read from files (the Python package's arrays): each
+/// stands where the file its option names would, and is used exactly as that file's contents
+/// would be. The option must still be given (its value names the input in messages).
+#[derive(Clone, Debug, Default)]
+pub struct Given {
+    /// `--normal-map`'s texture, as the file would load.
+    pub normal_map: Option<bumpmap_io::StoredTexture>,
+    /// `--height-field`'s heights.
+    pub height_field: Option<bumpmap::HeightField>,
+    /// `--decal`'s image.
+    pub decal: Option<Rgba8Image>,
+}
+
 /// Reads the options: checks their ranges, loads the files they name and builds the scene
 /// description, the technique and its options.
 pub fn setup(s: &SceneSetup) -> Result<Setup, CliError> {
+    setup_given(s, &Given::default())
+}
+
+/// [`setup`], with the inputs `given` in memory in place of the files their options name.
+pub fn setup_given(s: &SceneSetup, given: &Given) -> Result<Setup, CliError> {
     let (scene, camera, m) = (&s.scene, &s.camera, &s.material);
     check_ranges(s)?;
     let mut inputs = named_inputs(s);
@@ -158,7 +176,11 @@ pub fn setup(s: &SceneSetup) -> Result<Setup, CliError> {
             mip_mode: MipMode::LengthInAlpha,
             rebuild_mips: scene.rebuild_mips,
         };
-        let map = load_normal_map(path, &options).map_err(lib_err)?;
+        let map = match &given.normal_map {
+            Some(texture) => bumpmap::assets::normal_map_from_texture(texture, path, &options),
+            None => load_normal_map(path, &options),
+        }
+        .map_err(lib_err)?;
         notes.push(format!(
             "{}: {} as the normal map (green {})",
             path.display(),
@@ -166,38 +188,26 @@ pub fn setup(s: &SceneSetup) -> Result<Setup, CliError> {
             if options.y_convention == bumpmap::YConvention::YUp { "up: opengl" } else { "down: directx" }
         ));
         notes.extend(map.warnings().iter().map(|w| format!("warning: {w}")));
-        spec.params.bumps = map.bumps();
-        spec.params.default_decal = false;
-        if let Some(parts) = &mut spec.params.parts {
-            Arc::make_mut(parts).replace_bumps();
-        }
+        spec.use_bumps(map.bumps(), false);
     } else if !has_material_bumps || scene.height_field.is_some() {
         let source = HeightSource::parse(scene.height_field.as_deref().unwrap_or("bricks"));
-        let is_bricks = matches!(source, HeightSource::Preset { preset: bumpmap::HeightPreset::Bricks, .. });
-        spec.params.bumps = BumpSource::Heights(Arc::new(source.load(Channel::Luminance)?));
+        let field = match &given.height_field {
+            Some(field) => field.clone(),
+            None => source.load(Channel::Luminance)?,
+        };
+        let is_bricks = given.height_field.is_none()
+            && matches!(source, HeightSource::Preset { preset: bumpmap::HeightPreset::Bricks, .. });
+        spec.use_bumps(BumpSource::Heights(Arc::new(field)), is_bricks);
         spec.params.normal_map.scale = bump_scale.unwrap_or(4.0);
-        spec.params.default_decal = is_bricks && spec.params.decal.is_none();
-        if let Some(parts) = &mut spec.params.parts {
-            Arc::make_mut(parts).replace_bumps();
-        }
     }
 
     // The decal: the option's, or none, or what the scene already has.
     match scene.decal.as_deref() {
-        Some("none") => {
-            spec.params.decal = None;
-            spec.params.default_decal = false;
-            if let Some(parts) = &mut spec.params.parts {
-                Arc::make_mut(parts).replace_decals(None);
-            }
-        }
-        Some(path) => {
-            spec.params.decal = Some(texture_file(Path::new(path))?);
-            spec.params.default_decal = false;
-            if let Some(parts) = &mut spec.params.parts {
-                Arc::make_mut(parts).replace_decals(spec.params.decal.clone());
-            }
-        }
+        Some("none") => spec.use_decal(None),
+        Some(path) => spec.use_decal(Some(match &given.decal {
+            Some(image) => decal_mips(image.clone(), Path::new(path))?,
+            None => texture_file(Path::new(path))?,
+        })),
         None => {}
     }
 

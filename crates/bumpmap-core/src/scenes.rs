@@ -154,6 +154,27 @@ impl SceneSpec {
     pub fn build(&self) -> Result<Scene, CoreError> {
         build(&self.kind, &self.params)
     }
+
+    /// Draws every surface with `bumps` (a mesh's parts included, their own bumps set aside),
+    /// without the default brick decal: what giving a normal map or a height field of one's own
+    /// means. `bricks_decal` keeps the brick decal that goes with the brick heights.
+    pub fn use_bumps(&mut self, bumps: BumpSource, bricks_decal: bool) {
+        self.params.bumps = bumps;
+        self.params.default_decal = bricks_decal && self.params.decal.is_none();
+        if let Some(parts) = &mut self.params.parts {
+            Arc::make_mut(parts).replace_bumps();
+        }
+    }
+
+    /// Draws every surface with `decal` (`None`: no decal), a mesh's parts' own base colours
+    /// set aside.
+    pub fn use_decal(&mut self, decal: Option<Arc<Rgba8Mips>>) {
+        self.params.decal = decal;
+        self.params.default_decal = false;
+        if let Some(parts) = &mut self.params.parts {
+            Arc::make_mut(parts).replace_decals(self.params.decal.clone());
+        }
+    }
 }
 
 /// Everything adjustable about a scene; `None` picks the scene's own default.

@@ -150,7 +150,13 @@ impl LoadedNormalMap {
     }
 }
 
-fn import(texture: &StoredTexture, source: &Path, options: &ImportOptions) -> Result<LoadedNormalMap, Error> {
+/// A normal map already read ([`bumpmap_io::load_texture`]'s, or levels made in memory) made
+/// ready to draw as [`load_normal_map`] makes a file's; `source` names it in messages.
+pub fn normal_map_from_texture(
+    texture: &StoredTexture,
+    source: &Path,
+    options: &ImportOptions,
+) -> Result<LoadedNormalMap, Error> {
     let imported = match &texture.levels {
         StoredLevels::Rgba8(levels) => import_normal_map(levels, options),
         StoredLevels::Rgba16(levels) => import_normal_map(levels, options),
@@ -174,7 +180,7 @@ fn import(texture: &StoredTexture, source: &Path, options: &ImportOptions) -> Re
 /// its green points, how to scale its slopes, and how to make its smaller levels when it has
 /// none.
 pub fn load_normal_map(path: &Path, options: &ImportOptions) -> Result<LoadedNormalMap, Error> {
-    import(&bumpmap_io::load_texture(path)?, path, options)
+    normal_map_from_texture(&bumpmap_io::load_texture(path)?, path, options)
 }
 
 /// How [`load_mesh`] reads a mesh file.
@@ -578,7 +584,7 @@ fn material_asset(
                     mip_mode: options.mip_mode,
                     rebuild_mips: false,
                 };
-                let map = import(&t.texture, &t.source, &import_options)?;
+                let map = normal_map_from_texture(&t.texture, &t.source, &import_options)?;
                 warnings.extend(map.warnings());
                 imported.push((t.image, normal_scale, map.clone()));
                 Some(map)

@@ -66,6 +66,27 @@ impl LightOrbit {
     }
 }
 
+/// Moves the first light of `scene` to `at` (world space): a positional light is put there, a
+/// directional one turned to shine from `at`'s direction (as seen from the origin). A scene
+/// without lights is left as it is; a zero `at` leaves a directional light's direction.
+///
+/// ```
+/// use bumpmap::motion::move_first_light;
+/// use bumpmap::{Light, SceneKind, SceneSpec};
+///
+/// let mut scene = SceneSpec::new(SceneKind::Torus).build()?;
+/// move_first_light(&mut scene, glam::Vec3::new(0.0, 0.0, 5.0));
+/// assert_eq!(scene.lights[0].light, Light::Positional(glam::Vec3::new(0.0, 0.0, 5.0)));
+/// # Ok::<(), bumpmap::CoreError>(())
+/// ```
+pub fn move_first_light(scene: &mut Scene, at: Vec3) {
+    let Some(light) = scene.lights.first_mut() else { return };
+    light.light = match light.light {
+        Light::Positional(_) => Light::Positional(at),
+        Light::Directional(d) => Light::Directional(at.try_normalize().unwrap_or(d)),
+    };
+}
+
 /// `v` rotated by `tilt` radians toward `axis` within the plane they span, its elevation above
 /// the plane perpendicular to `axis` kept within ±[`MAX_TILT`]; `v` along `axis` is kept.
 fn tilted(v: Vec3, axis: Vec3, tilt: f32) -> Vec3 {

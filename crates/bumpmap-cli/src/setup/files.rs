@@ -35,7 +35,11 @@ pub(super) fn files_beside(s: &SceneSetup) -> Result<Vec<PathBuf>, CliError> {
 /// An RGBA8 image file with box-filtered mipmaps (`--decal`, `--gloss`): refused, naming the
 /// file, when its levels and a texture unit's copy of them will not fit beside what is loaded.
 pub(super) fn texture_file(path: &Path) -> Result<Arc<Rgba8Mips>, CliError> {
-    let image = bumpmap_io::load_rgba8(path)?;
+    decal_mips(bumpmap_io::load_rgba8(path)?, path)
+}
+
+/// `image` with its box mipmaps, as a decal; refused, naming `path`, where they would not fit.
+pub(super) fn decal_mips(image: Rgba8Image, path: &Path) -> Result<Arc<Rgba8Mips>, CliError> {
     let texels = (image.width as u64 * image.height as u64) * 4 / 3;
     bumpmap::bumpmap_math::buffer::ensure_available(
         texels * 4 + bumpmap_cpu::texture_unit_bytes(texels),

@@ -1,0 +1,257 @@
+//! `Renderer` and `Scene`: a backend opened once (the GPU's adapter and pipelines kept) and a
+//! scene set up and prepared once, drawn frame after frame with the light or the eye moved; and
+//! the arrays `render` takes where the command line takes files.
+//!
+//! Both sit on the library's `bumpmap::Renderer` and `bumpmap::Prepared`, prepared by the same
+//! setup `bumpmap render` runs (`commands::prepare_render`), so a frame is the command's frame.
+//!
+//! What it does not do: read frames back asynchronously, or draw one scene on another
+//! renderer's backend (a scene keeps the renderer it was prepared for).
+
+use std::sync::{Arc, Mutex, PoisonError};
+
+use bumpmap_cli::args::Command;
+use bumpmap_cli::commands::{self, Chain, Given};
+use glam::Vec3;
+use pyo3::exceptions::{PyRuntimeError, PyTypeError, PyValueError};
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+
+use crate::errors::to_py;
+use crate::{arrays, interrupt, options};
+
+/// The options `render` takes as arrays, in place of a file.
+const ARRAY_INPUTS: [&str; 3] = ["normal_map", "height_field", "decal"];
+
+/// `options` with each array input replaced by a name for it (the option stays given, so the
+/// setup treats it as it treats a file), and the arrays as the setup's in-memory inputs.
+pub fn given<'py>(
+    py: Python<'py>,
+    function: &str,
+    options: Option<&Bound<'py, PyDict>>,
+) -> PyResult<(Option<Bound<'py, PyDict>>, Given)> {
+    let Some(options) = options else { return Ok((None, Given::default())) };
+    let copy = options.copy()?;
+    let mut given = Given::default();
+    for name in ARRAY_INPUTS {
+        let Some(value) = options.get_item(name)? else { continue };
+        // An array, or (a normal map's chain) a list or tuple of them.
+        let is_array = |v: &Bound<'py, PyAny>| v.cast::<numpy::PyUntypedArray>().is_ok();
+        let listed = (value.is_instance_of::<pyo3::types::PyList>() || value.is_instance_of::<pyo3::types::PyTuple>())
+            && value.len()? > 0
+            && value.try_iter()?.all(|v| v.is_ok_and(|v| is_array(&v)));
+        if !is_array(&value) && !listed {
+            continue;
+        }
+        let prefix = |e: PyErr| {
+            let message = format!("{function}(): {name}: {}", e.value(py));
+            if e.is_instance_of::<PyTypeError>(py) {
+                PyTypeError::new_err(message)
+            } else {
+                PyValueError::new_err(message)
+            }
+        };
+        match name {
+            "normal_map" => {
+                let (levels, format) = match arrays::to_chain(&value).map_err(prefix)? {
+                    Chain::Rgba8(c) => {
+                        (bumpmap_io::StoredLevels::Rgba8(c.levels), bumpmap_io::texture_file::TextureFormat::Rgba8)
+                    }
+                    Chain::Rgba16(c) => {
+                        (bumpmap_io::StoredLevels::Rgba16(c.levels), bumpmap_io::texture_file::TextureFormat::Rgba16)
+                    }
+                };
+                given.normal_map = Some(bumpmap_io::StoredTexture { levels, format });
+            }
+            "height_field" => given.height_field = Some(arrays::height_field(&value).map_err(prefix)?),
+            _ => match arrays::to_chain(&value).map_err(prefix)? {
+                Chain::Rgba8(mut c) if c.levels.len() == 1 => given.decal = c.levels.pop(),
+                _ => {
+                    return Err(PyTypeError::new_err(format!(
+                        "{function}(): decal must be one (H, W, 4) uint8 image (its mipmaps are made from it)"
+                    )));
+                }
+            },
+        }
+        copy.set_item(name, format!("<{name} array>"))?;
+    }
+    Ok((Some(copy), given))
+}
+
+/// `render`'s options parsed, with their array inputs.
+fn render_args(
+    py: Python<'_>,
+    function: &str,
+    options: Option<&Bound<'_, PyDict>>,
+) -> PyResult<(bumpmap_cli::args::RenderArgs, Given)> {
+    let (options, given) = given(py, function, options)?;
+    match options::RENDER.parse(&[], options.as_ref())? {
+        Command::Render(a) => Ok((*a, given)),
+        _ => unreachable!("render's options parse as render"),
+    }
+}
+
+/// A frame as the array `render` returns: (H, W, 4) uint8, alpha 255 (the framebuffer's alpha
+/// holds s_self, not coverage; the command line's PNG leaves it out).
+pub fn frame_array<'py>(py: Python<'py>, mut image: bumpmap::Rgba8Image) -> PyResult<Bound<'py, PyAny>> {
+    for t in &mut image.texels {
+        t[3] = 255;
+    }
+    let level = bumpmap_math::Image::new(image.width, image.height, image.texels);
+    let chain = Chain::Rgba8(bumpmap_math::MipChain { levels: vec![level], encoding: Default::default() });
+    Ok(arrays::from_chain(py, chain)?.swap_remove(0))
+}
+
+/// The library's renderer, `None` once closed.
+type Shared = Arc<Mutex<Option<bumpmap::Renderer>>>;
+
+fn closed() -> PyErr {
+    PyRuntimeError::new_err("this Renderer is closed: make a new one")
+}
+
+/// A backend opened once: its device, pipelines and texture caches are kept between frames.
+#[pyclass(module = "bumpmap._bumpmap", frozen)]
+pub struct Renderer {
+    inner: Shared,
+    /// The backend asked for, as `render(backend=)` spells it.
+    backend: String,
+}
+
+#[pymethods]
+impl Renderer {
+    /// Opens `backend` ("cpu", "gpu" or "auto"): on the GPU, the adapter and device.
+    #[new]
+    #[pyo3(signature = (backend = "cpu".to_string()))]
+    fn new(py: Python<'_>, backend: String) -> PyResult<Self> {
+        let dict = PyDict::new(py);
+        dict.set_item("backend", &backend)?;
+        let (args, _) = render_args(py, "Renderer", Some(&dict))?;
+        let choice = args.setup.backend.backend;
+        let renderer = interrupt::run(py, move |_| bumpmap_cli::commands::open_renderer(choice))?
+            .map_err(|e| to_py("Renderer", e))?;
+        Ok(Self { inner: Arc::new(Mutex::new(Some(renderer))), backend })
+    }
+
+    /// What it draws on, in words (the CPU, or the GPU adapter's name and driver).
+    fn describe(&self) -> PyResult<String> {
+        let inner = self.inner.lock().unwrap_or_else(PoisonError::into_inner);
+        inner.as_ref().map(|r| r.describe()).ok_or_else(closed)
+    }
+
+    /// Frees the device and caches; the renderer and its scenes refuse to draw afterwards.
+    fn close(&self) {
+        self.inner.lock().unwrap_or_else(PoisonError::into_inner).take();
+    }
+
+    /// Whether [`Renderer::close`] was called.
+    #[getter]
+    fn closed(&self) -> bool {
+        self.inner.lock().unwrap_or_else(PoisonError::into_inner).is_none()
+    }
+
+    /// Sets up and prepares a scene from `render`'s options (arrays or files; the backend is
+    /// this renderer's): the maps are made once, for every frame drawn of it.
+    #[pyo3(signature = (options = None))]
+    fn prepare(&self, py: Python<'_>, options: Option<&Bound<'_, PyDict>>) -> PyResult<Scene> {
+        if self.closed() {
+            return Err(closed());
+        }
+        let options = match options {
+            Some(o) => o.copy()?,
+            None => PyDict::new(py),
+        };
+        if options.contains("backend")? {
+            return Err(PyTypeError::new_err(
+                "prepare(): the backend is the Renderer's (Renderer(backend=...)), not a scene's option",
+            ));
+        }
+        options.set_item("backend", &self.backend)?;
+        let (args, given) = render_args(py, "prepare", Some(&options))?;
+        let technique = args.setup.technique.technique.0.name().to_string();
+        let prepared =
+            interrupt::run(py, move |_| commands::prepare_render(&args, &given))?.map_err(|e| to_py("prepare", e))?;
+        let notes = prepared.setup.notes.iter().chain(&prepared.depth_notes).cloned().collect();
+        Ok(Scene {
+            renderer: self.inner.clone(),
+            prepared: Arc::new(Mutex::new(prepared.prepared)),
+            size: prepared.size,
+            technique,
+            notes,
+        })
+    }
+}
+
+/// A scene set up and prepared once, drawn by its renderer frame after frame.
+#[pyclass(module = "bumpmap._bumpmap", frozen)]
+pub struct Scene {
+    renderer: Shared,
+    prepared: Arc<Mutex<bumpmap::Prepared>>,
+    size: (usize, usize),
+    technique: String,
+    notes: Vec<String>,
+}
+
+/// A vector from a 3-sequence of numbers, finite.
+fn vec3(what: &str, value: &Bound<'_, PyAny>) -> PyResult<Vec3> {
+    let v: [f32; 3] = value.extract().map_err(|_| {
+        PyTypeError::new_err(format!("Scene.render(): {what} must be three numbers (x, y, z), got {value}"))
+    })?;
+    let v = Vec3::from(v);
+    if !v.is_finite() {
+        return Err(PyValueError::new_err(format!("Scene.render(): {what} must be finite, got {v}")));
+    }
+    Ok(v)
+}
+
+#[pymethods]
+impl Scene {
+    /// Draws a frame: with `light`, the first light moved to that point (world space; a
+    /// directional light turned to come from it), with `eye`, the camera moved there (still
+    /// looking at its target). Both stay where they are put for later frames.
+    #[pyo3(signature = (light = None, eye = None))]
+    fn render<'py>(
+        &self,
+        py: Python<'py>,
+        light: Option<&Bound<'py, PyAny>>,
+        eye: Option<&Bound<'py, PyAny>>,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        let light = light.map(|l| vec3("light", l)).transpose()?;
+        let eye = eye.map(|e| vec3("eye", e)).transpose()?;
+        let (renderer, prepared, (w, h)) = (self.renderer.clone(), self.prepared.clone(), self.size);
+        // The locks are taken on the worker thread, outside the pool (see `run_beside_pool`).
+        let image = interrupt::run_beside_pool(py, move |_, pool| {
+            let mut prepared = prepared.lock().unwrap_or_else(PoisonError::into_inner);
+            if let Some(at) = light {
+                bumpmap::motion::move_first_light(&mut prepared.scene, at);
+            }
+            if let Some(eye) = eye {
+                prepared.scene.camera.eye = eye;
+            }
+            let mut renderer = renderer.lock().unwrap_or_else(PoisonError::into_inner);
+            // None: the renderer was closed.
+            let Some(renderer) = renderer.as_mut() else { return Ok(None) };
+            pool.install(|| renderer.draw_scene(&prepared.scene, &prepared.technique, w, h, None)).map(Some)
+        })?
+        .map_err(|e| to_py("Scene.render", commands::library_error(e)))?
+        .ok_or_else(closed)?;
+        frame_array(py, image)
+    }
+
+    /// The frame's (width, height).
+    #[getter]
+    fn size(&self) -> (usize, usize) {
+        self.size
+    }
+
+    /// The technique it is drawn with.
+    #[getter]
+    fn technique(&self) -> &str {
+        &self.technique
+    }
+
+    /// What setting it up noted (what a glTF's material gave, what was left out), a line each.
+    #[getter]
+    fn notes(&self) -> Vec<String> {
+        self.notes.clone()
+    }
+}
