@@ -40,5 +40,7 @@ def test_a_batch_finishes_with_the_same_arrays(way):
 
 
 def test_a_batch_through_dask_distributed_finishes():
-    pytest.importorskip("dask.distributed", reason="dask.distributed is not installed in this environment")
+    # scripts/test_python.sh installs dask.distributed: missing, the test fails, not skips.
+    import dask.distributed  # noqa: F401
+
     run_batch("dask")

@@ -14,6 +14,8 @@ use bumpmap_math::{HeightField, HeightMips, MipChain, MipMode, NormalMapOptions,
 use crate::bump_maps::{BumpMap, offset_map, surface_material};
 use crate::error::CoreError;
 use crate::parts::MeshParts;
+
+mod replace;
 use crate::scene::{
     AlphaMode, Camera, Material, NormalSpace, NormalTexels, Scene, SceneLight, SceneObject, SurfaceHeights,
     SurfaceSource, ViewerModel,
@@ -153,27 +155,6 @@ impl SceneSpec {
     /// The scene with the tangent-space normal map (no technique's own maps).
     pub fn build(&self) -> Result<Scene, CoreError> {
         build(&self.kind, &self.params)
-    }
-
-    /// Draws every surface with `bumps` (a mesh's parts included, their own bumps set aside),
-    /// without the default brick decal: what giving a normal map or a height field of one's own
-    /// means. `bricks_decal` keeps the brick decal that goes with the brick heights.
-    pub fn use_bumps(&mut self, bumps: BumpSource, bricks_decal: bool) {
-        self.params.bumps = bumps;
-        self.params.default_decal = bricks_decal && self.params.decal.is_none();
-        if let Some(parts) = &mut self.params.parts {
-            Arc::make_mut(parts).replace_bumps();
-        }
-    }
-
-    /// Draws every surface with `decal` (`None`: no decal), a mesh's parts' own base colours
-    /// set aside.
-    pub fn use_decal(&mut self, decal: Option<Arc<Rgba8Mips>>) {
-        self.params.decal = decal;
-        self.params.default_decal = false;
-        if let Some(parts) = &mut self.params.parts {
-            Arc::make_mut(parts).replace_decals(self.params.decal.clone());
-        }
     }
 }
 
