@@ -14,6 +14,10 @@ and they make the same bytes the command writes from the same options:
   levels and min–max levels (``bumpmap normalmap --height-out``);
 - ``horizon_maps(heights, **options)``: the horizon map, ambient occlusion and bent normals
   (``bumpmap normalmap --horizon-out --ao-out --bent-normals-out``);
+- ``roughness_map(heights, **options)``: the roughness map, every level
+  (``bumpmap normalmap --mips --roughness-out``);
+- ``lean_moments(heights, **options)``: LEAN mapping's moments, every level
+  (``bumpmap normalmap --lean-out``);
 - ``read_height_field(path, **options)``: an image file or a preset (``"bricks@512"``);
 - ``write_texture(path, levels, **options)``: PNG (``.mip1.png``, ... beside level 0), DDS or
   KTX2, BC5/BC7 included;
@@ -35,9 +39,17 @@ and they make the same bytes the command writes from the same options:
 - ``height_from_normals(normals, **options)``: a normal map's slopes integrated back into
   heights (``bumpmap height``) -> an (H, W) float32 array.
 
-``render`` and ``Renderer.prepare`` take a NumPy array where the command line takes a file, for
+``NormalMap`` keeps a map's levels and Y convention together (made from heights, read from a
+file, written, inspected, integrated back into heights, drawn). ``render`` and
+``Renderer.prepare`` take a ``Mesh`` (arrays) as the ``scene``, a ``NormalMap`` as the
+``normal_map``, and a NumPy array where the command line takes a file, for
 ``normal_map`` ((H, W, 4) uint8 or uint16, or a list of levels), ``height_field`` ((H, W)) and
 ``decal`` ((H, W, 4) uint8): the array is used exactly as the file holding it would be.
+
+Warnings (heights clamped, a roughness map of one level, ...) are issued through ``warnings`` as
+``BumpmapWarning``; notes (what a glTF material gave, a technique ``compare`` skipped, the CPU
+taken where ``backend="auto"`` found no GPU) go to the ``bumpmap`` logger at INFO. ``render``
+and ``compare`` take ``progress=``, a function told ``(done, total)`` as the work advances.
 
 Errors are exceptions carrying the library's message: ``ValueError`` for values, ``TypeError``
 for arrays of the wrong dtype or options that do not exist, ``OSError`` for files
@@ -50,15 +62,26 @@ from __future__ import annotations
 
 import inspect as _inspect
 
-from . import _bumpmap
+from ._native import load as _load_native
+
+# The build for this processor: x86-64-v3 where it runs, else baseline x86-64 (see _native).
+_bumpmap = _load_native()
+del _load_native
 
 __version__ = _bumpmap.__version__
+#: The x86-64 level of the native module loaded: ``"x86-64-v3"`` or ``"x86-64"``.
+native_build: str = _bumpmap.built_for()
+#: The category of bumpmap's warnings (a ``UserWarning``).
+BumpmapWarning = _bumpmap.BumpmapWarning
 
 __all__ = [
+    "BumpmapWarning",
     "normal_map",
     "mip_chain",
     "height_mips",
     "horizon_maps",
+    "roughness_map",
+    "lean_moments",
     "read_height_field",
     "write_texture",
     "read_texture",
@@ -68,6 +91,8 @@ __all__ = [
     "techniques",
     "inspect",
     "height_from_normals",
+    "Mesh",
+    "NormalMap",
     "Renderer",
     "Scene",
     "__version__",
@@ -161,6 +186,29 @@ def horizon_maps(heights, **options):
     return _bumpmap.horizon_maps(heights, options)
 
 
+def roughness_map(heights, **options):
+    """The roughness map GGX shaders read in place of Toksvig's length factor, as
+    ``bumpmap normalmap IN --mips --roughness-out R`` writes it: each texel the surface's
+    ``roughness`` made rougher by the spread of the normals it averages (Filament's prefilter).
+
+    heights: as for ``normal_map``. Returns a list of (H, W, 4) uint8 arrays, level 0 first,
+    down to 1x1, in the channels ``roughness_layout`` names.
+    """
+    return _bumpmap.roughness_map(heights, options)
+
+
+def lean_moments(heights, **options):
+    """LEAN mapping's moments (Olano & Baker 2010) of the 8-bit normal map, as
+    ``bumpmap normalmap IN --lean-out L.ktx2`` writes them, what ``specular_filter="lean"`` draws.
+
+    heights: as for ``normal_map``. Returns ``(moments, mxy_j)``, each a list of (H, W, 4)
+    float32 arrays, level 0 first: ``moments`` holds (Bx, By, Mxx, Myy) and ``mxy_j`` holds
+    (Mxy, J, 0, 0), with B = (Nx/Nz, Ny/Nz), M = (Bx², BxBy, By²), J = 1/Nz³, each level the
+    mean over the level-0 texels it covers (the two files' channels).
+    """
+    return _bumpmap.lean_moments(heights, options)
+
+
 def read_height_field(path, **options):
     """A height field from an image file (PNG, TGA, BMP, JPEG, TIFF, PNM at 8 or 16 bits;
     OpenEXR in float) or a preset (``"bricks"``, ``"pinwheel"``, ``"dimples"``,
@@ -225,8 +273,12 @@ def render(**options):
 
     Returns an (H, W, 4) uint8 array, row 0 the image's top; alpha is 255 (the framebuffer's
     alpha holds a self-shadowing term, not coverage, and the command line's PNG leaves it out).
+
+    ``progress``: a function called ``progress(done, total)`` on the calling thread as the
+    reference's tiles finish (at most every 50 ms), and once at the end with ``done == total``
+    (``1, 1`` for a technique, which counts no steps); an exception it raises stops the render.
     """
-    return _bumpmap.render(options)
+    return _bumpmap.render(_objects_as_options(options))
 
 
 def compare(output=None, **options):
@@ -240,6 +292,10 @@ def compare(output=None, **options):
     studies ``studies`` asks for: golf ball, specular filtering, embossing, Peercy's figures, and
     heights as geometry on a wall at grazing angles). With ``output`` (a folder), also writes the report there: images, FLIP heat
     maps, plots, ``results.json`` and ``report.html``, all files or none.
+
+    ``progress``: a function called ``progress(done, total)`` on the calling thread as each
+    reference, technique and study is done, and once at the end with ``done == total``; an
+    exception it raises stops the comparison (nothing is written).
     """
     return _bumpmap.compare(output, options)
 
@@ -288,6 +344,115 @@ def height_from_normals(normals, **options):
 Scene = _bumpmap.Scene
 
 
+class NormalMap:
+    """A normal map and its smaller levels as arrays, with the Y convention its green follows:
+    what ``mip_chain`` makes, ``read_texture`` reads and ``render`` draws, kept together.
+
+    levels: one (H, W, 4) array or a list of them, level 0 first (uint8, or uint16 for a 16-bit
+    map), each half the size of the one before; y_convention: ``"opengl"`` (green up: glTF,
+    Blender, and what bumpmap makes) or ``"directx"``. ``render(normal_map=nm)`` draws it as
+    ``render(normal_map=nm.levels, y_convention=nm.y_convention)`` (a ``y_convention`` given
+    there wins); a single level gets its smaller levels made with the length in alpha, as a
+    file with one level does.
+    """
+
+    def __init__(self, levels, y_convention="opengl"):
+        levels = [levels] if getattr(levels, "ndim", None) == 3 else list(levels)
+        if not levels:
+            raise ValueError("NormalMap(): levels is empty: give level 0 at least")
+        if y_convention not in ("opengl", "directx"):
+            raise ValueError(f"NormalMap(): y_convention must be 'opengl' or 'directx', not {y_convention!r}")
+        self.levels, self.y_convention = levels, y_convention
+
+    @classmethod
+    def from_heights(cls, heights, *, mips=True, **options):
+        """Made from heights by ``mip_chain(heights, **options)`` (every level, the length in
+        alpha), or ``normal_map`` with ``mips=False`` (level 0 only)."""
+        levels = mip_chain(heights, **options) if mips else [normal_map(heights, **options)]
+        return cls(levels, options.get("y_convention", "opengl"))
+
+    @classmethod
+    def read(cls, path, y_convention=None):
+        """A texture file's levels (``read_texture``), their Y convention as level 0's texels show
+        it, or ``y_convention`` where given (also where the texels cannot tell: then it is needed,
+        and its absence a ``ValueError``)."""
+        texture = read_texture(path)
+        told = y_convention or texture["y_convention"]
+        if told is None:
+            raise ValueError(f"NormalMap.read(): {path}: its texels do not tell OpenGL from DirectX; "
+                             "give y_convention='opengl' or 'directx'")
+        return cls(texture["levels"], told)
+
+    def write(self, path, *, format="rgba8"):
+        """``write_texture(path, self.levels, format=format)``; returns the paths written."""
+        return write_texture(path, self.levels, format=format)
+
+    def inspect(self):
+        """``inspect`` of level 0."""
+        return inspect(self.levels[0])
+
+    def heights(self, **options):
+        """``height_from_normals`` of level 0, read with this map's Y convention unless
+        ``y_convention`` is given."""
+        options.setdefault("y_convention", self.y_convention)
+        return height_from_normals(self.levels[0], **options)
+
+    @property
+    def size(self):
+        """Level 0's (width, height)."""
+        return self.levels[0].shape[1], self.levels[0].shape[0]
+
+    def __len__(self):
+        return len(self.levels)
+
+    def __repr__(self):
+        w, h = self.size
+        return f"NormalMap({w}x{h}, {len(self.levels)} levels, {self.levels[0].dtype}, {self.y_convention})"
+
+
+def _objects_as_options(options):
+    """``render``'s options with a ``NormalMap`` given as its levels and Y convention."""
+    given = options.get("normal_map")
+    if isinstance(given, NormalMap):
+        options = {**options, "normal_map": given.levels}
+        options.setdefault("y_convention", given.y_convention)
+    return options
+
+
+class Mesh:
+    """A triangle mesh as arrays, drawn as a scene: ``render(scene=mesh)`` or
+    ``renderer.prepare(scene=mesh)`` draws it as ``scene="mesh:FILE"`` draws a file without a
+    material (the scene's bumps, decal and material options apply, as for an OBJ), in its own
+    units, the camera framing it.
+
+    positions: (N, 3) float32; uvs: (N, 2) float32, as glTF stores them; indices: (T, 3) or
+    (3T,) uint32, counter-clockwise in front; normals: (N, 3) float32, or None to make them from
+    the faces; tangents: (N, 4) float32 with glTF's ``w``, or None to make them (as
+    ``tangents(mode="ours")`` does). The arrays are kept as given and checked when drawn:
+    a wrong dtype or shape is a ``TypeError`` or ``ValueError``, an index past the vertices or a
+    non-finite value a ``ValueError``.
+    """
+
+    def __init__(self, positions, uvs, indices, normals=None, tangents=None):
+        self.positions, self.uvs, self.indices = positions, uvs, indices
+        self.normals, self.tangents = normals, tangents
+
+    @classmethod
+    def from_tangents(cls, made):
+        """The mesh ``tangents(...)`` returned (its vertices split where the frames differ)."""
+        return cls(made["positions"], made["uvs"], made["indices"], made["normals"], made["tangents"])
+
+    def with_tangents(self, **options):
+        """This mesh with tangent frames made by ``tangents(**options)`` (``mode="mikktspace"``
+        for Blender's and the glTF sample viewer's)."""
+        return Mesh.from_tangents(tangents(self.positions, self.normals, self.uvs, self.indices, **options))
+
+    def __repr__(self):
+        n = len(self.positions)
+        t = len(self.indices) if getattr(self.indices, "ndim", 1) == 2 else len(self.indices) // 3
+        return f"Mesh({n} vertices, {t} triangles{'' if self.tangents is None else ', with tangents'})"
+
+
 class Renderer:
     """A backend opened once (``backend``: ``"cpu"``, ``"gpu"`` or ``"auto"``): the GPU's adapter,
     device and pipelines, and every backend's texture caches, are kept between frames.
@@ -309,11 +474,11 @@ class Renderer:
 
     def prepare(self, **options):
         """A ``Scene`` set up once from ``render``'s options (but ``backend``: the renderer's)."""
-        return self._native.prepare(options)
+        return self._native.prepare(_objects_as_options(options))
 
     def render(self, **options):
         """One frame of ``prepare(**options)``: ``render(**options)`` on this renderer."""
-        return self._native.prepare(options).render()
+        return self._native.prepare(_objects_as_options(options)).render()
 
     def describe(self):
         """What it draws on, in words."""
@@ -345,25 +510,32 @@ def _default(text):
     return text
 
 
+# Keywords of the package's own beside the command line's options.
+_OWN_KEYWORDS = {"render": ["progress"], "compare": ["progress"]}
+
+
 def _signature(function, leading):
     """``function``'s real signature: its leading parameters (kept as the wrapper has them),
     then every option as a keyword-only parameter with the command line's default (a flag's is
-    False; an option with no default, None)."""
+    False; an option with no default, None), then the package's own keywords (default None)."""
     own = _inspect.signature(function)
     params = [p for p in own.parameters.values() if p.kind is not _inspect.Parameter.VAR_KEYWORD]
     params = params[:leading]
     for name, default, _help, _choices, flag in _bumpmap.options(function.__name__):
         value = False if flag else None if default is None else _default(default)
         params.append(_inspect.Parameter(name, _inspect.Parameter.KEYWORD_ONLY, default=value))
+    for name in _OWN_KEYWORDS.get(function.__name__, []):
+        params.append(_inspect.Parameter(name, _inspect.Parameter.KEYWORD_ONLY, default=None))
     return _inspect.Signature(params)
 
 
-for _f, _leading in ((normal_map, 1), (mip_chain, 1), (height_mips, 1), (horizon_maps, 1), (read_height_field, 1),
+for _f, _leading in ((normal_map, 1), (mip_chain, 1), (height_mips, 1), (horizon_maps, 1),
+                     (roughness_map, 1), (lean_moments, 1), (read_height_field, 1),
                      (write_texture, 2), (tangents, 4), (render, 0), (compare, 1), (height_from_normals, 1)):
     _f.__doc__ = _inspect.cleandoc(_f.__doc__ or "") + _options_doc(_f.__name__)
     _f.__signature__ = _signature(_f, _leading)
 del _f, _leading
 Renderer.prepare.__signature__ = _inspect.Signature(
     [_inspect.Parameter("self", _inspect.Parameter.POSITIONAL_OR_KEYWORD)]
-    + [p for p in render.__signature__.parameters.values() if p.name != "backend"]
+    + [p for p in render.__signature__.parameters.values() if p.name not in ("backend", "progress")]
 )

@@ -296,3 +296,49 @@ pub fn normal_texels(value: &Bound<'_, PyAny>) -> PyResult<bumpmap::inspect::Dec
         Err(PyTypeError::new_err(format!("normals must be {EXPECTED}, got {}", dtype_name(&array))))
     }
 }
+
+/// A mesh from its arrays (float32 positions (N, 3), normals (N, 3) or None, uvs (N, 2),
+/// tangents (N, 4) or None, uint32 indices), `function` naming it in errors; normals normalized
+/// as a glTF reader normalizes them. Not yet validated (the indices' range, finite values): that
+/// runs on the work's threads. Returns it and whether it came with normals and tangents.
+pub fn mesh(
+    function: &str,
+    positions: &Bound<'_, PyAny>,
+    normals: &Bound<'_, PyAny>,
+    uvs: &Bound<'_, PyAny>,
+    tangents: Option<&Bound<'_, PyAny>>,
+    indices: &Bound<'_, PyAny>,
+) -> PyResult<(bumpmap_math::mesh::Mesh, bool, bool)> {
+    use glam::{Vec2, Vec3, Vec4};
+    let positions: Vec<Vec3> = rows::<3>(positions, "positions")?.into_iter().map(Vec3::from).collect();
+    let n = positions.len();
+    let normals: Vec<Vec3> = if normals.is_none() {
+        Vec::new()
+    } else {
+        rows::<3>(normals, "normals")?.into_iter().map(|n| Vec3::from(n).normalize_or_zero()).collect()
+    };
+    let texcoords: Vec<Vec2> = rows::<2>(uvs, "uvs")?.into_iter().map(Vec2::from).collect();
+    let tangents: Vec<Vec4> = match tangents {
+        Some(t) if !t.is_none() => rows::<4>(t, "tangents")?.into_iter().map(Vec4::from).collect(),
+        _ => Vec::new(),
+    };
+    for (what, len, optional) in
+        [("normals", normals.len(), true), ("uvs", texcoords.len(), false), ("tangents", tangents.len(), true)]
+    {
+        if len != n && !(optional && len == 0) {
+            return Err(PyValueError::new_err(format!(
+                "{function}(): {what} has {len} rows, positions {n}: one per vertex"
+            )));
+        }
+    }
+    let (had_normals, had_tangents) = (!normals.is_empty(), !tangents.is_empty());
+    let mesh = bumpmap_math::mesh::Mesh {
+        positions,
+        normals,
+        texcoords,
+        tangents,
+        colors: Vec::new(),
+        indices: triangles(indices)?,
+    };
+    Ok((mesh, had_normals, had_tangents))
+}

@@ -9,6 +9,15 @@ use pyo3::prelude::*;
 
 use crate::options::python_words;
 
+pyo3::create_exception!(
+    bumpmap,
+    BumpmapWarning,
+    pyo3::exceptions::PyUserWarning,
+    "What bumpmap warns about: an input used in a way the caller may not expect (heights clamped \
+     to [0, 1], a roughness map of one level). A `warnings` filter on this category silences \
+     them or makes them errors."
+);
+
 /// `e` as the exception `function` raises.
 pub fn to_py(function: &str, e: CliError) -> PyErr {
     let message = format!("{function}(): {}", python_words(&e.to_string()));

@@ -9,13 +9,23 @@
 //! interpreter exits first, by the exit hook the module registers (`abandon_all`). A Ctrl-C
 //! that arrives while files are being renamed into place (a few milliseconds) waits for the
 //! renames and is raised as the call returns: the call happened whole, then the interrupt.
+//!
+//! What the work says besides its result reaches Python here too: its warnings as
+//! `bumpmap.BumpmapWarning` through `warnings` (a filter that makes them errors raises), its notes
+//! through the `bumpmap` logger at INFO, and its progress as calls of a `progress=` function, made
+//! on the calling thread between waits (at most every 50 ms) and once at the end with done =
+//! total; an exception the function raises ends the call as Ctrl-C does and is raised.
 
-use std::sync::atomic::{AtomicU8, Ordering};
+use std::sync::atomic::{AtomicU8, AtomicU64, Ordering};
 use std::sync::mpsc::{RecvTimeoutError, channel};
 use std::sync::{Arc, Mutex};
 use std::time::Duration;
 
 use pyo3::exceptions::PyRuntimeError;
+
+use bumpmap_cli::report::Progress;
+
+use crate::options::python_words;
 use pyo3::prelude::*;
 
 /// Whether the caller gave up on the work (Ctrl-C), and whether the work already began to put
@@ -53,19 +63,106 @@ const STACK_BYTES: usize = 64 << 20;
 
 /// Runs `work` on its own thread with the GIL released and returns its result; a signal handler
 /// that raises (Ctrl-C's `KeyboardInterrupt`) ends the wait at once, with the work's [`Cancel`]
-/// set. A panic in the work is a `RuntimeError` naming it a bug.
+/// set. A panic in the work is a `RuntimeError` naming it a bug. Its warnings and notes are
+/// said in Python when it ends.
 pub fn run<T: Send + 'static>(py: Python<'_>, work: impl FnOnce(&Cancel) -> T + Send + 'static) -> PyResult<T> {
-    run_beside_pool(py, move |cancel, pool| pool.install(|| work(cancel)))
+    run_reporting(py, move |cancel, _| work(cancel), None)
+}
+
+/// [`run`] for work that shows its progress as the [`Progress`] it is given says: told to
+/// `progress` (a `progress=` function) as the work goes, or hidden without one.
+pub fn run_reporting<T: Send + 'static>(
+    py: Python<'_>,
+    work: impl FnOnce(&Cancel, &Progress) -> T + Send + 'static,
+    progress: Option<&Bound<'_, PyAny>>,
+) -> PyResult<T> {
+    let counter = Arc::new(Counter::default());
+    let shown = match progress {
+        Some(_) => Progress::Report(counter.report_fn()),
+        None => Progress::Hidden,
+    };
+    let (value, said) = wait(
+        py,
+        move |cancel, pool| pool.install(|| bumpmap_cli::report::collect(|| work(cancel, &shown))),
+        progress.map(|f| (&counter, f)),
+    )?;
+    say(py, said)?;
+    Ok(value)
+}
+
+/// Steps done and in all, counted by the work's threads, read by the calling thread.
+#[derive(Default)]
+struct Counter {
+    done: AtomicU64,
+    total: AtomicU64,
+}
+
+impl Counter {
+    /// The function the work tells its steps to.
+    fn report_fn(self: &Arc<Self>) -> bumpmap_cli::report::ReportFn {
+        let counter = self.clone();
+        Arc::new(move |done, total| {
+            counter.total.store(total, Ordering::Relaxed);
+            counter.done.fetch_max(done, Ordering::Relaxed);
+        })
+    }
+
+    fn read(&self) -> (u64, u64) {
+        (self.done.load(Ordering::Relaxed), self.total.load(Ordering::Relaxed))
+    }
+}
+
+/// Says in Python what the work said: warnings through `warnings`, notes through `logging`.
+fn say(py: Python<'_>, said: Vec<bumpmap_cli::report::Diagnostic>) -> PyResult<()> {
+    use bumpmap_cli::report::Diagnostic;
+    for d in said {
+        match d {
+            Diagnostic::Warning(w) => {
+                let category = py.get_type::<crate::errors::BumpmapWarning>();
+                let text = std::ffi::CString::new(python_words(&w).replace('\0', " ")).expect("no NUL left");
+                // Level 2: the line that called the package's function, not the function itself.
+                PyErr::warn(py, category.as_any(), &text, 2)?;
+            }
+            Diagnostic::Note(n) => {
+                py.import("logging")?
+                    .call_method1("getLogger", ("bumpmap",))?
+                    .call_method1("info", (python_words(&n),))?;
+            }
+        }
+    }
+    Ok(())
 }
 
 /// [`run`], but `work` runs on the worker thread itself, beside this process's pool, and enters
 /// it (`pool.install`) where it chooses: for work that must take a lock first. A pool thread
 /// waiting on a lock can be the one another job's parallel loop needs (a thread idle in a
 /// `join` runs whatever job is queued, the one that waits included): locks are taken outside.
+///
+/// What the work says goes to stderr: it is drawing, which says nothing.
 pub fn run_beside_pool<T: Send + 'static>(
     py: Python<'_>,
     work: impl FnOnce(&Cancel, &rayon::ThreadPool) -> T + Send + 'static,
 ) -> PyResult<T> {
+    wait(py, work, None)
+}
+
+/// Runs `work` on its own thread beside the pool and waits for it, handling signals and
+/// telling `progress` between waits.
+fn wait<T: Send + 'static>(
+    py: Python<'_>,
+    work: impl FnOnce(&Cancel, &rayon::ThreadPool) -> T + Send + 'static,
+    progress: Option<(&Arc<Counter>, &Bound<'_, PyAny>)>,
+) -> PyResult<T> {
+    let mut told = (0, 0);
+    let tell = |told: &mut (u64, u64), now: (u64, u64)| -> PyResult<()> {
+        if let Some((_, f)) = progress
+            && now != *told
+        {
+            *told = now;
+            f.call1(now)?;
+        }
+        Ok(())
+    };
     let cancel = Cancel::default();
     let (tx, rx) = channel();
     // Waited on with the GIL released, from whichever thread the closure runs on.
@@ -88,10 +185,23 @@ pub fn run_beside_pool<T: Send + 'static>(
         match py.detach(|| rx.lock().expect("one waiter").recv_timeout(Duration::from_millis(50))) {
             Ok(value) => {
                 let _ = handle.join();
-                return value.map_err(no_threads);
+                let value = value.map_err(no_threads)?;
+                if let Some((counter, _)) = progress {
+                    // Once more at the end, all steps done (1 of 1 for work that counted none).
+                    let total = counter.read().1.max(1);
+                    tell(&mut told, (total, total))?;
+                }
+                return Ok(value);
             }
             Err(RecvTimeoutError::Timeout) => {
-                if let Err(e) = py.check_signals() {
+                let reported = match progress {
+                    Some((counter, _)) => match counter.read() {
+                        (_, 0) => Ok(()),
+                        now => tell(&mut told, now),
+                    },
+                    None => Ok(()),
+                };
+                if let Err(e) = reported.and_then(|()| py.check_signals()) {
                     if cancel.give_up() {
                         return Err(e);
                     }

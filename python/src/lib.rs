@@ -11,13 +11,15 @@
 //! - `interrupt`: long work with the GIL released, Ctrl-C honoured;
 //! - `errors`: the command line's errors as Python exceptions;
 //! - `pool`: the threads the work runs on, one pool per process (so a forked child works);
-//! - `renderer`: `Renderer` and `Scene`, kept between frames, and the arrays `render` takes.
+//! - `renderer`: `Renderer` and `Scene`, kept between frames, and the arrays `render` takes;
+//! - `maps`: heights → the normal map, its chain and the maps written beside it.
 //!
 //! What it does not do: any image, mesh or rendering work of its own.
 
 mod arrays;
 mod errors;
 mod interrupt;
+mod maps;
 mod options;
 mod pool;
 mod renderer;
@@ -30,8 +32,7 @@ use bumpmap_cli::commands;
 use bumpmap_cli::error::CliError;
 use bumpmap_io::texture_file::TextureFormat;
 use bumpmap_io::{Channel, HeightSource};
-use bumpmap_math::mesh::Mesh;
-use glam::{Vec2, Vec3};
+
 use pyo3::exceptions::{PyTypeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
@@ -40,127 +41,8 @@ use crate::errors::to_py;
 use crate::options::Function;
 
 /// The keyword arguments, parsed as `function`'s command would parse them.
-fn parse(function: &Function, fixed: &[String], options: Option<&Bound<'_, PyDict>>) -> PyResult<Command> {
+pub(crate) fn parse(function: &Function, fixed: &[String], options: Option<&Bound<'_, PyDict>>) -> PyResult<Command> {
     function.parse(fixed, options)
-}
-
-/// `normalmap`'s arguments for an array input.
-fn normalmap_args(
-    function: &Function,
-    mips: bool,
-    options: Option<&Bound<'_, PyDict>>,
-) -> PyResult<bumpmap_cli::args::NormalmapArgs> {
-    let mut fixed = vec!["heights".to_string(), "--output=heights.png".to_string()];
-    if mips {
-        fixed.push("--mips".into());
-    }
-    match parse(function, &fixed, options)? {
-        Command::Normalmap(a) => Ok(a),
-        _ => unreachable!("normalmap's options parse as normalmap"),
-    }
-}
-
-/// `normalmap`'s chain for an array of heights: level 0, or every level with `mips`.
-fn chain_of<'py>(
-    py: Python<'py>,
-    function: &Function,
-    mips: bool,
-    heights: &Bound<'py, PyAny>,
-    options: Option<&Bound<'py, PyDict>>,
-) -> PyResult<Vec<Bound<'py, PyAny>>> {
-    let args = normalmap_args(function, mips, options)?;
-    let field = arrays::height_field(heights)?;
-    let chain = interrupt::run(py, move |_| commands::normal_map(&args, &field, "heights"))?
-        .map_err(|e| to_py(function.name, e))?;
-    arrays::from_chain(py, chain)
-}
-
-/// Heights → normal map: level 0 as an (H, W, 4) array (uint8, or uint16 with bits=16).
-#[pyfunction]
-#[pyo3(signature = (heights, options = None))]
-fn normal_map<'py>(
-    py: Python<'py>,
-    heights: &Bound<'py, PyAny>,
-    options: Option<&Bound<'py, PyDict>>,
-) -> PyResult<Bound<'py, PyAny>> {
-    Ok(chain_of(py, &options::NORMAL_MAP, false, heights, options)?.swap_remove(0))
-}
-
-/// Heights → normal map and every smaller level down to 1×1, level 0 first.
-#[pyfunction]
-#[pyo3(signature = (heights, options = None))]
-fn mip_chain<'py>(
-    py: Python<'py>,
-    heights: &Bound<'py, PyAny>,
-    options: Option<&Bound<'py, PyDict>>,
-) -> PyResult<Bound<'py, PyList>> {
-    PyList::new(py, chain_of(py, &options::MIP_CHAIN, true, heights, options)?)
-}
-
-/// Heights → what the parallax techniques read: the levels (float32 (H, W), level 0 first)
-/// and the min–max levels (float32 (H, W, 2): lower, upper bound), as `normalmap --height-out`
-/// stores them.
-#[pyfunction]
-#[pyo3(signature = (heights, options = None))]
-fn height_mips<'py>(
-    py: Python<'py>,
-    heights: &Bound<'py, PyAny>,
-    options: Option<&Bound<'py, PyDict>>,
-) -> PyResult<(Bound<'py, PyList>, Bound<'py, PyList>)> {
-    let args = normalmap_args(&options::HEIGHT_MIPS, false, options)?;
-    let field = arrays::height_field(heights)?;
-    let mips = interrupt::run(py, move |_| commands::heights(&args, &field, "heights"))?
-        .map_err(|e| to_py("height_mips", e))?;
-    let levels: Vec<_> =
-        mips.levels().iter().map(|l| arrays::from_plane(py, l.height, l.width, &l.texels)).collect::<PyResult<_>>()?;
-    let minmax: Vec<_> = mips
-        .minmax()
-        .unwrap_or_default()
-        .iter()
-        .map(|l| arrays::from_pairs(py, l.height, l.width, &l.texels))
-        .collect::<PyResult<_>>()?;
-    Ok((PyList::new(py, levels)?, PyList::new(py, minmax)?))
-}
-
-/// Heights → the horizon map (every level, float32 (H, W, 8): atan(rise)/90° per direction),
-/// ambient occlusion (float32 (H, W)) and bent normals (encoded as `normal_map` encodes normals),
-/// as `normalmap --horizon-out --ao-out --bent-normals-out` makes them.
-#[pyfunction]
-#[pyo3(signature = (heights, options = None))]
-fn horizon_maps<'py>(
-    py: Python<'py>,
-    heights: &Bound<'py, PyAny>,
-    options: Option<&Bound<'py, PyDict>>,
-) -> PyResult<Bound<'py, PyDict>> {
-    let args = normalmap_args(&options::HORIZON_MAPS, false, options)?;
-    let field = arrays::height_field(heights)?;
-    let map = interrupt::run(py, move |_| commands::horizons(&args, &field, "heights"))?
-        .map_err(|e| to_py("horizon_maps", e))?;
-    let args = normalmap_args(&options::HORIZON_MAPS, false, options)?;
-    let depth = args.map.scale.abs();
-    let levels: Vec<_> = map
-        .levels()
-        .iter()
-        .map(|l| arrays::from_plane_channels(py, l.height, l.width, l.texels.as_flattened(), 8))
-        .collect::<PyResult<_>>()?;
-    let (w, h) = (map.width(), map.height());
-    let ao = arrays::from_plane(py, h, w, &map.ambient_occlusion(depth))?;
-    let (y, encoding) = (args.map.options().y_convention, args.map.options().encoding);
-    let bent = match args.bits {
-        16 => bumpmap_cli::commands::Chain::Rgba16(bumpmap_math::MipChain {
-            levels: vec![map.bent_normal_map(depth, y, encoding)],
-            encoding,
-        }),
-        _ => bumpmap_cli::commands::Chain::Rgba8(bumpmap_math::MipChain {
-            levels: vec![map.bent_normal_map(depth, y, encoding)],
-            encoding,
-        }),
-    };
-    let out = PyDict::new(py);
-    out.set_item("horizons", PyList::new(py, levels)?)?;
-    out.set_item("ambient_occlusion", ao)?;
-    out.set_item("bent_normals", arrays::from_chain(py, bent)?.swap_remove(0))?;
-    Ok(out)
 }
 
 /// A height field from an image file or a preset (`bricks@512`), as the command line reads it.
@@ -278,31 +160,8 @@ fn tangents<'py>(
         Command::Tangents(a) => a,
         _ => unreachable!("tangents' options parse as tangents"),
     };
-    let positions: Vec<Vec3> = arrays::rows::<3>(positions, "positions")?.into_iter().map(Vec3::from).collect();
-    let n = positions.len();
-    // Normalized as a glTF reader normalizes them (`bumpmap tangents` reads a file).
-    let normals: Vec<Vec3> = if normals.is_none() {
-        Vec::new()
-    } else {
-        arrays::rows::<3>(normals, "normals")?.into_iter().map(|n| Vec3::from(n).normalize_or_zero()).collect()
-    };
-    let texcoords: Vec<Vec2> = arrays::rows::<2>(uvs, "uvs")?.into_iter().map(Vec2::from).collect();
-    for (what, len) in [("normals", if normals.is_empty() { n } else { normals.len() }), ("uvs", texcoords.len())] {
-        if len != n {
-            return Err(PyValueError::new_err(format!(
-                "tangents(): {what} has {len} rows, positions {n}: one per vertex"
-            )));
-        }
-    }
-    let computed = normals.is_empty();
-    let mut mesh = Mesh {
-        positions,
-        normals,
-        texcoords,
-        tangents: Vec::new(),
-        colors: Vec::new(),
-        indices: arrays::triangles(indices)?,
-    };
+    let (mut mesh, had_normals, _) = arrays::mesh("tangents", positions, normals, uvs, None, indices)?;
+    let computed = !had_normals;
     // Checked on the worker's pool too: the check's loops are parallel.
     let (out, report) = interrupt::run(py, move |_| {
         mesh.validate().map_err(|e| PyValueError::new_err(format!("tangents(): {e}")))?;
@@ -335,17 +194,41 @@ fn tangents<'py>(
     Ok(dict)
 }
 
+/// Keyword arguments, and the `progress=` function taken out of them.
+type WithProgress<'py> = (Option<Bound<'py, PyDict>>, Option<Bound<'py, PyAny>>);
+
+/// The options without `progress`, and the function it names (None: no reports); anything else
+/// callable or None is a `TypeError`.
+fn take_progress<'py>(function: &str, options: Option<&Bound<'py, PyDict>>) -> PyResult<WithProgress<'py>> {
+    let Some(options) = options else { return Ok((None, None)) };
+    let options = options.copy()?;
+    let Some(progress) = options.get_item("progress")? else { return Ok((Some(options), None)) };
+    options.del_item("progress")?;
+    if progress.is_none() {
+        return Ok((Some(options), None));
+    }
+    if !progress.is_callable() {
+        return Err(PyTypeError::new_err(format!(
+            "{function}(): progress: a function of (done, total) or None, not {}",
+            progress.get_type().name()?
+        )));
+    }
+    Ok((Some(options), Some(progress)))
+}
+
 /// Renders a scene as `bumpmap render` does; returns an (H, W, 4) uint8 array, alpha 255.
 #[pyfunction]
 #[pyo3(signature = (options = None))]
 fn render<'py>(py: Python<'py>, options: Option<&Bound<'py, PyDict>>) -> PyResult<Bound<'py, PyAny>> {
-    let (options, given) = renderer::given(py, "render", options)?;
+    let (options, progress) = take_progress("render", options)?;
+    let (options, given) = renderer::given(py, "render", options.as_ref())?;
     let args = match parse(&options::RENDER, &[], options.as_ref())? {
         Command::Render(a) => a,
         _ => unreachable!("render's options parse as render"),
     };
     let drawn =
-        interrupt::run(py, move |_| commands::render_given(&args, true, &given))?.map_err(|e| to_py("render", e))?;
+        interrupt::run_reporting(py, move |_, shown| commands::render_given(&args, shown, &given), progress.as_ref())?
+            .map_err(|e| to_py("render", e))?;
     renderer::frame_array(py, drawn.frame.image)
 }
 
@@ -358,8 +241,9 @@ fn compare<'py>(
     output: Option<PathBuf>,
     options: Option<&Bound<'py, PyDict>>,
 ) -> PyResult<Bound<'py, PyAny>> {
+    let (options, progress) = take_progress("compare", options)?;
     let fixed: Vec<String> = output.iter().map(|o| format!("--output={}", o.to_string_lossy())).collect();
-    let args = match parse(&options::COMPARE, &fixed, options)? {
+    let args = match parse(&options::COMPARE, &fixed, options.as_ref())? {
         Command::Compare(a) => a,
         _ => unreachable!("compare's options parse as compare"),
     };
@@ -369,14 +253,18 @@ fn compare<'py>(
     }
     // Measured and written on the worker, so Ctrl-C also stops the writing (nothing is put
     // in place once it came).
-    let results = interrupt::run(py, move |cancel| {
-        let (results, inputs) = commands::compare(&args, true)?;
-        if let Some(out) = &output {
-            let inputs: Vec<&std::path::Path> = inputs.iter().map(PathBuf::as_path).collect();
-            commands::write_compare(out, &results, &inputs, &|| !cancel.begin_commit())?;
-        }
-        Ok::<_, CliError>(results)
-    })?
+    let results = interrupt::run_reporting(
+        py,
+        move |cancel, shown| {
+            let (results, inputs) = commands::compare(&args, shown)?;
+            if let Some(out) = &output {
+                let inputs: Vec<&std::path::Path> = inputs.iter().map(PathBuf::as_path).collect();
+                commands::write_compare(out, &results, &inputs, &|| !cancel.begin_commit())?;
+            }
+            Ok::<_, CliError>(results)
+        },
+        progress.as_ref(),
+    )?
     .map_err(|e| to_py("compare", e))?;
     let json = commands::compare_json(&results);
     py.import("json")?.call_method1("loads", (json,))
@@ -454,14 +342,28 @@ fn techniques() -> Vec<(String, String, Vec<String>)> {
         .collect()
 }
 
+/// The x86-64 level this build of the native module was compiled for (`x86-64` or `x86-64-v3`).
+#[pyfunction]
+fn built_for() -> &'static str {
+    bumpmap::cpu::built_for().name()
+}
+
+/// Whether this processor runs a build for x86-64-v3 (the wheel's faster module).
+#[pyfunction]
+fn runs_x86_64_v3() -> bool {
+    bumpmap::cpu::has(bumpmap::cpu::Level::X86_64V3)
+}
+
 /// The native module.
 #[pymodule]
 fn _bumpmap(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
-    m.add_function(wrap_pyfunction!(normal_map, m)?)?;
-    m.add_function(wrap_pyfunction!(mip_chain, m)?)?;
-    m.add_function(wrap_pyfunction!(height_mips, m)?)?;
-    m.add_function(wrap_pyfunction!(horizon_maps, m)?)?;
+    m.add_function(wrap_pyfunction!(maps::normal_map, m)?)?;
+    m.add_function(wrap_pyfunction!(maps::mip_chain, m)?)?;
+    m.add_function(wrap_pyfunction!(maps::height_mips, m)?)?;
+    m.add_function(wrap_pyfunction!(maps::horizon_maps, m)?)?;
+    m.add_function(wrap_pyfunction!(maps::roughness_map, m)?)?;
+    m.add_function(wrap_pyfunction!(maps::lean_moments, m)?)?;
     m.add_function(wrap_pyfunction!(read_height_field, m)?)?;
     m.add_function(wrap_pyfunction!(write_texture, m)?)?;
     m.add_function(wrap_pyfunction!(read_texture, m)?)?;
@@ -472,6 +374,9 @@ fn _bumpmap(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(techniques, m)?)?;
     m.add_function(wrap_pyfunction!(inspect, m)?)?;
     m.add_function(wrap_pyfunction!(height_from_normals, m)?)?;
+    m.add_function(wrap_pyfunction!(built_for, m)?)?;
+    m.add_function(wrap_pyfunction!(runs_x86_64_v3, m)?)?;
+    m.add("BumpmapWarning", m.py().get_type::<errors::BumpmapWarning>())?;
     m.add_class::<renderer::Renderer>()?;
     m.add_class::<renderer::Scene>()?;
     // Files an interrupted call staged, when the interpreter exits before its work ends.

@@ -35,6 +35,8 @@ pub struct Function {
 }
 
 const MAP_OPTIONS: &[&str] = &["scale", "kernel", "wrap", "encoding", "y-convention", "bits"];
+/// How heights become normals, for what is always made from the 8-bit map.
+const MAP_OPTIONS_8_BIT: &[&str] = &["scale", "kernel", "wrap", "encoding", "y-convention"];
 
 /// `normal_map`: how heights become normals, level 0.
 pub const NORMAL_MAP: Function = Function { name: "normal_map", command: "normalmap", taken: Taken::Only(MAP_OPTIONS) };
@@ -50,6 +52,15 @@ pub const HEIGHT_MIPS: Function = Function { name: "height_mips", command: "norm
 /// taken at).
 pub const HORIZON_MAPS: Function =
     Function { name: "horizon_maps", command: "normalmap", taken: Taken::Only(MAP_OPTIONS) };
+/// `roughness_map`: how heights become normals, and the surface's roughness and its layout.
+pub const ROUGHNESS_MAP: Function = Function {
+    name: "roughness_map",
+    command: "normalmap",
+    taken: Taken::Only(&["scale", "kernel", "wrap", "encoding", "y-convention", "roughness", "roughness-layout"]),
+};
+/// `lean_moments`: how heights become normals (always the 8-bit map's, as `render` draws).
+pub const LEAN_MOMENTS: Function =
+    Function { name: "lean_moments", command: "normalmap", taken: Taken::Only(MAP_OPTIONS_8_BIT) };
 /// `read_height_field`: the channel.
 pub const READ_HEIGHT_FIELD: Function =
     Function { name: "read_height_field", command: "normalmap", taken: Taken::Only(&["channel"]) };
@@ -73,11 +84,13 @@ pub const HEIGHT_FROM_NORMALS: Function = Function {
 };
 
 /// Every function that takes options, by Python name.
-pub const FUNCTIONS: [&Function; 10] = [
+pub const FUNCTIONS: [&Function; 12] = [
     &NORMAL_MAP,
     &MIP_CHAIN,
     &HEIGHT_MIPS,
     &HORIZON_MAPS,
+    &ROUGHNESS_MAP,
+    &LEAN_MOMENTS,
     &READ_HEIGHT_FIELD,
     &WRITE_TEXTURE,
     &TANGENTS,

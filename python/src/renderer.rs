@@ -1,6 +1,6 @@
 //! `Renderer` and `Scene`: a backend opened once (the GPU's adapter and pipelines kept) and a
 //! scene set up and prepared once, drawn frame after frame with the light or the eye moved; and
-//! the arrays `render` takes where the command line takes files.
+//! the arrays `render` takes where the command line takes files (a `bumpmap.Mesh` as the scene).
 //!
 //! Both sit on the library's `bumpmap::Renderer` and `bumpmap::Prepared`, prepared by the same
 //! setup `bumpmap render` runs (`commands::prepare_render`), so a frame is the command's frame.
@@ -33,6 +33,12 @@ pub fn given<'py>(
     let Some(options) = options else { return Ok((None, Given::default())) };
     let copy = options.copy()?;
     let mut given = Given::default();
+    if let Some(scene) = options.get_item("scene")?
+        && !scene.is_instance_of::<pyo3::types::PyString>()
+    {
+        given.mesh = Some(mesh_scene(function, &scene)?);
+        copy.set_item("scene", "mesh:the scene's Mesh")?;
+    }
     for name in ARRAY_INPUTS {
         let Some(value) = options.get_item(name)? else { continue };
         // An array, or (a normal map's chain) a list or tuple of them.
@@ -76,6 +82,24 @@ pub fn given<'py>(
         copy.set_item(name, format!("<{name} array>"))?;
     }
     Ok((Some(copy), given))
+}
+
+/// A `bumpmap.Mesh` (anything with its attributes) given as the scene: the mesh `--scene
+/// mesh:FILE` would read, without a material.
+fn mesh_scene(function: &str, scene: &Bound<'_, PyAny>) -> PyResult<bumpmap_io::LoadedMesh> {
+    let get = |name: &str| {
+        scene.getattr(name).map_err(|_| {
+            let kind = scene.get_type().name().map(|n| n.to_string()).unwrap_or_default();
+            PyTypeError::new_err(format!(
+                "{function}(): scene must be a built-in scene's name, \"mesh:FILE\" or a bumpmap.Mesh, not {kind} (it has no {name})"
+            ))
+        })
+    };
+    let (positions, normals, uvs, tangents, indices) =
+        (get("positions")?, get("normals")?, get("uvs")?, get("tangents")?, get("indices")?);
+    let (mesh, had_normals, had_tangents) =
+        arrays::mesh(function, &positions, &normals, &uvs, Some(&tangents), &indices)?;
+    Ok(bumpmap_io::LoadedMesh { mesh, had_normals, had_tangents, ..Default::default() })
 }
 
 /// `render`'s options parsed, with their array inputs.

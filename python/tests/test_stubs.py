@@ -14,6 +14,9 @@ import bumpmap
 from bumpmap import _bumpmap
 
 STUB = Path(bumpmap.__file__).with_name("__init__.pyi")
+# Every function that takes the command line's options.
+FUNCTIONS = ["normal_map", "mip_chain", "height_mips", "horizon_maps", "roughness_map", "lean_moments",
+             "read_height_field", "write_texture", "tangents", "render", "compare", "height_from_normals"]
 
 
 def stub_functions():
@@ -34,22 +37,24 @@ def same_default(stub_value, cli_default, is_flag):
 def test_stub_defaults_are_the_cli_defaults():
     functions = stub_functions()
     checked = 0
-    for name in ["normal_map", "mip_chain", "height_mips", "horizon_maps", "read_height_field", "write_texture", "tangents", "render", "compare", "height_from_normals"]:
+    for name in FUNCTIONS:
         node = functions[name]
         options = {o[0]: o for o in _bumpmap.options(name)}
+        own = bumpmap._OWN_KEYWORDS.get(name, [])
         for arg, default in zip(node.args.kwonlyargs, node.args.kw_defaults):
+            if arg.arg in own:
+                assert ast.literal_eval(default) is None, f"{name}({arg.arg}=): None by default"
+                continue
             assert arg.arg in options, f"{name}({arg.arg}=): not an option of the command"
             _, cli_default, _, _, is_flag = options[arg.arg]
             value = ast.literal_eval(default)
             assert same_default(value, cli_default, is_flag), f"{name}({arg.arg}={value!r}): the CLI's is {cli_default!r}"
             checked += 1
-        assert {a.arg for a in node.args.kwonlyargs} == set(options), f"{name}: every option, and no other"
+        assert {a.arg for a in node.args.kwonlyargs} == set(options) | set(own), f"{name}: every option, and no other"
     assert checked > 80
 
 
 REPO = Path(__file__).resolve().parents[2]
-FUNCTIONS = ["normal_map", "mip_chain", "height_mips", "horizon_maps", "read_height_field", "write_texture", "tangents",
-             "render", "compare", "height_from_normals"]
 
 
 def literals_script():
@@ -82,6 +87,8 @@ def test_signatures_list_every_keyword_with_its_default():
             assert same_default(p.default, default, flag), f"{name}({option}={p.default!r}): the CLI's is {default!r}"
     render = inspect.signature(bumpmap.render).parameters
     assert render["technique"].default == "kilgard" and render["size"].default == 512
+    assert render["progress"].default is None and inspect.signature(bumpmap.compare).parameters["progress"].default is None
+    assert "progress" not in inspect.signature(bumpmap.Renderer.prepare).parameters
     assert list(inspect.signature(bumpmap.tangents).parameters)[:4] == ["positions", "normals", "uvs", "indices"]
 
 
@@ -100,6 +107,11 @@ image = bumpmap.render(technique="pom", backend="auto", size=64, eye=(0, -6, 3),
 lit = bumpmap.render(light=(1.0, 2.0, 3.0), specular_filter="lean", filter="nearest")
 ok: bool = bool(image.any())
 results = bumpmap.compare(techniques=["kilgard", "single-pass"], studies="none")
+seen: list[tuple[int, int]] = []
+reference = bumpmap.render(technique="reference", progress=lambda done, total: seen.append((done, total)))
+rough = bumpmap.roughness_map(heights, roughness=0.3, roughness_layout="gltf")
+moments, mxy_j = bumpmap.lean_moments(heights)
+first_moment: float = float(moments[0][0, 0, 0])
 """
 
 # Each line must be refused by the type checker: (line, what it gets wrong).
@@ -110,6 +122,8 @@ WRONG = [
     ('bumpmap.render(size="64")', "a size as text"),
     ('bumpmap.render(no_such_option=1)', "an option that does not exist"),
     ('x: str = bumpmap.write_texture("n.png", np.zeros((4, 4, 4), np.uint8))[0]', "paths are not str"),
+    ('bumpmap.render(progress=3)', "a progress that is not a function"),
+    ('bumpmap.roughness_map(bumpmap.read_height_field("bricks"), roughness_layout="orm")', "a layout that does not exist"),
 ]
 
 

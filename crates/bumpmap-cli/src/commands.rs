@@ -17,6 +17,7 @@ use bumpmap_math::tangent::{TangentReport, generate_tangents};
 
 use crate::args::{CompareArgs, NormalmapArgs, RenderArgs, TangentsArgs};
 use crate::error::CliError;
+pub use crate::report::Progress;
 
 pub use crate::compare::{Outcome, Rendered, Results, Scores};
 pub use crate::normalmap::Chain;
@@ -41,6 +42,25 @@ pub fn heights(args: &NormalmapArgs, field: &HeightField, name: &str) -> Result<
 /// (ambient occlusion and bent normals come from it).
 pub fn horizons(args: &NormalmapArgs, field: &HeightField, name: &str) -> Result<bumpmap_math::HorizonMap, CliError> {
     crate::normalmap::horizon_map(field, args.map.wrap.into(), name)
+}
+
+/// `--roughness-out`'s levels for `field` (RGBA8, every level down to 1×1): the surface's
+/// `--roughness` made rougher where the normals a texel averages spread, laid out in the channels
+/// `--roughness-layout` names.
+pub fn roughness(args: &NormalmapArgs, field: &HeightField, name: &str) -> Result<bumpmap_math::MipChain, CliError> {
+    crate::normalmap::roughness_chain(field, &args.map.options(), args.roughness, args.roughness_layout, name)
+}
+
+/// `--lean-out`'s moments for `field`, every level, as the two files hold them: (Bx, By, Mxx,
+/// Myy) and (Mxy, J, 0, 0), from the 8-bit normal map's level 0 whatever `--bits` says.
+pub fn lean(
+    args: &NormalmapArgs,
+    field: &HeightField,
+    name: &str,
+) -> Result<[Vec<bumpmap_math::Image<[f32; 4]>>; 2], CliError> {
+    let options = args.map.options();
+    let chain = crate::normalmap::make_chain(field, &options, true, args.mip_mode.into(), TextureFormat::Rgba8, name)?;
+    crate::normalmap::lean_levels(field, &options, &chain, name)
 }
 
 /// The texel format `normalmap`'s `--format` and `--bits` ask for together.
@@ -69,13 +89,13 @@ pub fn write_texture(
 }
 
 /// `render`'s image (and passes, with `--passes`), drawn as the command draws it, without the
-/// output file; with `progress`, the reference shows a progress bar on stderr.
-pub fn render(args: &RenderArgs, progress: bool) -> Result<Drawn, CliError> {
+/// output file; the reference shows its tiles' progress as `progress` says.
+pub fn render(args: &RenderArgs, progress: &Progress) -> Result<Drawn, CliError> {
     crate::render::draw_args(args, progress, &Given::default())
 }
 
 /// [`render`] with the inputs `given` in memory in place of the files their options name.
-pub fn render_given(args: &RenderArgs, progress: bool, given: &Given) -> Result<Drawn, CliError> {
+pub fn render_given(args: &RenderArgs, progress: &Progress, given: &Given) -> Result<Drawn, CliError> {
     crate::render::draw_args(args, progress, given)
 }
 
@@ -97,8 +117,8 @@ pub fn tangents(args: &TangentsArgs, mesh: &Mesh) -> Result<(Mesh, TangentReport
     generate_tangents(mesh, &options).map_err(|e| CliError::Path { path: args.input.clone(), reason: e.to_string() })
 }
 
-/// Everything `compare` measures, and the files it read; with `progress`, a bar on stderr.
-pub fn compare(args: &CompareArgs, progress: bool) -> Result<(Results, Vec<PathBuf>), CliError> {
+/// Everything `compare` measures, and the files it read; its steps shown as `progress` says.
+pub fn compare(args: &CompareArgs, progress: &Progress) -> Result<(Results, Vec<PathBuf>), CliError> {
     crate::compare::measure(args, progress)
 }
 

@@ -101,7 +101,7 @@ pub fn run_height(args: &HeightArgs) -> Result<(), CliError> {
         if args.strict {
             return Err(CliError::Render(format!("{}: {what} (--strict refuses it)", args.input.display())));
         }
-        eprintln!("warning: {}: {what}; integrating it anyway (--strict refuses it)", args.input.display());
+        crate::report::warn(format!("{}: {what}; integrating it anyway (--strict refuses it)", args.input.display()));
     }
     let level0 = map.levels.first().ok_or_else(|| CliError::Render(format!("{}: no texels", args.input.display())))?;
     let heights = heights_from_inspection(level0, &inspection, &options).map_err(|e| integration(&args.input, e))?;
@@ -151,7 +151,10 @@ pub fn run_height(args: &HeightArgs) -> Result<(), CliError> {
         heights.y_convention.name(),
     );
     if flat {
-        eprintln!("warning: {}: the map is flat: every height is the same (written as 0)", args.input.display());
+        crate::report::warn(format!(
+            "{}: the map is flat: every height is the same (written as 0)",
+            args.input.display()
+        ));
     }
     println!(
         "{}: {}x{} heights spanning {:.4} texels at --scale {} ({lo:.4} to {hi:.4}), written {}",

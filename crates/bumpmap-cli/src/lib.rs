@@ -9,7 +9,8 @@
 //!   `inspect` (inspect and height): the subcommands, drawing through the `bumpmap` crate's renderer;
 //! - [`commands`]: the commands as functions over their parsed arguments, returning what they
 //!   would write (the Python package calls these);
-//! - [`error`]: every layer's errors as one type, in the words of the command line.
+//! - [`error`]: every layer's errors as one type, in the words of the command line;
+//! - [`report`]: warnings, notes and progress, on stderr or collected for a caller.
 
 // The argument structs' doc comments are clap's help texts, written for a terminal: their
 // `[dir:]X,Y,Z` and `[0,1]` are not intra-doc links.
@@ -27,6 +28,7 @@ mod inspect;
 mod mesh;
 mod normalmap;
 mod render;
+pub mod report;
 mod setup;
 mod view;
 

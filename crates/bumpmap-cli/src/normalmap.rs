@@ -17,8 +17,8 @@ use crate::error::CliError;
 
 mod extras;
 
-pub(crate) use extras::{height_levels, horizon_map, roughness_chain};
-use extras::{lean_levels, lean_paths};
+use extras::lean_paths;
+pub(crate) use extras::{height_levels, horizon_map, lean_levels, roughness_chain};
 
 /// Image extensions a folder walk picks up.
 const IMAGE_EXTENSIONS: [&str; 13] =
@@ -373,7 +373,7 @@ fn run_folder(
         .filter(|p| match bumpmap_io::siblings::in_folder(input, p, &place) {
             Ok(found) => found.is_some(),
             Err(e) => {
-                eprintln!("warning: skipped {e}");
+                crate::report::warn(format!("skipped {e}"));
                 false
             }
         })

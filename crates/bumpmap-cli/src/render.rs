@@ -28,7 +28,7 @@ pub struct Frame {
 pub fn run(args: &RenderArgs) -> Result<(), CliError> {
     let named = crate::setup::named_inputs(&args.setup);
     ensure_not_input(&args.output, &named.iter().map(PathBuf::as_path).collect::<Vec<_>>())?;
-    let drawn = draw_args(args, true, &crate::setup::Given::default())?;
+    let drawn = draw_args(args, &crate::report::Progress::Bar, &crate::setup::Given::default())?;
     let inputs: Vec<&Path> = drawn.inputs.iter().map(PathBuf::as_path).collect();
     let written = write_frame(&drawn.frame, &args.output, &inputs)?;
     eprintln!(
@@ -89,13 +89,17 @@ pub fn prepare_args(args: &RenderArgs, given: &crate::setup::Given) -> Result<Pr
 }
 
 /// Draws what `args` describe: the scene set up, the technique prepared, the frame drawn on
-/// `--backend` (the reference always on the CPU, with a progress bar on stderr when `progress`).
+/// `--backend` (the reference always on the CPU, its tiles' progress shown as `progress` says).
 /// The notes the assets bring (what a glTF's material gave) go to stderr.
-pub fn draw_args(args: &RenderArgs, progress: bool, given: &crate::setup::Given) -> Result<Drawn, CliError> {
+pub fn draw_args(
+    args: &RenderArgs,
+    progress: &crate::report::Progress,
+    given: &crate::setup::Given,
+) -> Result<Drawn, CliError> {
     let name = args.setup.technique.technique.0;
     let PreparedArgs { size: (width, height), prepared, setup, depth_notes } = prepare_args(args, given)?;
     for note in setup.notes.iter().chain(&depth_notes) {
-        eprintln!("{note}");
+        crate::report::setup_line(note);
     }
     let scene = &args.setup.scene;
     let bumps = scene.height_field.clone().or_else(|| scene.normal_map.as_ref().map(|p| p.display().to_string()));
@@ -103,8 +107,13 @@ pub fn draw_args(args: &RenderArgs, progress: bool, given: &crate::setup::Given)
     let mut renderer = if name.is_reference() {
         // The reference runs on the CPU whatever the backend; no device need open for it.
         let mut r = Renderer::new(BackendChoice::Cpu).map_err(lib_err)?;
-        if progress {
-            r.set_reference_progress(Some(reference_bar()));
+        match progress {
+            crate::report::Progress::Hidden => {}
+            crate::report::Progress::Bar => r.set_reference_progress(Some(reference_bar())),
+            crate::report::Progress::Report(f) => {
+                let f = f.clone();
+                r.set_reference_progress(Some(std::sync::Arc::new(move |done, total| f(done as u64, total as u64))));
+            }
         }
         r
     } else {
@@ -203,7 +212,7 @@ fn reference_bar() -> bumpmap::renderer::Progress {
 pub fn renderer(arg: BackendArg) -> Result<Renderer, CliError> {
     let renderer = Renderer::new(arg.into()).map_err(lib_err)?;
     if let Some(why) = renderer.fallback_reason() {
-        eprintln!("--backend auto: drawing on the CPU ({why})");
+        crate::report::note(format!("--backend auto: drawing on the CPU ({why})"));
     }
     Ok(renderer)
 }

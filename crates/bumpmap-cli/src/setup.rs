@@ -9,7 +9,7 @@
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
-use bumpmap::assets::{MeshLoad, load_mesh, load_normal_map};
+use bumpmap::assets::{MeshLoad, load_mesh, load_normal_map, mesh_asset};
 use bumpmap::bumpmap_core::combiners::Precision;
 use bumpmap::bumpmap_core::parallax::ParallaxOptions;
 use bumpmap::bumpmap_core::scenes;
@@ -95,6 +95,10 @@ pub struct Given {
     pub height_field: Option<bumpmap::HeightField>,
     /// `--decal`'s image.
     pub decal: Option<Rgba8Image>,
+    /// The mesh `--scene mesh:NAME` draws, in place of reading the file NAME (no material: the
+    /// scene's bumps and decal, as for an OBJ). Its normals are made from the faces where it
+    /// has none, its tangents where it has none.
+    pub mesh: Option<bumpmap_io::LoadedMesh>,
 }
 
 /// Reads the options: checks their ranges, loads the files they name and builds the scene
@@ -126,7 +130,18 @@ pub fn setup_given(s: &SceneSetup, given: &Given) -> Result<Setup, CliError> {
                 normal_scale: bump_scale,
                 mip_mode: MipMode::LengthInAlpha,
             };
-            let asset = load_mesh(path, &load).map_err(lib_err)?;
+            let asset = match &given.mesh {
+                Some(loaded) => {
+                    let mut loaded = loaded.clone();
+                    // Not a file's fault: a value error, named as the caller named the mesh.
+                    loaded.mesh.validate().map_err(|e| CliError::Render(format!("{}: {e}", path.display())))?;
+                    if !loaded.had_normals {
+                        loaded.mesh.compute_normals();
+                    }
+                    mesh_asset(loaded, path, &load).map_err(lib_err)?
+                }
+                None => load_mesh(path, &load).map_err(lib_err)?,
+            };
             // Every vertex at one point: no extent to frame or to see (not a usage error).
             let p0 = asset.mesh.positions.first().copied().unwrap_or_default();
             if asset.mesh.positions.iter().all(|p| *p == p0) {

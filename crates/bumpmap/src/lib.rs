@@ -27,6 +27,7 @@
 //! - [`assets`]: your own normal map files and meshes with their glTF materials;
 //! - [`inspect`]: what a normal map made elsewhere is (DirectX or OpenGL, a normal map at all,
 //!   its mips, its seam); [`heights`]: its heights back;
+//! - [`cpu`]: the x86-64 level this build needs, and whether the processor has it;
 //! - [`Error`]: everything that can go wrong, naming the value or the file.
 //!
 //! The crates behind it are re-exported for what this page does not cover: [`bumpmap_math`]
@@ -37,6 +38,7 @@
 #![warn(missing_docs)]
 
 pub mod assets;
+pub mod cpu;
 mod error;
 pub mod heights;
 pub mod inspect;

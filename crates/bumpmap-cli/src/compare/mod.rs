@@ -33,11 +33,11 @@ use bumpmap_io::image_file::{PngLayout, save_png_into};
 use bumpmap_io::{Channel, HeightSource};
 use bumpmap_math::{NormalMapOptions, Rgba8Image};
 use bumpmap_reference::{LinearImage, ReferenceOptions};
-use indicatif::{ProgressBar, ProgressStyle};
 
 use crate::args::{CompareArgs, StudyArg};
 use crate::error::CliError;
 use crate::render::{lib_err, reference_err, rgb};
+use crate::report::{Progress, Steps};
 
 pub use metrics::Scores;
 pub use report::json;
@@ -119,7 +119,7 @@ pub struct Results {
 pub fn run(args: &CompareArgs) -> Result<(), CliError> {
     let out = &args.output;
     check_output(out)?;
-    let (results, inputs) = measure(args, true)?;
+    let (results, inputs) = measure(args, &Progress::Bar)?;
     let inputs: Vec<&Path> = inputs.iter().map(PathBuf::as_path).collect();
     let written = write(out, &results, &inputs, &|| false)?;
     let shown = results.outcomes.iter().filter(|o| o.result.is_ok()).count();
@@ -143,10 +143,10 @@ pub fn check_output(out: &Path) -> Result<(), CliError> {
     Ok(())
 }
 
-/// Everything `compare` measures, before anything is written, and the files it read; with
-/// `progress`, a progress bar on stderr. Techniques that cannot draw the scene are skipped, with
+/// Everything `compare` measures, before anything is written, and the files it read; its steps
+/// shown as `progress` says. Techniques that cannot draw the scene are skipped, with
 /// their reason on stderr and in the results.
-pub fn measure(args: &CompareArgs, progress: bool) -> Result<(Results, Vec<PathBuf>), CliError> {
+pub fn measure(args: &CompareArgs, progress: &Progress) -> Result<(Results, Vec<PathBuf>), CliError> {
     let start = Instant::now();
     let kind = SceneKind::parse(&args.scene).ok_or_else(|| {
         CliError::Usage(format!(
@@ -204,8 +204,7 @@ pub fn measure(args: &CompareArgs, progress: bool) -> Result<(Results, Vec<PathB
     let mut backend = crate::render::renderer(args.backend)?;
     // The two references, each technique, convergence and the studies.
     let steps = (wanted.len() + 9) as u64;
-    let bar = if progress { ProgressBar::new(steps) } else { ProgressBar::hidden() }
-        .with_style(ProgressStyle::with_template("{bar:40} {pos}/{len} {elapsed} {wide_msg}").expect("valid template"));
+    let bar = Steps::new(progress, steps, "{bar:40} {pos}/{len} {elapsed} {wide_msg}");
 
     bar.set_message(format!("reference, {spp} samples per pixel"));
     let scene = spec.build().map_err(crate::render::core_err)?;
@@ -213,7 +212,7 @@ pub fn measure(args: &CompareArgs, progress: bool) -> Result<(Results, Vec<PathB
     let reference = reference_image(&scene, size, spp)?;
     crate::render::ensure_drawn(reference.pixels.iter().all(|p| *p == glam::Vec3::ZERO), &args.output)?;
     let reference_millis = t.elapsed().as_secs_f64() * 1e3;
-    bar.inc(1);
+    bar.inc();
 
     bar.set_message(format!("displaced reference, {spp} samples per pixel"));
     let t = Instant::now();
@@ -222,7 +221,7 @@ pub fn measure(args: &CompareArgs, progress: bool) -> Result<(Results, Vec<PathB
         .and_then(|p| parallax::displaced_reference(&p.scene, size, spp))
         .map(|image| (image, t.elapsed().as_secs_f64() * 1e3));
     let displaced_rgb = displaced.as_ref().ok().map(|(image, _)| metrics::reference_rgb8(image));
-    bar.inc(1);
+    bar.inc();
 
     let ref_rgb = metrics::reference_rgb8(&reference);
     let mut outcomes = Vec::new();
@@ -244,21 +243,21 @@ pub fn measure(args: &CompareArgs, progress: bool) -> Result<(Results, Vec<PathB
             Rendered { image, scores, displaced, heat, millis }
         });
         if let Err(reason) = &result {
-            bar.suspend(|| eprintln!("skipped {name}: {reason}"));
+            bar.suspend(|| crate::report::note(format!("skipped {name}: {reason}")));
         }
         outcomes.push(Outcome { name: name.clone(), description, result });
-        bar.inc(1);
+        bar.inc();
     }
 
     bar.set_message("convergence of the reference");
     let convergence = convergence(&scene, size, spp, &reference)?;
-    bar.inc(1);
-    let study = |which: StudyArg, what: &str, bar: &ProgressBar| {
+    bar.inc();
+    let study = |which: StudyArg, what: &str, bar: &Steps| {
         let runs = args.runs(which);
         if runs {
             bar.set_message(what.to_string());
         }
-        bar.inc(1);
+        bar.inc();
         runs
     };
     let golf_ball = if study(StudyArg::GolfBall, "golf ball at a distance (Kilgard §2.4.2)", &bar) {
@@ -281,7 +280,7 @@ pub fn measure(args: &CompareArgs, progress: bool) -> Result<(Results, Vec<PathB
     let shadows = study(StudyArg::Shadows, "bumps that shadow each other: horizon maps, marches, Eq. 12", &bar)
         .then(|| shadows::shadow_study(&mut backend))
         .transpose()?;
-    bar.finish_and_clear();
+    bar.finish();
 
     let results = Results {
         scene: args.scene.clone(),

@@ -382,7 +382,7 @@ fn write_demo(out: &Path, args: &DemoArgs) -> Result<(), CliError> {
         studies: vec![crate::args::StudyArg::All],
         output: out.join("compare"),
     };
-    let (results, _) = crate::compare::measure(&compare, true)?;
+    let (results, _) = crate::compare::measure(&compare, &crate::report::Progress::Bar)?;
     crate::compare::write(&compare.output, &results, &[], &|| false)?;
     index += "\n`compare/report.html`: every technique on the torus measured against the reference renderer \
 (RMSE, PSNR, bias, FLIP, SSIM), with FLIP heat maps and the reference's convergence, and the studies: \

@@ -70,9 +70,9 @@ pub(crate) fn height_levels(field: &HeightField, bits: u8, name: &str) -> Result
         }
     }
     if lo < 0.0 || hi > 1.0 {
-        eprintln!(
-            "warning: {name}: heights from {lo} to {hi} are clamped to [0, 1] for --height-out (1 on the surface, 0 at --depth below it)"
-        );
+        crate::report::warn(format!(
+            "{name}: heights from {lo} to {hi} are clamped to [0, 1] for --height-out (1 on the surface, 0 at --depth below it)"
+        ));
     }
     let steps = if bits == 16 { 65535 } else { 255 };
     bumpmap_math::HeightMips::from_field_rounded(field, steps).map_err(|e| match e {
@@ -137,7 +137,7 @@ pub(super) fn lean_paths(out: &Path) -> Result<[PathBuf; 2], CliError> {
 /// normal map's level 0 (the chain `render` draws from, whatever `--bits` the normal map is
 /// written at), by [`LeanMips`](bumpmap_math::LeanMips): the written chain's own level 0 when
 /// it is 8-bit (its mip mode changes no level-0 texel), else one made at 8 bits.
-pub(super) fn lean_levels(
+pub(crate) fn lean_levels(
     field: &HeightField,
     options: &NormalMapOptions,
     written: &Chain,

@@ -101,11 +101,11 @@ pub(super) fn load_roughness_map(path: &Path, layout: RoughnessLayoutArg) -> Res
         Rgba8Image::new(level.width, level.height, texels)
     };
     if levels.len() == 1 {
-        eprintln!(
-            "warning: {}: one level, so its smaller levels are box-filtered and hold no spread of the normals; \
+        crate::report::warn(format!(
+            "{}: one level, so its smaller levels are box-filtered and hold no spread of the normals; \
              `bumpmap normalmap --mips --roughness-out` writes every level",
             bumpmap_io::error::shown(path)
-        );
+        ));
         return Ok(Rgba8Mips::with_box_mipmaps(gray(levels.swap_remove(0))));
     }
     Ok(Rgba8Mips::from_levels(levels.into_iter().map(gray).collect()))

@@ -15,9 +15,11 @@
 
 mod files;
 mod keys;
+#[cfg(feature = "viewer")]
 mod overlay;
 pub(crate) mod record;
 mod state;
+#[cfg(feature = "viewer")]
 mod window;
 
 use std::path::{Path, PathBuf};
@@ -60,7 +62,12 @@ pub fn run(args: &ViewArgs) -> Result<(), CliError> {
     }
     match &args.record {
         Some(out) => record::run(args, setup, out, &inputs),
+        #[cfg(feature = "viewer")]
         None => window::run(args, setup, &inputs),
+        #[cfg(not(feature = "viewer"))]
+        None => Err(CliError::Usage(
+            "this build of bumpmap has no window (built without the `viewer` feature); --record still works".into(),
+        )),
     }
 }
 

@@ -7,6 +7,10 @@
 //! A change that cannot be drawn (a technique that cannot draw the scene, a file that cannot be
 //! read) is undone: the old scene stays and the reason becomes [`Viewer::message`].
 
+// Built without the window (the `viewer` feature off: the Python module), only `--record` uses
+// the model, and what only the window reads goes unused.
+#![cfg_attr(not(feature = "viewer"), allow(dead_code))]
+
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 

@@ -1,0 +1,169 @@
+//! Heights → the maps `bumpmap normalmap` writes, as arrays: the normal map and its chain, the
+//! heights the parallax techniques read, the horizon map with ambient occlusion and bent
+//! normals, the roughness map and LEAN's moments. Each parses its keywords as `normalmap`'s
+//! options and calls the command's own function.
+
+use bumpmap_cli::args::Command;
+use bumpmap_cli::commands;
+use pyo3::prelude::*;
+use pyo3::types::{PyDict, PyList};
+
+use crate::errors::to_py;
+use crate::options::{self, Function};
+use crate::{arrays, interrupt, parse};
+
+/// `normalmap`'s arguments for an array input, with the `extra` options the function asks for
+/// itself (`--mips`, an output that selects what is made).
+fn normalmap_args(
+    function: &Function,
+    extra: &[&str],
+    options: Option<&Bound<'_, PyDict>>,
+) -> PyResult<bumpmap_cli::args::NormalmapArgs> {
+    let mut fixed = vec!["heights".to_string(), "--output=heights.png".to_string()];
+    fixed.extend(extra.iter().map(|e| e.to_string()));
+    match parse(function, &fixed, options)? {
+        Command::Normalmap(a) => Ok(a),
+        _ => unreachable!("normalmap's options parse as normalmap"),
+    }
+}
+
+/// `normalmap`'s chain for an array of heights: level 0, or every level with `mips`.
+fn chain_of<'py>(
+    py: Python<'py>,
+    function: &Function,
+    mips: bool,
+    heights: &Bound<'py, PyAny>,
+    options: Option<&Bound<'py, PyDict>>,
+) -> PyResult<Vec<Bound<'py, PyAny>>> {
+    let args = normalmap_args(function, if mips { &["--mips"] } else { &[] }, options)?;
+    let field = arrays::height_field(heights)?;
+    let chain = interrupt::run(py, move |_| commands::normal_map(&args, &field, "heights"))?
+        .map_err(|e| to_py(function.name, e))?;
+    arrays::from_chain(py, chain)
+}
+
+/// Heights → normal map: level 0 as an (H, W, 4) array (uint8, or uint16 with bits=16).
+#[pyfunction]
+#[pyo3(signature = (heights, options = None))]
+pub fn normal_map<'py>(
+    py: Python<'py>,
+    heights: &Bound<'py, PyAny>,
+    options: Option<&Bound<'py, PyDict>>,
+) -> PyResult<Bound<'py, PyAny>> {
+    Ok(chain_of(py, &options::NORMAL_MAP, false, heights, options)?.swap_remove(0))
+}
+
+/// Heights → normal map and every smaller level down to 1×1, level 0 first.
+#[pyfunction]
+#[pyo3(signature = (heights, options = None))]
+pub fn mip_chain<'py>(
+    py: Python<'py>,
+    heights: &Bound<'py, PyAny>,
+    options: Option<&Bound<'py, PyDict>>,
+) -> PyResult<Bound<'py, PyList>> {
+    PyList::new(py, chain_of(py, &options::MIP_CHAIN, true, heights, options)?)
+}
+
+/// Heights → what the parallax techniques read: the levels (float32 (H, W), level 0 first)
+/// and the min–max levels (float32 (H, W, 2): lower, upper bound), as `normalmap --height-out`
+/// stores them.
+#[pyfunction]
+#[pyo3(signature = (heights, options = None))]
+pub fn height_mips<'py>(
+    py: Python<'py>,
+    heights: &Bound<'py, PyAny>,
+    options: Option<&Bound<'py, PyDict>>,
+) -> PyResult<(Bound<'py, PyList>, Bound<'py, PyList>)> {
+    let args = normalmap_args(&options::HEIGHT_MIPS, &[], options)?;
+    let field = arrays::height_field(heights)?;
+    let mips = interrupt::run(py, move |_| commands::heights(&args, &field, "heights"))?
+        .map_err(|e| to_py("height_mips", e))?;
+    let levels: Vec<_> =
+        mips.levels().iter().map(|l| arrays::from_plane(py, l.height, l.width, &l.texels)).collect::<PyResult<_>>()?;
+    let minmax: Vec<_> = mips
+        .minmax()
+        .unwrap_or_default()
+        .iter()
+        .map(|l| arrays::from_pairs(py, l.height, l.width, &l.texels))
+        .collect::<PyResult<_>>()?;
+    Ok((PyList::new(py, levels)?, PyList::new(py, minmax)?))
+}
+
+/// Heights → the horizon map (every level, float32 (H, W, 8): atan(rise)/90° per direction),
+/// ambient occlusion (float32 (H, W)) and bent normals (encoded as `normal_map` encodes normals),
+/// as `normalmap --horizon-out --ao-out --bent-normals-out` makes them.
+#[pyfunction]
+#[pyo3(signature = (heights, options = None))]
+pub fn horizon_maps<'py>(
+    py: Python<'py>,
+    heights: &Bound<'py, PyAny>,
+    options: Option<&Bound<'py, PyDict>>,
+) -> PyResult<Bound<'py, PyDict>> {
+    let args = normalmap_args(&options::HORIZON_MAPS, &[], options)?;
+    let field = arrays::height_field(heights)?;
+    let map = interrupt::run(py, move |_| commands::horizons(&args, &field, "heights"))?
+        .map_err(|e| to_py("horizon_maps", e))?;
+    let args = normalmap_args(&options::HORIZON_MAPS, &[], options)?;
+    let depth = args.map.scale.abs();
+    let levels: Vec<_> = map
+        .levels()
+        .iter()
+        .map(|l| arrays::from_plane_channels(py, l.height, l.width, l.texels.as_flattened(), 8))
+        .collect::<PyResult<_>>()?;
+    let (w, h) = (map.width(), map.height());
+    let ao = arrays::from_plane(py, h, w, &map.ambient_occlusion(depth))?;
+    let (y, encoding) = (args.map.options().y_convention, args.map.options().encoding);
+    let bent = match args.bits {
+        16 => bumpmap_cli::commands::Chain::Rgba16(bumpmap_math::MipChain {
+            levels: vec![map.bent_normal_map(depth, y, encoding)],
+            encoding,
+        }),
+        _ => bumpmap_cli::commands::Chain::Rgba8(bumpmap_math::MipChain {
+            levels: vec![map.bent_normal_map(depth, y, encoding)],
+            encoding,
+        }),
+    };
+    let out = PyDict::new(py);
+    out.set_item("horizons", PyList::new(py, levels)?)?;
+    out.set_item("ambient_occlusion", ao)?;
+    out.set_item("bent_normals", arrays::from_chain(py, bent)?.swap_remove(0))?;
+    Ok(out)
+}
+
+/// Heights → the roughness map, every level (RGBA8 (H, W, 4), level 0 first), as
+/// `normalmap --mips --roughness-out` writes it.
+#[pyfunction]
+#[pyo3(signature = (heights, options = None))]
+pub fn roughness_map<'py>(
+    py: Python<'py>,
+    heights: &Bound<'py, PyAny>,
+    options: Option<&Bound<'py, PyDict>>,
+) -> PyResult<Bound<'py, PyList>> {
+    let args = normalmap_args(&options::ROUGHNESS_MAP, &["--mips", "--roughness-out=roughness.png"], options)?;
+    let field = arrays::height_field(heights)?;
+    let chain = interrupt::run(py, move |_| commands::roughness(&args, &field, "heights"))?
+        .map_err(|e| to_py("roughness_map", e))?;
+    PyList::new(py, arrays::from_chain(py, commands::Chain::Rgba8(chain))?)
+}
+
+/// Heights → LEAN mapping's moments, every level, as the two files of `normalmap --lean-out`
+/// hold them: float32 (H, W, 4) levels of (Bx, By, Mxx, Myy) and of (Mxy, J, 0, 0).
+#[pyfunction]
+#[pyo3(signature = (heights, options = None))]
+pub fn lean_moments<'py>(
+    py: Python<'py>,
+    heights: &Bound<'py, PyAny>,
+    options: Option<&Bound<'py, PyDict>>,
+) -> PyResult<(Bound<'py, PyList>, Bound<'py, PyList>)> {
+    let args = normalmap_args(&options::LEAN_MOMENTS, &["--mips", "--lean-out=lean.ktx2"], options)?;
+    let field = arrays::height_field(heights)?;
+    let planes =
+        interrupt::run(py, move |_| commands::lean(&args, &field, "heights"))?.map_err(|e| to_py("lean_moments", e))?;
+    let [first, second] = planes.map(|levels| {
+        levels
+            .iter()
+            .map(|l| arrays::from_plane_channels(py, l.height, l.width, l.texels.as_flattened(), 4))
+            .collect::<PyResult<Vec<_>>>()
+    });
+    Ok((PyList::new(py, first?)?, PyList::new(py, second?)?))
+}
