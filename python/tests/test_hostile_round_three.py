@@ -77,6 +77,8 @@ def test_eight_threads_writing_one_path_leave_one_whole_file_from_one_call(tmp_p
 
 SCRIPT = """
 import os, signal, sys, threading, time
+# Python's own Ctrl-C handler, whatever the runner left (a shell's `cmd &` ignores SIGINT).
+signal.signal(signal.SIGINT, signal.default_int_handler)
 import numpy as np
 import bumpmap
 out = sys.argv[1]

@@ -43,7 +43,10 @@ def test_long_work_releases_the_gil():
 
 def run_and_interrupt(script: str, tmp_path: Path, after: float):
     """Runs `script`, sends SIGINT after `after` seconds, returns (stdout, stderr, seconds)."""
-    proc = subprocess.Popen([sys.executable, "-c", textwrap.dedent(script)], cwd=tmp_path,
+    # Python's own Ctrl-C handler, whatever the runner left: a shell's background job (`cmd &`)
+    # starts with SIGINT ignored, which Python then keeps.
+    script = "import signal; signal.signal(signal.SIGINT, signal.default_int_handler)\n" + textwrap.dedent(script)
+    proc = subprocess.Popen([sys.executable, "-c", script], cwd=tmp_path,
                             stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
     # Wait for the script to say it started the work.
     assert proc.stdout.readline().strip() == "started"
