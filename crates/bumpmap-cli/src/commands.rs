@@ -19,11 +19,11 @@ use crate::args::{CompareArgs, NormalmapArgs, RenderArgs, TangentsArgs};
 use crate::error::CliError;
 pub use crate::report::Progress;
 
-pub use crate::compare::{Outcome, Rendered, Results, Scores};
 pub use crate::normalmap::Chain;
 pub use crate::render::PreparedArgs;
 pub use crate::render::{Drawn, Frame};
 pub use crate::setup::{Given, Setup};
+pub use bumpmap_compare::{Outcome, Rendered, Results, Scores};
 
 /// `normalmap`'s chain for `field`: level 0, or every level with `--mips`, at the depth
 /// `--bits` and `--format` ask for; `name` names the field in errors.
@@ -129,7 +129,7 @@ pub fn library_error(e: bumpmap::Error) -> CliError {
 
 /// `compare`'s `results.json`, as text.
 pub fn compare_json(results: &Results) -> String {
-    crate::compare::json(results)
+    bumpmap_compare::json(results)
 }
 
 /// Refuses a `compare` output that cannot be a folder (before the work, not after).

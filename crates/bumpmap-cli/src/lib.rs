@@ -3,10 +3,10 @@
 //! its own module.
 //!
 //! - [`args`]: the command line (clap), a module per command, its value parsers and limits;
-//! - `setup`: the option groups `render` and `bench render` share, made into the front door's
-//!   scene description, technique and options (the user's own assets loaded);
-//! - `normalmap`, `cubemap`, `mesh` (tangents), `render`, `bench`, `demo`, `compare`, `view`,
-//!   `inspect` (inspect and height): the subcommands, drawing through the `bumpmap` crate's renderer;
+//! - `setup`, `compare`: the flags made into the libraries' options (`bumpmap::options`,
+//!   `bumpmap_compare`), and what those refuse put back in the flags' words;
+//! - `normalmap`, `cubemap`, `mesh` (tangents), `render`, `bench`, `demo`, `view`, `inspect`
+//!   (inspect and height): the subcommands, drawing through the `bumpmap` crate's renderer;
 //! - [`commands`]: the commands as functions over their parsed arguments, returning what they
 //!   would write (the Python package calls these);
 //! - [`error`]: every layer's errors as one type, in the words of the command line;

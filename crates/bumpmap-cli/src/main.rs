@@ -6,6 +6,9 @@
 use clap::Parser;
 
 fn main() {
+    // Elsewhere than Linux there is no prioritized constructor to run it earlier: first thing.
+    #[cfg(not(target_os = "linux"))]
+    ensure_cpu();
     let cli = bumpmap_cli::args::Cli::parse();
     // A set of output files is all or nothing, also when the command is stopped: what was
     // staged is removed (a set being renamed into place is let finish first).

@@ -260,6 +260,17 @@ pub fn make(
     make_texels(field, options, mips, mode, name)
 }
 
+/// A normal map that could not be made from `name`'s heights, in the command line's words: a
+/// scale out of range is the flag's fault, not the input's.
+pub(crate) fn scale_err(source: NormalMapError, name: &str) -> CliError {
+    match source {
+        NormalMapError::BadScale(s) => CliError::Usage(format!(
+            "--scale must be a number in [-{MAX_SCALE:e}, {MAX_SCALE:e}], got {s} (for {name})"
+        )),
+        source => CliError::NormalMap { path: name.to_string(), source },
+    }
+}
+
 /// [`make`] in texels of 8 or 16 bits.
 fn make_texels<T: Texel>(
     field: &HeightField,
@@ -268,13 +279,7 @@ fn make_texels<T: Texel>(
     mode: MipMode,
     name: &str,
 ) -> Result<MipChain<T>, CliError> {
-    // A scale out of range is the flag's fault, not the input's.
-    let err = |source| match source {
-        NormalMapError::BadScale(s) => CliError::Usage(format!(
-            "--scale must be a number in [-{MAX_SCALE:e}, {MAX_SCALE:e}], got {s} (for {name})"
-        )),
-        source => CliError::NormalMap { path: name.to_string(), source },
-    };
+    let err = |source| scale_err(source, name);
     if mips {
         MipChain::from_height(field, options, mode).map_err(err)
     } else {

@@ -26,7 +26,7 @@ pub struct Frame {
 
 /// Runs `bumpmap render`.
 pub fn run(args: &RenderArgs) -> Result<(), CliError> {
-    let named = crate::setup::named_inputs(&args.setup);
+    let named = crate::setup::named_inputs(&args.setup)?;
     ensure_not_input(&args.output, &named.iter().map(PathBuf::as_path).collect::<Vec<_>>())?;
     let drawn = draw_args(args, &crate::report::Progress::Bar, &crate::setup::Given::default())?;
     let inputs: Vec<&Path> = drawn.inputs.iter().map(PathBuf::as_path).collect();

@@ -64,8 +64,19 @@ fn say(d: Diagnostic) {
 /// Runs `work` with the warnings and notes it says on this thread collected instead of printed,
 /// and returns them beside its result, in the order said.
 pub fn collect<R>(work: impl FnOnce() -> R) -> (R, Vec<Diagnostic>) {
-    let outer = COLLECTED.with(|c| c.replace(Some(Vec::new())));
+    /// Puts the outer collector back however `work` ends, a panic included, so a panic caught
+    /// further out does not leave this thread collecting into a list nobody reads.
+    struct Restore(Option<Option<Vec<Diagnostic>>>);
+    impl Drop for Restore {
+        fn drop(&mut self) {
+            if let Some(outer) = self.0.take() {
+                COLLECTED.with(|c| *c.borrow_mut() = outer);
+            }
+        }
+    }
+    let mut restore = Restore(Some(COLLECTED.with(|c| c.replace(Some(Vec::new())))));
     let result = work();
+    let outer = restore.0.take().expect("restored only here or on unwinding");
     let said = COLLECTED.with(|c| c.replace(outer)).unwrap_or_default();
     (result, said)
 }
@@ -151,6 +162,20 @@ mod tests {
             steps.inc();
         }
         assert_eq!(*seen.lock().unwrap(), vec![(1, 3), (2, 3), (3, 3)]);
+    }
+
+    #[test]
+    fn a_panic_inside_collect_leaves_the_thread_printing_again() {
+        let caught = std::panic::catch_unwind(|| {
+            collect(|| {
+                warn("lost with the panic");
+                panic!("the work failed");
+            })
+        });
+        assert!(caught.is_err());
+        assert!(COLLECTED.with(|c| c.borrow().is_none()), "the collector outlived its collect");
+        let ((), said) = collect(|| note("after"));
+        assert_eq!(said, vec![Diagnostic::Note("after".into())]);
     }
 
     #[test]

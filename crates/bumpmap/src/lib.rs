@@ -23,6 +23,8 @@
 //! - [`TechniqueName`]: the catalogue — every technique by name, what it needs, how it draws;
 //! - [`SceneSpec`]: what is drawn — a built-in surface or a mesh, camera, lights, material,
 //!   bumps from a height field or a normal map;
+//! - [`options`]: the same set up from typed options with their defaults ([`options::SceneOptions`],
+//!   every option `bumpmap render` takes), files loaded and values checked;
 //! - [`motion`]: the light orbiting and the camera turning between frames;
 //! - [`assets`]: your own normal map files and meshes with their glTF materials;
 //! - [`inspect`]: what a normal map made elsewhere is (DirectX or OpenGL, a normal map at all,
@@ -43,6 +45,7 @@ mod error;
 pub mod heights;
 pub mod inspect;
 pub mod motion;
+pub mod options;
 pub mod renderer;
 
 pub use error::Error;

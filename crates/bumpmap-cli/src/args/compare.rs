@@ -2,6 +2,7 @@
 
 use std::path::PathBuf;
 
+use bumpmap_compare::Study;
 use clap::Args;
 
 use crate::args::{parse_f32, parse_side};
@@ -54,31 +55,49 @@ pub struct CompareArgs {
     pub output: PathBuf,
 }
 
-/// A study of `compare`'s report.
-#[derive(clap::ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+/// A study of `compare`'s report (`bumpmap_compare::Study`), or all or none of them.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum StudyArg {
     /// every study
     All,
     /// none: the table alone
     None,
-    /// a dimpled sphere at a distance: the length factor against renormalized mips (Kilgard §2.4.2)
-    GolfBall,
-    /// the golf ball's highlight at a distance by specular filter (Kilgard §2.5.3)
-    Specular,
-    /// embossing head-on, at a distance and lit from behind (Kilgard §3.1)
-    Emboss,
-    /// Peercy's Figures 5–7 on his stretched patch
-    Peercy,
-    /// heights as geometry: every march against the displaced reference on a wall at 30°–85°
-    Parallax,
-    /// bumps that shadow each other (horizon map, POM's march, Eq. 12) against shadow rays, lights 45°–80°; ambient occlusion and bent normals against 256 rays a texel
-    Shadows,
+    /// one study
+    One(Study),
+}
+
+impl clap::ValueEnum for StudyArg {
+    fn value_variants<'a>() -> &'a [Self] {
+        const ALL: [StudyArg; Study::ALL.len() + 2] = {
+            let mut all = [StudyArg::All; Study::ALL.len() + 2];
+            all[1] = StudyArg::None;
+            let mut i = 0;
+            while i < Study::ALL.len() {
+                all[i + 2] = StudyArg::One(Study::ALL[i]);
+                i += 1;
+            }
+            all
+        };
+        &ALL
+    }
+
+    fn to_possible_value(&self) -> Option<clap::builder::PossibleValue> {
+        use clap::builder::PossibleValue;
+        Some(match self {
+            StudyArg::All => PossibleValue::new("all").help("every study"),
+            StudyArg::None => PossibleValue::new("none").help("none: the table alone"),
+            StudyArg::One(s) => PossibleValue::new(s.name()).help(s.description()),
+        })
+    }
 }
 
 impl CompareArgs {
-    /// Whether `study` is asked for.
-    pub fn runs(&self, study: StudyArg) -> bool {
-        !self.studies.contains(&StudyArg::None)
-            && (self.studies.contains(&StudyArg::All) || self.studies.contains(&study))
+    /// The studies asked for, in the report's order.
+    pub fn studies(&self) -> Vec<Study> {
+        if self.studies.contains(&StudyArg::None) {
+            return Vec::new();
+        }
+        let all = self.studies.contains(&StudyArg::All);
+        Study::ALL.into_iter().filter(|s| all || self.studies.contains(&StudyArg::One(*s))).collect()
     }
 }

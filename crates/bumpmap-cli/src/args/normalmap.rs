@@ -235,28 +235,14 @@ pub enum RoughnessLayoutArg {
     Unity,
 }
 
-impl RoughnessLayoutArg {
-    /// The RGBA8 texel for perceptual roughness `r` in [0, 1].
-    pub fn texel(self, r: f32) -> [u8; 4] {
-        let byte = bumpmap_math::roughness::unorm8;
-        let (rough, gloss) = (byte(r), byte(1.0 - r));
-        match self {
-            RoughnessLayoutArg::Gray => [rough, rough, rough, 255],
-            RoughnessLayoutArg::Gloss => [gloss, gloss, gloss, 255],
-            RoughnessLayoutArg::Gltf => [255, rough, 0, 255],
-            RoughnessLayoutArg::Unity => [0, 0, 0, gloss],
-        }
-    }
-
-    /// The perceptual roughness in [0, 1] a texel of this layout holds ([`Self::texel`]'s
-    /// inverse on its byte).
-    pub fn read(self, texel: [u8; 4]) -> f32 {
-        let unit = |b: u8| b as f32 / 255.0;
-        match self {
-            RoughnessLayoutArg::Gray => unit(texel[0]),
-            RoughnessLayoutArg::Gloss => 1.0 - unit(texel[0]),
-            RoughnessLayoutArg::Gltf => unit(texel[1]),
-            RoughnessLayoutArg::Unity => 1.0 - unit(texel[3]),
+impl From<RoughnessLayoutArg> for bumpmap::options::RoughnessLayout {
+    fn from(l: RoughnessLayoutArg) -> Self {
+        use bumpmap::options::RoughnessLayout;
+        match l {
+            RoughnessLayoutArg::Gray => RoughnessLayout::Gray,
+            RoughnessLayoutArg::Gloss => RoughnessLayout::Gloss,
+            RoughnessLayoutArg::Gltf => RoughnessLayout::Gltf,
+            RoughnessLayoutArg::Unity => RoughnessLayout::Unity,
         }
     }
 }

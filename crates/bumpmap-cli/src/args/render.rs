@@ -448,6 +448,18 @@ pub enum SpecularFilterArg {
     Clean,
 }
 
+impl From<SpecularFilterArg> for bumpmap::SpecularFilter {
+    fn from(f: SpecularFilterArg) -> Self {
+        match f {
+            SpecularFilterArg::None => bumpmap::SpecularFilter::None,
+            SpecularFilterArg::Toksvig => bumpmap::SpecularFilter::Toksvig,
+            SpecularFilterArg::RoughnessMap => bumpmap::SpecularFilter::RoughnessMap,
+            SpecularFilterArg::Lean => bumpmap::SpecularFilter::Lean,
+            SpecularFilterArg::Clean => bumpmap::SpecularFilter::Clean,
+        }
+    }
+}
+
 /// Texture filtering.
 #[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
 pub enum FilterArg {

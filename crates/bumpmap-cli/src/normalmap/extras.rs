@@ -8,7 +8,7 @@ use std::path::{Path, PathBuf};
 use bumpmap_math::normalmap::NormalMapError;
 use bumpmap_math::{HeightField, MipChain, MipMode, NormalMapOptions};
 
-use super::{Chain, make_texels};
+use super::{Chain, make_texels, scale_err};
 use crate::error::CliError;
 
 /// Bytes a texel of level 0 costs beyond the height field itself, as measured (peak resident
@@ -94,11 +94,7 @@ pub(crate) fn horizon_map(
     })
 }
 
-/// `--roughness-out`'s levels for a surface of perceptual roughness `perceptual`: the lengths of
-/// the averaged normals from a 16-bit chain with the length in alpha (whatever the normal map's
-/// own depth and mip mode), made into roughness by
-/// [`filament_roughness`](bumpmap_math::roughness::filament_roughness) and laid out in RGBA8 as
-/// `layout` says. `compare`'s specular study draws with these levels too.
+/// `--roughness-out`'s levels ([`bumpmap::options::roughness_map`]), named `name` in errors.
 pub(crate) fn roughness_chain(
     field: &HeightField,
     options: &NormalMapOptions,
@@ -106,16 +102,7 @@ pub(crate) fn roughness_chain(
     layout: crate::args::RoughnessLayoutArg,
     name: &str,
 ) -> Result<MipChain, CliError> {
-    let lengths: MipChain<[u16; 4]> = make_texels(field, options, true, MipMode::LengthInAlpha, name)?;
-    let levels = bumpmap_math::roughness::roughness_levels(&lengths.levels, perceptual)
-        .into_iter()
-        .map(|level| bumpmap_math::Image {
-            width: level.width,
-            height: level.height,
-            texels: level.texels.into_iter().map(|r| layout.texel(r)).collect(),
-        })
-        .collect();
-    Ok(MipChain { levels, encoding: bumpmap_math::Encoding::Unorm })
+    bumpmap::options::roughness_map(field, options, perceptual, layout.into()).map_err(|e| scale_err(e, name))
 }
 
 /// `--lean-out`'s two files: `L` itself and `L`'s stem with `.mxy-j` before the extension.

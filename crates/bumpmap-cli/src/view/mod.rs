@@ -32,7 +32,7 @@ use crate::error::CliError;
 /// Runs `bumpmap view`.
 pub fn run(args: &ViewArgs) -> Result<(), CliError> {
     let setup = with_file(args)?;
-    let named = crate::setup::named_inputs(&setup);
+    let named = crate::setup::named_inputs(&setup)?;
     let inputs: Vec<&Path> = named.iter().map(PathBuf::as_path).collect();
     for (flag, out, what) in
         [("--record", &args.record, "an animated PNG"), ("--screenshot", &args.screenshot, "a PNG")]

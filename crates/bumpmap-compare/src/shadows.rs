@@ -23,8 +23,7 @@ use bumpmap_reference::occlusion::occlusion_map;
 
 use super::metrics;
 use super::parallax::{SIZE, SPP, hits, pixel_rays, wall};
-use crate::error::CliError;
-use crate::render::{core_err, lib_err, reference_err};
+use crate::error::CompareError;
 
 /// The lights' angles from the wall's normal, in degrees.
 pub const LIGHTS: [f32; 3] = [45.0, 70.0, 80.0];
@@ -141,7 +140,7 @@ impl ShadowStudy {
 }
 
 /// The study: every field, light and method, then occlusion per field.
-pub fn shadow_study(backend: &mut Renderer) -> Result<ShadowStudy, CliError> {
+pub fn shadow_study(backend: &mut Renderer) -> Result<ShadowStudy, CompareError> {
     let (mut rows, mut occlusion) = (Vec::new(), Vec::new());
     let mut depth_texels = 0.0;
     for field in FIELDS {
@@ -151,7 +150,7 @@ pub fn shadow_study(backend: &mut Renderer) -> Result<ShadowStudy, CliError> {
                 parallax: ParallaxOptions { shadow: ParallaxShadow::Hard, ..Default::default() },
                 ..Default::default()
             };
-            let reference = Prepared::new(&spec, TechniqueName::ReferenceDisplaced, &shadowed).map_err(lib_err)?;
+            let reference = Prepared::new(&spec, TechniqueName::ReferenceDisplaced, &shadowed)?;
             let scene = &reference.scene;
             let object = &scene.objects[0];
             let heights = object.material.heights.clone().expect("the displaced reference carries heights");
@@ -159,8 +158,7 @@ pub fn shadow_study(backend: &mut Renderer) -> Result<ShadowStudy, CliError> {
             depth_texels = object.material.depth / texel;
             let ref_options =
                 ReferenceOptions { samples_per_pixel: SPP, displaced: true, shadow_rays: true, ..Default::default() };
-            let image = bumpmap_reference::render(scene, SIZE, SIZE, &ref_options, &|_, _| {})
-                .map_err(|e| CliError::Render(reference_err(e)))?;
+            let image = bumpmap_reference::render(scene, SIZE, SIZE, &ref_options, &|_, _| {})?;
             let ref_rgb = metrics::reference_rgb8(&image);
             let pixels = pixel_rays(scene)?;
             for method in ShadowMethod::ALL {
@@ -174,7 +172,7 @@ pub fn shadow_study(backend: &mut Renderer) -> Result<ShadowStudy, CliError> {
                     }
                     _ => {
                         hits(method.parallax(), &pixels, &heights, object.material.depth)
-                            .map_err(|e| core_err(e.into()))?
+                            .map_err(bumpmap_core::CoreError::from)?
                             .2
                     }
                 };
@@ -183,13 +181,13 @@ pub fn shadow_study(backend: &mut Renderer) -> Result<ShadowStudy, CliError> {
                     parallax: ParallaxOptions { shadow, ..Default::default() },
                     ..Default::default()
                 };
-                let prepared = Prepared::new(&spec, technique, &options).map_err(lib_err)?;
-                let drawn = backend.draw(&prepared, SIZE, SIZE).map_err(lib_err)?;
+                let prepared = Prepared::new(&spec, technique, &options)?;
+                let drawn = backend.draw(&prepared, SIZE, SIZE)?;
                 let (scores, _) = metrics::score(&image, &ref_rgb, &drawn);
                 rows.push(ShadowRow { field, light, method, agreement, flip: scores.flip_mean });
             }
             if light == LIGHTS[0] {
-                let horizons = heights.horizons().map_err(|e| core_err(e.into()))?;
+                let horizons = heights.horizons().map_err(bumpmap_core::CoreError::from)?;
                 let truth = occlusion_map(&heights, depth_texels, OCCLUSION_RAYS.isqrt(), OCCLUSION_STRIDE);
                 let ao = horizons.ambient_occlusion(depth_texels);
                 let bent = horizons.bent_normals(depth_texels);

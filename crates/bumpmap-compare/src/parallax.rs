@@ -29,8 +29,7 @@ use bumpmap_reference::{DisplacedScene, LinearImage, ReferenceOptions, camera_ra
 use glam::{Vec2, Vec3};
 
 use super::metrics;
-use crate::error::CliError;
-use crate::render::{core_err, lib_err, reference_err};
+use crate::error::CompareError;
 
 /// The angles of view from the wall's normal, in degrees.
 pub const ANGLES: [f32; 5] = [30.0, 60.0, 70.0, 75.0, 85.0];
@@ -140,7 +139,7 @@ pub(super) struct PixelRay {
 }
 
 /// The study: every field, angle and technique.
-pub fn parallax_study(backend: &mut Renderer) -> Result<ParallaxStudy, CliError> {
+pub fn parallax_study(backend: &mut Renderer) -> Result<ParallaxStudy, CompareError> {
     let mut rows = Vec::new();
     let mut figure = Vec::new();
     let mut depth_texels = 0.0;
@@ -148,15 +147,14 @@ pub fn parallax_study(backend: &mut Renderer) -> Result<ParallaxStudy, CliError>
         for angle in ANGLES {
             let spec = spec(field, angle);
             let options = TechniqueOptions::default();
-            let reference = Prepared::new(&spec, TechniqueName::ReferenceDisplaced, &options).map_err(lib_err)?;
+            let reference = Prepared::new(&spec, TechniqueName::ReferenceDisplaced, &options)?;
             let scene = &reference.scene;
             let object = &scene.objects[0];
             let heights = object.material.heights.clone().expect("the displaced reference carries heights");
             let texel = object.texel_side((heights.width(), heights.height())).expect("the wall has area");
             depth_texels = object.material.depth / texel;
             let ref_options = ReferenceOptions { samples_per_pixel: SPP, displaced: true, ..Default::default() };
-            let image = bumpmap_reference::render(scene, SIZE, SIZE, &ref_options, &|_, _| {})
-                .map_err(|e| CliError::Render(reference_err(e)))?;
+            let image = bumpmap_reference::render(scene, SIZE, SIZE, &ref_options, &|_, _| {})?;
             let ref_rgb = metrics::reference_rgb8(&image);
             let pixels = pixel_rays(scene)?;
             let show = field == "bricks" && angle == 75.0;
@@ -168,9 +166,9 @@ pub fn parallax_study(backend: &mut Renderer) -> Result<ParallaxStudy, CliError>
                 ));
             }
             for technique in TECHNIQUES {
-                let prepared = Prepared::new(&spec, technique, &options).map_err(lib_err)?;
+                let prepared = Prepared::new(&spec, technique, &options)?;
                 let t = Instant::now();
-                let drawn = backend.draw(&prepared, SIZE, SIZE).map_err(lib_err)?;
+                let drawn = backend.draw(&prepared, SIZE, SIZE)?;
                 let millis = t.elapsed().as_secs_f64() * 1e3;
                 let (scores, _) = metrics::score(&image, &ref_rgb, &drawn);
                 let parallax = technique.parallax_method().map(|method| Parallax {
@@ -178,7 +176,7 @@ pub fn parallax_study(backend: &mut Renderer) -> Result<ParallaxStudy, CliError>
                     options: ParallaxOptions { shadow: ParallaxShadow::Hard, ..Default::default() },
                 });
                 let (hit_mean, hit_p95, shadow_agreement) =
-                    hits(parallax, &pixels, &heights, object.material.depth).map_err(|e| core_err(e.into()))?;
+                    hits(parallax, &pixels, &heights, object.material.depth).map_err(bumpmap_core::CoreError::from)?;
                 if show
                     && matches!(technique, TechniqueName::SinglePass | TechniqueName::Pom | TechniqueName::HeightExact)
                 {
@@ -206,8 +204,8 @@ pub fn parallax_study(backend: &mut Renderer) -> Result<ParallaxStudy, CliError>
 }
 
 /// Every pixel of the wall: its entry point, texture-space vectors, footprint and exact hit.
-pub(super) fn pixel_rays(scene: &bumpmap_core::Scene) -> Result<Vec<PixelRay>, CliError> {
-    let displaced = DisplacedScene::new(scene).map_err(|e| CliError::Render(reference_err(e)))?;
+pub(super) fn pixel_rays(scene: &bumpmap_core::Scene) -> Result<Vec<PixelRay>, CompareError> {
+    let displaced = DisplacedScene::new(scene)?;
     let object = &scene.objects[0];
     let source = object.source.as_ref().expect("a built-in wall");
     let depth = object.material.depth;
@@ -272,7 +270,7 @@ pub(super) fn pixel_rays(scene: &bumpmap_core::Scene) -> Result<Vec<PixelRay>, C
         }
     }
     if out.is_empty() {
-        return Err(core_err(bumpmap_core::CoreError::out_of_range("the parallax study's view", "empty", "the wall")));
+        return Err(bumpmap_core::CoreError::out_of_range("the parallax study's view", "empty", "the wall").into());
     }
     Ok(out)
 }
@@ -323,5 +321,5 @@ pub(super) fn hits(
 /// The displaced reference of `scene` at `spp`, for the main table's second column.
 pub fn displaced_reference(scene: &bumpmap_core::Scene, size: usize, spp: usize) -> Result<LinearImage, String> {
     let options = ReferenceOptions { samples_per_pixel: spp, displaced: true, ..Default::default() };
-    bumpmap_reference::render(scene, size, size, &options, &|_, _| {}).map_err(reference_err)
+    bumpmap_reference::render(scene, size, size, &options, &|_, _| {}).map_err(|e| e.to_string())
 }

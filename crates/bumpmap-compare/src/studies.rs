@@ -2,8 +2,8 @@
 //! Kilgard §2.4.2's golf ball, §3.1's embossing, Peercy's Figures 5–7, and the specular
 //! filtering §2.5.3 leaves open (the golf ball's highlight at a distance).
 //!
-//! What this module does not do: score images (that is [`super::metrics`]) or write files
-//! ([`super::report`]).
+//! What this module does not do: score images (that is `metrics`) or write files
+//! (`report`).
 
 use std::sync::Arc;
 
@@ -15,8 +15,7 @@ use bumpmap_reference::LinearImage;
 use glam::Vec3;
 
 use super::{metrics, reference_image, render_technique};
-use crate::error::CliError;
-use crate::render::{core_err, draw};
+use crate::error::CompareError;
 
 /// Kilgard §3.1 measured, on the brick wall without specular (embossing is diffuse only), 96²,
 /// directional lights.
@@ -49,7 +48,7 @@ pub type GolfRow = (f32, f64, f64, f64);
 /// footprint's normals face away from the light); otherwise the sphere's own light, from the
 /// side, where clamping N·L at 0 makes the length factor a lower bound (the mean of clamped
 /// dot products is at least the clamped dot product of the mean) and it comes out too dark.
-pub fn golf_ball_study(backend: &mut Renderer, headlight: bool) -> Result<Vec<(f32, f64, f64, f64)>, CliError> {
+pub fn golf_ball_study(backend: &mut Renderer, headlight: bool) -> Result<Vec<(f32, f64, f64, f64)>, CompareError> {
     const SIZE: usize = 96;
     let near = Vec3::new(0.0, -5.0, 1.5);
     let lights = if headlight {
@@ -68,16 +67,15 @@ pub fn golf_ball_study(backend: &mut Renderer, headlight: bool) -> Result<Vec<(f
     let mut rows = Vec::new();
     for factor in [1.0f32, 2.0, 4.0, 8.0] {
         let params = SceneParams { eye: Some(near * factor), ..base.clone() };
-        let scene = scenes::build(&SceneKind::Sphere, &params).map_err(core_err)?;
+        let scene = scenes::build(&SceneKind::Sphere, &params)?;
         let reference = reference_image(&scene, SIZE, 64)?;
         let covered: Vec<bool> = reference.pixels.iter().map(|c| c.max_element() > 0.0).collect();
         let n = covered.iter().filter(|&&c| c).count().max(1) as f64;
         let mean = |pixels: &[Vec3]| pixels.iter().map(|p| (p.x + p.y + p.z) as f64 / 3.0).sum::<f64>() / n;
-        let mut technique_mean = |mode| -> Result<f64, CliError> {
-            let scene = scenes::build(&SceneKind::Sphere, &SceneParams { mip_mode: mode, ..params.clone() })
-                .map_err(core_err)?;
-            let frame = draw(backend, &scene, &Technique::SinglePass(SinglePassOptions::default()), SIZE, SIZE, false)?;
-            Ok(mean(&metrics::linear(&frame.image)))
+        let mut technique_mean = |mode| -> Result<f64, CompareError> {
+            let scene = scenes::build(&SceneKind::Sphere, &SceneParams { mip_mode: mode, ..params.clone() })?;
+            let frame = draw(backend, &scene, &Technique::SinglePass(SinglePassOptions::default()), SIZE)?;
+            Ok(mean(&metrics::linear(&frame)))
         };
         let length = technique_mean(MipMode::LengthInAlpha)?;
         let renormalized = technique_mean(MipMode::Renormalize)?;
@@ -123,7 +121,7 @@ impl SpecularRow {
 /// Energy: the frame's summed brightness over the number of pixels the reference's ball
 /// touches (as the golf ball study counts). Width: the brightness-weighted RMS distance from
 /// the highlight's centroid, over the ball's radius in pixels (√(pixels/π)).
-pub fn specular_study(backend: &mut Renderer) -> Result<Vec<SpecularRow>, CliError> {
+pub fn specular_study(backend: &mut Renderer) -> Result<Vec<SpecularRow>, CompareError> {
     const SIZE: usize = 160;
     let near = Vec3::new(0.0, -5.0, 1.5);
     let light = bumpmap_core::scene::SceneLight::white(bumpmap_math::lighting::Light::Directional(near.normalize()));
@@ -143,33 +141,32 @@ pub fn specular_study(backend: &mut Renderer) -> Result<Vec<SpecularRow>, CliErr
     let exported = {
         let BumpSource::Heights(field) = &base.bumps else { unreachable!("the ball's bumps are heights") };
         let perceptual = bumpmap_core::shading::perceptual_roughness(base.shininess);
-        let chain = crate::normalmap::roughness_chain(
+        let chain = bumpmap::options::roughness_map(
             field,
             &base.normal_map,
             perceptual,
-            crate::args::RoughnessLayoutArg::Gray,
-            "dimples",
-        )?;
+            bumpmap::options::RoughnessLayout::Gray,
+        )
+        .map_err(|source| CompareError::NormalMap { name: "dimples", source })?;
         Arc::new(bumpmap_math::Rgba8Mips::from_levels(chain.levels))
     };
     let mut rows = Vec::new();
     for distance in SPECULAR_DISTANCES {
         let params = SceneParams { eye: Some(near * distance), ..base.clone() };
-        let scene = scenes::build(&SceneKind::Sphere, &params).map_err(core_err)?;
+        let scene = scenes::build(&SceneKind::Sphere, &params)?;
         let reference = reference_image(&scene, SIZE, 64)?;
         let n = reference.pixels.iter().filter(|c| c.max_element() > 0.0).count().max(1) as f64;
         let measure = |pixels: &[Vec3]| highlight(pixels, SIZE, n);
-        let mut filtered = |mode, filter| -> Result<(f64, f64), CliError> {
-            let scene = scenes::build(&SceneKind::Sphere, &SceneParams { mip_mode: mode, ..params.clone() })
-                .map_err(core_err)?;
+        let mut filtered = |mode, filter| -> Result<(f64, f64), CompareError> {
+            let scene = scenes::build(&SceneKind::Sphere, &SceneParams { mip_mode: mode, ..params.clone() })?;
             let roughness_map = (filter == SpecularFilter::RoughnessMap).then(|| exported.clone());
             let technique = Technique::SinglePass(SinglePassOptions {
                 specular_filter: filter,
                 roughness_map,
                 ..Default::default()
             });
-            let frame = draw(backend, &scene, &technique, SIZE, SIZE, false)?;
-            Ok(measure(&metrics::linear(&frame.image)))
+            let frame = draw(backend, &scene, &technique, SIZE)?;
+            Ok(measure(&metrics::linear(&frame)))
         };
         let filters = [
             filtered(MipMode::Renormalize, SpecularFilter::None)?,
@@ -233,7 +230,7 @@ fn brightness_stats(pixels: &[Vec3], mask: &[bool]) -> (f64, f64) {
 }
 
 /// [`EmbossStudy`]: the wall at six light angles and four distances, the sphere lit from the side.
-pub fn emboss_study(backend: &mut Renderer) -> Result<EmbossStudy, CliError> {
+pub fn emboss_study(backend: &mut Renderer) -> Result<EmbossStudy, CompareError> {
     use bumpmap_core::scene::SceneLight;
     use bumpmap_math::lighting::Light;
     const SIZE: usize = 96;
@@ -247,13 +244,13 @@ pub fn emboss_study(backend: &mut Renderer) -> Result<EmbossStudy, CliError> {
     let single = Technique::SinglePass(SinglePassOptions::default());
     // Renders the reference and the techniques of `params` on `kind`: the reference, then each.
     let mut run = |kind: &SceneKind, params: &SceneParams, techniques: &[&Technique]| {
-        let scene = scenes::build(kind, params).map_err(core_err)?;
+        let scene = scenes::build(kind, params)?;
         let reference = reference_image(&scene, SIZE, 16)?;
         let mut images = Vec::new();
         for t in techniques {
-            images.push(metrics::linear(&draw(backend, &scene, t, SIZE, SIZE, false)?.image));
+            images.push(metrics::linear(&draw(backend, &scene, t, SIZE)?));
         }
-        Ok::<_, CliError>((reference, images))
+        Ok::<_, CompareError>((reference, images))
     };
     let mut by_angle = Vec::new();
     for degrees in [0.0f32, 15.0, 30.0, 45.0, 60.0, 75.0] {
@@ -331,7 +328,7 @@ pub struct PeercyRow {
 
 /// [`PeercyStudy`]: the patch at `SIZE`², its references at 16 samples per pixel, bump scales
 /// 1, 2 and 4 (slopes up to about 20°, 36° and 56°), the images of scale 2 kept.
-pub fn peercy_study(backend: &mut Renderer) -> Result<PeercyStudy, CliError> {
+pub fn peercy_study(backend: &mut Renderer) -> Result<PeercyStudy, CompareError> {
     const SIZE: usize = 256;
     const SHOWN: f32 = 2.0;
     let field = bumpmap_math::HeightPreset::Pinwheel.render(256, 256);
@@ -347,7 +344,7 @@ pub fn peercy_study(backend: &mut Renderer) -> Result<PeercyStudy, CliError> {
         };
         let reference = |field| {
             let bumps = BumpSource::Heights(Arc::new(field));
-            let scene = scenes::build(&SceneKind::Patch, &SceneParams { bumps, ..params.clone() }).map_err(core_err)?;
+            let scene = scenes::build(&SceneKind::Patch, &SceneParams { bumps, ..params.clone() })?;
             reference_image(&scene, SIZE, 16)
         };
         let (same_slopes, raw_heights) = (reference(smoothed.clone())?, reference(field.clone())?);
@@ -358,7 +355,7 @@ pub fn peercy_study(backend: &mut Renderer) -> Result<PeercyStudy, CliError> {
                 render_technique(name, &spec, backend, SIZE).map(|(image, _)| image)
             })
             .collect::<Result<_, _>>()
-            .map_err(|why| CliError::Render(format!("Peercy's figures on the patch: {why}")))?;
+            .map_err(|reason| CompareError::Study { study: "Peercy's figures on the patch", reason })?;
         let rmse = |reference: &LinearImage| -> [f64; 3] {
             std::array::from_fn(|i| metrics::pixel_errors(&reference.pixels, &metrics::linear(&rendered[i])).0)
         };
@@ -380,4 +377,14 @@ pub fn peercy_study(backend: &mut Renderer) -> Result<PeercyStudy, CliError> {
         }
     }
     Ok(PeercyStudy { size: SIZE, rows, shown_scale: SHOWN, images })
+}
+
+/// `technique`'s image of `scene`, `size` pixels square.
+fn draw(
+    backend: &mut Renderer,
+    scene: &bumpmap_core::Scene,
+    technique: &Technique,
+    size: usize,
+) -> Result<Rgba8Image, CompareError> {
+    Ok(backend.draw_scene(scene, technique, size, size, None)?)
 }

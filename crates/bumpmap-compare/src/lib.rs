@@ -1,45 +1,65 @@
-//! `bumpmap compare`: every technique that can render a scene, measured against the reference,
-//! with the studies the papers make in pictures made into numbers and plots.
+//! Every technique that can render a scene, measured against the reference, with the studies the
+//! papers make in pictures made into numbers and plots: what `bumpmap compare` and the Python
+//! package's `compare` write, as a library.
 //!
-//! - this module: the technique catalogue and the renders, all files or none;
+//! ```no_run
+//! use bumpmap_compare::{CompareOptions, Study};
+//!
+//! let mut options = CompareOptions::default();
+//! options.size = 64;
+//! options.studies = vec![Study::GolfBall];
+//! let (results, _inputs) = bumpmap_compare::measure(&options, &())?;
+//! for outcome in &results.outcomes {
+//!     if let Ok(rendered) = &outcome.result {
+//!         println!("{}: FLIP {:.3}", outcome.name, rendered.scores.flip_mean);
+//!     }
+//! }
+//! bumpmap_compare::write("out/compare".as_ref(), &results, &[], &|| false)?;
+//! # Ok::<(), bumpmap_compare::CompareError>(())
+//! ```
+//!
+//! - this crate's root: the options, the technique catalogue and the renders, all files or none;
 //! - [`studies`]: the golf ball (Kilgard §2.4.2), embossing (§3.1) and Peercy's Figures 5–7;
 //! - [`parallax`]: heights as geometry, every march against the displaced reference on a wall
 //!   seen at grazing angles;
 //! - [`shadows`]: bumps that shadow each other (horizon maps, marches, Eq. 12) against shadow
 //!   rays, and ambient occlusion and bent normals against occlusion rays;
-//! - [`metrics`]: RMSE, PSNR, bias, FLIP and SSIM against the reference;
-//! - [`plots`]: the report's plots (SVG);
-//! - [`report`]: `results.json` and `report.html`.
+//! - `metrics`: RMSE, PSNR, bias, FLIP and SSIM against the reference;
+//! - `plots`: the report's plots (SVG);
+//! - `report`: `results.json` and `report.html`;
+//! - [`CompareError`]: what can go wrong, naming the value or the file; [`Progress`]: the steps
+//!   as they are taken, and the techniques skipped.
 //!
-//! What it does not do: decide what a technique is (the core's passes do) or draw (the
-//! backends and the reference do).
+//! What it does not do: decide what a technique is (the core's passes do), draw (the backends
+//! and the reference do), or name a command-line flag (the CLI words [`CompareError`]).
 
+#![warn(missing_docs)]
+
+mod error;
 mod metrics;
-mod parallax;
+mod options;
+pub mod parallax;
 mod plots;
 mod report;
-mod shadows;
+pub mod shadows;
 mod shadows_report;
-mod studies;
+pub mod studies;
 
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use std::sync::Arc;
 
-use bumpmap::{BumpSource, Prepared, Renderer, SceneKind, SceneParams, SceneSpec, TechniqueName, TechniqueOptions};
+use bumpmap::{BumpSource, Prepared, Renderer, SceneParams, SceneSpec, TechniqueName, TechniqueOptions};
 use bumpmap_io::atomic::FileSet;
 use bumpmap_io::image_file::{PngLayout, save_png_into};
 use bumpmap_io::{Channel, HeightSource};
 use bumpmap_math::{NormalMapOptions, Rgba8Image};
 use bumpmap_reference::{LinearImage, ReferenceOptions};
 
-use crate::args::{CompareArgs, StudyArg};
-use crate::error::CliError;
-use crate::render::{lib_err, reference_err, rgb};
-use crate::report::{Progress, Steps};
-
+pub use error::CompareError;
 pub use metrics::Scores;
+pub use options::{CompareNote, CompareOptions, Progress, Study};
 pub use report::json;
 pub use studies::{EmbossStudy, PEERCY, PeercyStudy};
 
@@ -115,50 +135,27 @@ pub struct Results {
     pub total_millis: f64,
 }
 
-/// Runs `bumpmap compare`.
-pub fn run(args: &CompareArgs) -> Result<(), CliError> {
-    let out = &args.output;
-    check_output(out)?;
-    let (results, inputs) = measure(args, &Progress::Bar)?;
-    let inputs: Vec<&Path> = inputs.iter().map(PathBuf::as_path).collect();
-    let written = write(out, &results, &inputs, &|| false)?;
-    let shown = results.outcomes.iter().filter(|o| o.result.is_ok()).count();
-    eprintln!(
-        "wrote {} files into {} ({shown} techniques against the reference; open {})",
-        written.len(),
-        out.display(),
-        out.join("report.html").display()
-    );
-    Ok(())
-}
-
 /// Refuses an output that is a file: compare writes a folder.
-pub fn check_output(out: &Path) -> Result<(), CliError> {
+pub fn check_output(out: &Path) -> Result<(), CompareError> {
     if out.exists() && !out.is_dir() {
-        return Err(CliError::Path {
-            path: out.to_path_buf(),
-            reason: "is a file; compare writes a folder of results".into(),
-        });
+        return Err(CompareError::OutputIsAFile(out.to_path_buf()));
     }
     Ok(())
 }
 
 /// Everything `compare` measures, before anything is written, and the files it read; its steps
-/// shown as `progress` says. Techniques that cannot draw the scene are skipped, with
-/// their reason on stderr and in the results.
-pub fn measure(args: &CompareArgs, progress: &Progress) -> Result<(Results, Vec<PathBuf>), CliError> {
+/// told to `progress` as they are taken. Techniques that cannot draw the scene are skipped,
+/// with their reason told to `progress` and kept in the results.
+pub fn measure(args: &CompareOptions, progress: &dyn Progress) -> Result<(Results, Vec<PathBuf>), CompareError> {
     let start = Instant::now();
-    let kind = SceneKind::parse(&args.scene).ok_or_else(|| {
-        CliError::Usage(format!(
-            "unknown scene '{}': compare takes a built-in surface ({}), because the reference evaluates the exact surface",
-            args.scene,
-            SceneKind::built_in_names()
-        ))
-    })?;
-    if !(args.bump_scale.is_finite() && args.bump_scale >= 0.0) {
-        return Err(CliError::Usage(format!("--bump-scale must be a number ≥ 0, got {}", args.bump_scale)));
+    let kind = args.scene.clone();
+    if !kind.is_surface() {
+        return Err(CompareError::NotASurface(kind));
     }
-    let source = HeightSource::parse(&args.height_field);
+    if !(args.bump_scale.is_finite() && args.bump_scale >= 0.0) {
+        return Err(CompareError::BumpScale(args.bump_scale));
+    }
+    let source = &args.height_field;
     let inputs: Vec<PathBuf> = source.path().into_iter().map(Path::to_path_buf).collect();
     let field = source.load(Channel::Luminance)?;
     let is_bricks = matches!(source, HeightSource::Preset { preset: bumpmap_math::HeightPreset::Bricks, .. });
@@ -171,7 +168,7 @@ pub fn measure(args: &CompareArgs, progress: &Progress) -> Result<(Results, Vec<
     let spec = SceneSpec { kind, params: base };
     let size = args.size;
     let spp = args.spp as usize;
-    Renderer::check_size(size, size).map_err(lib_err)?;
+    Renderer::check_size(size, size)?;
 
     // Unknown names are reported, not fatal; the default is every technique but the reference.
     let wanted: Vec<String> = if args.techniques.is_empty() {
@@ -186,7 +183,7 @@ pub fn measure(args: &CompareArgs, progress: &Progress) -> Result<(Results, Vec<
             .iter()
             .any(|w| TechniqueName::parse(w).map(|t| t.name().to_string()).unwrap_or_else(|_| w.clone()) == key)
         {
-            return Err(CliError::Usage(format!("--techniques names {name} twice")));
+            return Err(CompareError::Twice(name.clone()));
         }
     }
     // The scene the references read and one technique's maps are alive at once: refused up
@@ -200,17 +197,22 @@ pub fn measure(args: &CompareArgs, progress: &Progress) -> Result<(Results, Vec<
         .unwrap_or(0);
     let bytes = Prepared::bytes_needed(&spec, TechniqueName::Reference) + largest;
     bumpmap::bumpmap_math::buffer::ensure_available(bytes, "measuring it")
-        .map_err(|e| crate::render::too_big(CliError::OutOfMemory(e), &spec, Some(&args.height_field)))?;
-    let mut backend = crate::render::renderer(args.backend)?;
+        .map_err(|source| CompareError::TooBig { source, bumps: spec.params.bumps.size() })?;
+    let mut backend = Renderer::new(args.backend)?;
+    if let Some(reason) = backend.fallback_reason() {
+        progress.note(&CompareNote::OnTheCpu { reason: reason.to_string() });
+    }
     // The two references, each technique, convergence and the studies.
     let steps = (wanted.len() + 9) as u64;
-    let bar = Steps::new(progress, steps, "{bar:40} {pos}/{len} {elapsed} {wide_msg}");
+    let bar = options::Steps::new(progress, steps);
 
     bar.set_message(format!("reference, {spp} samples per pixel"));
-    let scene = spec.build().map_err(crate::render::core_err)?;
+    let scene = spec.build()?;
     let t = Instant::now();
     let reference = reference_image(&scene, size, spp)?;
-    crate::render::ensure_drawn(reference.pixels.iter().all(|p| *p == glam::Vec3::ZERO), &args.output)?;
+    if reference.pixels.iter().all(|p| *p == glam::Vec3::ZERO) {
+        return Err(CompareError::BlackReference);
+    }
     let reference_millis = t.elapsed().as_secs_f64() * 1e3;
     bar.inc();
 
@@ -243,7 +245,7 @@ pub fn measure(args: &CompareArgs, progress: &Progress) -> Result<(Results, Vec<
             Rendered { image, scores, displaced, heat, millis }
         });
         if let Err(reason) = &result {
-            bar.suspend(|| crate::report::note(format!("skipped {name}: {reason}")));
+            progress.note(&CompareNote::Skipped { name: name.clone(), reason: reason.clone() });
         }
         outcomes.push(Outcome { name: name.clone(), description, result });
         bar.inc();
@@ -252,38 +254,38 @@ pub fn measure(args: &CompareArgs, progress: &Progress) -> Result<(Results, Vec<
     bar.set_message("convergence of the reference");
     let convergence = convergence(&scene, size, spp, &reference)?;
     bar.inc();
-    let study = |which: StudyArg, what: &str, bar: &Steps| {
+    let study = |which: Study, what: &str, bar: &options::Steps| {
         let runs = args.runs(which);
         if runs {
-            bar.set_message(what.to_string());
+            bar.set_message(what);
         }
         bar.inc();
         runs
     };
-    let golf_ball = if study(StudyArg::GolfBall, "golf ball at a distance (Kilgard §2.4.2)", &bar) {
+    let golf_ball = if study(Study::GolfBall, "golf ball at a distance (Kilgard §2.4.2)", &bar) {
         Some([studies::golf_ball_study(&mut backend, true)?, studies::golf_ball_study(&mut backend, false)?])
     } else {
         None
     };
-    let specular = study(StudyArg::Specular, "specular filtering at a distance (Kilgard §2.5.3)", &bar)
+    let specular = study(Study::Specular, "specular filtering at a distance (Kilgard §2.5.3)", &bar)
         .then(|| studies::specular_study(&mut backend))
         .transpose()?;
-    let emboss = study(StudyArg::Emboss, "embossing (Kilgard §3.1)", &bar)
+    let emboss = study(Study::Emboss, "embossing (Kilgard §3.1)", &bar)
         .then(|| studies::emboss_study(&mut backend))
         .transpose()?;
-    let peercy = study(StudyArg::Peercy, "Peercy's Figures 5–7 on the stretched patch", &bar)
+    let peercy = study(Study::Peercy, "Peercy's Figures 5–7 on the stretched patch", &bar)
         .then(|| studies::peercy_study(&mut backend))
         .transpose()?;
-    let parallax = study(StudyArg::Parallax, "heights as geometry: the wall at grazing angles", &bar)
+    let parallax = study(Study::Parallax, "heights as geometry: the wall at grazing angles", &bar)
         .then(|| parallax::parallax_study(&mut backend))
         .transpose()?;
-    let shadows = study(StudyArg::Shadows, "bumps that shadow each other: horizon maps, marches, Eq. 12", &bar)
+    let shadows = study(Study::Shadows, "bumps that shadow each other: horizon maps, marches, Eq. 12", &bar)
         .then(|| shadows::shadow_study(&mut backend))
         .transpose()?;
     bar.finish();
 
     let results = Results {
-        scene: args.scene.clone(),
+        scene: args.scene.name().to_string(),
         size,
         spp,
         backend: backend.describe(),
@@ -303,10 +305,10 @@ pub fn measure(args: &CompareArgs, progress: &Progress) -> Result<(Results, Vec<
     Ok((results, inputs))
 }
 
-/// The reference at `spp` samples per pixel, with the CLI's errors.
-fn reference_image(scene: &bumpmap_core::Scene, size: usize, spp: usize) -> Result<LinearImage, CliError> {
+/// The reference at `spp` samples per pixel.
+fn reference_image(scene: &bumpmap_core::Scene, size: usize, spp: usize) -> Result<LinearImage, CompareError> {
     let options = ReferenceOptions { samples_per_pixel: spp, ..Default::default() };
-    bumpmap_reference::render(scene, size, size, &options, &|_, _| {}).map_err(|e| CliError::Render(reference_err(e)))
+    Ok(bumpmap_reference::render(scene, size, size, &options, &|_, _| {})?)
 }
 
 /// Renders technique `name` on the scene `spec` describes, with its default options; `Err`
@@ -330,7 +332,7 @@ fn convergence(
     size: usize,
     spp: usize,
     full: &LinearImage,
-) -> Result<Vec<(usize, f64)>, CliError> {
+) -> Result<Vec<(usize, f64)>, CompareError> {
     let mut ks = vec![1];
     while ks.last().expect("non-empty") * 4 <= spp {
         ks.push(ks.last().expect("non-empty") * 4);
@@ -346,6 +348,11 @@ fn convergence(
         .collect())
 }
 
+/// The image's RGB bytes: the colour buffer's alpha (s_self, not coverage) left out.
+fn rgb(image: &Rgba8Image) -> Vec<u8> {
+    image.texels.iter().flat_map(|&[r, g, b, _]| [r, g, b]).collect()
+}
+
 /// Writes every image, heat map, plot, `results.json` and `report.html` into `out`, all or none;
 /// none when `cancelled`, asked once the files are staged, says the caller gave up.
 pub fn write(
@@ -353,7 +360,7 @@ pub fn write(
     results: &Results,
     inputs: &[&Path],
     cancelled: &dyn Fn() -> bool,
-) -> Result<Vec<std::path::PathBuf>, CliError> {
+) -> Result<Vec<std::path::PathBuf>, CompareError> {
     let mut set = FileSet::new(inputs);
     let size = results.size;
     let png = |set: &mut FileSet, name: &str, rgb: &[u8]| {
@@ -388,7 +395,7 @@ pub fn write(
     let html = report::html(results);
     set.write(&out.join("report.html"), |w| std::io::Write::write_all(w, html.as_bytes()))?;
     if cancelled() {
-        return Err(CliError::Interrupted);
+        return Err(CompareError::Interrupted);
     }
     Ok(set.commit()?)
 }

@@ -1,0 +1,166 @@
+//! `bumpmap compare`: the flags made into `bumpmap_compare`'s options, its steps shown as a bar,
+//! its refusals in the command line's words. The measuring, the studies and the report are
+//! `bumpmap_compare`'s.
+
+use std::cell::RefCell;
+use std::path::{Path, PathBuf};
+
+use bumpmap::SceneKind;
+use bumpmap_compare::{CompareError, CompareNote, CompareOptions, Results};
+use bumpmap_io::HeightSource;
+
+use crate::args::CompareArgs;
+use crate::error::CliError;
+use crate::report::{Progress, Steps};
+
+/// Runs `bumpmap compare`.
+pub fn run(args: &CompareArgs) -> Result<(), CliError> {
+    let out = &args.output;
+    check_output(out)?;
+    let (results, inputs) = measure(args, &Progress::Bar)?;
+    let inputs: Vec<&Path> = inputs.iter().map(PathBuf::as_path).collect();
+    let written = write(out, &results, &inputs, &|| false)?;
+    let shown = results.outcomes.iter().filter(|o| o.result.is_ok()).count();
+    eprintln!(
+        "wrote {} files into {} ({shown} techniques against the reference; open {})",
+        written.len(),
+        out.display(),
+        out.join("report.html").display()
+    );
+    Ok(())
+}
+
+/// Refuses an output that is a file: compare writes a folder.
+pub fn check_output(out: &Path) -> Result<(), CliError> {
+    bumpmap_compare::check_output(out).map_err(|e| compare_err(e, None))
+}
+
+/// Everything `compare` measures, and the files it read; its steps shown as `progress` says,
+/// the techniques it skips noted.
+pub fn measure(args: &CompareArgs, progress: &Progress) -> Result<(Results, Vec<PathBuf>), CliError> {
+    let options = compare_options(args)?;
+    let shown = Shown { progress, steps: RefCell::new(None) };
+    bumpmap_compare::measure(&options, &shown).map_err(|e| compare_err(e, Some(args)))
+}
+
+/// Writes the folder, all files or none.
+pub fn write(
+    out: &Path,
+    results: &Results,
+    inputs: &[&Path],
+    cancelled: &dyn Fn() -> bool,
+) -> Result<Vec<PathBuf>, CliError> {
+    bumpmap_compare::write(out, results, inputs, cancelled).map_err(|e| compare_err(e, None))
+}
+
+/// The library's options as the flags give them; only the scene's name can be wrong here.
+pub fn compare_options(args: &CompareArgs) -> Result<CompareOptions, CliError> {
+    let scene = SceneKind::parse(&args.scene).ok_or_else(|| {
+        CliError::Usage(format!(
+            "unknown scene '{}': compare takes a built-in surface ({}), because the reference evaluates the exact surface",
+            args.scene,
+            SceneKind::built_in_names()
+        ))
+    })?;
+    Ok(CompareOptions {
+        scene,
+        height_field: HeightSource::parse(&args.height_field),
+        bump_scale: args.bump_scale,
+        size: args.size,
+        spp: args.spp,
+        backend: args.backend.into(),
+        techniques: args.techniques.clone(),
+        studies: args.studies(),
+    })
+}
+
+/// `compare`'s steps on a bar (or told to a function), its notes on stderr.
+struct Shown<'a> {
+    progress: &'a Progress,
+    steps: RefCell<Option<Steps>>,
+}
+
+impl bumpmap_compare::Progress for Shown<'_> {
+    fn start(&self, steps: u64) {
+        *self.steps.borrow_mut() = Some(Steps::new(self.progress, steps, "{bar:40} {pos}/{len} {elapsed} {wide_msg}"));
+    }
+
+    fn step(&self, what: &str) {
+        if let Some(s) = self.steps.borrow().as_ref() {
+            s.set_message(what);
+        }
+    }
+
+    fn advance(&self, _done: u64) {
+        if let Some(s) = self.steps.borrow().as_ref() {
+            s.inc();
+        }
+    }
+
+    fn note(&self, note: &CompareNote) {
+        let line = match note {
+            CompareNote::Skipped { name, reason } => format!("skipped {name}: {reason}"),
+            CompareNote::OnTheCpu { reason } => format!("--backend auto: drawing on the CPU ({reason})"),
+        };
+        match self.steps.borrow().as_ref() {
+            Some(s) => s.suspend(|| crate::report::note(line)),
+            None => crate::report::note(line),
+        }
+    }
+
+    fn finish(&self) {
+        if let Some(s) = self.steps.borrow().as_ref() {
+            s.finish();
+        }
+    }
+}
+
+/// What `bumpmap_compare` refused, in the words of the command line; `args`, where given, names
+/// the height field and the output.
+fn compare_err(e: CompareError, args: Option<&CompareArgs>) -> CliError {
+    match e {
+        CompareError::NotASurface(kind) => CliError::Usage(format!(
+            "--scene {}: compare takes a built-in surface ({}), because the reference evaluates the exact surface",
+            kind.name(),
+            SceneKind::built_in_names()
+        )),
+        CompareError::BumpScale(b) => CliError::Usage(format!("--bump-scale must be a number ≥ 0, got {b}")),
+        CompareError::Twice(name) => CliError::Usage(format!("--techniques names {name} twice")),
+        CompareError::TooBig { source, bumps: (w, h) } => CliError::Render(format!(
+            "this scene (bumps {w}x{h}{}) is too big for the memory this process may use: {source}. \
+             The README's \"Memory\" section gives what the largest inputs need; a smaller --height-field needs less",
+            args.map(|a| format!(" from {}", a.height_field)).unwrap_or_default()
+        )),
+        CompareError::BlackReference => CliError::Path {
+            path: args.map(|a| a.output.clone()).unwrap_or_default(),
+            reason:
+                "not written: the reference is black (nothing in view is lit); try another --scene or --height-field"
+                    .into(),
+        },
+        CompareError::OutputIsAFile(path) => {
+            CliError::Path { path, reason: "is a file; compare writes a folder of results".into() }
+        }
+        CompareError::Interrupted => CliError::Interrupted,
+        CompareError::Reference(e) => CliError::Render(crate::render::reference_err(e)),
+        CompareError::Io(e) => CliError::Io(e),
+        CompareError::Library(e) => crate::render::lib_err(e),
+        e @ (CompareError::Study { .. } | CompareError::NormalMap { .. }) => CliError::Render(e.to_string()),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use clap::Parser;
+
+    use super::*;
+    use crate::args::{Cli, Command};
+
+    #[test]
+    fn the_flags_defaults_are_the_librarys() {
+        let Command::Compare(args) = Cli::try_parse_from(["bumpmap", "compare"]).expect("parses").command else {
+            unreachable!("compare parses as compare")
+        };
+        let from_flags = compare_options(&args).expect("the defaults are valid");
+        assert_eq!(format!("{from_flags:?}"), format!("{:?}", CompareOptions::default()));
+    }
+}
