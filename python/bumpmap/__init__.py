@@ -4,7 +4,8 @@ renders of every technique of the papers, NumPy arrays in and out.
 
 The functions take the options of the ``bumpmap`` command line as keyword arguments, with the
 same names (``-`` becomes ``_``: ``--y-convention`` is ``y_convention=``), values and defaults,
-and they make the same bytes the command writes from the same options:
+as Python values (numbers, tuples for vectors, words of closed sets, paths, arrays), and they
+make the same bytes the command writes from the same options:
 
 - ``normal_map(heights, **options)``: an (H, W) height field -> an (H, W, 4) normal map
   (``bumpmap normalmap``);
@@ -116,10 +117,8 @@ def _options_doc(function: str) -> str:
             head = f"{name}: bool = False"
         elif default is None:
             head = f"{name} = None"
-        elif _is_number(default):
-            head = f"{name} = {default}"
         else:
-            head = f"{name} = {default!r}"
+            head = f"{name} = {_default(default)!r}"
         lines.append(f"    {head}")
         text = " ".join(help_text.split())
         if text:
@@ -268,8 +267,14 @@ def render(**options):
     Any technique of the catalogue (``techniques()``) on the emulated GeForce pipeline
     (``backend="cpu"``, the default), the GPU (``"gpu"``) or whichever exists (``"auto"``).
     ``size`` is the square side in pixels (or give ``width`` and ``height``). Vectors are
-    tuples: ``eye=(0, -6, 3)``; ``light`` takes one light or a list: ``light=["4,0,3@1,0.6,0.4",
-    "dir:-1,0,1"]``.
+    tuples (or lists or arrays) of numbers: ``eye=(0, -6, 3)``, ``torus_radii=(2, 0.7)``.
+    ``light`` takes one light or a list of them, each a position ``(x, y, z)`` (white), a dict
+    ``{"position": (x, y, z), "color": (r, g, b)}`` or ``{"direction": (x, y, z)}`` (toward a
+    light at infinity; the colour optional), or the command line's notation
+    ``"[dir:]X,Y,Z[@R,G,B]"``: ``light=[(4, 0, 3), {"direction": (-1, 0, 1), "color": (0.3, 0.3,
+    0.6)}]``. ``attenuation`` is ``(C, L, Q)`` or ``"exp:D"``, ``"exp2:D"``. The keywords are read
+    straight into the library's typed options (``bumpmap::options::SceneOptions``): a value of
+    the wrong type is a ``TypeError`` naming the keyword, one out of range a ``ValueError``.
 
     Returns an (H, W, 4) uint8 array, row 0 the image's top; alpha is 255 (the framebuffer's
     alpha holds a self-shadowing term, not coverage, and the command line's PNG leaves it out).
@@ -501,12 +506,16 @@ class Renderer:
 
 
 def _default(text):
-    """A default as the command line writes it, as the Python value a caller would pass."""
+    """A default as the command line writes it, as the Python value a caller would pass: a
+    number, a tuple of numbers (``"2,0.7"`` is ``(2.0, 0.7)``) or a word."""
     for kind in (int, float):
         try:
             return kind(text)
         except ValueError:
             pass
+    parts = text.split(",")
+    if len(parts) > 1 and all(_is_number(p) for p in parts):
+        return tuple(float(p) for p in parts)
     return text
 
 

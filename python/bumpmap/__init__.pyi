@@ -44,8 +44,17 @@ _Method = Literal["auto", "fft", "dct", "kernel"]
 _HeightFromNormalsKernel = Literal["auto", "spectral", "forward", "central", "sobel3", "sobel5", "prewitt3", "scharr3", "gaussian7"]
 _HeightFromNormalsYConvention = Literal["auto", "opengl", "directx"]
 # END closed sets
-_Vec3 = Union[str, Sequence[float]]
-_Vec2 = Union[str, Sequence[float]]
+_Vec3 = Sequence[float]
+_Vec2 = Sequence[float]
+class _LightAt(TypedDict, total=False):
+    position: _Vec3
+    direction: _Vec3
+    color: _Vec3
+
+# A light: "[dir:]X,Y,Z[@R,G,B]", a position (x, y, z) of a white light, or a dict with a
+# position or a direction and, optionally, a colour. (A bare position is a tuple, so that a list
+# of lights is not read as one position.)
+_Light = Union[str, tuple[float, float, float], _LightAt]
 _Heights = Union[npt.NDArray[np.uint8], npt.NDArray[np.uint16], npt.NDArray[np.float32]]
 _Levels = Union[npt.NDArray[np.uint8], npt.NDArray[np.uint16]]
 
@@ -203,8 +212,8 @@ def render(
     rebuild_mips: bool = False,
     bump_scale: Optional[float] = None,
     decal: Union[None, str, npt.NDArray[np.uint8]] = None,
-    torus_radii: _Vec2 = "2,0.7",
-    tessellation: Optional[_Vec2] = None,
+    torus_radii: _Vec2 = (2.0, 0.7),
+    tessellation: Optional[tuple[int, int]] = None,
     repeat: Optional[_Vec2] = None,
     allow_outside_paths: bool = False,
     obj_v: _ObjV = "flip",
@@ -213,8 +222,8 @@ def render(
     up: Optional[_Vec3] = None,
     fov: float = 45.0,
     viewer: _Viewer = "local",
-    light: Union[None, str, Sequence[float], Sequence[Union[str, Sequence[float]]]] = None,
-    attenuation: Optional[str] = None,
+    light: Union[None, _Light, Sequence[_Light]] = None,
+    attenuation: Union[None, str, Sequence[float]] = None,
     spot: Optional[_Vec3] = None,
     spot_cutoff: float = 25,
     spot_exponent: float = 2,

@@ -1,17 +1,21 @@
 //! `bumpmap._bumpmap`: the native half of the `bumpmap` Python package.
 //!
-//! Each function takes its options as a dict of the command line's options, parsed by the
-//! command's own definition (`options`), and calls the same code the command runs
-//! (`bumpmap_cli::commands`), so a script and `bumpmap` make the same bytes from the same
-//! options. The package's `__init__.py` wraps each one with keyword arguments and a docstring
-//! made from the options' help texts.
+//! `render`, `Renderer.prepare` and `compare` read their keywords as typed Python values
+//! straight into the library's options (`keywords`: `bumpmap::options::SceneOptions`,
+//! `bumpmap_compare::CompareOptions`); the heights-to-maps functions still take theirs as the
+//! command line's options, parsed by the command's own definition (`options`). Both call the same
+//! code the command runs (`bumpmap_cli::commands`), so a script and `bumpmap` make the same bytes
+//! from the same options. The package's `__init__.py` wraps each one with keyword arguments and
+//! a docstring made from the options' help texts.
 //!
-//! - `options`: keyword arguments → command-line options → the command's parsed arguments;
+//! - `keywords`: `render`'s and `compare`'s keywords → the library's typed options;
+//! - `options`: the other functions' keywords → command-line options → the command's parsed
+//!   arguments, and every function's option table for the docstrings;
 //! - `arrays`: NumPy arrays in and out, their dtype, shape and byte order checked;
 //! - `interrupt`: long work with the GIL released, Ctrl-C honoured;
 //! - `errors`: the command line's errors as Python exceptions;
 //! - `pool`: the threads the work runs on, one pool per process (so a forked child works);
-//! - `renderer`: `Renderer` and `Scene`, kept between frames, and the arrays `render` takes;
+//! - `renderer`: `Renderer` and `Scene`, kept between frames, and a `Mesh` given as the scene;
 //! - `maps`: heights → the normal map, its chain and the maps written beside it.
 //!
 //! What it does not do: any image, mesh or rendering work of its own.
@@ -19,6 +23,7 @@
 mod arrays;
 mod errors;
 mod interrupt;
+mod keywords;
 mod maps;
 mod options;
 mod pool;
@@ -139,7 +144,7 @@ fn read_texture<'py>(py: Python<'py>, path: PathBuf) -> PyResult<Bound<'py, PyDi
     let out = PyDict::new(py);
     out.set_item("levels", PyList::new(py, arrays::from_chain(py, chain)?)?)?;
     out.set_item("format", format)?;
-    out.set_item("y_convention", convention.map(|y| y.name()))?;
+    out.set_item("y_convention", convention.map(bumpmap::Named::name))?;
     Ok(out)
 }
 
@@ -221,14 +226,13 @@ fn take_progress<'py>(function: &str, options: Option<&Bound<'py, PyDict>>) -> P
 #[pyo3(signature = (options = None))]
 fn render<'py>(py: Python<'py>, options: Option<&Bound<'py, PyDict>>) -> PyResult<Bound<'py, PyAny>> {
     let (options, progress) = take_progress("render", options)?;
-    let (options, given) = renderer::given(py, "render", options.as_ref())?;
-    let args = match parse(&options::RENDER, &[], options.as_ref())? {
-        Command::Render(a) => a,
-        _ => unreachable!("render's options parse as render"),
-    };
-    let drawn =
-        interrupt::run_reporting(py, move |_, shown| commands::render_given(&args, shown, &given), progress.as_ref())?
-            .map_err(|e| to_py("render", e))?;
+    let (request, given) = keywords::render_request(py, "render", options.as_ref(), true)?;
+    let drawn = interrupt::run_reporting(
+        py,
+        move |_, shown| commands::render_given(&request, shown, &given),
+        progress.as_ref(),
+    )?
+    .map_err(|e| to_py("render", e))?;
     renderer::frame_array(py, drawn.frame.image)
 }
 
@@ -242,11 +246,7 @@ fn compare<'py>(
     options: Option<&Bound<'py, PyDict>>,
 ) -> PyResult<Bound<'py, PyAny>> {
     let (options, progress) = take_progress("compare", options)?;
-    let fixed: Vec<String> = output.iter().map(|o| format!("--output={}", o.to_string_lossy())).collect();
-    let args = match parse(&options::COMPARE, &fixed, options.as_ref())? {
-        Command::Compare(a) => a,
-        _ => unreachable!("compare's options parse as compare"),
-    };
+    let compare_options = keywords::compare_options("compare", options.as_ref())?;
     if let Some(out) = &output {
         // Before minutes of work: an output that cannot be a folder.
         commands::check_compare_output(out).map_err(|e| to_py("compare", e))?;
@@ -256,7 +256,8 @@ fn compare<'py>(
     let results = interrupt::run_reporting(
         py,
         move |cancel, shown| {
-            let (results, inputs) = commands::compare(&args, shown)?;
+            let named = output.as_deref().unwrap_or(std::path::Path::new("the results"));
+            let (results, inputs) = commands::compare_options(&compare_options, Some(named), shown)?;
             if let Some(out) = &output {
                 let inputs: Vec<&std::path::Path> = inputs.iter().map(PathBuf::as_path).collect();
                 commands::write_compare(out, &results, &inputs, &|| !cancel.begin_commit())?;
@@ -327,6 +328,16 @@ fn option_table(function: &str) -> PyResult<Vec<options::OptionRow>> {
         .ok_or_else(|| PyValueError::new_err(format!("no function {function} takes options")))
 }
 
+/// Every keyword `function` (`render` or `compare`) reads.
+#[pyfunction(name = "keywords")]
+fn keyword_names(function: &str) -> PyResult<Vec<&'static str>> {
+    match function {
+        "render" => Ok(keywords::KEYWORDS.to_vec()),
+        "compare" => Ok(keywords::COMPARE_KEYWORDS.to_vec()),
+        _ => Err(PyValueError::new_err(format!("{function} reads no typed keywords"))),
+    }
+}
+
 /// The techniques of the catalogue: `(name, description, what it needs)`.
 #[pyfunction]
 fn techniques() -> Vec<(String, String, Vec<String>)> {
@@ -372,6 +383,7 @@ fn _bumpmap(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(compare, m)?)?;
     m.add_function(wrap_pyfunction!(option_table, m)?)?;
     m.add_function(wrap_pyfunction!(techniques, m)?)?;
+    m.add_function(wrap_pyfunction!(keyword_names, m)?)?;
     m.add_function(wrap_pyfunction!(inspect, m)?)?;
     m.add_function(wrap_pyfunction!(height_from_normals, m)?)?;
     m.add_function(wrap_pyfunction!(built_for, m)?)?;

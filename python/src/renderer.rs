@@ -10,83 +10,18 @@
 
 use std::sync::{Arc, Mutex, PoisonError};
 
-use bumpmap_cli::args::Command;
-use bumpmap_cli::commands::{self, Chain, Given};
+use bumpmap_cli::commands::{self, Chain};
 use glam::Vec3;
 use pyo3::exceptions::{PyRuntimeError, PyTypeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
 use crate::errors::to_py;
-use crate::{arrays, interrupt, options};
-
-/// The options `render` takes as arrays, in place of a file.
-const ARRAY_INPUTS: [&str; 3] = ["normal_map", "height_field", "decal"];
-
-/// `options` with each array input replaced by a name for it (the option stays given, so the
-/// setup treats it as it treats a file), and the arrays as the setup's in-memory inputs.
-pub fn given<'py>(
-    py: Python<'py>,
-    function: &str,
-    options: Option<&Bound<'py, PyDict>>,
-) -> PyResult<(Option<Bound<'py, PyDict>>, Given)> {
-    let Some(options) = options else { return Ok((None, Given::default())) };
-    let copy = options.copy()?;
-    let mut given = Given::default();
-    if let Some(scene) = options.get_item("scene")?
-        && !scene.is_instance_of::<pyo3::types::PyString>()
-    {
-        given.mesh = Some(mesh_scene(function, &scene)?);
-        copy.set_item("scene", "mesh:the scene's Mesh")?;
-    }
-    for name in ARRAY_INPUTS {
-        let Some(value) = options.get_item(name)? else { continue };
-        // An array, or (a normal map's chain) a list or tuple of them.
-        let is_array = |v: &Bound<'py, PyAny>| v.cast::<numpy::PyUntypedArray>().is_ok();
-        let listed = (value.is_instance_of::<pyo3::types::PyList>() || value.is_instance_of::<pyo3::types::PyTuple>())
-            && value.len()? > 0
-            && value.try_iter()?.all(|v| v.is_ok_and(|v| is_array(&v)));
-        if !is_array(&value) && !listed {
-            continue;
-        }
-        let prefix = |e: PyErr| {
-            let message = format!("{function}(): {name}: {}", e.value(py));
-            if e.is_instance_of::<PyTypeError>(py) {
-                PyTypeError::new_err(message)
-            } else {
-                PyValueError::new_err(message)
-            }
-        };
-        match name {
-            "normal_map" => {
-                let (levels, format) = match arrays::to_chain(&value).map_err(prefix)? {
-                    Chain::Rgba8(c) => {
-                        (bumpmap_io::StoredLevels::Rgba8(c.levels), bumpmap_io::texture_file::TextureFormat::Rgba8)
-                    }
-                    Chain::Rgba16(c) => {
-                        (bumpmap_io::StoredLevels::Rgba16(c.levels), bumpmap_io::texture_file::TextureFormat::Rgba16)
-                    }
-                };
-                given.normal_map = Some(bumpmap_io::StoredTexture { levels, format });
-            }
-            "height_field" => given.height_field = Some(arrays::height_field(&value).map_err(prefix)?),
-            _ => match arrays::to_chain(&value).map_err(prefix)? {
-                Chain::Rgba8(mut c) if c.levels.len() == 1 => given.decal = c.levels.pop(),
-                _ => {
-                    return Err(PyTypeError::new_err(format!(
-                        "{function}(): decal must be one (H, W, 4) uint8 image (its mipmaps are made from it)"
-                    )));
-                }
-            },
-        }
-        copy.set_item(name, format!("<{name} array>"))?;
-    }
-    Ok((Some(copy), given))
-}
+use crate::{arrays, interrupt, keywords};
 
 /// A `bumpmap.Mesh` (anything with its attributes) given as the scene: the mesh `--scene
 /// mesh:FILE` would read, without a material.
-fn mesh_scene(function: &str, scene: &Bound<'_, PyAny>) -> PyResult<bumpmap_io::LoadedMesh> {
+pub(crate) fn mesh_scene(function: &str, scene: &Bound<'_, PyAny>) -> PyResult<bumpmap_io::LoadedMesh> {
     let get = |name: &str| {
         scene.getattr(name).map_err(|_| {
             let kind = scene.get_type().name().map(|n| n.to_string()).unwrap_or_default();
@@ -100,19 +35,6 @@ fn mesh_scene(function: &str, scene: &Bound<'_, PyAny>) -> PyResult<bumpmap_io::
     let (mesh, had_normals, had_tangents) =
         arrays::mesh(function, &positions, &normals, &uvs, Some(&tangents), &indices)?;
     Ok(bumpmap_io::LoadedMesh { mesh, had_normals, had_tangents, ..Default::default() })
-}
-
-/// `render`'s options parsed, with their array inputs.
-fn render_args(
-    py: Python<'_>,
-    function: &str,
-    options: Option<&Bound<'_, PyDict>>,
-) -> PyResult<(bumpmap_cli::args::RenderArgs, Given)> {
-    let (options, given) = given(py, function, options)?;
-    match options::RENDER.parse(&[], options.as_ref())? {
-        Command::Render(a) => Ok((*a, given)),
-        _ => unreachable!("render's options parse as render"),
-    }
 }
 
 /// A frame as the array `render` returns: (H, W, 4) uint8, alpha 255 (the framebuffer's alpha
@@ -137,8 +59,6 @@ fn closed() -> PyErr {
 #[pyclass(module = "bumpmap._bumpmap", frozen)]
 pub struct Renderer {
     inner: Shared,
-    /// The backend asked for, as `render(backend=)` spells it.
-    backend: String,
 }
 
 #[pymethods]
@@ -147,13 +67,15 @@ impl Renderer {
     #[new]
     #[pyo3(signature = (backend = "cpu".to_string()))]
     fn new(py: Python<'_>, backend: String) -> PyResult<Self> {
-        let dict = PyDict::new(py);
-        dict.set_item("backend", &backend)?;
-        let (args, _) = render_args(py, "Renderer", Some(&dict))?;
-        let choice = args.setup.backend.backend;
+        let choice: bumpmap::BackendChoice = bumpmap::Named::parse(&backend).ok_or_else(|| {
+            PyValueError::new_err(format!(
+                "Renderer(): invalid value '{backend}' for backend; possible values: {}",
+                <bumpmap::BackendChoice as bumpmap::Named>::names().join(", ")
+            ))
+        })?;
         let renderer = interrupt::run(py, move |_| bumpmap_cli::commands::open_renderer(choice))?
             .map_err(|e| to_py("Renderer", e))?;
-        Ok(Self { inner: Arc::new(Mutex::new(Some(renderer))), backend })
+        Ok(Self { inner: Arc::new(Mutex::new(Some(renderer))) })
     }
 
     /// What it draws on, in words (the CPU, or the GPU adapter's name and driver).
@@ -180,20 +102,17 @@ impl Renderer {
         if self.closed() {
             return Err(closed());
         }
-        let options = match options {
-            Some(o) => o.copy()?,
-            None => PyDict::new(py),
-        };
-        if options.contains("backend")? {
+        if let Some(options) = options
+            && options.contains("backend")?
+        {
             return Err(PyTypeError::new_err(
                 "prepare(): the backend is the Renderer's (Renderer(backend=...)), not a scene's option",
             ));
         }
-        options.set_item("backend", &self.backend)?;
-        let (args, given) = render_args(py, "prepare", Some(&options))?;
-        let technique = args.setup.technique.technique.0.name().to_string();
-        let prepared =
-            interrupt::run(py, move |_| commands::prepare_render(&args, &given))?.map_err(|e| to_py("prepare", e))?;
+        let (request, given) = keywords::render_request(py, "prepare", options, false)?;
+        let technique = request.options.technique.technique.name().to_string();
+        let prepared = interrupt::run(py, move |_| commands::prepare_render(&request, &given))?
+            .map_err(|e| to_py("prepare", e))?;
         let notes = prepared.setup.notes.iter().chain(&prepared.depth_notes).cloned().collect();
         Ok(Scene {
             renderer: self.inner.clone(),

@@ -104,7 +104,7 @@ def test_help_lists_the_options_with_the_cli_defaults():
     assert "\n    scale = 4\n" in doc and "kernel = 'forward'" in doc and "One of: forward, central" in doc
     render_doc = bumpmap.render.__doc__
     for option in ["technique = 'kilgard'", "backend = 'cpu'", "no_self_shadow: bool = False", "light = None",
-                   "fov = 45", "torus_radii = '2,0.7'"]:
+                   "fov = 45", "torus_radii = (2.0, 0.7)"]:
         assert option in render_doc, option
     # The help texts speak of keywords, not of flags.
     assert "--" not in render_doc, [line for line in render_doc.splitlines() if "--" in line]

@@ -31,6 +31,8 @@ def same_default(stub_value, cli_default, is_flag):
         return stub_value is None
     if isinstance(stub_value, (int, float)) and not isinstance(stub_value, bool):
         return float(cli_default) == float(stub_value)
+    if isinstance(stub_value, tuple):
+        return tuple(float(v) for v in stub_value) == tuple(float(p) for p in cli_default.split(","))
     return str(stub_value) == cli_default
 
 
@@ -106,6 +108,8 @@ levels = back["levels"]
 image = bumpmap.render(technique="pom", backend="auto", size=64, eye=(0, -6, 3), light=["4,0,3", "dir:-1,0,1"])
 lit = bumpmap.render(light=(1.0, 2.0, 3.0), specular_filter="lean", filter="nearest")
 ok: bool = bool(image.any())
+warm = bumpmap.render(light=[{"position": (4, 0, 3), "color": (1, 0.6, 0.4)}, {"direction": (-1, 0, 1)}],
+                      attenuation=(1, 0.2, 0.05), torus_radii=(2.5, 0.5), tessellation=(64, 32))
 results = bumpmap.compare(techniques=["kilgard", "single-pass"], studies="none")
 seen: list[tuple[int, int]] = []
 reference = bumpmap.render(technique="reference", progress=lambda done, total: seen.append((done, total)))
@@ -123,6 +127,8 @@ WRONG = [
     ('bumpmap.render(no_such_option=1)', "an option that does not exist"),
     ('x: str = bumpmap.write_texture("n.png", np.zeros((4, 4, 4), np.uint8))[0]', "paths are not str"),
     ('bumpmap.render(progress=3)', "a progress that is not a function"),
+    ('bumpmap.render(eye="0,-6,3")', "a vector as text"),
+    ('bumpmap.render(light={"colour": (1, 1, 1)})', "a light with a key that does not exist"),
     ('bumpmap.roughness_map(bumpmap.read_height_field("bricks"), roughness_layout="orm")', "a layout that does not exist"),
 ]
 

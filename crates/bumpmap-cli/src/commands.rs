@@ -20,8 +20,8 @@ use crate::error::CliError;
 pub use crate::report::Progress;
 
 pub use crate::normalmap::Chain;
-pub use crate::render::PreparedArgs;
 pub use crate::render::{Drawn, Frame};
+pub use crate::render::{PreparedArgs, Request};
 pub use crate::setup::{Given, Setup};
 pub use bumpmap_compare::{Outcome, Rendered, Results, Scores};
 
@@ -91,23 +91,24 @@ pub fn write_texture(
 /// `render`'s image (and passes, with `--passes`), drawn as the command draws it, without the
 /// output file; the reference shows its tiles' progress as `progress` says.
 pub fn render(args: &RenderArgs, progress: &Progress) -> Result<Drawn, CliError> {
-    crate::render::draw_args(args, progress, &Given::default())
+    crate::render::draw_request(&Request::from_args(args)?, progress, &Given::default())
 }
 
-/// [`render`] with the inputs `given` in memory in place of the files their options name.
-pub fn render_given(args: &RenderArgs, progress: &Progress, given: &Given) -> Result<Drawn, CliError> {
-    crate::render::draw_args(args, progress, given)
+/// [`render`] of a typed request, with the inputs `given` in memory in place of the files its
+/// options name.
+pub fn render_given(request: &Request, progress: &Progress, given: &Given) -> Result<Drawn, CliError> {
+    crate::render::draw_request(request, progress, given)
 }
 
 /// The renderer `--backend` opens (with `auto`, the reason for drawing on the CPU on stderr).
-pub fn open_renderer(backend: crate::args::BackendArg) -> Result<bumpmap::Renderer, CliError> {
+pub fn open_renderer(backend: bumpmap::BackendChoice) -> Result<bumpmap::Renderer, CliError> {
     crate::render::renderer(backend)
 }
 
 /// What `render` would draw, set up and prepared once, for drawing many frames of it (moving
 /// the light or the eye) with a [`bumpmap::Renderer`] kept between them.
-pub fn prepare_render(args: &RenderArgs, given: &Given) -> Result<PreparedArgs, CliError> {
-    crate::render::prepare_args(args, given)
+pub fn prepare_render(request: &Request, given: &Given) -> Result<PreparedArgs, CliError> {
+    crate::render::prepare_request(request, given)
 }
 
 /// `tangents`' mesh for `mesh`: the tangents made by `--mode` (vertices split where `--split-angle`
@@ -120,6 +121,15 @@ pub fn tangents(args: &TangentsArgs, mesh: &Mesh) -> Result<(Mesh, TangentReport
 /// Everything `compare` measures, and the files it read; its steps shown as `progress` says.
 pub fn compare(args: &CompareArgs, progress: &Progress) -> Result<(Results, Vec<PathBuf>), CliError> {
     crate::compare::measure(args, progress)
+}
+
+/// [`compare`] of typed options; `output`, where the results will be written, for messages.
+pub fn compare_options(
+    options: &bumpmap_compare::CompareOptions,
+    output: Option<&Path>,
+    progress: &Progress,
+) -> Result<(Results, Vec<PathBuf>), CliError> {
+    crate::compare::measure_options(options, output, progress)
 }
 
 /// A library error in the command line's words (what `render`, `inspect` and `height` report).

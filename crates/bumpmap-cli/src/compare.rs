@@ -32,15 +32,24 @@ pub fn run(args: &CompareArgs) -> Result<(), CliError> {
 
 /// Refuses an output that is a file: compare writes a folder.
 pub fn check_output(out: &Path) -> Result<(), CliError> {
-    bumpmap_compare::check_output(out).map_err(|e| compare_err(e, None))
+    bumpmap_compare::check_output(out).map_err(|e| compare_err(e, None, None))
 }
 
 /// Everything `compare` measures, and the files it read; its steps shown as `progress` says,
 /// the techniques it skips noted.
 pub fn measure(args: &CompareArgs, progress: &Progress) -> Result<(Results, Vec<PathBuf>), CliError> {
-    let options = compare_options(args)?;
+    measure_options(&compare_options(args)?, Some(&args.output), progress)
+}
+
+/// [`measure`] of typed options; `output`, the folder the results will go to, for messages.
+pub fn measure_options(
+    options: &CompareOptions,
+    output: Option<&Path>,
+    progress: &Progress,
+) -> Result<(Results, Vec<PathBuf>), CliError> {
     let shown = Shown { progress, steps: RefCell::new(None) };
-    bumpmap_compare::measure(&options, &shown).map_err(|e| compare_err(e, Some(args)))
+    let bumps = options.height_field.to_string();
+    bumpmap_compare::measure(options, &shown).map_err(|e| compare_err(e, Some(&bumps), output))
 }
 
 /// Writes the folder, all files or none.
@@ -50,7 +59,7 @@ pub fn write(
     inputs: &[&Path],
     cancelled: &dyn Fn() -> bool,
 ) -> Result<Vec<PathBuf>, CliError> {
-    bumpmap_compare::write(out, results, inputs, cancelled).map_err(|e| compare_err(e, None))
+    bumpmap_compare::write(out, results, inputs, cancelled).map_err(|e| compare_err(e, None, None))
 }
 
 /// The library's options as the flags give them; only the scene's name can be wrong here.
@@ -68,7 +77,7 @@ pub fn compare_options(args: &CompareArgs) -> Result<CompareOptions, CliError> {
         bump_scale: args.bump_scale,
         size: args.size,
         spp: args.spp,
-        backend: args.backend.into(),
+        backend: args.backend,
         techniques: args.techniques.clone(),
         studies: args.studies(),
     })
@@ -117,7 +126,7 @@ impl bumpmap_compare::Progress for Shown<'_> {
 
 /// What `bumpmap_compare` refused, in the words of the command line; `args`, where given, names
 /// the height field and the output.
-fn compare_err(e: CompareError, args: Option<&CompareArgs>) -> CliError {
+fn compare_err(e: CompareError, bumps: Option<&str>, output: Option<&Path>) -> CliError {
     match e {
         CompareError::NotASurface(kind) => CliError::Usage(format!(
             "--scene {}: compare takes a built-in surface ({}), because the reference evaluates the exact surface",
@@ -125,14 +134,17 @@ fn compare_err(e: CompareError, args: Option<&CompareArgs>) -> CliError {
             SceneKind::built_in_names()
         )),
         CompareError::BumpScale(b) => CliError::Usage(format!("--bump-scale must be a number ≥ 0, got {b}")),
+        CompareError::Spp(spp) => {
+            CliError::Usage(format!("--spp must be in 1..={}, got {spp}", bumpmap::options::MAX_SAMPLES_PER_PIXEL))
+        }
         CompareError::Twice(name) => CliError::Usage(format!("--techniques names {name} twice")),
         CompareError::TooBig { source, bumps: (w, h) } => CliError::Render(format!(
             "this scene (bumps {w}x{h}{}) is too big for the memory this process may use: {source}. \
              The README's \"Memory\" section gives what the largest inputs need; a smaller --height-field needs less",
-            args.map(|a| format!(" from {}", a.height_field)).unwrap_or_default()
+            bumps.map(|b| format!(" from {b}")).unwrap_or_default()
         )),
         CompareError::BlackReference => CliError::Path {
-            path: args.map(|a| a.output.clone()).unwrap_or_default(),
+            path: output.map(Path::to_path_buf).unwrap_or_default(),
             reason:
                 "not written: the reference is black (nothing in view is lit); try another --scene or --height-field"
                     .into(),

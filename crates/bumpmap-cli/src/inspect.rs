@@ -2,6 +2,7 @@
 //! Everything they decide is `bumpmap::inspect` and `bumpmap::heights`; this module only walks
 //! the inputs, prints, and names flags in errors.
 
+use bumpmap::Named;
 use std::path::{Path, PathBuf};
 
 use bumpmap::heights::{Chosen, heights_from_inspection};

@@ -25,11 +25,7 @@ pub fn run(args: &TangentsArgs) -> Result<(), CliError> {
     }
     let loaded = bumpmap_io::load_mesh_with(
         &args.input,
-        &MeshOptions {
-            allow_outside_paths: args.allow_outside_paths,
-            obj_texcoords: args.obj_v.into(),
-            ..Default::default()
-        },
+        &MeshOptions { allow_outside_paths: args.allow_outside_paths, obj_texcoords: args.obj_v, ..Default::default() },
     )?;
     let (mesh, report) = generate_tangents(&loaded.mesh, &options).map_err(|e| mesh_err(&args.input, e))?;
     // The outputs (a .gltf and its .bin, or a .glb) replace none of the files read, the

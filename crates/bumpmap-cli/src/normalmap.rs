@@ -132,7 +132,7 @@ pub fn run(args: &NormalmapArgs) -> Result<(), CliError> {
     };
     // glTF's ORM texture holds the occlusion in red: with --ao-out, the occlusion's own levels.
     if let (Some(chain), Some(map), true, Some(_)) =
-        (&mut roughness, &horizons, args.roughness_layout == crate::args::RoughnessLayoutArg::Gltf, &args.ao_out)
+        (&mut roughness, &horizons, args.roughness_layout == bumpmap::options::RoughnessLayout::Gltf, &args.ao_out)
     {
         let ao = map.ambient_occlusion_levels(options.scale.abs()).map_err(CliError::OutOfMemory)?;
         for (level, occlusion) in chain.levels.iter_mut().zip(&ao) {

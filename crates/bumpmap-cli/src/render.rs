@@ -9,11 +9,12 @@ use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
 use bumpmap::bumpmap_core::Feature;
+use bumpmap::options::SceneOptions;
 use bumpmap::{BackendChoice, BumpSource, CoreError, Prepared, Renderer, Rgba8Image, Scene, Technique, TechniqueName};
 use bumpmap_io::atomic::{FileSet, ensure_not_input};
 use bumpmap_io::image_file::{PngLayout, save_png_into};
 
-use crate::args::{BackendArg, RenderArgs};
+use crate::args::RenderArgs;
 use crate::error::CliError;
 
 /// A rendered frame and, when asked for, the framebuffer after each named pass.
@@ -24,11 +25,62 @@ pub struct Frame {
     pub snapshots: Vec<(String, Rgba8Image)>,
 }
 
+/// What `render` draws, typed: the library's scene options, the frame's size, the backend, and
+/// whether each pass is kept. The command line makes it from its flags, the Python package from
+/// its keywords.
+#[derive(Clone, Debug)]
+pub struct Request {
+    /// What is drawn and how.
+    pub options: SceneOptions,
+    /// The frame's width and height in pixels.
+    pub size: (usize, usize),
+    /// What draws it (the reference always draws on the CPU).
+    pub backend: BackendChoice,
+    /// Keep the framebuffer after each of kilgard's passes.
+    pub passes: bool,
+    /// Where the frame goes, for messages.
+    pub output: PathBuf,
+}
+
+/// `render`'s square frame side when none is given.
+pub const DEFAULT_SIZE: usize = 512;
+
+impl Default for Request {
+    /// What `bumpmap render` draws with no flags (a test holds the two together).
+    fn default() -> Self {
+        Request {
+            options: SceneOptions::default(),
+            size: (DEFAULT_SIZE, DEFAULT_SIZE),
+            backend: BackendChoice::Cpu,
+            passes: false,
+            output: PathBuf::from("out/render.png"),
+        }
+    }
+}
+
+impl Request {
+    /// The request `render`'s flags make.
+    pub fn from_args(args: &RenderArgs) -> Result<Self, CliError> {
+        let size = match (args.width, args.height) {
+            (Some(w), Some(h)) => (w, h),
+            _ => (args.size, args.size),
+        };
+        Ok(Request {
+            options: crate::setup::scene_options(&args.setup)?,
+            size,
+            backend: args.setup.backend.backend,
+            passes: args.passes,
+            output: args.output.clone(),
+        })
+    }
+}
+
 /// Runs `bumpmap render`.
 pub fn run(args: &RenderArgs) -> Result<(), CliError> {
-    let named = crate::setup::named_inputs(&args.setup)?;
+    let request = Request::from_args(args)?;
+    let named = request.options.named_inputs();
     ensure_not_input(&args.output, &named.iter().map(PathBuf::as_path).collect::<Vec<_>>())?;
-    let drawn = draw_args(args, &crate::report::Progress::Bar, &crate::setup::Given::default())?;
+    let drawn = draw_request(&request, &crate::report::Progress::Bar, &crate::setup::Given::default())?;
     let inputs: Vec<&Path> = drawn.inputs.iter().map(PathBuf::as_path).collect();
     let written = write_frame(&drawn.frame, &args.output, &inputs)?;
     eprintln!(
@@ -63,46 +115,49 @@ pub struct PreparedArgs {
     pub depth_notes: Vec<String>,
 }
 
-/// Sets up and prepares what `args` describe, with the inputs `given` in memory in place of
+/// Sets up and prepares what `request` describes, with the inputs `given` in memory in place of
 /// their options' files.
-pub fn prepare_args(args: &RenderArgs, given: &crate::setup::Given) -> Result<PreparedArgs, CliError> {
-    let (width, height) = match (args.width, args.height) {
-        (Some(w), Some(h)) => (w, h),
-        _ => (args.size, args.size),
-    };
+pub fn prepare_request(request: &Request, given: &crate::setup::Given) -> Result<PreparedArgs, CliError> {
+    let (width, height) = request.size;
     // Refuse an impossible framebuffer, and --passes without passes, before any work.
     Renderer::check_size(width, height).map_err(lib_err)?;
-    let name = args.setup.technique.technique.0;
-    if args.passes && name != TechniqueName::Kilgard {
+    let name = request.options.technique.technique;
+    if request.passes && name != TechniqueName::Kilgard {
         return Err(CliError::Usage(format!(
             "--passes shows the three passes of --technique kilgard; {name} draws {}",
             if name.is_reference() { "no passes (it samples the exact surface)" } else { "one pass per light" }
         )));
     }
-    let setup = crate::setup::setup_given(&args.setup, given)?;
-    let scene = &args.setup.scene;
-    let bumps = scene.height_field.clone().or_else(|| scene.normal_map.as_ref().map(|p| p.display().to_string()));
+    let setup = crate::setup::set_up_options(&request.options, given)?;
+    let bumps = bumps_name(&request.options);
     let prepared = Prepared::new(&setup.spec, name, &setup.options)
         .map_err(|e| too_big(prepare_err(e), &setup.spec, bumps.as_deref()))?;
-    let depth_notes = depth_notes(&args.setup, &setup.spec, &prepared);
+    let depth_notes = depth_notes(&request.options, &setup.spec, &prepared);
     Ok(PreparedArgs { size: (width, height), prepared, setup, depth_notes })
 }
 
-/// Draws what `args` describe: the scene set up, the technique prepared, the frame drawn on
-/// `--backend` (the reference always on the CPU, its tiles' progress shown as `progress` says).
+/// The file or preset the bumps come from, as messages name it.
+fn bumps_name(options: &SceneOptions) -> Option<String> {
+    match &options.height_field {
+        Some(source) => Some(source.to_string()),
+        None => options.normal_map.as_ref().map(|p| p.display().to_string()),
+    }
+}
+
+/// Draws what `request` describes: the scene set up, the technique prepared, the frame drawn on
+/// its backend (the reference always on the CPU, its tiles' progress shown as `progress` says).
 /// The notes the assets bring (what a glTF's material gave) go to stderr.
-pub fn draw_args(
-    args: &RenderArgs,
+pub fn draw_request(
+    request: &Request,
     progress: &crate::report::Progress,
     given: &crate::setup::Given,
 ) -> Result<Drawn, CliError> {
-    let name = args.setup.technique.technique.0;
-    let PreparedArgs { size: (width, height), prepared, setup, depth_notes } = prepare_args(args, given)?;
+    let name = request.options.technique.technique;
+    let PreparedArgs { size: (width, height), prepared, setup, depth_notes } = prepare_request(request, given)?;
     for note in setup.notes.iter().chain(&depth_notes) {
         crate::report::setup_line(note);
     }
-    let scene = &args.setup.scene;
-    let bumps = scene.height_field.clone().or_else(|| scene.normal_map.as_ref().map(|p| p.display().to_string()));
+    let bumps = bumps_name(&request.options);
     let too_big = |e| too_big(e, &setup.spec, bumps.as_deref());
     let mut renderer = if name.is_reference() {
         // The reference runs on the CPU whatever the backend; no device need open for it.
@@ -117,11 +172,11 @@ pub fn draw_args(
         }
         r
     } else {
-        renderer(args.setup.backend.backend)?
+        renderer(request.backend)?
     };
     let frame =
-        draw(&mut renderer, &prepared.scene, &prepared.technique, width, height, args.passes).map_err(too_big)?;
-    ensure_drawn(frame.image.texels.iter().all(|&[r, g, b, _]| r == 0 && g == 0 && b == 0), &args.output)?;
+        draw(&mut renderer, &prepared.scene, &prepared.technique, width, height, request.passes).map_err(too_big)?;
+    ensure_drawn(frame.image.texels.iter().all(|&[r, g, b, _]| r == 0 && g == 0 && b == 0), &request.output)?;
     let by = if name.is_reference() {
         format!("reference, {} samples per pixel", setup.options.reference.samples_per_pixel)
     } else {
@@ -132,9 +187,9 @@ pub fn draw_args(
 
 /// What `--depth` did, for stderr: clamped to what the surface allows, or a depth whose slopes
 /// the normal map `spec` makes from heights (with `--bump-scale`) does not share.
-pub fn depth_notes(s: &crate::args::SceneSetup, spec: &bumpmap::SceneSpec, prepared: &Prepared) -> Vec<String> {
+pub fn depth_notes(options: &SceneOptions, spec: &bumpmap::SceneSpec, prepared: &Prepared) -> Vec<String> {
     let mut notes = Vec::new();
-    let Some(asked) = s.heights.depth else { return notes };
+    let Some(asked) = options.heights.depth else { return notes };
     let Some(object) = prepared.scene.objects.iter().find(|o| o.material.heights.is_some()) else { return notes };
     let used = object.material.depth;
     if used < asked * (1.0 - 1e-6) {
@@ -209,8 +264,8 @@ fn reference_bar() -> bumpmap::renderer::Progress {
 }
 
 /// Opens the backend `arg` names; `auto` says on stderr why it fell back to the CPU.
-pub fn renderer(arg: BackendArg) -> Result<Renderer, CliError> {
-    let renderer = Renderer::new(arg.into()).map_err(lib_err)?;
+pub fn renderer(arg: BackendChoice) -> Result<Renderer, CliError> {
+    let renderer = Renderer::new(arg).map_err(lib_err)?;
     if let Some(why) = renderer.fallback_reason() {
         crate::report::note(format!("--backend auto: drawing on the CPU ({why})"));
     }

@@ -7,21 +7,14 @@
 
 use std::path::PathBuf;
 
-use bumpmap::bumpmap_core::combiners::Precision;
 use bumpmap::options::{
-    CameraOptions, DecalChoice, Filter, GlossChoice, HeightsOptions, LightOptions, MaterialOptions, SceneChoice,
-    SceneOption, SceneOptions, SetupError, SetupNote, TechniqueChoice,
+    CameraOptions, DecalChoice, GlossChoice, HeightsOptions, LightOptions, MaterialOptions, SceneChoice, SceneOption,
+    SceneOptions, SetupError, SetupNote, TechniqueChoice,
 };
-use bumpmap::{
-    HalfAngle, Normalize, SceneKind, SceneSpec, SelfShadow, SpecularFilter, SpecularMode, SpecularShadow,
-    TechniqueOptions, ViewerModel,
-};
+use bumpmap::{Named, SceneKind, SceneSpec, SelfShadow, SpecularFilter, TechniqueOptions};
 use bumpmap_io::HeightSource;
 
-use crate::args::{
-    FilterArg, HalfAngleArg, NormalizeArg, PrecisionArg, SceneSetup, SelfShadowArg, SpecularArg, SpecularFilterArg,
-    SpecularShadowArg, ViewerArg,
-};
+use crate::args::SceneSetup;
 use crate::error::CliError;
 use crate::render::lib_err;
 
@@ -54,7 +47,12 @@ pub fn setup(s: &SceneSetup) -> Result<Setup, CliError> {
 
 /// [`setup`], with the inputs `given` in memory in place of the files their options name.
 pub fn setup_given(s: &SceneSetup, given: &Given) -> Result<Setup, CliError> {
-    let options = scene_options(s)?;
+    set_up_options(&scene_options(s)?, given)
+}
+
+/// Sets `options` up, with the inputs `given` in memory in place of their files; what the
+/// library refuses, in the flags' words.
+pub fn set_up_options(options: &SceneOptions, given: &Given) -> Result<Setup, CliError> {
     let set_up = options.set_up_given(given).map_err(setup_err)?;
     Ok(Setup {
         spec: set_up.spec,
@@ -80,7 +78,7 @@ pub fn scene_options(s: &SceneSetup) -> Result<SceneOptions, CliError> {
         height_field: scene.height_field.as_deref().map(HeightSource::parse),
         normal_map: scene.normal_map.clone(),
         rebuild_mips: scene.rebuild_mips,
-        y_convention: scene.y_convention.into(),
+        y_convention: scene.y_convention,
         bump_scale: scene.bump_scale,
         decal: scene.decal.as_deref().map(|d| match d {
             "none" => DecalChoice::None,
@@ -90,16 +88,13 @@ pub fn scene_options(s: &SceneSetup) -> Result<SceneOptions, CliError> {
         tessellation: scene.tessellation,
         repeat: scene.repeat.map(|(s, t)| glam::Vec2::new(s, t)),
         allow_outside_paths: scene.allow_outside_paths,
-        obj_texcoords: scene.obj_v.into(),
+        obj_texcoords: scene.obj_v,
         camera: CameraOptions {
             eye: camera.eye,
             target: camera.target,
             up: camera.up,
             fov_y_degrees: camera.fov,
-            viewer: match camera.viewer {
-                ViewerArg::Local => ViewerModel::Local,
-                ViewerArg::Infinite => ViewerModel::Infinite,
-            },
+            viewer: camera.viewer,
         },
         lights: LightOptions {
             lights: l.lights.clone(),
@@ -121,51 +116,27 @@ pub fn scene_options(s: &SceneSetup) -> Result<SceneOptions, CliError> {
                 Some(path) => GlossChoice::File(PathBuf::from(path)),
             },
             roughness_map: m.roughness_map.clone(),
-            roughness_layout: m.roughness_layout.into(),
+            roughness_layout: m.roughness_layout,
         },
         technique: TechniqueChoice {
             technique: t.technique.0,
             samples_per_pixel: t.spp,
-            filter: match t.filter {
-                FilterArg::Nearest => Filter::Nearest,
-                FilterArg::Linear => Filter::Linear,
-                FilterArg::Trilinear => Filter::Trilinear,
-            },
-            self_shadow: match (t.no_self_shadow, t.self_shadow) {
-                (true, _) | (_, SelfShadowArg::Off) => SelfShadow::Off,
-                (_, SelfShadowArg::Ramp) => SelfShadow::Ramp,
-                (_, SelfShadowArg::Step) => SelfShadow::Step,
-            },
-            precision: match t.precision {
-                PrecisionArg::Float => Precision::Float,
-                PrecisionArg::Fixed9 => Precision::Fixed9,
-            },
-            specular_mode: match t.specular_mode {
-                SpecularArg::Power8 => SpecularMode::EighthPower,
-                SpecularArg::Ramp => SpecularMode::Ramp,
-            },
+            filter: t.filter,
+            self_shadow: if t.no_self_shadow { SelfShadow::Off } else { t.self_shadow },
+            precision: t.precision,
+            specular_mode: t.specular_mode,
             cube_size: t.cube_size,
-            normalize: t.normalize.map(|n| match n {
-                NormalizeArg::Math => Normalize::Math,
-                NormalizeArg::Cube => Normalize::Cube,
-            }),
-            half_angle: match t.half_angle {
-                HalfAngleArg::Vertex => HalfAngle::Vertex,
-                HalfAngleArg::Fragment => HalfAngle::Fragment,
-            },
-            specular_shadow: match t.specular_shadow {
-                SpecularShadowArg::Kilgard => SpecularShadow::Kilgard,
-                SpecularShadowArg::Cg => SpecularShadow::CgTutorial,
-                SpecularShadowArg::Off => SpecularShadow::Off,
-            },
-            specular_filter: t.specular_filter.into(),
+            normalize: t.normalize,
+            half_angle: t.half_angle,
+            specular_shadow: t.specular_shadow,
+            specular_filter: t.specular_filter,
         },
         heights: HeightsOptions {
             depth: h.depth,
             height_map: h.height_map.clone(),
             horizon_map: h.horizon_map.clone(),
             layers: h.layers,
-            parallax_shadow: h.parallax_shadow.0,
+            parallax_shadow: h.parallax_shadow,
             silhouettes: h.silhouettes,
             write_depth: h.write_depth,
             ambient_occlusion: h.ambient_occlusion,
@@ -175,13 +146,7 @@ pub fn scene_options(s: &SceneSetup) -> Result<SceneOptions, CliError> {
 
 /// `--specular-filter`'s value for `filter`.
 fn specular_filter_value(filter: SpecularFilter) -> String {
-    use clap::ValueEnum;
-    SpecularFilterArg::value_variants()
-        .iter()
-        .find(|v| SpecularFilter::from(**v) == filter)
-        .and_then(|v| v.to_possible_value())
-        .map(|v| v.get_name().to_owned())
-        .unwrap_or_default()
+    filter.name().to_owned()
 }
 
 /// What the library refused, in the words of the command line.
@@ -267,6 +232,16 @@ mod tests {
     }
 
     #[test]
+    fn renders_defaults_are_the_requests() {
+        let args = match Cli::try_parse_from(["bumpmap", "render"]).expect("parses").command {
+            Command::Render(a) => a,
+            _ => unreachable!("render parses as render"),
+        };
+        let from_flags = crate::render::Request::from_args(&args).expect("the defaults set up");
+        assert_eq!(format!("{from_flags:?}"), format!("{:?}", crate::render::Request::default()));
+    }
+
+    #[test]
     fn every_option_a_message_names_is_a_flag_of_render() {
         let command = Cli::command();
         let render = command.find_subcommand("render").expect("render exists");
@@ -299,7 +274,7 @@ mod tests {
         assert_eq!(o.decal, Some(DecalChoice::None));
         assert_eq!(o.material.gloss, GlossChoice::Bricks);
         assert_eq!(o.technique.self_shadow, SelfShadow::Off);
-        assert_eq!(o.technique.filter, Filter::Nearest);
+        assert_eq!(o.technique.filter, bumpmap::options::Filter::Nearest);
         assert_eq!(o.technique.technique, bumpmap::TechniqueName::SinglePass);
     }
 }

@@ -14,6 +14,9 @@ pub enum CompareError {
     /// A bump scale below zero or not a number.
     #[error("bump_scale must be a number ≥ 0, got {0}")]
     BumpScale(f32),
+    /// The reference's samples per pixel out of range.
+    #[error("spp must be in 1..={max}, got {0}", max = bumpmap::options::MAX_SAMPLES_PER_PIXEL)]
+    Spp(u32),
     /// A technique named twice (it would be drawn twice and collide on its own image).
     #[error("techniques names {0} twice")]
     Twice(String),

@@ -155,6 +155,9 @@ pub fn measure(args: &CompareOptions, progress: &dyn Progress) -> Result<(Result
     if !(args.bump_scale.is_finite() && args.bump_scale >= 0.0) {
         return Err(CompareError::BumpScale(args.bump_scale));
     }
+    if !(1..=bumpmap::options::MAX_SAMPLES_PER_PIXEL).contains(&args.spp) {
+        return Err(CompareError::Spp(args.spp));
+    }
     let source = &args.height_field;
     let inputs: Vec<PathBuf> = source.path().into_iter().map(Path::to_path_buf).collect();
     let field = source.load(Channel::Luminance)?;

@@ -102,6 +102,18 @@ impl Study {
     }
 }
 
+impl bumpmap::Named for Study {
+    const ALL: &'static [Self] = &Study::ALL;
+
+    fn name(self) -> &'static str {
+        Study::name(self)
+    }
+
+    fn description(self) -> &'static str {
+        Study::description(self)
+    }
+}
+
 /// Something `compare` tells as it goes besides its steps.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub enum CompareNote {

@@ -119,7 +119,7 @@ impl fmt::Display for Requirement {
             ),
             Requirement::OneLight => f.write_str("exactly one light"),
             Requirement::Heights => f.write_str(
-                "heights to take as geometry: a height field, or heights given with the normal map (the file `normalmap --height-out` writes)",
+                "heights to take as geometry: a height field, or heights given with the normal map (the heights file `bumpmap normalmap` writes)",
             ),
         }
     }
@@ -141,6 +141,18 @@ pub struct TechniqueOptions {
     /// For the techniques that take heights as geometry (`parallax` … `height-exact`), and the
     /// displaced reference's shadow rays (cast where `shadow` is not off).
     pub parallax: ParallaxOptions,
+}
+
+impl bumpmap_math::Named for TechniqueName {
+    const ALL: &'static [Self] = &TechniqueName::ALL;
+
+    fn name(self) -> &'static str {
+        TechniqueName::name(self)
+    }
+
+    fn description(self) -> &'static str {
+        TechniqueName::description(self)
+    }
 }
 
 impl TechniqueName {
@@ -224,7 +236,7 @@ impl TechniqueName {
                 "the single pass with Toksvig's filter (2005, past §2.5.3): the mip chain's |N| widens and dims the specular lobe, exponent s·|N|/(|N| + s(1 − |N|))"
             }
             TechniqueName::RoughnessMap => {
-                "the single pass sampling a roughness map as an engine does: `normalmap --roughness-out`'s (Filament's prefilter of each level's |N|), made from the normal map or given as a file, turned into a Blinn–Phong exponent and normalization"
+                "the single pass sampling a roughness map as an engine does: the one `bumpmap normalmap` exports (Filament's prefilter of each level's |N|), made from the normal map or given as a file, turned into a Blinn–Phong exponent and normalization"
             }
             TechniqueName::Lean => {
                 "the single pass with LEAN mapping (Olano & Baker 2010): the slopes' first and second moments mip-filtered linearly, the highlight a Gaussian of their covariance plus 1/s, anisotropic"
@@ -258,10 +270,10 @@ impl TechniqueName {
                 "parallax mapping (Kaneko et al. 2001) with Welsh's offset limiting (2004): the maps read one height's offset along the view ray from where it enters"
             }
             TechniqueName::SteepParallax => {
-                "steep parallax mapping (McGuire & McGuire 2005): the view ray stepped down through --layers layers of height, the maps read at the first layer under the heights"
+                "steep parallax mapping (McGuire & McGuire 2005): the view ray stepped down through the layer count's layers of height, the maps read at the first layer under the heights"
             }
             TechniqueName::Pom => {
-                "parallax occlusion mapping (Tatarchuk 2006): layers from a quarter of --layers looking straight on to all of them at grazing angles, the hit interpolated between the last two samples"
+                "parallax occlusion mapping (Tatarchuk 2006): layers from a quarter of the layer count looking straight on to all of them at grazing angles, the hit interpolated between the last two samples"
             }
             TechniqueName::Relief => {
                 "relief mapping (Policarpo, Oliveira & Comba 2005): the layers' linear search, then eight halvings of the layer it ends in"
@@ -273,7 +285,7 @@ impl TechniqueName {
                 "ground truth: Blinn's perturbed normal on the exact surface from a C¹ height interpolant, many samples per pixel, on the CPU"
             }
             TechniqueName::ReferenceDisplaced => {
-                "ground truth for heights as geometry: the surface carved by the heights' C¹ interpolant times --depth, rays cast exactly (flat surfaces) or to a micro-tessellation (curved ones), shadow rays with --parallax-shadow, many samples per pixel, on the CPU"
+                "ground truth for heights as geometry: the surface carved by the heights' C¹ interpolant times the depth, rays cast exactly (flat surfaces) or to a micro-tessellation (curved ones), shadow rays where parallax shadows are asked for, many samples per pixel, on the CPU"
             }
         }
     }

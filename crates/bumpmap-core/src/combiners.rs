@@ -451,6 +451,11 @@ pub enum Precision {
     Fixed9,
 }
 
+bumpmap_math::named!(Precision {
+    Float => "float": "Single-precision combiners",
+    Fixed9 => "fixed9": "The GeForce 256's 9-bit signed fixed point",
+});
+
 impl Precision {
     /// [`Precision::Fixed9`]'s rounding: `x` clamped to [−1, 1] and rounded (half away from
     /// zero) to a multiple of 1/255.

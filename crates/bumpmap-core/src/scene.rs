@@ -63,6 +63,11 @@ pub enum ViewerModel {
     Infinite,
 }
 
+bumpmap_math::named!(ViewerModel {
+    Local => "local": "the half-angle from each vertex toward the eye",
+    Infinite => "infinite": "one half-angle direction for the whole image (toward the eye from the target)",
+});
+
 /// A light, its colour, its fall-off with distance and an optional spotlight cone.
 #[derive(Clone, Debug, PartialEq)]
 pub struct SceneLight {
@@ -80,6 +85,66 @@ impl SceneLight {
     /// A white light with no attenuation and no cone.
     pub fn white(light: Light) -> Self {
         Self { light, color: Vec3::ONE, attenuation: Attenuation::None, spot: None }
+    }
+
+    /// The light notation the command line and the Python package take: `[dir:]X,Y,Z[@R,G,B]`,
+    /// a positional light's position (or, with `dir:`, the direction toward a light at
+    /// infinity) and its colour (white when left out).
+    ///
+    /// ```
+    /// use bumpmap_core::scene::SceneLight;
+    /// use bumpmap_math::lighting::Light;
+    /// let warm = SceneLight::parse("4,0,3@1,0.6,0.4").unwrap();
+    /// assert_eq!(warm.light, Light::Positional(glam::Vec3::new(4.0, 0.0, 3.0)));
+    /// assert!(SceneLight::parse("dir:0,0,0").is_err(), "a direction must not be zero");
+    /// ```
+    pub fn parse(spec: &str) -> Result<Self, String> {
+        let (at, color) = match spec.split_once('@') {
+            Some((p, c)) => (p, parse_vec3(c)?),
+            None => (spec, Vec3::ONE),
+        };
+        match at.strip_prefix("dir:") {
+            Some(d) => SceneLight::directional(parse_vec3(d)?, color),
+            None => SceneLight::positional(parse_vec3(at)?, color),
+        }
+    }
+
+    /// A point light at `position` of `color`; a position not finite or a colour negative or
+    /// not finite is refused.
+    pub fn positional(position: Vec3, color: Vec3) -> Result<Self, String> {
+        if !position.is_finite() {
+            return Err(format!("a light's position must be finite, got {position}"));
+        }
+        Ok(SceneLight { color: checked_color(color)?, ..SceneLight::white(Light::Positional(position)) })
+    }
+
+    /// A light at infinity toward `direction` (normalized) of `color`; a zero direction is refused.
+    pub fn directional(direction: Vec3, color: Vec3) -> Result<Self, String> {
+        let d = direction.normalize_or_zero();
+        if d == Vec3::ZERO {
+            return Err(format!("a directional light needs a finite, non-zero direction, got {direction}"));
+        }
+        Ok(SceneLight { color: checked_color(color)?, ..SceneLight::white(Light::Directional(d)) })
+    }
+}
+
+/// A light's colour: finite and not negative.
+fn checked_color(color: Vec3) -> Result<Vec3, String> {
+    if !(color.is_finite() && color.min_element() >= 0.0) {
+        return Err(format!("a light's colour must be finite and not negative, got {color}"));
+    }
+    Ok(color)
+}
+
+/// Three finite numbers, `X,Y,Z`.
+fn parse_vec3(s: &str) -> Result<Vec3, String> {
+    let v: Vec<f32> = s
+        .split(',')
+        .map(|p| p.trim().parse::<f32>().map_err(|_| format!("'{p}' is not a number")))
+        .collect::<Result<_, _>>()?;
+    match v.as_slice() {
+        [x, y, z] if v.iter().all(|c| c.is_finite()) => Ok(Vec3::new(*x, *y, *z)),
+        _ => Err(format!("expected X,Y,Z (three finite numbers), got '{s}'")),
     }
 }
 
@@ -110,6 +175,26 @@ pub enum Attenuation {
 }
 
 impl Attenuation {
+    /// The notation the command line and the Python package take: `none`, `C,L,Q` (1/(C + L·d +
+    /// Q·d²)), `exp:D` or `exp2:D`.
+    pub fn parse(spec: &str) -> Result<Self, String> {
+        let num = |x: &str| x.trim().parse::<f32>().map_err(|_| format!("'{x}' is not a number"));
+        if spec == "none" {
+            return Ok(Attenuation::None);
+        }
+        if let Some(d) = spec.strip_prefix("exp2:") {
+            return Ok(Attenuation::ExponentialSquared { density: num(d)? });
+        }
+        if let Some(d) = spec.strip_prefix("exp:") {
+            return Ok(Attenuation::Exponential { density: num(d)? });
+        }
+        let v: Vec<f32> = spec.split(',').map(num).collect::<Result<_, _>>()?;
+        match v.as_slice() {
+            [c, l, q] => Ok(Attenuation::Polynomial { constant: *c, linear: *l, quadratic: *q }),
+            _ => Err(format!("expected none, C,L,Q, exp:D or exp2:D, got '{spec}'")),
+        }
+    }
+
     /// The factor at distance `d`, in [0, 1] for valid parameters.
     #[inline]
     pub fn factor(&self, d: f32) -> f32 {

@@ -65,6 +65,26 @@ pub enum SpecularFilter {
     Clean,
 }
 
+bumpmap_math::named!(SelfShadow {
+    Ramp => "ramp": "Eq. 12: clamp(8·L_z, 0, 1)",
+    Step => "step": "1 where L_z > 0",
+    Off => "off": "none (Figure 14, left)",
+});
+
+bumpmap_math::named!(SpecularShadow {
+    Kilgard => "kilgard": "times s_self, zero where H_z < 0 (the paper's mux)",
+    CgTutorial => "cg": "zero unless N'·L > 0 and L_z > 0 (Cg Tutorial §8.5)",
+    Off => "off": "none",
+});
+
+bumpmap_math::named!(SpecularFilter {
+    None => "none": "the exponent as given",
+    Toksvig => "toksvig": "Toksvig 2005: exponent s·|N|/(|N| + s(1 − |N|)), with its energy factor",
+    RoughnessMap => "roughness-map": "a roughness map sampled as an engine samples it, turned into a Blinn–Phong exponent: the one `bumpmap normalmap` exports as its roughness map (Filament's prefilter of each level's |N|), made from the normal map, or a roughness map file",
+    Lean => "lean": "LEAN mapping (Olano & Baker 2010): the slopes' first and second moments, filtered, make an anisotropic Gaussian lobe (tangent-space maps of unit normals)",
+    Clean => "clean": "CLEAN mapping (Olano & Baker 2010, §5): LEAN with the spread shared out equally in x and y, one moment texture instead of two: a round lobe",
+});
+
 /// Toksvig's filtered exponent and energy factor for a filtered normal of length `length` and
 /// Blinn-Phong exponent `shininess` (SPECS.md §9): σ² = (1 − |Nₐ|)/|Nₐ|, f = 1/(1 + s·σ²) =
 /// |Nₐ|/(|Nₐ| + s(1 − |Nₐ|)), exponent f·s, energy (1 + f·s)/(1 + s). At |Nₐ| = 1 (mip 0, or

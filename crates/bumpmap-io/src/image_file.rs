@@ -58,6 +58,16 @@ pub enum HeightSource {
     File(PathBuf),
 }
 
+/// What [`HeightSource::parse`] reads back: `bricks@512`, or the file's path.
+impl std::fmt::Display for HeightSource {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            HeightSource::Preset { preset, size } => write!(f, "{preset}@{size}"),
+            HeightSource::File(path) => write!(f, "{}", path.display()),
+        }
+    }
+}
+
 impl HeightSource {
     /// A preset name (`bricks`, `noise:7`, optionally `@SIZE` as in `bricks@512`) when it parses
     /// as one and no file of that name exists; otherwise a path.

@@ -180,6 +180,11 @@ pub enum ObjTexcoords {
     Keep,
 }
 
+bumpmap_math::named!(ObjTexcoords {
+    FlipV => "flip": "v = 0 is the image's bottom row, as Blender, Maya and OBJ exporters write it",
+    Keep => "keep": "v = 0 is the image's top row (OBJ files from tools that write glTF's convention)",
+});
+
 /// glTF's TANGENT handedness for this crate's `w`, and back (the map is its own inverse).
 ///
 /// Here `w` makes `cross(N, T)·w` point along +t, down the image as displayed; glTF reads the

@@ -184,6 +184,18 @@ pub enum HeightPreset {
     Noise(u64),
 }
 
+/// The name [`HeightPreset::parse`] reads back: `bricks`, `noise:7`, …
+impl std::fmt::Display for HeightPreset {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            HeightPreset::Bricks => f.write_str("bricks"),
+            HeightPreset::Pinwheel => f.write_str("pinwheel"),
+            HeightPreset::Dimples => f.write_str("dimples"),
+            HeightPreset::Noise(seed) => write!(f, "noise:{seed}"),
+        }
+    }
+}
+
 impl HeightPreset {
     /// Default edge length of a preset rendered without an explicit size.
     pub const DEFAULT_SIZE: usize = 256;

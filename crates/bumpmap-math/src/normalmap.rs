@@ -32,15 +32,12 @@ pub enum YConvention {
 impl YConvention {
     /// The convention of this crate's texture space (what its renderers sample).
     pub const TEXTURE_SPACE: Self = Self::YDown;
-
-    /// The name the tools use: `opengl` (Y up) or `directx` (Y down).
-    pub fn name(self) -> &'static str {
-        match self {
-            YConvention::YUp => "opengl",
-            YConvention::YDown => "directx",
-        }
-    }
 }
+
+crate::named!(YConvention {
+    YUp => "opengl" | "y-up": "Green up: +Y toward the top of the image as displayed (glTF, OpenGL, Blender, Maya, Unity)",
+    YDown => "directx" | "y-down": "Green down: +Y toward the bottom of the image as displayed (DirectX, Unreal, 3ds Max)",
+});
 
 /// Everything that decides how a height field becomes a normal map.
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -64,7 +64,7 @@ pub use bumpmap_core::{
 pub use bumpmap_math::imported::ImportOptions;
 pub use bumpmap_math::lighting::Light;
 pub use bumpmap_math::{
-    Encoding, HeightField, HeightMips, HeightPreset, Kernel, MipChain, MipMode, NormalMapOptions, Rgba8Image,
+    Encoding, HeightField, HeightMips, HeightPreset, Kernel, MipChain, MipMode, Named, NormalMapOptions, Rgba8Image,
     Rgba8Mips, Wrap, YConvention,
 };
 

@@ -31,6 +31,12 @@ pub enum BackendChoice {
     Auto,
 }
 
+bumpmap_math::named!(BackendChoice {
+    Cpu => "cpu": "the emulated GeForce pipeline on the CPU (all cores)",
+    Gpu => "gpu": "wgpu on whatever adapter exists (Vulkan, Metal, DX12, GL; lavapipe without a GPU)",
+    Auto => "auto": "the GPU when an adapter exists, else the CPU",
+});
+
 /// The backend a [`Renderer`] has.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum Backend {

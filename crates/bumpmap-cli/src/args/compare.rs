@@ -42,8 +42,8 @@ pub struct CompareArgs {
     #[arg(long, default_value_t = 64, value_parser = clap::value_parser!(u32).range(1..=4096))]
     pub spp: u32,
     /// What draws the techniques (the reference always runs on the CPU)
-    #[arg(long, value_enum, default_value = "cpu")]
-    pub backend: crate::args::BackendArg,
+    #[arg(long, value_parser = crate::args::choice::<bumpmap::BackendChoice>(), default_value = "cpu")]
+    pub backend: bumpmap::BackendChoice,
     /// Comma-separated techniques to run (default: every technique of the catalogue, `bumpmap render --help` lists them, but the two references they are measured against)
     #[arg(long, value_delimiter = ',')]
     pub techniques: Vec<String>,

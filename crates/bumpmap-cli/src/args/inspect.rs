@@ -9,7 +9,7 @@ use bumpmap_math::integration::Derivative;
 use clap::builder::{PossibleValuesParser, TypedValueParser};
 
 use super::normalmap::parse_bits;
-use crate::args::{YArg, parse_f32};
+use crate::args::parse_f32;
 
 /// `bumpmap inspect`.
 #[derive(Args, Debug)]
@@ -73,8 +73,8 @@ impl YDetectArg {
     pub fn given(self) -> Option<bumpmap_math::YConvention> {
         match self {
             YDetectArg::Auto => None,
-            YDetectArg::Opengl => Some(YArg::Opengl.into()),
-            YDetectArg::Directx => Some(YArg::Directx.into()),
+            YDetectArg::Opengl => Some(bumpmap_math::YConvention::YUp),
+            YDetectArg::Directx => Some(bumpmap_math::YConvention::YDown),
         }
     }
 }

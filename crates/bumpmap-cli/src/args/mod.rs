@@ -22,7 +22,8 @@ pub use render::*;
 pub use tangents::*;
 pub use view::*;
 
-use bumpmap_math::YConvention;
+use bumpmap::Named;
+use clap::builder::{PossibleValue, PossibleValuesParser, TypedValueParser};
 use clap::{Parser, Subcommand, ValueEnum};
 
 /// `bumpmap` and its subcommand.
@@ -130,9 +131,8 @@ pub fn parse_side(s: &str) -> Result<usize, String> {
         .ok_or_else(|| format!("'{s}' is not a size in 1..={MAX_SIDE} pixels"))
 }
 
-/// The most quads along u or v. 2048² quads (8.4 M triangles, a few pixels each even on the
-/// largest framebuffer) draw a 512² image in 2.0 GB; 4096² took 7.9 GB.
-pub const MAX_TESSELLATION: usize = 2048;
+/// The most quads along u or v (the library's bound).
+pub use bumpmap::options::MAX_TESSELLATION;
 
 /// Two positive integers, `U,V`.
 pub fn parse_counts(s: &str) -> Result<(usize, usize), String> {
@@ -145,26 +145,6 @@ pub fn parse_counts(s: &str) -> Result<(usize, usize), String> {
             .ok_or_else(|| format!("'{x}' is not a count in 1..={MAX_TESSELLATION}"))
     };
     Ok((p(a)?, p(b)?))
-}
-
-/// Which way a normal map's green points.
-#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
-pub enum YArg {
-    /// Green up: +Y toward the top of the image as displayed (glTF, OpenGL, Blender, Maya, Unity)
-    #[value(alias = "y-up")]
-    Opengl,
-    /// Green down: +Y toward the bottom of the image as displayed (DirectX, Unreal, 3ds Max)
-    #[value(alias = "y-down")]
-    Directx,
-}
-
-impl From<YArg> for YConvention {
-    fn from(y: YArg) -> Self {
-        match y {
-            YArg::Opengl => YConvention::YUp,
-            YArg::Directx => YConvention::YDown,
-        }
-    }
 }
 
 /// Texel formats of DDS and KTX2 outputs.
@@ -196,25 +176,6 @@ impl From<FormatArg> for bumpmap_io::texture_file::TextureFormat {
     }
 }
 
-/// How an OBJ's `vt` map to the image.
-#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq, Default)]
-pub enum ObjVArg {
-    /// v = 0 is the image's bottom row, as Blender, Maya and OBJ exporters write it
-    #[default]
-    Flip,
-    /// v = 0 is the image's top row (OBJ files from tools that write glTF's convention)
-    Keep,
-}
-
-impl From<ObjVArg> for bumpmap_io::ObjTexcoords {
-    fn from(v: ObjVArg) -> Self {
-        match v {
-            ObjVArg::Flip => bumpmap_io::ObjTexcoords::FlipV,
-            ObjVArg::Keep => bumpmap_io::ObjTexcoords::Keep,
-        }
-    }
-}
-
 /// How tangents are made.
 #[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
 pub enum TangentModeArg {
@@ -222,4 +183,12 @@ pub enum TangentModeArg {
     Ours,
     /// The reference MikkTSpace algorithm (what Blender, Substance and glTF viewers use)
     Mikktspace,
+}
+
+/// The value parser of a closed set the library names ([`Named`]): its names, aliases and
+/// descriptions are what `--help` lists and what the option takes.
+pub fn choice<T: Named>() -> impl TypedValueParser<Value = T> {
+    let values =
+        T::ALL.iter().map(|v| PossibleValue::new(v.name()).help(v.description()).aliases(v.aliases().iter().copied()));
+    PossibleValuesParser::new(values).map(|word| T::parse(&word).expect("clap accepts only the set's names"))
 }

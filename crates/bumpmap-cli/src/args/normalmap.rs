@@ -7,7 +7,10 @@ use bumpmap_io::Channel;
 use bumpmap_math::{Encoding, Kernel, MipMode, Wrap};
 use clap::{Args, ValueEnum};
 
-use crate::args::{FormatArg, YArg, parse_f32};
+use bumpmap::YConvention;
+use bumpmap::options::RoughnessLayout;
+
+use crate::args::{FormatArg, choice, parse_f32};
 
 /// The finite-difference kernel.
 #[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
@@ -142,8 +145,8 @@ pub struct NormalMapOpts {
     #[arg(long, value_enum, default_value = "unorm")]
     pub encoding: EncodingArg,
     /// Which way green points in the file, as the image is displayed: opengl (alias y-up: glTF, Blender, Unity) or directx (alias y-down: Unreal)
-    #[arg(long = "y-convention", value_enum, default_value = "opengl")]
-    pub y_convention: YArg,
+    #[arg(long = "y-convention", value_parser = choice::<YConvention>(), default_value = "opengl")]
+    pub y_convention: YConvention,
     /// Which channel of a colour image holds the heights (greyscale images: their grey value)
     #[arg(long, value_enum, default_value = "luminance")]
     pub channel: ChannelArg,
@@ -156,7 +159,7 @@ impl NormalMapOpts {
             kernel: self.kernel.into(),
             scale: self.scale,
             wrap: self.wrap.into(),
-            y_convention: self.y_convention.into(),
+            y_convention: self.y_convention,
             encoding: self.encoding.into(),
         }
     }
@@ -203,8 +206,8 @@ pub struct NormalmapArgs {
     #[arg(long, default_value_t = 0.5, value_parser = parse_unit, requires = "roughness_out")]
     pub roughness: f32,
     /// Channels of --roughness-out: gray (roughness in RGB), gloss (1 − roughness in RGB), gltf (glTF's metallicRoughness and Unreal's ORM: G roughness, B metallic 0, R 1, or with --ao-out the occlusion, every level its mean), unity (Unity's metallic-smoothness: R metallic 0, A smoothness)
-    #[arg(long = "roughness-layout", value_enum, default_value = "gray", requires = "roughness_out")]
-    pub roughness_layout: RoughnessLayoutArg,
+    #[arg(long = "roughness-layout", value_parser = choice::<RoughnessLayout>(), default_value = "gray", requires = "roughness_out")]
+    pub roughness_layout: RoughnessLayout,
     /// Also write LEAN mapping's moments (Olano & Baker 2010) for every level, as 32-bit floats in .ktx2 or .dds: L.ktx2 holds (Bx, By, Mxx, Myy), L.mxy-j.ktx2 holds (Mxy, J, 0, 0), with B = (Nx/Nz, Ny/Nz), M = (Bx², BxBy, By²), J = 1/Nz³, each level the mean over the level-0 texels it covers of the 8-bit normal map's; what `--specular-filter lean` renders from
     #[arg(long = "lean-out", requires = "mips")]
     pub lean_out: Option<PathBuf>,
@@ -220,31 +223,6 @@ pub struct NormalmapArgs {
     /// Also write bent normals from the horizons at --scale: the mean direction of the open sky, as a tangent-space normal map in the same conventions as the normal map (--y-convention, --encoding, --bits), level 0 (.png, .ktx2, .dds); for the ambient term in engines that read them (Godot, Unreal)
     #[arg(long = "bent-normals-out", value_name = "B")]
     pub bent_normals_out: Option<PathBuf>,
-}
-
-/// Where a roughness map puts its value.
-#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
-pub enum RoughnessLayoutArg {
-    /// Roughness in R, G and B; A 1
-    Gray,
-    /// 1 − roughness (gloss, smoothness) in R, G and B; A 1
-    Gloss,
-    /// glTF metallicRoughness / Unreal ORM: R 1 (no occlusion; with --ao-out the occlusion), G roughness, B metallic 0, A 1
-    Gltf,
-    /// Unity metallic-smoothness: R metallic 0, G and B 0, A smoothness (1 − roughness)
-    Unity,
-}
-
-impl From<RoughnessLayoutArg> for bumpmap::options::RoughnessLayout {
-    fn from(l: RoughnessLayoutArg) -> Self {
-        use bumpmap::options::RoughnessLayout;
-        match l {
-            RoughnessLayoutArg::Gray => RoughnessLayout::Gray,
-            RoughnessLayoutArg::Gloss => RoughnessLayout::Gloss,
-            RoughnessLayoutArg::Gltf => RoughnessLayout::Gltf,
-            RoughnessLayoutArg::Unity => RoughnessLayout::Unity,
-        }
-    }
 }
 
 /// A number in [0, 1].

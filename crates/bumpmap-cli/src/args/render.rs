@@ -4,11 +4,17 @@
 
 use std::path::PathBuf;
 
-use bumpmap::{ParallaxShadow, TechniqueName};
+use bumpmap::bumpmap_core::combiners::Precision;
+use bumpmap::options::{Filter, RoughnessLayout};
+use bumpmap::{
+    BackendChoice, HalfAngle, Normalize, ParallaxShadow, SelfShadow, SpecularFilter, SpecularMode, SpecularShadow,
+    TechniqueName, ViewerModel, YConvention,
+};
+use bumpmap_io::ObjTexcoords;
 use clap::builder::PossibleValue;
 use clap::{Args, ValueEnum};
 
-use crate::args::{ObjVArg, YArg, parse_counts, parse_f32, parse_pair, parse_repeat, parse_side, parse_vec3};
+use crate::args::{choice, parse_counts, parse_f32, parse_pair, parse_repeat, parse_side, parse_vec3};
 
 /// What is drawn: the geometry, its bumps and decal, the texture layout.
 #[derive(Args, Debug, Clone)]
@@ -27,8 +33,8 @@ pub struct SceneGroup {
     #[arg(long = "rebuild-mips", requires = "normal_map")]
     pub rebuild_mips: bool,
     /// Which way --normal-map's green points as the image is displayed: opengl (alias y-up: glTF, Blender, Unity, and what `bumpmap normalmap` writes) or directx (alias y-down: Unreal, 3ds Max)
-    #[arg(long = "y-convention", value_enum, default_value = "opengl", requires = "normal_map")]
-    pub y_convention: YArg,
+    #[arg(long = "y-convention", value_parser = choice::<YConvention>(), default_value = "opengl", requires = "normal_map")]
+    pub y_convention: YConvention,
     /// Bump strength: a height field's scale (the height of a unit step, in texels) [default: 4]; for a normal map (--normal-map or a glTF's) it multiplies the slopes as glTF's normalTexture.scale does [default: 1, or the material's]
     #[arg(value_parser = parse_f32, long = "bump-scale", allow_negative_numbers = true)]
     pub bump_scale: Option<f32>,
@@ -48,8 +54,8 @@ pub struct SceneGroup {
     #[arg(long = "allow-outside-paths")]
     pub allow_outside_paths: bool,
     /// OBJ only: flip (v = 0 at the image's bottom, the OBJ convention) or keep the file's v
-    #[arg(long = "obj-v", value_enum, default_value = "flip")]
-    pub obj_v: ObjVArg,
+    #[arg(long = "obj-v", value_parser = choice::<ObjTexcoords>(), default_value = "flip")]
+    pub obj_v: ObjTexcoords,
 }
 
 /// Where the scene is seen from. Positions are in world space: for a mesh, the file's own units
@@ -70,8 +76,8 @@ pub struct CameraGroup {
     #[arg(value_parser = parse_f32, long, default_value_t = 45.0, allow_negative_numbers = true)]
     pub fov: f32,
     /// Local or infinite viewer for the half-angle vector
-    #[arg(long, value_enum, default_value = "local")]
-    pub viewer: ViewerArg,
+    #[arg(long, value_parser = choice::<ViewerModel>(), default_value = "local")]
+    pub viewer: ViewerModel,
 }
 
 /// The lights.
@@ -79,10 +85,10 @@ pub struct CameraGroup {
 #[command(next_help_heading = "Lights")]
 pub struct LightGroup {
     /// A light, repeatable: [dir:]X,Y,Z[@R,G,B] (default: the scene's)
-    #[arg(long = "light", value_parser = parse_light, allow_hyphen_values = true)]
+    #[arg(long = "light", value_parser = bumpmap::SceneLight::parse, allow_hyphen_values = true)]
     pub lights: Vec<bumpmap_core::scene::SceneLight>,
     /// single-pass: attenuation with distance: C,L,Q (1/(C + L·d + Q·d²)), exp:D or exp2:D
-    #[arg(long, value_parser = parse_attenuation, allow_hyphen_values = true)]
+    #[arg(long, value_parser = bumpmap::Attenuation::parse, allow_hyphen_values = true)]
     pub attenuation: Option<bumpmap_core::scene::Attenuation>,
     /// single-pass: make every positional light a spotlight aimed along DX,DY,DZ
     #[arg(long, value_parser = parse_vec3, allow_hyphen_values = true)]
@@ -121,8 +127,8 @@ pub struct MaterialGroup {
     #[arg(long = "roughness-map", value_name = "FILE")]
     pub roughness_map: Option<std::path::PathBuf>,
     /// Channels --roughness-map holds its roughness in, as `normalmap --roughness-layout` writes them
-    #[arg(long = "roughness-layout", value_enum, default_value = "gray", requires = "roughness_map")]
-    pub roughness_layout: crate::args::RoughnessLayoutArg,
+    #[arg(long = "roughness-layout", value_parser = choice::<RoughnessLayout>(), default_value = "gray", requires = "roughness_map")]
+    pub roughness_layout: RoughnessLayout,
 }
 
 /// How it is drawn.
@@ -133,38 +139,38 @@ pub struct TechniqueGroup {
     #[arg(long, value_enum, default_value = "kilgard")]
     pub technique: TechniqueArg,
     /// reference: samples per pixel (stratified); the image converges as it grows
-    #[arg(long, default_value_t = 64, value_parser = clap::value_parser!(u32).range(1..=4096))]
+    #[arg(long, default_value_t = 64, value_parser = clap::value_parser!(u32).range(1..=bumpmap::options::MAX_SAMPLES_PER_PIXEL as i64))]
     pub spp: u32,
     /// Texture filtering of the normal map and decal
-    #[arg(long, value_enum, default_value = "trilinear")]
-    pub filter: FilterArg,
+    #[arg(long, value_parser = choice::<Filter>(), default_value = "trilinear")]
+    pub filter: Filter,
     /// Leave out Eq. 12's self-shadowing term (Figure 14, left)
     #[arg(long = "no-self-shadow")]
     pub no_self_shadow: bool,
     /// kilgard: register-combiner arithmetic
-    #[arg(long, value_enum, default_value = "float")]
-    pub precision: PrecisionArg,
+    #[arg(long, value_parser = choice::<Precision>(), default_value = "float")]
+    pub precision: Precision,
     /// kilgard: specular form of the third pass
-    #[arg(long = "specular-mode", value_enum, default_value = "power8")]
-    pub specular_mode: SpecularArg,
+    #[arg(long = "specular-mode", value_parser = choice::<SpecularMode>(), default_value = "power8")]
+    pub specular_mode: SpecularMode,
     /// Face size of the normalization cube map
-    #[arg(long = "cube-size", default_value_t = 32, value_parser = clap::value_parser!(u32).range(1..=1024))]
+    #[arg(long = "cube-size", default_value_t = 32, value_parser = clap::value_parser!(u32).range(1..=bumpmap::options::MAX_CUBE_SIZE as i64))]
     pub cube_size: u32,
     /// single-pass and its variants: how L and H are renormalized per fragment [default: math; the cube map for single-pass-cube and kilgard]
-    #[arg(long, value_enum)]
-    pub normalize: Option<NormalizeArg>,
+    #[arg(long, value_parser = choice::<Normalize>())]
+    pub normalize: Option<Normalize>,
     /// single-pass: the self-shadowing factor (kilgard: see --no-self-shadow)
-    #[arg(long = "self-shadow", value_enum, default_value = "ramp")]
-    pub self_shadow: SelfShadowArg,
+    #[arg(long = "self-shadow", value_parser = choice::<SelfShadow>(), default_value = "ramp")]
+    pub self_shadow: SelfShadow,
     /// single-pass: per-vertex or per-fragment half-angle vector
-    #[arg(long = "half-angle", value_enum, default_value = "vertex")]
-    pub half_angle: HalfAngleArg,
+    #[arg(long = "half-angle", value_parser = choice::<HalfAngle>(), default_value = "vertex")]
+    pub half_angle: HalfAngle,
     /// single-pass: geometric self-shadowing of the specular term
-    #[arg(long = "specular-shadow", value_enum, default_value = "kilgard")]
-    pub specular_shadow: SpecularShadowArg,
+    #[arg(long = "specular-shadow", value_parser = choice::<SpecularShadow>(), default_value = "kilgard")]
+    pub specular_shadow: SpecularShadow,
     /// single-pass: how the specular lobe answers the bumps a pixel averages (toksvig: the exponent from the mip chain's |N|; roughness-map: from a roughness map made of it, or --roughness-map FILE; lean and clean: the slopes' moments; a distant bumpy surface's highlight widens and dims; `--technique toksvig` or `lean` sets it)
-    #[arg(long = "specular-filter", value_enum, default_value = "none")]
-    pub specular_filter: SpecularFilterArg,
+    #[arg(long = "specular-filter", value_parser = choice::<SpecularFilter>(), default_value = "none")]
+    pub specular_filter: SpecularFilter,
 }
 
 /// A technique of the catalogue (`bumpmap_core::catalogue`), by its name; `--help` lists each
@@ -215,8 +221,8 @@ pub struct HeightsGroup {
     #[arg(long, default_value_t = bumpmap::bumpmap_core::parallax::DEFAULT_LAYERS, value_parser = clap::value_parser!(u32).range(1..=bumpmap::bumpmap_core::parallax::MAX_LAYERS as i64), allow_negative_numbers = true)]
     pub layers: u32,
     /// Self-shadowing by the heights (soft is Tatarchuk's engine-style penumbra). height-exact and reference-displaced cast exact shadow rays for hard and soft alike
-    #[arg(long = "parallax-shadow", value_enum, default_value = "off")]
-    pub parallax_shadow: ParallaxShadowArg,
+    #[arg(long = "parallax-shadow", value_parser = choice::<ParallaxShadow>(), default_value = "off")]
+    pub parallax_shadow: ParallaxShadow,
     /// On curved surfaces, drop pixels whose ray leaves the surface without meeting the heights, so bumps cut the silhouette (the surface's curvature bends the ray, Oliveira & Policarpo 2005)
     #[arg(long)]
     pub silhouettes: bool,
@@ -226,29 +232,6 @@ pub struct HeightsGroup {
     /// Multiply the ambient term by the ambient occlusion of the heights' horizon map (Sloan & Cohen 2000): the share of the sky each point sees past the bumps around it, at the depth drawn
     #[arg(long = "ambient-occlusion")]
     pub ambient_occlusion: bool,
-}
-
-/// A parallax shadow mode (`bumpmap_core::parallax::ParallaxShadow`), by its name.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct ParallaxShadowArg(pub ParallaxShadow);
-
-impl ValueEnum for ParallaxShadowArg {
-    fn value_variants<'a>() -> &'a [Self] {
-        const ALL: [ParallaxShadowArg; ParallaxShadow::ALL.len()] = {
-            let mut all = [ParallaxShadowArg(ParallaxShadow::Off); ParallaxShadow::ALL.len()];
-            let mut i = 0;
-            while i < all.len() {
-                all[i] = ParallaxShadowArg(ParallaxShadow::ALL[i]);
-                i += 1;
-            }
-            all
-        };
-        &ALL
-    }
-
-    fn to_possible_value(&self) -> Option<PossibleValue> {
-        Some(PossibleValue::new(self.0.name()).help(self.0.description()))
-    }
 }
 
 /// A depth: a positive, finite number of the scene's units.
@@ -267,8 +250,8 @@ pub struct BackendGroup {
     /// cpu: the emulated GeForce on all cores; gpu: wgpu (Vulkan, Metal, DX12 or GL; on a
     /// machine without a GPU, Mesa's lavapipe: Debian's mesa-vulkan-drivers); auto: the GPU when
     /// an adapter exists, else the CPU (and says why). The reference always runs on the CPU
-    #[arg(long, value_enum, default_value = "cpu")]
-    pub backend: BackendArg,
+    #[arg(long, value_parser = choice::<BackendChoice>(), default_value = "cpu")]
+    pub backend: BackendChoice,
 }
 
 /// Every option that says what is drawn and how: what `render`, `bench render` (and later
@@ -325,7 +308,7 @@ pub struct RenderArgs {
     #[arg(short, long, default_value = "out/render.png")]
     pub output: PathBuf,
     /// Square image size (pixels)
-    #[arg(long, default_value_t = 512, value_parser = parse_side, conflicts_with_all = ["width", "height"])]
+    #[arg(long, default_value_t = crate::render::DEFAULT_SIZE, value_parser = parse_side, conflicts_with_all = ["width", "height"])]
     pub size: usize,
     /// Image width in pixels (with --height, instead of --size)
     #[arg(long, value_parser = parse_side, requires = "height")]
@@ -367,174 +350,4 @@ pub struct BenchRenderArgs {
     /// Print one JSON line instead of prose
     #[arg(long)]
     pub json: bool,
-}
-
-/// `[dir:]X,Y,Z[@R,G,B]`: a positional light (or a direction toward a directional one) and its
-/// colour.
-pub fn parse_light(s: &str) -> Result<bumpmap_core::scene::SceneLight, String> {
-    use bumpmap_math::lighting::Light;
-    let (pos, color) = match s.split_once('@') {
-        Some((p, c)) => (p, parse_vec3(c)?),
-        None => (s, glam::Vec3::ONE),
-    };
-    if color.min_element() < 0.0 {
-        return Err(format!("light colour must not be negative, got '{s}'"));
-    }
-    let light = match pos.strip_prefix("dir:") {
-        Some(d) => {
-            let d = parse_vec3(d)?;
-            if d.length() == 0.0 {
-                return Err("a directional light needs a non-zero direction".into());
-            }
-            Light::Directional(d.normalize())
-        }
-        None => Light::Positional(parse_vec3(pos)?),
-    };
-    Ok(bumpmap_core::scene::SceneLight { color, ..bumpmap_core::scene::SceneLight::white(light) })
-}
-
-/// How L and H are renormalized per fragment.
-#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
-pub enum NormalizeArg {
-    /// normalize() in float
-    Math,
-    /// the normalization cube map, as the paper does
-    Cube,
-}
-
-/// The self-shadowing factor.
-#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
-pub enum SelfShadowArg {
-    /// Eq. 12: clamp(8·L_z, 0, 1)
-    Ramp,
-    /// 1 where L_z > 0
-    Step,
-    /// none (Figure 14, left)
-    Off,
-}
-
-/// Where the half-angle vector comes from.
-#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
-pub enum HalfAngleArg {
-    /// per vertex, interpolated (Appendix C)
-    Vertex,
-    /// normalize(L̂ + V̂) per fragment (Cg Tutorial §8.1.4)
-    Fragment,
-}
-
-/// The specular term's gating.
-#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
-pub enum SpecularShadowArg {
-    /// times s_self, zero where H_z < 0 (the paper's mux)
-    Kilgard,
-    /// zero unless N'·L > 0 and L_z > 0 (Cg Tutorial §8.5)
-    Cg,
-    /// none
-    Off,
-}
-
-/// How the specular exponent answers the filtered normal's length.
-#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
-pub enum SpecularFilterArg {
-    /// the exponent as given
-    None,
-    /// Toksvig 2005: exponent s·|N|/(|N| + s(1 − |N|)), with its energy factor
-    Toksvig,
-    /// a roughness map sampled as an engine samples it, turned into a Blinn–Phong exponent: the one `normalmap --roughness-out` exports (Filament's prefilter of each level's |N|), made from the normal map, or --roughness-map FILE
-    RoughnessMap,
-    /// LEAN mapping (Olano & Baker 2010): the slopes' first and second moments, filtered, make an anisotropic Gaussian lobe (tangent-space maps of unit normals)
-    Lean,
-    /// CLEAN mapping (Olano & Baker 2010, §5): LEAN with the spread shared out equally in x and y, one moment texture instead of two: a round lobe
-    Clean,
-}
-
-impl From<SpecularFilterArg> for bumpmap::SpecularFilter {
-    fn from(f: SpecularFilterArg) -> Self {
-        match f {
-            SpecularFilterArg::None => bumpmap::SpecularFilter::None,
-            SpecularFilterArg::Toksvig => bumpmap::SpecularFilter::Toksvig,
-            SpecularFilterArg::RoughnessMap => bumpmap::SpecularFilter::RoughnessMap,
-            SpecularFilterArg::Lean => bumpmap::SpecularFilter::Lean,
-            SpecularFilterArg::Clean => bumpmap::SpecularFilter::Clean,
-        }
-    }
-}
-
-/// Texture filtering.
-#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
-pub enum FilterArg {
-    /// GL_NEAREST: blocky, no mipmaps
-    Nearest,
-    /// GL_LINEAR: bilinear, no mipmaps (shimmers at a distance)
-    Linear,
-    /// GL_LINEAR_MIPMAP_LINEAR: the paper's choice
-    Trilinear,
-}
-
-/// The register combiners' arithmetic.
-#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
-pub enum PrecisionArg {
-    /// Single-precision combiners
-    Float,
-    /// The GeForce 256's 9-bit signed fixed point
-    Fixed9,
-}
-
-/// The specular form of kilgard's third pass.
-#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
-pub enum SpecularArg {
-    /// max(0, H·N')^8 by repeated squaring (Appendix H)
-    Power8,
-    /// max(0, 4·(H·N' − ¾))² (§5.5), a tighter highlight
-    Ramp,
-}
-
-/// Local or infinite viewer.
-#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
-pub enum ViewerArg {
-    /// the half-angle from each vertex toward the eye
-    Local,
-    /// one half-angle direction for the whole image (toward the eye from the target)
-    Infinite,
-}
-
-/// What draws.
-#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
-pub enum BackendArg {
-    /// the emulated GeForce pipeline on the CPU (all cores)
-    Cpu,
-    /// wgpu on whatever adapter exists (Vulkan, Metal, DX12, GL; lavapipe without a GPU)
-    Gpu,
-    /// the GPU when an adapter exists, else the CPU
-    Auto,
-}
-
-impl From<BackendArg> for bumpmap::BackendChoice {
-    fn from(b: BackendArg) -> Self {
-        match b {
-            BackendArg::Cpu => bumpmap::BackendChoice::Cpu,
-            BackendArg::Gpu => bumpmap::BackendChoice::Gpu,
-            BackendArg::Auto => bumpmap::BackendChoice::Auto,
-        }
-    }
-}
-
-/// `C,L,Q`, `exp:D` or `exp2:D`.
-pub fn parse_attenuation(s: &str) -> Result<bumpmap_core::scene::Attenuation, String> {
-    use bumpmap_core::scene::Attenuation;
-    let num = |x: &str| x.trim().parse::<f32>().map_err(|_| format!("'{x}' is not a number"));
-    if s == "none" {
-        return Ok(Attenuation::None);
-    }
-    if let Some(d) = s.strip_prefix("exp2:") {
-        return Ok(Attenuation::ExponentialSquared { density: num(d)? });
-    }
-    if let Some(d) = s.strip_prefix("exp:") {
-        return Ok(Attenuation::Exponential { density: num(d)? });
-    }
-    let v: Vec<f32> = s.split(',').map(num).collect::<Result<_, _>>()?;
-    match v.as_slice() {
-        [c, l, q] => Ok(Attenuation::Polynomial { constant: *c, linear: *l, quadratic: *q }),
-        _ => Err(format!("expected none, C,L,Q, exp:D or exp2:D, got '{s}'")),
-    }
 }

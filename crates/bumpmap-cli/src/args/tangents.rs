@@ -4,7 +4,9 @@ use std::path::PathBuf;
 
 use clap::Args;
 
-use crate::args::{ObjVArg, TangentModeArg, parse_f32};
+use bumpmap_io::ObjTexcoords;
+
+use crate::args::{TangentModeArg, choice, parse_f32};
 
 /// `bumpmap tangents`.
 #[derive(Args, Debug)]
@@ -36,8 +38,8 @@ pub struct TangentsArgs {
     #[arg(long = "allow-outside-paths")]
     pub allow_outside_paths: bool,
     /// OBJ only: flip (v = 0 at the image's bottom, the OBJ convention) or keep the file's v
-    #[arg(long = "obj-v", value_enum, default_value = "flip")]
-    pub obj_v: ObjVArg,
+    #[arg(long = "obj-v", value_parser = choice::<ObjTexcoords>(), default_value = "flip")]
+    pub obj_v: ObjTexcoords,
     /// A PNG normal map (green up, as `normalmap` writes by default) to pack into the output as the material's normalTexture: a ready-to-view asset
     #[arg(long = "normal-map")]
     pub normal_map: Option<PathBuf>,

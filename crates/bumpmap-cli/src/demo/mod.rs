@@ -19,7 +19,7 @@ use indicatif::{ProgressBar, ProgressStyle};
 
 mod normal_maps_in;
 
-use crate::args::{BackendArg, DemoArgs, DemoGpuArg};
+use crate::args::{DemoArgs, DemoGpuArg};
 use crate::error::CliError;
 use crate::render::{core_err, draw, lib_err, write_frame};
 
@@ -377,7 +377,7 @@ fn write_demo(out: &Path, args: &DemoArgs) -> Result<(), CliError> {
         bump_scale: 4.0,
         size: 256,
         spp: 64,
-        backend: BackendArg::Cpu,
+        backend: BackendChoice::Cpu,
         techniques: Vec::new(),
         studies: vec![crate::args::StudyArg::All],
         output: out.join("compare"),

@@ -1,6 +1,7 @@
 //! The demo's "normal maps in" part: `inspect`'s verdicts on the demo's own normal maps, and
 //! heights back from one of them beside the heights it was made from.
 
+use bumpmap::Named;
 use std::path::Path;
 
 use bumpmap::heights::{HeightOptions, heights_from_inspection};

@@ -99,10 +99,10 @@ pub(crate) fn roughness_chain(
     field: &HeightField,
     options: &NormalMapOptions,
     perceptual: f32,
-    layout: crate::args::RoughnessLayoutArg,
+    layout: bumpmap::options::RoughnessLayout,
     name: &str,
 ) -> Result<MipChain, CliError> {
-    bumpmap::options::roughness_map(field, options, perceptual, layout.into()).map_err(|e| scale_err(e, name))
+    bumpmap::options::roughness_map(field, options, perceptual, layout).map_err(|e| scale_err(e, name))
 }
 
 /// `--lean-out`'s two files: `L` itself and `L`'s stem with `.mxy-j` before the extension.

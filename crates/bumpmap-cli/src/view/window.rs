@@ -39,7 +39,7 @@ pub fn run(args: &ViewArgs, setup: SceneSetup, inputs: &[&Path]) -> Result<(), C
     let backend = setup.backend.backend;
     let viewer = Viewer::new(setup)?;
     let reference_only = viewer.technique().is_reference();
-    let renderer = if reference_only && backend == crate::args::BackendArg::Auto {
+    let renderer = if reference_only && backend == bumpmap::BackendChoice::Auto {
         Renderer::new(BackendChoice::Cpu).map_err(lib_err)?
     } else {
         crate::render::renderer(backend)?

@@ -103,6 +103,18 @@ pub enum ParallaxShadow {
     Horizon,
 }
 
+impl bumpmap_math::Named for ParallaxShadow {
+    const ALL: &'static [Self] = &ParallaxShadow::ALL;
+
+    fn name(self) -> &'static str {
+        ParallaxShadow::name(self)
+    }
+
+    fn description(self) -> &'static str {
+        ParallaxShadow::description(self)
+    }
+}
+
 impl ParallaxShadow {
     /// Every mode, in the order the viewer's key cycles them.
     pub const ALL: [ParallaxShadow; 4] =

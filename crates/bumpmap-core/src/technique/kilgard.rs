@@ -47,6 +47,11 @@ pub enum SpecularMode {
     Ramp,
 }
 
+bumpmap_math::named!(SpecularMode {
+    EighthPower => "power8": "max(0, H·N')^8 by repeated squaring (Appendix H)",
+    Ramp => "ramp": "max(0, 4·(H·N' − ¾))² (§5.5), a tighter highlight",
+});
+
 /// Options of the three-pass technique.
 #[derive(Clone, Debug, PartialEq)]
 pub struct KilgardOptions {

@@ -41,6 +41,16 @@ pub enum HalfAngle {
     Fragment,
 }
 
+bumpmap_math::named!(Normalize {
+    Math => "math": "normalize() in float",
+    Cube => "cube": "the normalization cube map, as the paper does",
+});
+
+bumpmap_math::named!(HalfAngle {
+    Vertex => "vertex": "per vertex, interpolated (Appendix C)",
+    Fragment => "fragment": "normalize(L̂ + V̂) per fragment (Cg Tutorial §8.1.4)",
+});
+
 /// Where the gloss (specular scale) comes from (Cg Tutorial §8.5.2).
 #[derive(Clone, Debug, PartialEq, Default)]
 pub enum Gloss {

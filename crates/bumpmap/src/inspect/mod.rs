@@ -21,6 +21,7 @@
 //! What this module does not do: change the file, or repair a map (`render --rebuild-mips`
 //! makes its mips anew; `normalmap` makes a map from heights).
 
+use bumpmap_math::Named;
 use std::path::Path;
 
 use bumpmap_math::Image;

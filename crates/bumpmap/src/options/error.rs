@@ -45,11 +45,29 @@ pub enum SceneOption {
     SpecularMode,
     /// [`super::TechniqueChoice::specular_filter`].
     SpecularFilter,
+    /// [`super::SceneOptions::tessellation`].
+    Tessellation,
+    /// [`super::SceneOptions::repeat`].
+    Repeat,
+    /// [`super::CameraOptions::eye`].
+    Eye,
+    /// [`super::CameraOptions::target`].
+    Target,
+    /// [`super::LightOptions::spot`].
+    Spot,
+    /// [`super::TechniqueChoice::samples_per_pixel`].
+    Spp,
+    /// [`super::TechniqueChoice::cube_size`].
+    CubeSize,
+    /// [`super::HeightsOptions::depth`].
+    Depth,
+    /// [`super::HeightsOptions::layers`].
+    Layers,
 }
 
 impl SceneOption {
     /// Every option a message may name.
-    pub const ALL: [SceneOption; 15] = [
+    pub const ALL: [SceneOption; 24] = [
         SceneOption::HeightField,
         SceneOption::NormalMap,
         SceneOption::BumpScale,
@@ -65,6 +83,15 @@ impl SceneOption {
         SceneOption::Precision,
         SceneOption::SpecularMode,
         SceneOption::SpecularFilter,
+        SceneOption::Tessellation,
+        SceneOption::Repeat,
+        SceneOption::Eye,
+        SceneOption::Target,
+        SceneOption::Spot,
+        SceneOption::Spp,
+        SceneOption::CubeSize,
+        SceneOption::Depth,
+        SceneOption::Layers,
     ];
 
     /// Its name in snake case, as Python's keyword has it (the command line's flag is the same
@@ -86,6 +113,15 @@ impl SceneOption {
             SceneOption::Precision => "precision",
             SceneOption::SpecularMode => "specular_mode",
             SceneOption::SpecularFilter => "specular_filter",
+            SceneOption::Tessellation => "tessellation",
+            SceneOption::Repeat => "repeat",
+            SceneOption::Eye => "eye",
+            SceneOption::Target => "target",
+            SceneOption::Spot => "spot",
+            SceneOption::Spp => "spp",
+            SceneOption::CubeSize => "cube_size",
+            SceneOption::Depth => "depth",
+            SceneOption::Layers => "layers",
         }
     }
 }

@@ -44,6 +44,7 @@ mod technique;
 
 pub use error::{SceneOption, SetupError, SetupNote};
 pub use roughness::{RoughnessLayout, roughness_map};
+pub use technique::{MAX_CUBE_SIZE, MAX_SAMPLES_PER_PIXEL, MAX_TESSELLATION};
 
 /// Every option that says what is drawn and how, in the command line's groups. The defaults
 /// are the command line's (a test holds the two together).
@@ -264,6 +265,12 @@ pub enum Filter {
     #[default]
     Trilinear,
 }
+
+bumpmap_math::named!(Filter {
+    Nearest => "nearest": "GL_NEAREST: blocky, no mipmaps",
+    Linear => "linear": "GL_LINEAR: bilinear, no mipmaps (shimmers at a distance)",
+    Trilinear => "trilinear": "GL_LINEAR_MIPMAP_LINEAR: the paper's choice",
+});
 
 impl Filter {
     /// The sampler state, repeating.

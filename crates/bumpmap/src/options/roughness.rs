@@ -19,6 +19,13 @@ pub enum RoughnessLayout {
     Unity,
 }
 
+bumpmap_math::named!(RoughnessLayout {
+    Gray => "gray": "Roughness in R, G and B; A 1",
+    Gloss => "gloss": "1 − roughness (gloss, smoothness) in R, G and B; A 1",
+    Gltf => "gltf": "glTF metallicRoughness / Unreal ORM: R 1 (no occlusion; where ambient occlusion is written beside it, the occlusion), G roughness, B metallic 0, A 1",
+    Unity => "unity": "Unity metallic-smoothness: R metallic 0, G and B 0, A smoothness (1 − roughness)",
+});
+
 impl RoughnessLayout {
     /// The RGBA8 texel for perceptual roughness `r` in [0, 1].
     ///

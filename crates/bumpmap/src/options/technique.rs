@@ -6,7 +6,7 @@
 
 use std::sync::Arc;
 
-use bumpmap_core::parallax::ParallaxOptions;
+use bumpmap_core::parallax::{MAX_LAYERS, ParallaxOptions};
 use bumpmap_core::scene::{SceneLight, Spot};
 use bumpmap_core::scenes;
 use bumpmap_core::technique::{
@@ -28,6 +28,16 @@ const MAX_NORMAL_SCALE: f32 = bumpmap_math::imported::MAX_SCALE;
 /// fixed-function projective texture had none either), so texels past what any framebuffer
 /// shows only cost memory: a 16384² pattern took 3.1 GB and 27 s for a 64² render.
 const MAX_SPOT_PATTERN: usize = 2048;
+
+/// The most quads along u or v. 2048² quads (8.4 M triangles, a few pixels each even on the
+/// largest framebuffer) draw a 512² image in 2.0 GB; 4096² took 7.9 GB.
+pub const MAX_TESSELLATION: usize = 2048;
+
+/// The most samples per pixel the reference takes.
+pub const MAX_SAMPLES_PER_PIXEL: u32 = 4096;
+
+/// The largest face of the normalization cube map.
+pub const MAX_CUBE_SIZE: u32 = 1024;
 
 /// Values out of their ranges.
 pub(super) fn check_ranges(o: &SceneOptions) -> Result<(), SetupError> {
@@ -51,6 +61,41 @@ pub(super) fn check_ranges(o: &SceneOptions) -> Result<(), SetupError> {
     }
     if !(m.shininess > 0.0 && m.shininess.is_finite()) {
         return out(SceneOption::Shininess, "a positive number", m.shininess.to_string());
+    }
+    if let Some((u, v)) = o.tessellation
+        && !((1..=MAX_TESSELLATION).contains(&u) && (1..=MAX_TESSELLATION).contains(&v))
+    {
+        return out(SceneOption::Tessellation, &format!("two counts in 1..={MAX_TESSELLATION}"), format!("{u},{v}"));
+    }
+    if let Some(r) = o.repeat
+        && !(r.is_finite() && r.x != 0.0 && r.y != 0.0 && r.abs().max_element() <= 1024.0)
+    {
+        return out(SceneOption::Repeat, "two numbers, non-zero and within ±1024", format!("{:?},{:?}", r.x, r.y));
+    }
+    for (option, v) in
+        [(SceneOption::Eye, camera.eye), (SceneOption::Target, camera.target), (SceneOption::Spot, o.lights.spot)]
+    {
+        if let Some(v) = v
+            && !v.is_finite()
+        {
+            return out(option, "three finite numbers", format!("{:?},{:?},{:?}", v.x, v.y, v.z));
+        }
+    }
+    let t = &o.technique;
+    if !(1..=MAX_SAMPLES_PER_PIXEL).contains(&t.samples_per_pixel) {
+        return out(SceneOption::Spp, &format!("in 1..={MAX_SAMPLES_PER_PIXEL}"), t.samples_per_pixel.to_string());
+    }
+    if !(1..=MAX_CUBE_SIZE).contains(&t.cube_size) {
+        return out(SceneOption::CubeSize, &format!("in 1..={MAX_CUBE_SIZE}"), t.cube_size.to_string());
+    }
+    let h = &o.heights;
+    if let Some(d) = h.depth
+        && !(d.is_finite() && d > 0.0)
+    {
+        return out(SceneOption::Depth, "a positive number of the scene's units", d.to_string());
+    }
+    if !(1..=MAX_LAYERS).contains(&h.layers) {
+        return out(SceneOption::Layers, &format!("in 1..={MAX_LAYERS}"), h.layers.to_string());
     }
     if let Some(up) = camera.up
         && up.normalize_or_zero() == Vec3::ZERO

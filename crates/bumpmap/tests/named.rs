@@ -1,0 +1,55 @@
+//! Every closed set's words: each value's name and aliases read back as that value, no word
+//! names two values, and each value says what it does. The command line's value parsers and
+//! the Python keywords read these words, so a clash here would make one of them ambiguous.
+
+use std::fmt::Debug;
+
+use bumpmap::bumpmap_core::combiners::Precision;
+use bumpmap::bumpmap_io::ObjTexcoords;
+use bumpmap::options::{Filter, RoughnessLayout};
+use bumpmap::{
+    BackendChoice, HalfAngle, Named, Normalize, ParallaxShadow, SelfShadow, SpecularFilter, SpecularMode,
+    SpecularShadow, TechniqueName, ViewerModel, YConvention,
+};
+
+fn words_read_back<T: Named + Debug>() -> usize {
+    let mut words: Vec<&str> = Vec::new();
+    for &value in T::ALL {
+        assert_eq!(T::parse(value.name()), Some(value), "{value:?}'s name");
+        for alias in value.aliases() {
+            assert_eq!(T::parse(alias), Some(value), "{value:?}'s alias {alias}");
+        }
+        assert!(!value.description().is_empty(), "{value:?} says what it does");
+        assert!(!value.description().contains("--"), "{value:?}'s description names a flag");
+        words.push(value.name());
+        words.extend(value.aliases());
+    }
+    let mut unique = words.clone();
+    unique.sort();
+    unique.dedup();
+    assert_eq!(unique.len(), words.len(), "a word names two values: {words:?}");
+    assert_eq!(T::parse("no-such-word"), None);
+    T::ALL.len()
+}
+
+#[test]
+fn every_closed_set_reads_its_own_words() {
+    let counts = [
+        words_read_back::<YConvention>(),
+        words_read_back::<ObjTexcoords>(),
+        words_read_back::<ViewerModel>(),
+        words_read_back::<Filter>(),
+        words_read_back::<Precision>(),
+        words_read_back::<SpecularMode>(),
+        words_read_back::<Normalize>(),
+        words_read_back::<SelfShadow>(),
+        words_read_back::<HalfAngle>(),
+        words_read_back::<SpecularShadow>(),
+        words_read_back::<SpecularFilter>(),
+        words_read_back::<ParallaxShadow>(),
+        words_read_back::<RoughnessLayout>(),
+        words_read_back::<BackendChoice>(),
+        words_read_back::<TechniqueName>(),
+    ];
+    assert_eq!(counts, [2, 2, 2, 3, 2, 2, 2, 3, 2, 3, 5, 4, 4, 3, 24]);
+}
