@@ -1,16 +1,16 @@
 //! `bumpmap._bumpmap`: the native half of the `bumpmap` Python package.
 //!
-//! `render`, `Renderer.prepare` and `compare` read their keywords as typed Python values
-//! straight into the library's options (`keywords`: `bumpmap::options::SceneOptions`,
-//! `bumpmap_compare::CompareOptions`); the heights-to-maps functions still take theirs as the
-//! command line's options, parsed by the command's own definition (`options`). Both call the same
-//! code the command runs (`bumpmap_cli::commands`), so a script and `bumpmap` make the same bytes
-//! from the same options. The package's `__init__.py` wraps each one with keyword arguments and
+//! Every function reads its keywords as typed Python values straight into typed options
+//! (`keywords`: `bumpmap::options::SceneOptions`, `bumpmap_compare::CompareOptions`, the
+//! command line's `MapRequest`, `TangentOptions`, a `TextureFormat`), but `height_from_normals`,
+//! whose keywords are still the command line's options parsed by the command's own definition
+//! (`options`). All call the same code the command runs (`bumpmap_cli::commands`), so a script
+//! and `bumpmap` make the same bytes from the same options. The package's `__init__.py` wraps each one with keyword arguments and
 //! a docstring made from the options' help texts.
 //!
-//! - `keywords`: `render`'s and `compare`'s keywords → the library's typed options;
-//! - `options`: the other functions' keywords → command-line options → the command's parsed
-//!   arguments, and every function's option table for the docstrings;
+//! - `keywords`: keywords → typed options;
+//! - `options`: every function's option table for the docstrings, and `height_from_normals`'
+//!   keywords → command-line options → the command's parsed arguments;
 //! - `arrays`: NumPy arrays in and out, their dtype, shape and byte order checked;
 //! - `interrupt`: long work with the GIL released, Ctrl-C honoured;
 //! - `errors`: the command line's errors as Python exceptions;
@@ -35,8 +35,8 @@ use bumpmap::inspect::StoredAs;
 use bumpmap_cli::args::Command;
 use bumpmap_cli::commands;
 use bumpmap_cli::error::CliError;
+use bumpmap_io::HeightSource;
 use bumpmap_io::texture_file::TextureFormat;
-use bumpmap_io::{Channel, HeightSource};
 
 use pyo3::exceptions::{PyTypeError, PyValueError};
 use pyo3::prelude::*;
@@ -62,11 +62,8 @@ fn read_height_field<'py>(
         .to_str()
         .ok_or_else(|| PyValueError::new_err(format!("read_height_field(): {} is not UTF-8", path.display())))?
         .to_string();
-    let args = match parse(&options::READ_HEIGHT_FIELD, &[spec.clone(), "--output=heights.png".into()], options)? {
-        Command::Normalmap(a) => a,
-        _ => unreachable!("normalmap's options parse as normalmap"),
-    };
-    let channel: Channel = args.map.channel.into();
+    let taken = keywords::map_keywords("read_height_field").expect("a map function");
+    let channel = keywords::map_request("read_height_field", &taken, options)?.channel;
     let field = interrupt::run(py, move |_| HeightSource::parse(&spec).load(channel).map_err(CliError::from))?
         .map_err(|e| to_py("read_height_field", e))?;
     arrays::from_height_field(py, &field)
@@ -82,13 +79,9 @@ fn write_texture(
     levels: &Bound<'_, PyAny>,
     options: Option<&Bound<'_, PyDict>>,
 ) -> PyResult<Vec<PathBuf>> {
-    let args = match parse(&options::WRITE_TEXTURE, &["levels".into(), "--output=levels.png".into()], options)? {
-        Command::Normalmap(a) => a,
-        _ => unreachable!("normalmap's options parse as normalmap"),
-    };
+    let asked = keywords::texture_format("write_texture", options)?;
     let chain = arrays::to_chain(levels)?;
     let sixteen = matches!(chain, commands::Chain::Rgba16(_));
-    let asked: TextureFormat = args.format.into();
     let format = match (asked, sixteen) {
         (TextureFormat::Rgba8 | TextureFormat::Rgba16, true) => TextureFormat::Rgba16,
         (TextureFormat::Rgba16, false) => {
@@ -99,7 +92,7 @@ fn write_texture(
         (f, true) => {
             return Err(PyValueError::new_err(format!(
                 "write_texture(): uint16 levels cannot be stored as format {}: BC5 and BC7 hold 8 bits a channel (give uint8 levels)",
-                f.name()
+                f.dxgi_name()
             )));
         }
         (f, false) => f,
@@ -127,12 +120,8 @@ fn read_texture<'py>(py: Python<'py>, path: PathBuf) -> PyResult<Bound<'py, PyDi
         Ok::<_, bumpmap_io::IoError>((texture, convention))
     })?
     .map_err(|e| to_py("read_texture", CliError::from(e)))?;
-    // By the name `write_texture(format=)` takes: the command line's.
-    let format = <bumpmap_cli::args::FormatArg as clap::ValueEnum>::value_variants()
-        .iter()
-        .find(|f| TextureFormat::from(**f) == texture.format)
-        .and_then(clap::ValueEnum::to_possible_value)
-        .map_or_else(|| texture.format.name().to_string(), |v| v.get_name().to_string());
+    // By the name `write_texture(format=)` takes.
+    let format = bumpmap::Named::name(texture.format);
     let chain = match texture.levels {
         bumpmap_io::StoredLevels::Rgba8(levels) => {
             commands::Chain::Rgba8(bumpmap_math::MipChain { levels, encoding: Default::default() })
@@ -161,10 +150,7 @@ fn tangents<'py>(
     indices: &Bound<'py, PyAny>,
     options: Option<&Bound<'py, PyDict>>,
 ) -> PyResult<Bound<'py, PyDict>> {
-    let args = match parse(&options::TANGENTS, &["arrays.gltf".into(), "--output=arrays.glb".into()], options)? {
-        Command::Tangents(a) => a,
-        _ => unreachable!("tangents' options parse as tangents"),
-    };
+    let options = keywords::tangent_options("tangents", options)?;
     let (mut mesh, had_normals, _) = arrays::mesh("tangents", positions, normals, uvs, None, indices)?;
     let computed = !had_normals;
     // Checked on the worker's pool too: the check's loops are parallel.
@@ -173,7 +159,7 @@ fn tangents<'py>(
         if computed {
             mesh.compute_normals();
         }
-        commands::tangents(&args, &mesh).map_err(|e| to_py("tangents", e))
+        commands::tangents(&options, &mesh).map_err(|e| to_py("tangents", e))
     })??;
     // What the command writes into its glTF: unit vectors, tangents perpendicular to the normals.
     let (normals, tangents, repairs) = bumpmap_io::mesh_file::gltf_normals_and_tangents(&out);
@@ -334,7 +320,9 @@ fn keyword_names(function: &str) -> PyResult<Vec<&'static str>> {
     match function {
         "render" => Ok(keywords::KEYWORDS.to_vec()),
         "compare" => Ok(keywords::COMPARE_KEYWORDS.to_vec()),
-        _ => Err(PyValueError::new_err(format!("{function} reads no typed keywords"))),
+        "tangents" => Ok(keywords::TANGENT_KEYWORDS.to_vec()),
+        "write_texture" => Ok(vec!["format"]),
+        f => keywords::map_keywords(f).ok_or_else(|| PyValueError::new_err(format!("{f} reads no typed keywords"))),
     }
 }
 

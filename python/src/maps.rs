@@ -1,44 +1,33 @@
 //! Heights → the maps `bumpmap normalmap` writes, as arrays: the normal map and its chain, the
 //! heights the parallax techniques read, the horizon map with ambient occlusion and bent
-//! normals, the roughness map and LEAN's moments. Each parses its keywords as `normalmap`'s
-//! options and calls the command's own function.
+//! normals, the roughness map and LEAN's moments. Each reads its keywords as typed values
+//! (`keywords::map_request`) and calls the command's own function.
 
-use bumpmap_cli::args::Command;
-use bumpmap_cli::commands;
+use bumpmap_cli::commands::{self, MapRequest};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
 
 use crate::errors::to_py;
-use crate::options::{self, Function};
-use crate::{arrays, interrupt, parse};
+use crate::{arrays, interrupt, keywords};
 
-/// `normalmap`'s arguments for an array input, with the `extra` options the function asks for
-/// itself (`--mips`, an output that selects what is made).
-fn normalmap_args(
-    function: &Function,
-    extra: &[&str],
-    options: Option<&Bound<'_, PyDict>>,
-) -> PyResult<bumpmap_cli::args::NormalmapArgs> {
-    let mut fixed = vec!["heights".to_string(), "--output=heights.png".to_string()];
-    fixed.extend(extra.iter().map(|e| e.to_string()));
-    match parse(function, &fixed, options)? {
-        Command::Normalmap(a) => Ok(a),
-        _ => unreachable!("normalmap's options parse as normalmap"),
-    }
+/// `function`'s keywords as the request they make.
+fn request(function: &str, options: Option<&Bound<'_, PyDict>>) -> PyResult<MapRequest> {
+    let taken = keywords::map_keywords(function).expect("a map function");
+    keywords::map_request(function, &taken, options)
 }
 
 /// `normalmap`'s chain for an array of heights: level 0, or every level with `mips`.
 fn chain_of<'py>(
     py: Python<'py>,
-    function: &Function,
+    function: &str,
     mips: bool,
     heights: &Bound<'py, PyAny>,
     options: Option<&Bound<'py, PyDict>>,
 ) -> PyResult<Vec<Bound<'py, PyAny>>> {
-    let args = normalmap_args(function, if mips { &["--mips"] } else { &[] }, options)?;
+    let map = request(function, options)?;
     let field = arrays::height_field(heights)?;
-    let chain = interrupt::run(py, move |_| commands::normal_map(&args, &field, "heights"))?
-        .map_err(|e| to_py(function.name, e))?;
+    let chain = interrupt::run(py, move |_| commands::normal_map(&map, mips, &field, "heights"))?
+        .map_err(|e| to_py(function, e))?;
     arrays::from_chain(py, chain)
 }
 
@@ -50,7 +39,7 @@ pub fn normal_map<'py>(
     heights: &Bound<'py, PyAny>,
     options: Option<&Bound<'py, PyDict>>,
 ) -> PyResult<Bound<'py, PyAny>> {
-    Ok(chain_of(py, &options::NORMAL_MAP, false, heights, options)?.swap_remove(0))
+    Ok(chain_of(py, "normal_map", false, heights, options)?.swap_remove(0))
 }
 
 /// Heights → normal map and every smaller level down to 1×1, level 0 first.
@@ -61,7 +50,7 @@ pub fn mip_chain<'py>(
     heights: &Bound<'py, PyAny>,
     options: Option<&Bound<'py, PyDict>>,
 ) -> PyResult<Bound<'py, PyList>> {
-    PyList::new(py, chain_of(py, &options::MIP_CHAIN, true, heights, options)?)
+    PyList::new(py, chain_of(py, "mip_chain", true, heights, options)?)
 }
 
 /// Heights → what the parallax techniques read: the levels (float32 (H, W), level 0 first)
@@ -74,9 +63,9 @@ pub fn height_mips<'py>(
     heights: &Bound<'py, PyAny>,
     options: Option<&Bound<'py, PyDict>>,
 ) -> PyResult<(Bound<'py, PyList>, Bound<'py, PyList>)> {
-    let args = normalmap_args(&options::HEIGHT_MIPS, &[], options)?;
+    let map = request("height_mips", options)?;
     let field = arrays::height_field(heights)?;
-    let mips = interrupt::run(py, move |_| commands::heights(&args, &field, "heights"))?
+    let mips = interrupt::run(py, move |_| commands::heights(&map, &field, "heights"))?
         .map_err(|e| to_py("height_mips", e))?;
     let levels: Vec<_> =
         mips.levels().iter().map(|l| arrays::from_plane(py, l.height, l.width, &l.texels)).collect::<PyResult<_>>()?;
@@ -99,12 +88,12 @@ pub fn horizon_maps<'py>(
     heights: &Bound<'py, PyAny>,
     options: Option<&Bound<'py, PyDict>>,
 ) -> PyResult<Bound<'py, PyDict>> {
-    let args = normalmap_args(&options::HORIZON_MAPS, &[], options)?;
+    let request = request("horizon_maps", options)?;
     let field = arrays::height_field(heights)?;
-    let map = interrupt::run(py, move |_| commands::horizons(&args, &field, "heights"))?
+    let asked = request.clone();
+    let map = interrupt::run(py, move |_| commands::horizons(&asked, &field, "heights"))?
         .map_err(|e| to_py("horizon_maps", e))?;
-    let args = normalmap_args(&options::HORIZON_MAPS, &[], options)?;
-    let depth = args.map.scale.abs();
+    let depth = request.normals.scale.abs();
     let levels: Vec<_> = map
         .levels()
         .iter()
@@ -112,8 +101,8 @@ pub fn horizon_maps<'py>(
         .collect::<PyResult<_>>()?;
     let (w, h) = (map.width(), map.height());
     let ao = arrays::from_plane(py, h, w, &map.ambient_occlusion(depth))?;
-    let (y, encoding) = (args.map.options().y_convention, args.map.options().encoding);
-    let bent = match args.bits {
+    let (y, encoding) = (request.normals.y_convention, request.normals.encoding);
+    let bent = match request.bits {
         16 => bumpmap_cli::commands::Chain::Rgba16(bumpmap_math::MipChain {
             levels: vec![map.bent_normal_map(depth, y, encoding)],
             encoding,
@@ -139,9 +128,9 @@ pub fn roughness_map<'py>(
     heights: &Bound<'py, PyAny>,
     options: Option<&Bound<'py, PyDict>>,
 ) -> PyResult<Bound<'py, PyList>> {
-    let args = normalmap_args(&options::ROUGHNESS_MAP, &["--mips", "--roughness-out=roughness.png"], options)?;
+    let map = request("roughness_map", options)?;
     let field = arrays::height_field(heights)?;
-    let chain = interrupt::run(py, move |_| commands::roughness(&args, &field, "heights"))?
+    let chain = interrupt::run(py, move |_| commands::roughness(&map, &field, "heights"))?
         .map_err(|e| to_py("roughness_map", e))?;
     PyList::new(py, arrays::from_chain(py, commands::Chain::Rgba8(chain))?)
 }
@@ -155,10 +144,10 @@ pub fn lean_moments<'py>(
     heights: &Bound<'py, PyAny>,
     options: Option<&Bound<'py, PyDict>>,
 ) -> PyResult<(Bound<'py, PyList>, Bound<'py, PyList>)> {
-    let args = normalmap_args(&options::LEAN_MOMENTS, &["--mips", "--lean-out=lean.ktx2"], options)?;
+    let map = request("lean_moments", options)?;
     let field = arrays::height_field(heights)?;
     let planes =
-        interrupt::run(py, move |_| commands::lean(&args, &field, "heights"))?.map_err(|e| to_py("lean_moments", e))?;
+        interrupt::run(py, move |_| commands::lean(&map, &field, "heights"))?.map_err(|e| to_py("lean_moments", e))?;
     let [first, second] = planes.map(|levels| {
         levels
             .iter()

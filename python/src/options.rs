@@ -1,10 +1,9 @@
-//! Keyword arguments as the command line's options, for the functions that make maps from
-//! heights (`render` and `compare` read theirs as typed values: `keywords`). A call's `scale=8,
-//! kernel="sobel3"` becomes `--scale=8 --kernel=sobel3` and is parsed by the command's own clap
-//! definition, so the package takes the same names, values and defaults as `bumpmap`, and
-//! refuses what it refuses, with its messages in Python's words (`bump_scale`, not
-//! `--bump-scale`). Every function's option table (help texts, defaults, choices), which the
-//! docstrings, signatures and stubs are made from, is read here too.
+//! Every function's option table — help texts, defaults, choices, read from the command's own
+//! definition — which the docstrings, signatures and stubs are made from; and, for
+//! `height_from_normals` alone (every other function reads typed keywords: `keywords`), its
+//! keyword arguments as the command line's options: `scale=8` becomes `--scale=8`, parsed by the
+//! command's clap definition, its messages put in Python's words (`bump_scale`, not
+//! `--bump-scale`).
 //!
 //! What it does not do: decide any default or range itself; those live in `bumpmap_cli::args`.
 

@@ -1,4 +1,4 @@
-"""render's keywords as Python values, read into the library's typed options without a command
+"""render's (and compare's and the map functions') keywords as Python values, read into the library's typed options without a command
 line in between: every documented keyword is read, its default is the library's, vectors are
 tuples, lights are strings, tuples or dicts, and each wrong value is the exception that names it."""
 
@@ -16,7 +16,9 @@ from conftest import read_png
 NEEDS_ANOTHER = {"y_convention", "spot_cutoff", "spot_exponent", "roughness_layout"}
 
 
-@pytest.mark.parametrize("function", ["render", "compare"])
+@pytest.mark.parametrize("function", ["render", "compare", "normal_map", "mip_chain", "height_mips", "horizon_maps",
+                                      "roughness_map", "lean_moments", "read_height_field", "tangents",
+                                      "write_texture"])
 def test_every_documented_keyword_is_read(function):
     documented = {name for name, *_ in _bumpmap.options(function)}
     assert documented == set(_bumpmap.keywords(function))
@@ -145,3 +147,44 @@ def test_compare_reads_typed_keywords():
     listed = bumpmap.compare(size=16, spp=1, studies=[], techniques=["kilgard", "single-pass"])
     joined = bumpmap.compare(size=16, spp=1, studies="none", techniques="kilgard,single-pass")
     assert list(listed["techniques"]) == list(joined["techniques"]) == ["kilgard", "single-pass"]
+
+
+def test_map_keywords_are_typed_values():
+    heights = bumpmap.read_height_field("bricks@32")
+    plain = bumpmap.normal_map(heights, scale=6, bits=16)
+    assert np.array_equal(plain, bumpmap.normal_map(heights, scale=np.float32(6), bits=np.int64(16)))
+    assert np.array_equal(bumpmap.normal_map(heights), bumpmap.normal_map(heights, scale=4, kernel="forward", y_convention="opengl"))
+    with pytest.raises(TypeError, match=r"normal_map\(\): bits takes a whole number, got float"):
+        bumpmap.normal_map(heights, bits=16.0)
+    with pytest.raises(TypeError, match=r"mip_chain\(\): kernel takes a string, got int"):
+        bumpmap.mip_chain(heights, kernel=3)
+    with pytest.raises(ValueError, match=r"invalid value 'up' for y_convention; possible values: opengl, directx"):
+        bumpmap.horizon_maps(heights, y_convention="up")
+    with pytest.raises(ValueError, match=r"roughness must be in \[0, 1\], got 1.5"):
+        bumpmap.roughness_map(heights, roughness=1.5)
+    with pytest.raises(ValueError, match=r"invalid value 'cyan' for channel; possible values: luminance, red"):
+        bumpmap.read_height_field("bricks@32", channel="cyan")
+
+
+def test_a_format_is_a_word_of_the_set_as_the_stub_says(tmp_path):
+    level = bumpmap.normal_map(bumpmap.read_height_field("bricks@16"))
+    (bc5,) = bumpmap.write_texture(tmp_path / "a.dds", level, format="bc5")
+    (alias,) = bumpmap.write_texture(tmp_path / "b.dds", level, format="bc5_unorm")
+    assert bc5.read_bytes() == alias.read_bytes()
+    assert bumpmap.read_texture(bc5)["format"] == "bc5"
+    # The stub's Literal is lower case; the run time now refuses what the stub refuses.
+    with pytest.raises(ValueError, match=r"write_texture\(\): invalid value 'BC5' for format; possible values: rgba8, rgba16, bc5, bc7"):
+        bumpmap.write_texture(tmp_path / "c.dds", level, format="BC5")
+
+
+def test_tangents_read_typed_keywords():
+    positions = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0]], np.float32)
+    uvs = np.array([[0, 0], [1, 0], [0, 1]], np.float32)
+    indices = np.array([0, 1, 2], np.uint32)
+    ours = bumpmap.tangents(positions, None, uvs, indices, mode="ours", split_angle=np.float32(30))
+    mikk = bumpmap.tangents(positions, None, uvs, indices, mode="mikktspace")
+    assert ours["tangents"].shape == mikk["tangents"].shape == (3, 4)
+    with pytest.raises(ValueError, match=r"invalid value 'mikk' for mode; possible values: ours, mikktspace"):
+        bumpmap.tangents(positions, None, uvs, indices, mode="mikk")
+    with pytest.raises(ValueError, match=r"split_angle must be in \[0, 180\], got 200"):
+        bumpmap.tangents(positions, None, uvs, indices, split_angle=200)

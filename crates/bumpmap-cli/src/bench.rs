@@ -8,7 +8,7 @@ use std::time::Instant;
 use bumpmap_math::{HeightField, HeightPreset, MipChain, MipMode, NormalMapOptions, mip::next_size};
 use rayon::prelude::*;
 
-use crate::args::{BenchArgs, BenchRenderArgs, BenchWhat, FormatArg};
+use crate::args::{BenchArgs, BenchRenderArgs, BenchWhat};
 use crate::error::CliError;
 
 /// Median, min and max of a set of durations in milliseconds.
@@ -143,7 +143,12 @@ pub fn bench_heights(size: usize) -> Vec<u8> {
     bricks.to_f32().iter().zip(&noise.to_f32()).map(|(b, n)| (b * 247.0 + n * 8.0).clamp(0.0, 255.0) as u8).collect()
 }
 
-fn bench_normalmap(size: usize, format: Option<FormatArg>, runs: u32, json: bool) -> Result<(), CliError> {
+fn bench_normalmap(
+    size: usize,
+    format: Option<bumpmap_io::texture_file::TextureFormat>,
+    runs: u32,
+    json: bool,
+) -> Result<(), CliError> {
     let bytes = bench_heights(size);
     let options = NormalMapOptions::default();
     let mut levels = 0;
@@ -155,7 +160,7 @@ fn bench_normalmap(size: usize, format: Option<FormatArg>, runs: u32, json: bool
         last = Some(chain);
     });
     if let Some(format) = format {
-        return bench_compression(size, &last.expect("ran"), format.into(), runs, json);
+        return bench_compression(size, &last.expect("ran"), format, runs, json);
     }
     let floor = time_runs(runs, || {
         std::hint::black_box(read_once_write_once(&bytes, size));
@@ -212,7 +217,7 @@ fn bench_compression(
     if json {
         println!(
             "{{\"bench\":\"compress\",\"format\":\"{}\",\"size\":{size},\"levels\":{},\"threads\":{threads},\"runs\":{runs},\"median_ms\":{:.3},\"min_ms\":{:.3},\"max_ms\":{:.3},\"mpix_per_s\":{:.1}}}",
-            format.name(),
+            format.dxgi_name(),
             chain.len(),
             stats.median,
             stats.min,
@@ -222,7 +227,7 @@ fn bench_compression(
     } else {
         println!(
             "{} compression of a {size}x{size} normal map and its {} levels, {threads} threads, {runs} runs",
-            format.name(),
+            format.dxgi_name(),
             chain.len()
         );
         println!(
@@ -238,15 +243,16 @@ fn bench_compression(
 
 /// Tangents for the peer's wavy grid (`bumpmap_math::mesh::wavy_grid`); the timed region is
 /// `generate_tangents` alone, validation included, as the peer times `genTangSpaceDefault`.
-fn bench_tangents(triangles: usize, mode: crate::args::TangentModeArg, runs: u32, json: bool) -> Result<(), CliError> {
-    use bumpmap_math::tangent::{TangentMode, TangentOptions, generate_tangents};
+fn bench_tangents(
+    triangles: usize,
+    mode: bumpmap_math::tangent::TangentMode,
+    runs: u32,
+    json: bool,
+) -> Result<(), CliError> {
+    use bumpmap_math::tangent::{TangentOptions, generate_tangents};
     let nx = 1000;
     let ny = (triangles / (2 * nx)).max(1);
     let mesh = bumpmap_math::mesh::wavy_grid(nx, ny);
-    let mode = match mode {
-        crate::args::TangentModeArg::Ours => TangentMode::Ours,
-        crate::args::TangentModeArg::Mikktspace => TangentMode::MikkTSpace,
-    };
     let options = TangentOptions { mode, ..Default::default() };
     let mut result = None;
     let stats = time_runs(runs, || {
@@ -254,7 +260,7 @@ fn bench_tangents(triangles: usize, mode: crate::args::TangentModeArg, runs: u32
     });
     let (out, _) = result.expect("ran").map_err(|e| CliError::Render(e.to_string()))?;
     let threads = rayon::current_num_threads();
-    let name = if mode == TangentMode::Ours { "ours" } else { "mikktspace" };
+    let name = bumpmap::Named::name(mode);
     let tris = mesh.triangle_count();
     if json {
         println!(

@@ -16,7 +16,7 @@ pub fn run(args: &CubemapArgs) -> Result<(), CliError> {
         return Ok(());
     }
     let out = args.output.as_ref().expect("clap requires --output without --accuracy");
-    let map = NormalizationCubeMap::new(args.size as usize, args.encoding.into());
+    let map = NormalizationCubeMap::new(args.size as usize, args.encoding);
     write(out, &map)
 }
 

@@ -4,9 +4,9 @@ use std::path::{Path, PathBuf};
 
 use bumpmap_io::MeshOptions;
 use bumpmap_io::atomic::{FileSet, ensure_not_input};
-use bumpmap_math::tangent::{TangentMode, TangentOptions, generate_tangents};
+use bumpmap_math::tangent::{TangentOptions, generate_tangents};
 
-use crate::args::{TangentModeArg, TangentsArgs};
+use crate::args::TangentsArgs;
 use crate::error::CliError;
 
 fn mesh_err(path: &Path, e: impl std::fmt::Display) -> CliError {
@@ -67,16 +67,18 @@ pub fn run(args: &TangentsArgs) -> Result<(), CliError> {
 
 /// The tangent options `args` give, `--split-angle` checked.
 pub fn tangent_options(args: &TangentsArgs) -> Result<TangentOptions, CliError> {
-    if !(0.0..=180.0).contains(&args.split_angle) {
-        return Err(CliError::Usage(format!("--split-angle must be in [0, 180], got {}", args.split_angle)));
+    let options = TangentOptions { mode: args.mode, split_angle_degrees: args.split_angle };
+    check_tangent_options(&options)?;
+    Ok(options)
+}
+
+/// Refuses a split angle outside [0, 180] degrees.
+pub fn check_tangent_options(options: &TangentOptions) -> Result<(), CliError> {
+    let angle = options.split_angle_degrees;
+    if !(0.0..=180.0).contains(&angle) {
+        return Err(CliError::Usage(format!("--split-angle must be in [0, 180], got {angle}")));
     }
-    Ok(TangentOptions {
-        mode: match args.mode {
-            TangentModeArg::Ours => TangentMode::Ours,
-            TangentModeArg::Mikktspace => TangentMode::MikkTSpace,
-        },
-        split_angle_degrees: args.split_angle,
-    })
+    Ok(())
 }
 
 /// The bytes of a PNG normal map for a glTF material, after decoding it once to be sure it is

@@ -26,7 +26,7 @@ const IMAGE_EXTENSIONS: [&str; 13] =
 
 pub fn run(args: &NormalmapArgs) -> Result<(), CliError> {
     let options = args.map.options();
-    let channel: Channel = args.map.channel.into();
+    let channel: Channel = args.map.channel;
     let input = Path::new(&args.input);
     if input.is_dir() {
         if args.roughness_out.is_some()
@@ -112,7 +112,7 @@ pub fn run(args: &NormalmapArgs) -> Result<(), CliError> {
     }
     let field = source.load(channel)?;
     extras::ensure_room(args, field.width(), field.height())?;
-    let levels = make_chain(&field, &options, args.mips, args.mip_mode.into(), format, &args.input)?;
+    let levels = make_chain(&field, &options, args.mips, args.mip_mode, format, &args.input)?;
     let horizons = if args.horizon_out.is_some() || args.ao_out.is_some() || args.bent_normals_out.is_some() {
         Some(horizon_map(&field, options.wrap, &args.input)?)
     } else {
@@ -204,13 +204,13 @@ fn output_file(output: &Path, source: &HeightSource, spec: &str, format: Texture
 
 /// The texel format `--format` and `--bits` ask for together.
 pub fn texel_format(args: &NormalmapArgs) -> Result<TextureFormat, CliError> {
-    let format: TextureFormat = args.format.into();
+    let format: TextureFormat = args.format;
     match (format, args.bits) {
         (TextureFormat::Rgba8, 16) => Ok(TextureFormat::Rgba16),
         (TextureFormat::Rgba16, _) => Ok(TextureFormat::Rgba16),
         (f, 16) => Err(CliError::Usage(format!(
             "--bits 16 cannot be stored as --format {}: BC5 and BC7 hold 8 bits a channel (use rgba8 with --bits 16)",
-            f.name()
+            f.dxgi_name()
         ))),
         (f, _) => Ok(f),
     }
@@ -302,7 +302,7 @@ pub fn check_format(out: &Path, format: TextureFormat) -> Result<(), CliError> {
         return Err(CliError::Usage(format!(
             "{}: --format {} needs a .dds or .ktx2 output (PNG holds uncompressed texels only)",
             out.display(),
-            format.name()
+            format.dxgi_name()
         )));
     }
     Ok(())
@@ -444,7 +444,7 @@ fn run_folder(
                 .map_err(CliError::from)
                 .and_then(|_| Ok(bumpmap_io::load_height_field(file, channel)?))
                 .and_then(|field| {
-                    make_chain(&field, options, args.mips, args.mip_mode.into(), format, &file.display().to_string())
+                    make_chain(&field, options, args.mips, args.mip_mode, format, &file.display().to_string())
                 })
                 .and_then(|chain| write_set(&out, &chain, &[file], format).map(|_| ()));
             bar.inc(1);

@@ -127,7 +127,7 @@ fn read_half(path: &Path) -> Result<Vec<RgbaLevel>, IoError> {
             file,
             format!(
                 "holds {} texels; a horizon map's texture holds four directions (R8G8B8A8 or R16G16B16A16_UNORM)",
-                f.name()
+                f.dxgi_name()
             ),
         )),
         _ => Ok(()),

@@ -4,6 +4,7 @@
 //! texture coordinate t = 0 in OpenGL's convention (so a PNG viewer shows t growing downward).
 //! Sizes are checked against [`MAX_DIMENSION`] from the header, before any pixel is decoded.
 
+use bumpmap_math::Named;
 use std::path::{Path, PathBuf};
 
 use bumpmap_math::{HeightField, HeightPreset, Rgba8Image};
@@ -31,18 +32,13 @@ pub enum Channel {
     Alpha,
 }
 
-impl Channel {
-    /// The channel's name as the command line spells it.
-    pub fn name(self) -> &'static str {
-        match self {
-            Channel::Luminance => "luminance",
-            Channel::Red => "red",
-            Channel::Green => "green",
-            Channel::Blue => "blue",
-            Channel::Alpha => "alpha",
-        }
-    }
-}
+bumpmap_math::named!(Channel {
+    Luminance => "luminance": "the grey value, or Rec. 709 luminance of a colour image",
+    Red => "red": "red",
+    Green => "green": "green",
+    Blue => "blue": "blue",
+    Alpha => "alpha": "alpha",
+});
 
 /// Where a height field comes from: a built-in preset or an image file.
 #[derive(Clone, Debug, PartialEq)]

@@ -97,9 +97,51 @@ pub enum TextureFormat {
     Rg16,
 }
 
+/// The formats a user picks for a normal map's file (the others hold the maps written beside
+/// it); the name texconv uses (`BC5_UNORM`) is an alias.
+impl bumpmap_math::Named for TextureFormat {
+    const ALL: &'static [Self] = &[TextureFormat::Rgba8, TextureFormat::Rgba16, TextureFormat::Bc5, TextureFormat::Bc7];
+
+    fn name(self) -> &'static str {
+        match self {
+            TextureFormat::Rgba8 => "rgba8",
+            TextureFormat::Rgba16 => "rgba16",
+            TextureFormat::Bc5 => "bc5",
+            TextureFormat::Bc7 => "bc7",
+            TextureFormat::Rgba32Float => "rgba32f",
+            TextureFormat::R8 => "r8",
+            TextureFormat::R16 => "r16",
+            TextureFormat::Rg16 => "rg16",
+        }
+    }
+
+    fn description(self) -> &'static str {
+        match self {
+            TextureFormat::Rgba8 => "Uncompressed 8-bit RGBA (16-bit with 16 bits a channel)",
+            TextureFormat::Rgba16 => "Uncompressed 16-bit RGBA (the same as 16 bits a channel)",
+            TextureFormat::Bc5 => "BC5: two channels (X, Y), 8 bits per texel",
+            TextureFormat::Bc7 => "BC7: four channels, 8 bits per texel",
+            TextureFormat::Rgba32Float => "Uncompressed 32-bit float RGBA",
+            TextureFormat::R8 => "One 8-bit channel",
+            TextureFormat::R16 => "One 16-bit channel",
+            TextureFormat::Rg16 => "Two 16-bit channels",
+        }
+    }
+
+    fn aliases(self) -> &'static [&'static str] {
+        match self {
+            TextureFormat::Rgba8 => &["r8g8b8a8_unorm"],
+            TextureFormat::Rgba16 => &["r16g16b16a16_unorm"],
+            TextureFormat::Bc5 => &["bc5_unorm"],
+            TextureFormat::Bc7 => &["bc7_unorm"],
+            _ => &[],
+        }
+    }
+}
+
 impl TextureFormat {
     /// The name texconv uses.
-    pub fn name(self) -> &'static str {
+    pub fn dxgi_name(self) -> &'static str {
         match self {
             TextureFormat::Rgba8 => "R8G8B8A8_UNORM",
             TextureFormat::Rgba16 => "R16G16B16A16_UNORM",
@@ -177,7 +219,7 @@ fn encode_level(path: &Path, level: Level, format: TextureFormat) -> Result<Vec<
                 path: path.to_path_buf(),
                 source: std::io::Error::other(format!(
                     "one- and two-channel levels are stored as R8_UNORM, R16_UNORM or R16G16_UNORM and only they are, not as {}",
-                    format.name()
+                    format.dxgi_name()
                 )),
             });
         }
@@ -189,7 +231,7 @@ fn encode_level(path: &Path, level: Level, format: TextureFormat) -> Result<Vec<
                 path: path.to_path_buf(),
                 source: std::io::Error::other(format!(
                     "float levels are stored as R32G32B32A32_FLOAT and only they are, not as {}",
-                    format.name()
+                    format.dxgi_name()
                 )),
             });
         }

@@ -444,7 +444,7 @@ fn read_dds(bytes: &[u8], path: &Path) -> Result<StoredTexture, IoError> {
                 sizes.len(),
                 h.width,
                 h.height,
-                layout.format().name()
+                layout.format().dxgi_name()
             ),
         ));
     }

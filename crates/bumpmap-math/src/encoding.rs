@@ -13,6 +13,11 @@ pub enum Encoding {
     Kilgard,
 }
 
+crate::named!(Encoding {
+    Unorm => "unorm": "round(127.5·n + 127.5): symmetric, what modern tools write",
+    Kilgard => "kilgard": "(byte)(128 + 127·n), truncated: the paper's Appendices D–F, byte for byte",
+});
+
 impl Encoding {
     /// Encodes one signed component. Inputs outside [-1, 1] saturate.
     #[inline(always)]

@@ -32,6 +32,16 @@ pub enum Kernel {
     Gaussian7,
 }
 
+crate::named!(Kernel {
+    Forward => "forward": "F(u+1) − F(u): the paper's right/up differences (Kilgard Appendix E)",
+    Central => "central": "(F(u+1) − F(u−1)) / 2",
+    Sobel3 => "sobel3": "3×3 Sobel",
+    Sobel5 => "sobel5": "5×5 Sobel",
+    Prewitt3 => "prewitt3": "3×3 Prewitt (what DirectXTex uses)",
+    Scharr3 => "scharr3": "3×3 Scharr",
+    Gaussian7 => "gaussian7": "7×7 derivative of a Gaussian, σ = 1 (Peercy et al.)",
+});
+
 /// One tap of a derivative kernel: the height at texel offset (dx, dy) times `weight`.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Tap {
@@ -55,22 +65,9 @@ impl Kernel {
         Kernel::Gaussian7,
     ];
 
-    /// The name the command line uses.
-    pub fn name(self) -> &'static str {
-        match self {
-            Kernel::Forward => "forward",
-            Kernel::Central => "central",
-            Kernel::Sobel3 => "sobel3",
-            Kernel::Sobel5 => "sobel5",
-            Kernel::Prewitt3 => "prewitt3",
-            Kernel::Scharr3 => "scharr3",
-            Kernel::Gaussian7 => "gaussian7",
-        }
-    }
-
     /// The kernel called `name` (any case).
     pub fn parse(name: &str) -> Option<Self> {
-        Self::ALL.into_iter().find(|k| k.name().eq_ignore_ascii_case(name))
+        Self::ALL.into_iter().find(|k| crate::Named::name(*k).eq_ignore_ascii_case(name))
     }
 
     /// How far the kernel reaches from the centre texel, in texels.
@@ -180,16 +177,13 @@ pub enum Wrap {
     Border,
 }
 
-impl Wrap {
-    /// The name the command line uses.
-    pub fn name(self) -> &'static str {
-        match self {
-            Wrap::Repeat => "repeat",
-            Wrap::Clamp => "clamp",
-            Wrap::Border => "border",
-        }
-    }
+crate::named!(Wrap {
+    Repeat => "repeat": "The field tiles: edges read the opposite edge",
+    Clamp => "clamp": "Edges repeat the last texel",
+    Border => "border": "Kilgard's border case: the input is one texel wider and taller than the output",
+});
 
+impl Wrap {
     /// Maps a possibly out-of-range index into `0..n`. `n` must be positive.
     #[inline(always)]
     pub fn index(self, i: i64, n: usize) -> usize {
@@ -204,6 +198,7 @@ impl Wrap {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::Named;
 
     #[test]
     fn every_kernel_returns_the_slope_of_a_ramp() {

@@ -30,6 +30,11 @@ pub enum MipMode {
     Renormalize,
 }
 
+crate::named!(MipMode {
+    LengthInAlpha => "length-in-alpha": "RGB = normalized mean of the covered normals, A = its length (Kilgard §5.3)",
+    Renormalize => "renormalize": "RGB = normalized mean, A = 255: what most tools do (too bright at a distance)",
+});
+
 /// Level 0 and every smaller level down to 1×1 (a chain imported with a file's own levels may
 /// stop earlier), 8 bits per channel unless `T` says 16.
 #[derive(Clone, Debug, PartialEq, Eq)]

@@ -285,6 +285,7 @@ pub fn encode_unit<T: Texel>(n: Vec3, enc: Encoding) -> T {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::Named;
 
     #[test]
     fn images_narrower_or_shorter_than_the_kernel_give_unit_normals() {

@@ -42,6 +42,11 @@ pub enum TangentMode {
     MikkTSpace,
 }
 
+crate::named!(TangentMode {
+    Ours => "ours": "Per-triangle ∂P/∂s blended at vertices, split at mirror seams (Cg Tutorial §8.4); parallel",
+    MikkTSpace => "mikktspace": "The reference MikkTSpace algorithm (what Blender, Substance and glTF viewers use)",
+});
+
 /// Options of [`generate_tangents`].
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct TangentOptions {

@@ -1,5 +1,6 @@
 //! Heights → normal map → heights: the round trips `bumpmap height` promises.
 
+use bumpmap::Named;
 use bumpmap::heights::{HeightOptions, heights_from_normals};
 use bumpmap::inspect::{DecodedMap, StoredAs};
 use bumpmap::{HeightField, HeightPreset, Kernel, NormalMapOptions, YConvention};

@@ -5,11 +5,13 @@
 use std::fmt::Debug;
 
 use bumpmap::bumpmap_core::combiners::Precision;
-use bumpmap::bumpmap_io::ObjTexcoords;
+use bumpmap::bumpmap_io::texture_file::TextureFormat;
+use bumpmap::bumpmap_io::{Channel, ObjTexcoords};
+use bumpmap::bumpmap_math::tangent::TangentMode;
 use bumpmap::options::{Filter, RoughnessLayout};
 use bumpmap::{
-    BackendChoice, HalfAngle, Named, Normalize, ParallaxShadow, SelfShadow, SpecularFilter, SpecularMode,
-    SpecularShadow, TechniqueName, ViewerModel, YConvention,
+    BackendChoice, Encoding, HalfAngle, Kernel, MipMode, Named, Normalize, ParallaxShadow, SelfShadow, SpecularFilter,
+    SpecularMode, SpecularShadow, TechniqueName, ViewerModel, Wrap, YConvention,
 };
 
 fn words_read_back<T: Named + Debug>() -> usize {
@@ -50,6 +52,13 @@ fn every_closed_set_reads_its_own_words() {
         words_read_back::<RoughnessLayout>(),
         words_read_back::<BackendChoice>(),
         words_read_back::<TechniqueName>(),
+        words_read_back::<Kernel>(),
+        words_read_back::<Wrap>(),
+        words_read_back::<Encoding>(),
+        words_read_back::<MipMode>(),
+        words_read_back::<Channel>(),
+        words_read_back::<TangentMode>(),
+        words_read_back::<TextureFormat>(),
     ];
-    assert_eq!(counts, [2, 2, 2, 3, 2, 2, 2, 3, 2, 3, 5, 4, 4, 3, 24]);
+    assert_eq!(counts, [2, 2, 2, 3, 2, 2, 2, 3, 2, 3, 5, 4, 4, 3, 24, 7, 3, 2, 2, 5, 2, 4]);
 }

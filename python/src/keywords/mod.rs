@@ -1,20 +1,24 @@
-//! `render`'s and `compare`'s keywords as typed values: each keyword's Python value — a number, a
-//! tuple for a vector, a word of a closed set, a path, an array — set straight into the field of
-//! the library's options it stands for ([`SceneOptions`](bumpmap::options::SceneOptions) and
-//! the frame's size and backend; [`CompareOptions`](bumpmap_compare::CompareOptions)). No text is
-//! put together for a command line: the words of closed sets are the library's ([`Named`]), the
-//! ranges are checked by the library, and the defaults are its own.
+//! Keywords as typed values: each keyword's Python value — a number, a tuple for a vector, a word
+//! of a closed set, a path, an array — set straight into the field of the options it stands for
+//! (the library's [`SceneOptions`](bumpmap::options::SceneOptions) with the frame's size and
+//! backend, [`CompareOptions`](bumpmap_compare::CompareOptions), `TangentOptions`, a
+//! `TextureFormat`, the maps' `MapRequest`). No text is put together for a command line: the
+//! words of closed sets are the library's ([`Named`]), the ranges are checked by the library, and
+//! the defaults are its own.
 //!
 //! - `render`: `render`'s and `Renderer.prepare`'s keywords → a `Request` and its arrays;
-//! - `compare`: `compare`'s keywords → `CompareOptions`.
+//! - `compare`: `compare`'s keywords → `CompareOptions`;
+//! - `maps`: the map functions' keywords → a `MapRequest`; `tangents`' and `write_texture`'s.
 //!
 //! What it does not do: document the keywords (the docstrings read the command's help, which
 //! reads the same library names), or set anything up (`bumpmap::options`).
 
 mod compare;
+mod maps;
 mod render;
 
 pub use compare::{COMPARE_KEYWORDS, compare_options};
+pub use maps::{TANGENT_KEYWORDS, map_keywords, map_request, tangent_options, texture_format};
 pub use render::{KEYWORDS, render_request};
 
 use std::path::PathBuf;

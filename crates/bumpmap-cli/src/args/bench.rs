@@ -2,7 +2,11 @@
 
 use clap::{Args, Subcommand};
 
-use crate::args::{BenchRenderArgs, FormatArg, TangentModeArg, parse_side};
+use bumpmap_math::tangent::TangentMode;
+
+use bumpmap_io::texture_file::TextureFormat;
+
+use crate::args::{BenchRenderArgs, choice, parse_side};
 
 /// `bumpmap bench`.
 #[derive(Args, Debug)]
@@ -21,8 +25,8 @@ pub enum BenchWhat {
         #[arg(long, default_value_t = 4096, value_parser = clap::value_parser!(u32).range(1..=16384))]
         size: u32,
         /// Also time compressing the chain to this format (bc5, bc7), every level
-        #[arg(long, value_enum, ignore_case = true)]
-        format: Option<FormatArg>,
+        #[arg(long, value_parser = choice::<TextureFormat>(), ignore_case = true)]
+        format: Option<TextureFormat>,
         /// Timed runs (after one warm-up)
         #[arg(long, default_value_t = 9, value_parser = clap::value_parser!(u32).range(1..))]
         runs: u32,
@@ -55,8 +59,8 @@ pub enum BenchWhat {
         #[arg(long, default_value_t = 1_000_000, value_parser = clap::value_parser!(u32).range(2000..=50_000_000))]
         triangles: u32,
         /// Which algorithm
-        #[arg(long, value_enum, default_value = "ours")]
-        mode: TangentModeArg,
+        #[arg(long, value_parser = choice::<TangentMode>(), default_value = "ours")]
+        mode: TangentMode,
         /// Timed runs (after one warm-up)
         #[arg(long, default_value_t = 5, value_parser = clap::value_parser!(u32).range(1..))]
         runs: u32,

@@ -4,7 +4,9 @@ use std::path::PathBuf;
 
 use clap::Args;
 
-use crate::args::EncodingArg;
+use bumpmap_math::Encoding;
+
+use crate::args::choice;
 
 /// `bumpmap cubemap`.
 #[derive(Args, Debug)]
@@ -18,8 +20,8 @@ pub struct CubemapArgs {
     #[arg(long, default_value_t = 32, value_parser = clap::value_parser!(u32).range(1..=4096))]
     pub size: u32,
     /// Byte encoding of the vectors
-    #[arg(long, value_enum, default_value = "unorm")]
-    pub encoding: EncodingArg,
+    #[arg(long, value_parser = choice::<Encoding>(), default_value = "unorm")]
+    pub encoding: Encoding,
     /// A folder (six PNG faces), or a .dds / .ktx2 cube-map file
     #[arg(short, long, required_unless_present = "accuracy")]
     pub output: Option<PathBuf>,

@@ -90,7 +90,7 @@ pub enum DerivativeChoice {
 
 /// `auto`, `spectral`, or a kernel's name ([`Kernel::ALL`]).
 fn derivative_parser() -> impl TypedValueParser<Value = DerivativeChoice> {
-    let names = ["auto", "spectral"].into_iter().chain(Kernel::ALL.map(Kernel::name));
+    let names = ["auto", "spectral"].into_iter().chain(Kernel::ALL.map(bumpmap::Named::name));
     PossibleValuesParser::new(names).map(|name| match name.as_str() {
         "auto" => DerivativeChoice::Auto,
         "spectral" => DerivativeChoice::Given(Derivative::Spectral),

@@ -24,7 +24,7 @@ pub use view::*;
 
 use bumpmap::Named;
 use clap::builder::{PossibleValue, PossibleValuesParser, TypedValueParser};
-use clap::{Parser, Subcommand, ValueEnum};
+use clap::{Parser, Subcommand};
 
 /// `bumpmap` and its subcommand.
 #[derive(Parser, Debug)]
@@ -147,48 +147,19 @@ pub fn parse_counts(s: &str) -> Result<(usize, usize), String> {
     Ok((p(a)?, p(b)?))
 }
 
-/// Texel formats of DDS and KTX2 outputs.
-#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
-pub enum FormatArg {
-    /// Uncompressed 8-bit RGBA (16-bit with --bits 16)
-    #[value(alias = "r8g8b8a8_unorm")]
-    Rgba8,
-    /// Uncompressed 16-bit RGBA (the same as --bits 16)
-    #[value(alias = "r16g16b16a16_unorm")]
-    Rgba16,
-    /// BC5: two channels (X, Y), 8 bits per texel
-    #[value(alias = "bc5_unorm")]
-    Bc5,
-    /// BC7: four channels, 8 bits per texel
-    #[value(alias = "bc7_unorm")]
-    Bc7,
-}
-
-impl From<FormatArg> for bumpmap_io::texture_file::TextureFormat {
-    fn from(f: FormatArg) -> Self {
-        use bumpmap_io::texture_file::TextureFormat;
-        match f {
-            FormatArg::Rgba8 => TextureFormat::Rgba8,
-            FormatArg::Rgba16 => TextureFormat::Rgba16,
-            FormatArg::Bc5 => TextureFormat::Bc5,
-            FormatArg::Bc7 => TextureFormat::Bc7,
-        }
-    }
-}
-
-/// How tangents are made.
-#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
-pub enum TangentModeArg {
-    /// Per-triangle ∂P/∂s blended at vertices, split at mirror seams (Cg Tutorial §8.4); parallel
-    Ours,
-    /// The reference MikkTSpace algorithm (what Blender, Substance and glTF viewers use)
-    Mikktspace,
-}
-
 /// The value parser of a closed set the library names ([`Named`]): its names, aliases and
 /// descriptions are what `--help` lists and what the option takes.
 pub fn choice<T: Named>() -> impl TypedValueParser<Value = T> {
     let values =
         T::ALL.iter().map(|v| PossibleValue::new(v.name()).help(v.description()).aliases(v.aliases().iter().copied()));
-    PossibleValuesParser::new(values).map(|word| T::parse(&word).expect("clap accepts only the set's names"))
+    // An option with `ignore_case` hands over the word as typed: it is matched the same way.
+    PossibleValuesParser::new(values).map(|word| {
+        T::parse(&word)
+            .or_else(|| {
+                T::ALL.iter().copied().find(|v| {
+                    v.name().eq_ignore_ascii_case(&word) || v.aliases().iter().any(|a| a.eq_ignore_ascii_case(&word))
+                })
+            })
+            .expect("clap accepts only the set's names")
+    })
 }

@@ -5,162 +5,47 @@ use std::path::PathBuf;
 
 use bumpmap_io::Channel;
 use bumpmap_math::{Encoding, Kernel, MipMode, Wrap};
-use clap::{Args, ValueEnum};
+use clap::Args;
 
 use bumpmap::YConvention;
 use bumpmap::options::RoughnessLayout;
 
-use crate::args::{FormatArg, choice, parse_f32};
+use bumpmap_io::texture_file::TextureFormat;
 
-/// The finite-difference kernel.
-#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
-pub enum KernelArg {
-    /// F(u+1) − F(u): the paper's right/up differences (Kilgard Appendix E)
-    Forward,
-    /// (F(u+1) − F(u−1)) / 2
-    Central,
-    /// 3×3 Sobel
-    Sobel3,
-    /// 5×5 Sobel
-    Sobel5,
-    /// 3×3 Prewitt (what DirectXTex uses)
-    Prewitt3,
-    /// 3×3 Scharr
-    Scharr3,
-    /// 7×7 derivative of a Gaussian, σ = 1 (Peercy et al.)
-    Gaussian7,
-}
-
-impl From<KernelArg> for Kernel {
-    fn from(k: KernelArg) -> Self {
-        match k {
-            KernelArg::Forward => Kernel::Forward,
-            KernelArg::Central => Kernel::Central,
-            KernelArg::Sobel3 => Kernel::Sobel3,
-            KernelArg::Sobel5 => Kernel::Sobel5,
-            KernelArg::Prewitt3 => Kernel::Prewitt3,
-            KernelArg::Scharr3 => Kernel::Scharr3,
-            KernelArg::Gaussian7 => Kernel::Gaussian7,
-        }
-    }
-}
-
-/// What the kernel reads beyond the edges.
-#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
-pub enum WrapArg {
-    /// The field tiles: edges read the opposite edge
-    Repeat,
-    /// Edges repeat the last texel
-    Clamp,
-    /// Kilgard's border case: the input is one texel wider and taller than the output
-    Border,
-}
-
-impl From<WrapArg> for Wrap {
-    fn from(w: WrapArg) -> Self {
-        match w {
-            WrapArg::Repeat => Wrap::Repeat,
-            WrapArg::Clamp => Wrap::Clamp,
-            WrapArg::Border => Wrap::Border,
-        }
-    }
-}
-
-/// How a component becomes a byte.
-#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
-pub enum EncodingArg {
-    /// round(127.5·n + 127.5): symmetric, what modern tools write
-    Unorm,
-    /// (byte)(128 + 127·n), truncated: the paper's Appendices D–F, byte for byte
-    Kilgard,
-}
-
-impl From<EncodingArg> for Encoding {
-    fn from(e: EncodingArg) -> Self {
-        match e {
-            EncodingArg::Unorm => Encoding::Unorm,
-            EncodingArg::Kilgard => Encoding::Kilgard,
-        }
-    }
-}
-
-/// What the smaller levels store.
-#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
-pub enum MipModeArg {
-    /// RGB = normalized mean of the covered normals, A = its length (Kilgard §5.3)
-    LengthInAlpha,
-    /// RGB = normalized mean, A = 255: what most tools do (too bright at a distance)
-    Renormalize,
-}
-
-impl From<MipModeArg> for MipMode {
-    fn from(m: MipModeArg) -> Self {
-        match m {
-            MipModeArg::LengthInAlpha => MipMode::LengthInAlpha,
-            MipModeArg::Renormalize => MipMode::Renormalize,
-        }
-    }
-}
-
-/// Which channel of an image holds the heights.
-#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
-pub enum ChannelArg {
-    /// the grey value, or Rec. 709 luminance of a colour image
-    Luminance,
-    /// red
-    Red,
-    /// green
-    Green,
-    /// blue
-    Blue,
-    /// alpha
-    Alpha,
-}
-
-impl From<ChannelArg> for Channel {
-    fn from(c: ChannelArg) -> Self {
-        match c {
-            ChannelArg::Luminance => Channel::Luminance,
-            ChannelArg::Red => Channel::Red,
-            ChannelArg::Green => Channel::Green,
-            ChannelArg::Blue => Channel::Blue,
-            ChannelArg::Alpha => Channel::Alpha,
-        }
-    }
-}
+use crate::args::{choice, parse_f32};
 
 /// Options that decide how heights become normals; shared by every command that makes one.
 #[derive(Args, Debug, Clone)]
 pub struct NormalMapOpts {
     /// Finite-difference kernel for ∂F/∂u and ∂F/∂v
-    #[arg(long, value_enum, default_value = "forward")]
-    pub kernel: KernelArg,
+    #[arg(long, value_parser = choice::<Kernel>(), default_value = "forward")]
+    pub kernel: Kernel,
     /// Bump height: heights are in [0,1], derivatives per texel, n ∝ (−scale·∂F/∂u, −scale·∂F/∂v, 1)
     #[arg(value_parser = parse_f32, long, default_value_t = 4.0, allow_negative_numbers = true)]
     pub scale: f32,
     /// What the kernel reads beyond the edges
-    #[arg(long, value_enum, default_value = "repeat")]
-    pub wrap: WrapArg,
+    #[arg(long, value_parser = choice::<Wrap>(), default_value = "repeat")]
+    pub wrap: Wrap,
     /// Byte encoding of the normal's components
-    #[arg(long, value_enum, default_value = "unorm")]
-    pub encoding: EncodingArg,
+    #[arg(long, value_parser = choice::<Encoding>(), default_value = "unorm")]
+    pub encoding: Encoding,
     /// Which way green points in the file, as the image is displayed: opengl (alias y-up: glTF, Blender, Unity) or directx (alias y-down: Unreal)
     #[arg(long = "y-convention", value_parser = choice::<YConvention>(), default_value = "opengl")]
     pub y_convention: YConvention,
     /// Which channel of a colour image holds the heights (greyscale images: their grey value)
-    #[arg(long, value_enum, default_value = "luminance")]
-    pub channel: ChannelArg,
+    #[arg(long, value_parser = choice::<Channel>(), default_value = "luminance")]
+    pub channel: Channel,
 }
 
 impl NormalMapOpts {
     /// The options as the library takes them.
     pub fn options(&self) -> bumpmap_math::NormalMapOptions {
         bumpmap_math::NormalMapOptions {
-            kernel: self.kernel.into(),
+            kernel: self.kernel,
             scale: self.scale,
-            wrap: self.wrap.into(),
+            wrap: self.wrap,
             y_convention: self.y_convention,
-            encoding: self.encoding.into(),
+            encoding: self.encoding,
         }
     }
 }
@@ -188,11 +73,11 @@ pub struct NormalmapArgs {
     #[arg(long)]
     pub mips: bool,
     /// What the smaller levels store
-    #[arg(long = "mip-mode", value_enum, default_value = "length-in-alpha")]
-    pub mip_mode: MipModeArg,
+    #[arg(long = "mip-mode", value_parser = choice::<MipMode>(), default_value = "length-in-alpha")]
+    pub mip_mode: MipMode,
     /// Texel format of .dds and .ktx2 outputs: rgba8 (uncompressed), bc5 (red and green, Z rebuilt in the shader; drops the length factor in alpha), bc7 (all four channels). texconv's names work too (BC5_UNORM, …); a folder run with bc5/bc7 writes .dds files
-    #[arg(long, value_enum, default_value = "rgba8", ignore_case = true)]
-    pub format: FormatArg,
+    #[arg(long, value_parser = choice::<TextureFormat>(), default_value = "rgba8", ignore_case = true)]
+    pub format: TextureFormat,
     /// Bits per channel of uncompressed outputs: 8, or 16 (16-bit PNG, R16G16B16A16_UNORM in .dds and .ktx2)
     #[arg(long, default_value_t = 8, value_parser = parse_bits)]
     pub bits: u8,

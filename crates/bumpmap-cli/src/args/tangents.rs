@@ -6,7 +6,9 @@ use clap::Args;
 
 use bumpmap_io::ObjTexcoords;
 
-use crate::args::{TangentModeArg, choice, parse_f32};
+use bumpmap_math::tangent::TangentMode;
+
+use crate::args::{choice, parse_f32};
 
 /// `bumpmap tangents`.
 #[derive(Args, Debug)]
@@ -29,8 +31,8 @@ pub struct TangentsArgs {
     #[arg(short, long)]
     pub output: PathBuf,
     /// Which algorithm makes the tangents
-    #[arg(long, value_enum, default_value = "ours")]
-    pub mode: TangentModeArg,
+    #[arg(long, value_parser = choice::<TangentMode>(), default_value = "ours")]
+    pub mode: TangentMode,
     /// Ours: tangents further apart than this many degrees split a vertex
     #[arg(value_parser = parse_f32, long = "split-angle", default_value_t = 60.0)]
     pub split_angle: f32,

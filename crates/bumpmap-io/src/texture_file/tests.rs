@@ -142,16 +142,16 @@ fn one_and_two_channel_levels_parse_with_independent_readers() {
         ),
     ];
     for (tex, format, vk, dxgi, want) in cases {
-        let path = tmp(&format!("{}.ktx2", format.name()));
+        let path = tmp(&format!("{}.ktx2", format.dxgi_name()));
         write_ktx2(&path, &tex, format).unwrap();
         let bytes = std::fs::read(&path).unwrap();
         let reader = ktx2::Reader::new(&bytes[..]).expect("valid KTX2");
         assert_eq!(reader.header().format, Some(vk));
         for (k, level) in reader.levels().enumerate() {
-            assert_eq!(level.data, want[k].as_slice(), "{} level {k}", format.name());
+            assert_eq!(level.data, want[k].as_slice(), "{} level {k}", format.dxgi_name());
         }
         std::fs::remove_file(&path).unwrap();
-        let path = tmp(&format!("{}.dds", format.name()));
+        let path = tmp(&format!("{}.dds", format.dxgi_name()));
         write_dds(&path, &tex, format).unwrap();
         let dds = ddsfile::Dds::read(std::fs::File::open(&path).unwrap()).expect("valid DDS");
         assert_eq!(dds.get_dxgi_format(), Some(dxgi));

@@ -25,6 +25,7 @@
 //! What this module does not do: decide the Y convention, the boundary or the kernel a map was
 //! made with (that is [`crate::inspect`]), read files, or rescale the result to [0, 1].
 
+use crate::Named;
 use glam::Vec4;
 use realfft::num_complex::Complex32;
 

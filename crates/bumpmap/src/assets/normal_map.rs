@@ -52,7 +52,7 @@ impl LoadedNormalMap {
             n if self.own_mips => format!("its own {n} levels"),
             n => format!("{made} (its own {n} levels set aside)"),
         };
-        format!("{}x{} {}, {mips}", level.width, level.height, self.format.name())
+        format!("{}x{} {}, {mips}", level.width, level.height, self.format.dxgi_name())
     }
 
     /// Warnings when the map looks like no normal map, or packs something else in alpha.

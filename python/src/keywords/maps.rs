@@ -1,0 +1,90 @@
+//! The map functions' keywords (`normal_map`, `mip_chain`, `height_mips`, `horizon_maps`,
+//! `roughness_map`, `lean_moments`, `read_height_field`): how heights become normals and what
+//! else is made, as the command line's `MapRequest`; and `tangents`' algorithm and split angle.
+
+use bumpmap_cli::commands::MapRequest;
+use bumpmap_io::texture_file::TextureFormat;
+use bumpmap_math::tangent::TangentOptions;
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+
+use super::{Reader, given, unexpected};
+
+/// The keywords `function` takes, and the request they make from the command line's defaults.
+pub fn map_request(function: &str, taken: &[&str], kwargs: Option<&Bound<'_, PyDict>>) -> PyResult<MapRequest> {
+    let r = Reader { function };
+    let mut m = MapRequest::default();
+    for (key, value) in given(kwargs)? {
+        if !taken.contains(&key.as_str()) {
+            return Err(unexpected(function, &key, taken));
+        }
+        let v = &value;
+        match key.as_str() {
+            "scale" => m.normals.scale = r.number(&key, v)?,
+            "kernel" => m.normals.kernel = r.word(&key, v)?,
+            "wrap" => m.normals.wrap = r.word(&key, v)?,
+            "encoding" => m.normals.encoding = r.word(&key, v)?,
+            "y_convention" => m.normals.y_convention = r.word(&key, v)?,
+            "bits" => {
+                let bits = r.count(&key, v)?;
+                if !matches!(bits, 8 | 16) {
+                    return Err(r.value_error(&key, format!("{bits} is not 8 or 16")));
+                }
+                m.bits = bits as u8;
+            }
+            "mip_mode" => m.mip_mode = r.word(&key, v)?,
+            "roughness" => m.roughness = r.number(&key, v)?,
+            "roughness_layout" => m.roughness_layout = r.word(&key, v)?,
+            "channel" => m.channel = r.word(&key, v)?,
+            _ => unreachable!("every keyword a map function takes is read here: {key}"),
+        }
+    }
+    Ok(m)
+}
+
+/// Every keyword `tangents` takes.
+pub const TANGENT_KEYWORDS: [&str; 2] = ["mode", "split_angle"];
+
+/// `tangents`' keywords as the library's options.
+pub fn tangent_options(function: &str, kwargs: Option<&Bound<'_, PyDict>>) -> PyResult<TangentOptions> {
+    let r = Reader { function };
+    let mut o = TangentOptions::default();
+    for (key, value) in given(kwargs)? {
+        match key.as_str() {
+            "mode" => o.mode = r.word(&key, &value)?,
+            "split_angle" => o.split_angle_degrees = r.number(&key, &value)?,
+            _ => return Err(unexpected(function, &key, &TANGENT_KEYWORDS)),
+        }
+    }
+    Ok(o)
+}
+
+/// `write_texture`'s one keyword: the format the levels are stored in.
+pub fn texture_format(function: &str, kwargs: Option<&Bound<'_, PyDict>>) -> PyResult<TextureFormat> {
+    let r = Reader { function };
+    let mut format = TextureFormat::Rgba8;
+    for (key, value) in given(kwargs)? {
+        match key.as_str() {
+            "format" => format = r.word(&key, &value)?,
+            _ => return Err(unexpected(function, &key, &["format"])),
+        }
+    }
+    Ok(format)
+}
+
+/// How heights become normals: what every map function takes.
+const NORMALS: [&str; 5] = ["scale", "kernel", "wrap", "encoding", "y_convention"];
+
+/// The keywords each map function takes.
+pub fn map_keywords(function: &str) -> Option<Vec<&'static str>> {
+    let extra: &[&'static str] = match function {
+        "normal_map" | "horizon_maps" => &["bits"],
+        "mip_chain" => &["bits", "mip_mode"],
+        "height_mips" => return Some(vec!["bits"]),
+        "roughness_map" => &["roughness", "roughness_layout"],
+        "lean_moments" => &[],
+        "read_height_field" => return Some(vec!["channel"]),
+        _ => return None,
+    };
+    Some(NORMALS.iter().chain(extra).copied().collect())
+}
