@@ -17,7 +17,7 @@ use bumpmap_math::HeightField;
 use bumpmap_math::mesh::Mesh;
 use bumpmap_math::tangent::{TangentOptions, TangentReport, generate_tangents};
 
-use crate::args::{CompareArgs, NormalmapArgs, RenderArgs};
+use crate::args::NormalmapArgs;
 use crate::error::CliError;
 pub use crate::report::Progress;
 
@@ -131,11 +131,6 @@ pub fn lean(
     crate::normalmap::lean_levels(field, &map.normals, &chain, name)
 }
 
-/// The texel format `normalmap`'s `--format` and `--bits` ask for together.
-pub fn texel_format(args: &NormalmapArgs) -> Result<TextureFormat, CliError> {
-    crate::normalmap::texel_format(args)
-}
-
 /// Writes `chain` as `normalmap -o OUT` does: by the extension, PNG files (`OUT.mip1.png`, …
 /// beside level 0), or one DDS or KTX2 file with every level in `format`; all files or none, none
 /// of them replacing one of `inputs`. When `cancelled`, asked once right before the files go
@@ -156,14 +151,9 @@ pub fn write_texture(
     Ok(set.commit()?)
 }
 
-/// `render`'s image (and passes, with `--passes`), drawn as the command draws it, without the
-/// output file; the reference shows its tiles' progress as `progress` says.
-pub fn render(args: &RenderArgs, progress: &Progress) -> Result<Drawn, CliError> {
-    crate::render::draw_request(&Request::from_args(args)?, progress, &Given::default())
-}
-
-/// [`render`] of a typed request, with the inputs `given` in memory in place of the files its
-/// options name.
+/// `render`'s image (and passes, with `passes`) for a typed request, drawn as the command draws
+/// it, without the output file, with the inputs `given` in memory in place of the files its
+/// options name; the reference shows its tiles' progress as `progress` says.
 pub fn render_given(request: &Request, progress: &Progress, given: &Given) -> Result<Drawn, CliError> {
     crate::render::draw_request(request, progress, given)
 }
@@ -186,12 +176,8 @@ pub fn tangents(options: &TangentOptions, mesh: &Mesh) -> Result<(Mesh, TangentR
     generate_tangents(mesh, options).map_err(|e| CliError::Render(format!("the mesh: {e}")))
 }
 
-/// Everything `compare` measures, and the files it read; its steps shown as `progress` says.
-pub fn compare(args: &CompareArgs, progress: &Progress) -> Result<(Results, Vec<PathBuf>), CliError> {
-    crate::compare::measure(args, progress)
-}
-
-/// [`compare`] of typed options; `output`, where the results will be written, for messages.
+/// Everything `compare` measures for typed options, and the files it read; its steps shown as
+/// `progress` says; `output`, where the results will be written, for messages.
 pub fn compare_options(
     options: &bumpmap_compare::CompareOptions,
     output: Option<&Path>,
