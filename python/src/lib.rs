@@ -2,15 +2,13 @@
 //!
 //! Every function reads its keywords as typed Python values straight into typed options
 //! (`keywords`: `bumpmap::options::SceneOptions`, `bumpmap_compare::CompareOptions`, the
-//! command line's `MapRequest`, `TangentOptions`, a `TextureFormat`), but `height_from_normals`,
-//! whose keywords are still the command line's options parsed by the command's own definition
-//! (`options`). All call the same code the command runs (`bumpmap_cli::commands`), so a script
-//! and `bumpmap` make the same bytes from the same options. The package's `__init__.py` wraps each one with keyword arguments and
+//! command line's `MapRequest`, `TangentOptions`, a `TextureFormat`, `HeightOptions`). All call
+//! the same code the command runs (`bumpmap_cli::commands`), so a script and `bumpmap` make the
+//! same bytes from the same options. The package's `__init__.py` wraps each one with keyword arguments and
 //! a docstring made from the options' help texts.
 //!
 //! - `keywords`: keywords → typed options;
-//! - `options`: every function's option table for the docstrings, and `height_from_normals`'
-//!   keywords → command-line options → the command's parsed arguments;
+//! - `options`: every function's option table for the docstrings;
 //! - `arrays`: NumPy arrays in and out, their dtype, shape and byte order checked;
 //! - `interrupt`: long work with the GIL released, Ctrl-C honoured;
 //! - `errors`: the command line's errors as Python exceptions;
@@ -32,7 +30,6 @@ mod renderer;
 use std::path::PathBuf;
 
 use bumpmap::inspect::StoredAs;
-use bumpmap_cli::args::Command;
 use bumpmap_cli::commands;
 use bumpmap_cli::error::CliError;
 use bumpmap_io::HeightSource;
@@ -43,12 +40,6 @@ use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
 
 use crate::errors::to_py;
-use crate::options::Function;
-
-/// The keyword arguments, parsed as `function`'s command would parse them.
-pub(crate) fn parse(function: &Function, fixed: &[String], options: Option<&Bound<'_, PyDict>>) -> PyResult<Command> {
-    function.parse(fixed, options)
-}
 
 /// A height field from an image file or a preset (`bricks@512`), as the command line reads it.
 #[pyfunction]
@@ -286,14 +277,8 @@ fn height_from_normals<'py>(
     normals: &Bound<'py, PyAny>,
     options: Option<&Bound<'py, PyDict>>,
 ) -> PyResult<Bound<'py, PyAny>> {
-    let args = match parse(&options::HEIGHT_FROM_NORMALS, &["normals".into(), "--output=heights.exr".into()], options)?
-    {
-        Command::Height(a) => a,
-        _ => unreachable!("height's options parse as height"),
-    };
-    let height_options = args.options().map_err(|e| to_py("height_from_normals", e))?;
+    let (height_options, raw) = keywords::height_options("height_from_normals", options)?;
     let map = arrays::normal_texels(normals)?;
-    let raw = args.raw;
     let heights = interrupt::run(py, move |_| {
         let level0 = map.levels.first().cloned().ok_or_else(|| CliError::Render("the map has no texels".into()))?;
         bumpmap::heights::heights_from_normals(&level0, &height_options).map_err(|e| CliError::Render(e.to_string()))
@@ -314,16 +299,10 @@ fn option_table(function: &str) -> PyResult<Vec<options::OptionRow>> {
         .ok_or_else(|| PyValueError::new_err(format!("no function {function} takes options")))
 }
 
-/// Every keyword `function` (`render` or `compare`) reads.
+/// Every keyword `function` reads.
 #[pyfunction(name = "keywords")]
 fn keyword_names(function: &str) -> PyResult<Vec<&'static str>> {
-    match function {
-        "render" => Ok(keywords::KEYWORDS.to_vec()),
-        "compare" => Ok(keywords::COMPARE_KEYWORDS.to_vec()),
-        "tangents" => Ok(keywords::TANGENT_KEYWORDS.to_vec()),
-        "write_texture" => Ok(vec!["format"]),
-        f => keywords::map_keywords(f).ok_or_else(|| PyValueError::new_err(format!("{f} reads no typed keywords"))),
-    }
+    keywords::names(function).ok_or_else(|| PyValueError::new_err(format!("{function} reads no keywords")))
 }
 
 /// The techniques of the catalogue: `(name, description, what it needs)`.

@@ -119,6 +119,32 @@ def test_height_from_normals_refuses_bad_values():
         bumpmap.height_from_normals(bad)
     with pytest.raises(TypeError, match="unexpected keyword"):
         bumpmap.height_from_normals(normals, bits=8)
+    with pytest.raises(ValueError, match="kernel; possible values: auto, spectral, forward"):
+        bumpmap.height_from_normals(normals, kernel="sobel")
+    with pytest.raises(TypeError, match="method takes a string"):
+        bumpmap.height_from_normals(normals, method=2)
+    with pytest.raises(TypeError, match="raw is True or False"):
+        bumpmap.height_from_normals(normals, raw="yes")
+
+
+def test_height_from_normals_reads_typed_keywords(tmp_path, cli):
+    """Each keyword means what the flag of the same name means: the heights are those `bumpmap
+    height` writes with it (a kernel undone exactly, a convention given, a boundary)."""
+    path = tmp_path / "n.png"
+    cli("normalmap", "pinwheel@48", "-o", path, "--bits", "16", "--kernel", "sobel3", "--y-convention", "directx",
+        "--scale", "4")
+    normals = read_png(path)
+    for keywords, flags in [
+        (dict(method="kernel", kernel="sobel3", scale=4, y_convention="directx"),
+         ["--method", "kernel", "--kernel", "sobel3", "--scale", "4", "--y-convention", "directx"]),
+        (dict(method="dct", kernel="spectral", y_convention="y-down"),
+         ["--method", "dct", "--kernel", "spectral", "--y-convention", "directx"]),
+    ]:
+        out = tmp_path / "h.png"
+        cli("height", path, "-o", out, *flags)
+        written = read_png(out)[..., 0].astype(np.float64) / 65535.0
+        got = bumpmap.height_from_normals(normals, **keywords)
+        assert np.abs(got - written).max() <= 0.5 / 65535 + 1e-6, keywords
 
 
 def test_fortran_ordered_and_strided_arrays_read_as_their_c_copies():

@@ -18,7 +18,7 @@ NEEDS_ANOTHER = {"y_convention", "spot_cutoff", "spot_exponent", "roughness_layo
 
 @pytest.mark.parametrize("function", ["render", "compare", "normal_map", "mip_chain", "height_mips", "horizon_maps",
                                       "roughness_map", "lean_moments", "read_height_field", "tangents",
-                                      "write_texture"])
+                                      "write_texture", "height_from_normals"])
 def test_every_documented_keyword_is_read(function):
     documented = {name for name, *_ in _bumpmap.options(function)}
     assert documented == set(_bumpmap.keywords(function))

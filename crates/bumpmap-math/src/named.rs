@@ -41,6 +41,24 @@ pub trait Named: Copy + PartialEq + Send + Sync + 'static {
     }
 }
 
+/// The word that leaves a choice to the tool, beside a set's own words: `None` where a value of
+/// the set is optional and the tool decides when it is not given.
+pub const AUTO: &str = "auto";
+
+/// `word` as an optional value of `T`: `Some(None)` for [`AUTO`], `Some(Some(v))` for a word of
+/// `T`, `None` for anything else.
+///
+/// ```
+/// use bumpmap_math::named::parse_or_auto;
+/// use bumpmap_math::YConvention;
+/// assert_eq!(parse_or_auto::<YConvention>("auto"), Some(None));
+/// assert_eq!(parse_or_auto::<YConvention>("directx"), Some(Some(YConvention::YDown)));
+/// assert_eq!(parse_or_auto::<YConvention>("up"), None);
+/// ```
+pub fn parse_or_auto<T: Named>(word: &str) -> Option<Option<T>> {
+    if word == AUTO { Some(None) } else { T::parse(word).map(Some) }
+}
+
 /// Implements [`Named`] for an enum from one table: `Type { Variant => "name" | "alias":
 /// "description", … }`.
 #[macro_export]

@@ -4,7 +4,7 @@
 //!
 //! ```
 //! use bumpmap::heights::{HeightOptions, heights_from_normals};
-//! use bumpmap::{HeightPreset, MipChain, MipMode, NormalMapOptions, YConvention};
+//! use bumpmap::{HeightPreset, MipChain, MipMode, Named, NormalMapOptions, YConvention};
 //! use bumpmap::bumpmap_math::inspect::signed_levels;
 //!
 //! let field = HeightPreset::Dimples.render(64, 64);
@@ -50,6 +50,72 @@ impl Default for HeightOptions {
     /// Method and convention from the map, scale 1.
     fn default() -> Self {
         Self { boundary: None, derivative: None, y_convention: None, scale: 1.0 }
+    }
+}
+
+/// How the slopes are integrated, as a user names it: left to the map, a boundary, or a
+/// kernel's difference undone exactly.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum HeightMethod {
+    /// `fft` when the map tiles, else `dct`.
+    #[default]
+    Auto,
+    /// Periodic: the Fourier least-squares solve.
+    Fft,
+    /// A free boundary: the DCT's mirrored extension.
+    Dct,
+    /// `fft` with a named kernel's transfer function.
+    Kernel,
+}
+
+bumpmap_math::named!(HeightMethod {
+    Auto => "auto": "fft when the map tiles (by the seam test), else dct",
+    Fft => "fft": "The Fourier least-squares solve over the periodic map (Frankot–Chellappa): for maps that tile",
+    Dct => "dct": "Poisson with a free boundary (the DCT's mirrored extension): for maps that do not tile",
+    Kernel => "kernel": "fft with the named kernel's finite difference undone exactly (up to a constant, where the kernel is invertible)",
+});
+
+/// Options that contradict each other.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, thiserror::Error)]
+pub enum HeightChoiceError {
+    /// The `kernel` method without a kernel named (none, or `spectral`).
+    #[error(
+        "the kernel method undoes the kernel the map was made with, so it needs one named; the fft method fits one itself"
+    )]
+    KernelUnnamed,
+}
+
+impl HeightOptions {
+    /// The options a user's words make: `method`, the `derivative` the map was made with
+    /// (`None`: fitted), its Y convention (`None`: the curl test's) and its scale (checked when
+    /// the heights are made).
+    ///
+    /// ```
+    /// use bumpmap::heights::{HeightChoiceError, HeightMethod, HeightOptions};
+    /// use bumpmap::bumpmap_math::integration::{Boundary, Derivative};
+    /// use bumpmap::Kernel;
+    ///
+    /// let sobel = Some(Derivative::Kernel(Kernel::Sobel3));
+    /// let o = HeightOptions::from_choices(HeightMethod::Kernel, sobel, None, 4.0).unwrap();
+    /// assert_eq!((o.boundary, o.derivative), (Some(Boundary::Periodic), sobel));
+    /// assert_eq!(HeightOptions::from_choices(HeightMethod::Kernel, None, None, 4.0), Err(HeightChoiceError::KernelUnnamed));
+    /// assert_eq!(HeightOptions::from_choices(HeightMethod::Auto, None, None, 1.0), Ok(HeightOptions::default()));
+    /// ```
+    pub fn from_choices(
+        method: HeightMethod,
+        derivative: Option<Derivative>,
+        y_convention: Option<YConvention>,
+        scale: f32,
+    ) -> Result<Self, HeightChoiceError> {
+        let boundary = match method {
+            HeightMethod::Auto => None,
+            HeightMethod::Fft | HeightMethod::Kernel => Some(Boundary::Periodic),
+            HeightMethod::Dct => Some(Boundary::Free),
+        };
+        if method == HeightMethod::Kernel && !matches!(derivative, Some(Derivative::Kernel(_))) {
+            return Err(HeightChoiceError::KernelUnnamed);
+        }
+        Ok(Self { boundary, derivative, y_convention, scale })
     }
 }
 

@@ -7,7 +7,9 @@ use std::fmt::Debug;
 use bumpmap::bumpmap_core::combiners::Precision;
 use bumpmap::bumpmap_io::texture_file::TextureFormat;
 use bumpmap::bumpmap_io::{Channel, ObjTexcoords};
+use bumpmap::bumpmap_math::integration::Derivative;
 use bumpmap::bumpmap_math::tangent::TangentMode;
+use bumpmap::heights::HeightMethod;
 use bumpmap::options::{Filter, RoughnessLayout};
 use bumpmap::{
     BackendChoice, Encoding, HalfAngle, Kernel, MipMode, Named, Normalize, ParallaxShadow, SelfShadow, SpecularFilter,
@@ -59,6 +61,19 @@ fn every_closed_set_reads_its_own_words() {
         words_read_back::<Channel>(),
         words_read_back::<TangentMode>(),
         words_read_back::<TextureFormat>(),
+        words_read_back::<Derivative>(),
+        words_read_back::<HeightMethod>(),
     ];
-    assert_eq!(counts, [2, 2, 2, 3, 2, 2, 2, 3, 2, 3, 5, 4, 4, 3, 24, 7, 3, 2, 2, 5, 2, 4]);
+    assert_eq!(counts, [2, 2, 2, 3, 2, 2, 2, 3, 2, 3, 5, 4, 4, 3, 24, 7, 3, 2, 2, 5, 2, 4, 8, 4]);
+}
+
+/// The sets a user may leave to the tool take `auto` beside their words, so none may have a
+/// value of that name.
+#[test]
+fn auto_is_no_value_of_a_set_that_may_be_left_to_the_tool() {
+    use bumpmap::bumpmap_math::named::{AUTO, parse_or_auto};
+    assert_eq!(Derivative::parse(AUTO), None);
+    assert_eq!(YConvention::parse(AUTO), None);
+    assert_eq!(parse_or_auto::<Derivative>("sobel3"), Some(Some(Derivative::Kernel(Kernel::Sobel3))));
+    assert_eq!(parse_or_auto::<Derivative>(AUTO), Some(None));
 }

@@ -1,7 +1,10 @@
 //! The map functions' keywords (`normal_map`, `mip_chain`, `height_mips`, `horizon_maps`,
 //! `roughness_map`, `lean_moments`, `read_height_field`): how heights become normals and what
-//! else is made, as the command line's `MapRequest`; and `tangents`' algorithm and split angle.
+//! else is made, as the command line's `MapRequest`; `tangents`' algorithm and split angle; and
+//! how `height_from_normals` integrates slopes, as the library's `HeightOptions`.
 
+use bumpmap::bumpmap_math::integration::check_scale;
+use bumpmap::heights::{HeightChoiceError, HeightMethod, HeightOptions};
 use bumpmap_cli::commands::MapRequest;
 use bumpmap_io::texture_file::TextureFormat;
 use bumpmap_math::tangent::TangentOptions;
@@ -57,6 +60,36 @@ pub fn tangent_options(function: &str, kwargs: Option<&Bound<'_, PyDict>>) -> Py
         }
     }
     Ok(o)
+}
+
+/// Every keyword `height_from_normals` takes.
+pub const HEIGHT_KEYWORDS: [&str; 5] = ["method", "kernel", "scale", "y_convention", "raw"];
+
+/// `height_from_normals`' keywords as the library's options, and whether the heights are
+/// wanted as they are (`raw`) rather than mapped onto [0, 1].
+pub fn height_options(function: &str, kwargs: Option<&Bound<'_, PyDict>>) -> PyResult<(HeightOptions, bool)> {
+    let r = Reader { function };
+    let (mut method, mut derivative, mut y_convention, mut scale, mut raw) =
+        (HeightMethod::Auto, None, None, 1.0, false);
+    for (key, value) in given(kwargs)? {
+        let v = &value;
+        match key.as_str() {
+            "method" => method = r.word(&key, v)?,
+            "kernel" => derivative = r.word_or_auto(&key, v)?,
+            "y_convention" => y_convention = r.word_or_auto(&key, v)?,
+            "scale" => scale = r.number(&key, v)?,
+            "raw" => raw = r.flag(&key, v)?,
+            _ => return Err(unexpected(function, &key, &HEIGHT_KEYWORDS)),
+        }
+    }
+    check_scale(scale).map_err(|e| r.value_error("scale", e))?;
+    let options = HeightOptions::from_choices(method, derivative, y_convention, scale).map_err(|e| match e {
+        HeightChoiceError::KernelUnnamed => r.value_error(
+            "method",
+            "'kernel' undoes a named kernel: pass kernel= the map's (method='fft' fits one itself)",
+        ),
+    })?;
+    Ok((options, raw))
 }
 
 /// `write_texture`'s one keyword: the format the levels are stored in.

@@ -8,7 +8,8 @@
 //!
 //! - `render`: `render`'s and `Renderer.prepare`'s keywords → a `Request` and its arrays;
 //! - `compare`: `compare`'s keywords → `CompareOptions`;
-//! - `maps`: the map functions' keywords → a `MapRequest`; `tangents`' and `write_texture`'s.
+//! - `maps`: the map functions' keywords → a `MapRequest`; `tangents`', `write_texture`'s and
+//!   `height_from_normals`' (→ the library's `HeightOptions`).
 //!
 //! What it does not do: document the keywords (the docstrings read the command's help, which
 //! reads the same library names), or set anything up (`bumpmap::options`).
@@ -18,7 +19,9 @@ mod maps;
 mod render;
 
 pub use compare::{COMPARE_KEYWORDS, compare_options};
-pub use maps::{TANGENT_KEYWORDS, map_keywords, map_request, tangent_options, texture_format};
+pub use maps::{
+    HEIGHT_KEYWORDS, TANGENT_KEYWORDS, height_options, map_keywords, map_request, tangent_options, texture_format,
+};
 pub use render::{KEYWORDS, render_request};
 
 use std::path::PathBuf;
@@ -28,6 +31,18 @@ use glam::Vec3;
 use pyo3::exceptions::{PyTypeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::{PyBool, PyDict, PyFloat, PyList, PyString, PyTuple};
+
+/// Every keyword `function` reads, or `None` for a function that reads none.
+pub fn names(function: &str) -> Option<Vec<&'static str>> {
+    match function {
+        "render" => Some(KEYWORDS.to_vec()),
+        "compare" => Some(COMPARE_KEYWORDS.to_vec()),
+        "tangents" => Some(TANGENT_KEYWORDS.to_vec()),
+        "height_from_normals" => Some(HEIGHT_KEYWORDS.to_vec()),
+        "write_texture" => Some(vec!["format"]),
+        f => map_keywords(f),
+    }
+}
 
 /// The most lights one keyword reads from a sequence or iterator: past the 64 a scene takes,
 /// and a bound on an iterator that never ends.
@@ -111,6 +126,19 @@ impl Reader<'_> {
             PyValueError::new_err(format!(
                 "{}(): invalid value '{word}' for {key}; possible values: {}",
                 self.function,
+                T::names().join(", ")
+            ))
+        })
+    }
+
+    /// `"auto"` (`None`: the library decides) or a word of the closed set `T`.
+    pub(super) fn word_or_auto<T: Named>(&self, key: &str, value: &Bound<'_, PyAny>) -> PyResult<Option<T>> {
+        let word: String = value.cast::<PyString>().map_err(|_| self.type_error(key, "a string", value))?.extract()?;
+        bumpmap::bumpmap_math::named::parse_or_auto(&word).ok_or_else(|| {
+            PyValueError::new_err(format!(
+                "{}(): invalid value '{word}' for {key}; possible values: {}, {}",
+                self.function,
+                bumpmap::bumpmap_math::named::AUTO,
                 T::names().join(", ")
             ))
         })

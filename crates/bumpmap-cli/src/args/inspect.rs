@@ -2,14 +2,14 @@
 
 use std::path::PathBuf;
 
-use clap::{Args, ValueEnum};
+use clap::Args;
 
-use bumpmap_math::Kernel;
+use bumpmap::heights::{HeightChoiceError, HeightMethod, HeightOptions};
+use bumpmap_math::YConvention;
 use bumpmap_math::integration::Derivative;
-use clap::builder::{PossibleValuesParser, TypedValueParser};
 
 use super::normalmap::parse_bits;
-use crate::args::parse_f32;
+use crate::args::{OrAuto, choice, choice_or_auto, parse_f32};
 
 /// `bumpmap inspect`.
 #[derive(Args, Debug)]
@@ -42,62 +42,6 @@ pub struct InspectArgs {
     pub strict: bool,
 }
 
-/// `height --method`.
-#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
-pub enum MethodArg {
-    /// fft when the map tiles (by inspect's seam test), else dct
-    Auto,
-    /// The Fourier least-squares solve over the periodic map (Frankot–Chellappa): for maps that tile
-    Fft,
-    /// Poisson with a free boundary (the DCT's mirrored extension): for maps that do not tile
-    Dct,
-    /// fft with the finite difference named by --kernel undone exactly (up to a constant, where the kernel is invertible)
-    Kernel,
-}
-
-/// `height --y-convention`.
-#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
-pub enum YDetectArg {
-    /// The curl test's verdict (opengl where it cannot decide), said on stderr
-    Auto,
-    /// Green up (glTF, OpenGL, Blender, Unity)
-    #[value(alias = "y-up")]
-    Opengl,
-    /// Green down (DirectX, Unreal)
-    #[value(alias = "y-down")]
-    Directx,
-}
-
-impl YDetectArg {
-    /// The convention given, if one was.
-    pub fn given(self) -> Option<bumpmap_math::YConvention> {
-        match self {
-            YDetectArg::Auto => None,
-            YDetectArg::Opengl => Some(bumpmap_math::YConvention::YUp),
-            YDetectArg::Directx => Some(bumpmap_math::YConvention::YDown),
-        }
-    }
-}
-
-/// `height --kernel`: fitted, or the model given.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum DerivativeChoice {
-    /// Fitted to the slopes.
-    Auto,
-    /// Given.
-    Given(Derivative),
-}
-
-/// `auto`, `spectral`, or a kernel's name ([`Kernel::ALL`]).
-fn derivative_parser() -> impl TypedValueParser<Value = DerivativeChoice> {
-    let names = ["auto", "spectral"].into_iter().chain(Kernel::ALL.map(bumpmap::Named::name));
-    PossibleValuesParser::new(names).map(|name| match name.as_str() {
-        "auto" => DerivativeChoice::Auto,
-        "spectral" => DerivativeChoice::Given(Derivative::Spectral),
-        kernel => DerivativeChoice::Given(Derivative::Kernel(Kernel::parse(kernel).expect("one of the names offered"))),
-    })
-}
-
 /// `bumpmap height`.
 #[derive(Args, Debug)]
 #[command(after_help = "Examples:\n  \
@@ -120,17 +64,21 @@ pub struct HeightArgs {
     #[arg(short, long)]
     pub output: PathBuf,
     /// How the slopes are integrated
-    #[arg(long, value_enum, default_value = "auto")]
-    pub method: MethodArg,
-    /// The difference the map was made with (normalmap's --kernel): auto fits every kernel and the spectral derivative iω to the slopes and takes the one that explains them best; spectral is Frankot–Chellappa's iω
-    #[arg(long, default_value = "auto", value_parser = derivative_parser())]
-    pub kernel: DerivativeChoice,
+    #[arg(long, default_value = "auto", value_parser = choice::<HeightMethod>())]
+    pub method: HeightMethod,
+    /// The difference the map was made with (normalmap's --kernel)
+    #[arg(long, default_value = "auto", value_parser = choice_or_auto::<Derivative>(
+        "Fit every kernel and the spectral derivative iω to the slopes and take the one that explains them best"
+    ))]
+    pub kernel: OrAuto<Derivative>,
     /// The scale the map was made with (normalmap's --scale): heights come back divided by it
     #[arg(long, value_parser = parse_f32, default_value_t = 1.0)]
     pub scale: f32,
     /// Which way the map's green points
-    #[arg(long = "y-convention", value_enum, default_value = "auto")]
-    pub y_convention: YDetectArg,
+    #[arg(long = "y-convention", default_value = "auto", value_parser = choice_or_auto::<YConvention>(
+        "The curl test's verdict (opengl where it cannot decide), said on stderr"
+    ))]
+    pub y_convention: OrAuto<YConvention>,
     /// Write the heights as they are (texels divided by --scale, mean zero) instead of mapped onto 0..1; needs an .exr output
     #[arg(long)]
     pub raw: bool,
@@ -143,38 +91,17 @@ pub struct HeightArgs {
 }
 
 impl HeightArgs {
-    /// The library's options: `--method` and `--kernel` made into a boundary and a derivative.
-    /// Refuses `--method kernel` without a kernel named, and a scale of 0 or beyond ±1e6.
-    pub fn options(&self) -> Result<bumpmap::heights::HeightOptions, crate::error::CliError> {
+    /// The library's options from `--method`, `--kernel`, `--y-convention` and `--scale`.
+    pub fn options(&self) -> Result<HeightOptions, crate::error::CliError> {
         use crate::error::CliError;
-        use bumpmap_math::integration::Boundary;
-        if !self.scale.is_finite() || self.scale == 0.0 || self.scale.abs() > 1e6 {
-            return Err(CliError::Usage(format!(
-                "--scale must be a number other than 0 within ±1e6, got {}",
-                self.scale
-            )));
+        if let Err(e) = bumpmap_math::integration::check_scale(self.scale) {
+            return Err(CliError::Usage(format!("--scale: {e}")));
         }
-        let boundary = match self.method {
-            MethodArg::Auto => None,
-            MethodArg::Fft | MethodArg::Kernel => Some(Boundary::Periodic),
-            MethodArg::Dct => Some(Boundary::Free),
-        };
-        let derivative = match (self.method, self.kernel) {
-            (MethodArg::Kernel, DerivativeChoice::Given(Derivative::Kernel(k))) => Some(Derivative::Kernel(k)),
-            (MethodArg::Kernel, _) => {
-                return Err(CliError::Usage(
-                    "--method kernel undoes a named kernel: add --kernel NAME (normalmap's --kernel); --method fft fits one itself"
-                        .into(),
-                ));
-            }
-            (_, DerivativeChoice::Given(d)) => Some(d),
-            (_, DerivativeChoice::Auto) => None,
-        };
-        Ok(bumpmap::heights::HeightOptions {
-            boundary,
-            derivative,
-            y_convention: self.y_convention.given(),
-            scale: self.scale,
+        HeightOptions::from_choices(self.method, self.kernel, self.y_convention, self.scale).map_err(|e| match e {
+            HeightChoiceError::KernelUnnamed => CliError::Usage(
+                "--method kernel undoes a named kernel: add --kernel NAME (normalmap's --kernel); --method fft fits one itself"
+                    .into(),
+            ),
         })
     }
 }

@@ -71,12 +71,39 @@ pub enum Derivative {
     Kernel(Kernel),
 }
 
-impl Derivative {
-    /// `spectral`, or the kernel's name.
-    pub fn name(self) -> &'static str {
+/// `spectral` and every kernel, in [`Kernel::ALL`]'s order after it.
+const DERIVATIVES: [Derivative; 1 + Kernel::ALL.len()] = {
+    let mut all = [Derivative::Spectral; 1 + Kernel::ALL.len()];
+    let mut k = 0;
+    while k < Kernel::ALL.len() {
+        all[k + 1] = Derivative::Kernel(Kernel::ALL[k]);
+        k += 1;
+    }
+    all
+};
+
+/// `spectral`, or the kernel's own name, aliases and description.
+impl Named for Derivative {
+    const ALL: &'static [Self] = &DERIVATIVES;
+
+    fn name(self) -> &'static str {
         match self {
             Derivative::Spectral => "spectral",
             Derivative::Kernel(k) => k.name(),
+        }
+    }
+
+    fn description(self) -> &'static str {
+        match self {
+            Derivative::Spectral => "iω, the band-limited derivative (Frankot–Chellappa)",
+            Derivative::Kernel(k) => k.description(),
+        }
+    }
+
+    fn aliases(self) -> &'static [&'static str] {
+        match self {
+            Derivative::Spectral => &[],
+            Derivative::Kernel(k) => k.aliases(),
         }
     }
 }
@@ -125,8 +152,9 @@ pub enum IntegrationError {
         /// Its row.
         y: usize,
     },
-    /// A scale of zero, or not finite.
-    #[error("the slope scale must be a finite number other than 0, got {0}")]
+    /// A scale of zero, not finite, or beyond ±[`MAX_SCALE`](crate::normalmap::MAX_SCALE) (the
+    /// largest a normal map is made with).
+    #[error("the slope scale must be a number other than 0 within ±{max:e}, got {0}", max = crate::normalmap::MAX_SCALE)]
     BadScale(f32),
     /// The transforms' buffers would not fit.
     #[error(transparent)]
@@ -196,13 +224,20 @@ impl Slopes {
     }
 }
 
+/// Refuses a slope scale of 0, one not finite, or one beyond ±[`MAX_SCALE`](crate::normalmap::MAX_SCALE)
+/// ([`check_normals`] does too): for a caller to refuse it before reading a map.
+pub fn check_scale(scale: f32) -> Result<(), IntegrationError> {
+    if !scale.is_finite() || scale == 0.0 || scale.abs() > crate::normalmap::MAX_SCALE {
+        return Err(IntegrationError::BadScale(scale));
+    }
+    Ok(())
+}
+
 /// Refuses what [`Slopes::from_normals`] would: a scale of 0 or not finite, fewer than 2×2
 /// texels, a texel that is not a number.
 pub fn check_normals(normals: &Image<Vec4>, scale: f32) -> Result<(), IntegrationError> {
     use rayon::prelude::*;
-    if !scale.is_finite() || scale == 0.0 {
-        return Err(IntegrationError::BadScale(scale));
-    }
+    check_scale(scale)?;
     let (w, h) = (normals.width, normals.height);
     if w < 2 || h < 2 {
         return Err(IntegrationError::TooSmall { width: w, height: h });
