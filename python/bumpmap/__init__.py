@@ -120,10 +120,15 @@ def _options_doc(function: str) -> str:
         else:
             head = f"{name} = {_default(default)!r}"
         lines.append(f"    {head}")
-        text = " ".join(help_text.split())
+        # The help, then each value's meaning where the set gives one ("\n- name: meaning").
+        text, *meanings = help_text.split("\n- ")
+        text = " ".join(text.split())
         if text:
             lines.append(f"        {text}")
-        if choices:
+        if meanings:
+            lines.append("        One of:")
+            lines.extend(f"          - {' '.join(m.split())}" for m in meanings)
+        elif choices:
             lines.append(f"        One of: {', '.join(choices)}.")
     return "\n".join(lines) + "\n"
 

@@ -3,7 +3,7 @@
 //! not contiguous (a slice, a transposed view) is read through its strides. No input is
 //! converted from another dtype: a float64 height field is refused, not rounded silently.
 
-use bumpmap_cli::commands::Chain;
+use bumpmap::maps::Chain;
 use bumpmap_math::{HeightField, HeightSamples, Image, MipChain};
 use numpy::ndarray::{Array2, Array3};
 use numpy::{

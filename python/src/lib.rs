@@ -2,7 +2,7 @@
 //!
 //! Every function reads its keywords as typed Python values straight into typed options
 //! (`keywords`: `bumpmap::options::SceneOptions`, `bumpmap_compare::CompareOptions`, the
-//! command line's `MapRequest`, `TangentOptions`, a `TextureFormat`, `HeightOptions`). All call
+//! library's `MapOptions`, `TangentOptions`, a `TextureFormat`, `HeightOptions`). All call
 //! the same code the command runs (`bumpmap_cli::commands`), so a script and `bumpmap` make the
 //! same bytes from the same options. The package's `__init__.py` wraps each one with keyword arguments and
 //! a docstring made from the options' help texts.
@@ -53,8 +53,7 @@ fn read_height_field<'py>(
         .to_str()
         .ok_or_else(|| PyValueError::new_err(format!("read_height_field(): {} is not UTF-8", path.display())))?
         .to_string();
-    let taken = keywords::map_keywords("read_height_field").expect("a map function");
-    let channel = keywords::map_request("read_height_field", &taken, options)?.channel;
+    let channel = keywords::channel("read_height_field", options)?;
     let field = interrupt::run(py, move |_| HeightSource::parse(&spec).load(channel).map_err(CliError::from))?
         .map_err(|e| to_py("read_height_field", e))?;
     arrays::from_height_field(py, &field)
@@ -72,7 +71,7 @@ fn write_texture(
 ) -> PyResult<Vec<PathBuf>> {
     let asked = keywords::texture_format("write_texture", options)?;
     let chain = arrays::to_chain(levels)?;
-    let sixteen = matches!(chain, commands::Chain::Rgba16(_));
+    let sixteen = matches!(chain, bumpmap::maps::Chain::Rgba16(_));
     let format = match (asked, sixteen) {
         (TextureFormat::Rgba8 | TextureFormat::Rgba16, true) => TextureFormat::Rgba16,
         (TextureFormat::Rgba16, false) => {

@@ -1,9 +1,11 @@
 //! Heights → the maps `bumpmap normalmap` writes, as arrays: the normal map and its chain, the
 //! heights the parallax techniques read, the horizon map with ambient occlusion and bent
 //! normals, the roughness map and LEAN's moments. Each reads its keywords as typed values
-//! (`keywords::map_request`) and calls the command's own function.
+//! (`keywords::map_request`) and calls the library's function (`bumpmap::maps`), which the
+//! command calls too.
 
-use bumpmap_cli::commands::{self, MapRequest};
+use bumpmap::maps::{self, Chain, MapOptions};
+use bumpmap_cli::commands;
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
 
@@ -11,7 +13,7 @@ use crate::errors::to_py;
 use crate::{arrays, interrupt, keywords};
 
 /// `function`'s keywords as the request they make.
-fn request(function: &str, options: Option<&Bound<'_, PyDict>>) -> PyResult<MapRequest> {
+fn request(function: &str, options: Option<&Bound<'_, PyDict>>) -> PyResult<MapOptions> {
     let taken = keywords::map_keywords(function).expect("a map function");
     keywords::map_request(function, &taken, options)
 }
@@ -26,8 +28,10 @@ fn chain_of<'py>(
 ) -> PyResult<Vec<Bound<'py, PyAny>>> {
     let map = request(function, options)?;
     let field = arrays::height_field(heights)?;
-    let chain = interrupt::run(py, move |_| commands::normal_map(&map, mips, &field, "heights"))?
-        .map_err(|e| to_py(function, e))?;
+    let chain = interrupt::run(py, move |_| {
+        maps::normal_map(&map, mips, &field).map_err(|e| commands::map_error(e, "heights"))
+    })?
+    .map_err(|e| to_py(function, e))?;
     arrays::from_chain(py, chain)
 }
 
@@ -65,8 +69,14 @@ pub fn height_mips<'py>(
 ) -> PyResult<(Bound<'py, PyList>, Bound<'py, PyList>)> {
     let map = request("height_mips", options)?;
     let field = arrays::height_field(heights)?;
-    let mips = interrupt::run(py, move |_| commands::heights(&map, &field, "heights"))?
-        .map_err(|e| to_py("height_mips", e))?;
+    let mips = interrupt::run(py, move |_| {
+        let stored = maps::height_mips(&map, &field).map_err(|e| commands::map_error(e, "heights"))?;
+        if let Some(clamped) = stored.clamped {
+            bumpmap_cli::report::warn(format!("heights: {clamped}"));
+        }
+        Ok(stored.mips)
+    })?
+    .map_err(|e| to_py("height_mips", e))?;
     let levels: Vec<_> =
         mips.levels().iter().map(|l| arrays::from_plane(py, l.height, l.width, &l.texels)).collect::<PyResult<_>>()?;
     let minmax: Vec<_> = mips
@@ -90,9 +100,10 @@ pub fn horizon_maps<'py>(
 ) -> PyResult<Bound<'py, PyDict>> {
     let request = request("horizon_maps", options)?;
     let field = arrays::height_field(heights)?;
-    let asked = request.clone();
-    let map = interrupt::run(py, move |_| commands::horizons(&asked, &field, "heights"))?
-        .map_err(|e| to_py("horizon_maps", e))?;
+    let asked = request;
+    let map =
+        interrupt::run(py, move |_| maps::horizon_map(&asked, &field).map_err(|e| commands::map_error(e, "heights")))?
+            .map_err(|e| to_py("horizon_maps", e))?;
     let depth = request.normals.scale.abs();
     let levels: Vec<_> = map
         .levels()
@@ -101,17 +112,7 @@ pub fn horizon_maps<'py>(
         .collect::<PyResult<_>>()?;
     let (w, h) = (map.width(), map.height());
     let ao = arrays::from_plane(py, h, w, &map.ambient_occlusion(depth))?;
-    let (y, encoding) = (request.normals.y_convention, request.normals.encoding);
-    let bent = match request.bits {
-        16 => bumpmap_cli::commands::Chain::Rgba16(bumpmap_math::MipChain {
-            levels: vec![map.bent_normal_map(depth, y, encoding)],
-            encoding,
-        }),
-        _ => bumpmap_cli::commands::Chain::Rgba8(bumpmap_math::MipChain {
-            levels: vec![map.bent_normal_map(depth, y, encoding)],
-            encoding,
-        }),
-    };
+    let bent = maps::bent_normals(&request, &map);
     let out = PyDict::new(py);
     out.set_item("horizons", PyList::new(py, levels)?)?;
     out.set_item("ambient_occlusion", ao)?;
@@ -130,9 +131,10 @@ pub fn roughness_map<'py>(
 ) -> PyResult<Bound<'py, PyList>> {
     let map = request("roughness_map", options)?;
     let field = arrays::height_field(heights)?;
-    let chain = interrupt::run(py, move |_| commands::roughness(&map, &field, "heights"))?
-        .map_err(|e| to_py("roughness_map", e))?;
-    PyList::new(py, arrays::from_chain(py, commands::Chain::Rgba8(chain))?)
+    let chain =
+        interrupt::run(py, move |_| maps::roughness_map(&map, &field).map_err(|e| commands::map_error(e, "heights")))?
+            .map_err(|e| to_py("roughness_map", e))?;
+    PyList::new(py, arrays::from_chain(py, Chain::Rgba8(chain))?)
 }
 
 /// Heights → LEAN mapping's moments, every level, as the two files of `normalmap --lean-out`
@@ -146,8 +148,10 @@ pub fn lean_moments<'py>(
 ) -> PyResult<(Bound<'py, PyList>, Bound<'py, PyList>)> {
     let map = request("lean_moments", options)?;
     let field = arrays::height_field(heights)?;
-    let planes =
-        interrupt::run(py, move |_| commands::lean(&map, &field, "heights"))?.map_err(|e| to_py("lean_moments", e))?;
+    let planes = interrupt::run(py, move |_| {
+        maps::lean_moments(&map, &field, None).map_err(|e| commands::map_error(e, "heights"))
+    })?
+    .map_err(|e| to_py("lean_moments", e))?;
     let [first, second] = planes.map(|levels| {
         levels
             .iter()

@@ -69,8 +69,16 @@ impl Function {
                     a.get_default_values().iter().map(|v| v.to_string_lossy().into_owned()).collect();
                 let flag = matches!(a.get_action(), ArgAction::SetTrue);
                 let default = if flag || defaults.is_empty() { None } else { Some(defaults.join(",")) };
-                let choices = a.get_possible_values().iter().map(|p| p.get_name().to_string()).collect();
-                let help = python_words(&a.get_help().map(|h| h.to_string()).unwrap_or_default());
+                // A flag's "values" are clap's true and false: not choices to document.
+                let values = if flag { Vec::new() } else { a.get_possible_values() };
+                let choices = values.iter().map(|p| p.get_name().to_string()).collect();
+                let mut help = python_words(&a.get_help().map(|h| h.to_string()).unwrap_or_default());
+                // Each value's meaning, where the set gives one, as `--help` lists it: one
+                // "\n- name: meaning" line each.
+                for value in values.iter().filter(|v| v.get_help().is_some()) {
+                    let meaning = python_words(&value.get_help().map(|h| h.to_string()).unwrap_or_default());
+                    help.push_str(&format!("\n- {}: {meaning}", value.get_name()));
+                }
                 (keyword(a.get_long().expect("taken arguments are long")), default, help, choices, flag)
             })
             .collect()

@@ -10,7 +10,8 @@
 
 use std::sync::{Arc, Mutex, PoisonError};
 
-use bumpmap_cli::commands::{self, Chain};
+use bumpmap::maps::Chain;
+use bumpmap_cli::commands;
 use glam::Vec3;
 use pyo3::exceptions::{PyRuntimeError, PyTypeError, PyValueError};
 use pyo3::prelude::*;

@@ -101,7 +101,10 @@ def test_an_interrupted_write_leaves_no_file(tmp_path):
 
 def test_help_lists_the_options_with_the_cli_defaults():
     doc = bumpmap.normal_map.__doc__
-    assert "\n    scale = 4\n" in doc and "kernel = 'forward'" in doc and "One of: forward, central" in doc
+    assert "\n    scale = 4\n" in doc and "kernel = 'forward'" in doc
+    # Each value with its meaning, as --help lists them; a flag's true and false are not listed.
+    assert "One of:\n          - forward: F(u+1) − F(u)" in doc and "\n          - central: " in doc
+    assert "One of: true, false" not in bumpmap.height_from_normals.__doc__
     render_doc = bumpmap.render.__doc__
     for option in ["technique = 'kilgard'", "backend = 'cpu'", "no_self_shadow: bool = False", "light = None",
                    "fov = 45", "torus_radii = (2.0, 0.7)"]:

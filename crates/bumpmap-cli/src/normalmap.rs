@@ -2,13 +2,14 @@
 
 use std::path::{Path, PathBuf};
 
+use bumpmap::maps::{self, Chain, MapError, MapOptions};
 use bumpmap_io::atomic::{FileSet, ensure_not_input};
 use bumpmap_io::height_file::HeightBits;
 use bumpmap_io::image_file::{PngLayout, save_png_into, save_png16_into};
 use bumpmap_io::texture_file::{Level, TextureFormat, TextureLayout, write_dds_into, write_ktx2_into};
 use bumpmap_io::{Channel, HeightSource};
-use bumpmap_math::normalmap::{MAX_SCALE, NormalMapError, normal_map_level0_texels};
-use bumpmap_math::{HeightField, MipChain, MipMode, NormalMapOptions, Texel};
+use bumpmap_math::normalmap::{MAX_SCALE, NormalMapError};
+use bumpmap_math::{HeightField, HeightMipsError, HorizonError, MipChain, MipMode, NormalMapOptions};
 use indicatif::{ProgressBar, ProgressStyle};
 use rayon::prelude::*;
 
@@ -17,8 +18,8 @@ use crate::error::CliError;
 
 mod extras;
 
+pub(crate) use extras::height_levels;
 use extras::lean_paths;
-pub(crate) use extras::{height_levels, horizon_map, lean_levels, roughness_chain};
 
 /// Image extensions a folder walk picks up.
 const IMAGE_EXTENSIONS: [&str; 13] =
@@ -112,22 +113,24 @@ pub fn run(args: &NormalmapArgs) -> Result<(), CliError> {
     }
     let field = source.load(channel)?;
     extras::ensure_room(args, field.width(), field.height())?;
+    let asked = map_options(args);
+    let err = |e| map_error(e, &args.input);
     let levels = make_chain(&field, &options, args.mips, args.mip_mode, format, &args.input)?;
     let horizons = if args.horizon_out.is_some() || args.ao_out.is_some() || args.bent_normals_out.is_some() {
-        Some(horizon_map(&field, options.wrap, &args.input)?)
+        Some(maps::horizon_map(&asked, &field).map_err(err)?)
     } else {
         None
     };
     let mut roughness = match &args.roughness_out {
-        Some(_) => Some(roughness_chain(&field, &options, args.roughness, args.roughness_layout, &args.input)?),
+        Some(_) => Some(maps::roughness_map(&asked, &field).map_err(err)?),
         None => None,
     };
     let lean = match &lean_out {
-        Some(_) => Some(lean_levels(&field, &options, &levels, &args.input)?),
+        Some(_) => Some(maps::lean_moments(&asked, &field, Some(&levels)).map_err(err)?),
         None => None,
     };
     let heights = match &args.height_out {
-        Some(_) => Some(height_levels(&field, args.bits, &args.input)?),
+        Some(_) => Some(height_levels(&asked, &field, &args.input)?),
         None => None,
     };
     // glTF's ORM texture holds the occlusion in red: with --ao-out, the occlusion's own levels.
@@ -173,13 +176,8 @@ pub fn run(args: &NormalmapArgs) -> Result<(), CliError> {
             bumpmap_io::horizon_file::write_gray_into(&mut set, path, (map.width(), map.height()), &ao, bits)?;
         }
         if let Some(path) = &args.bent_normals_out {
-            let (y, encoding) = (options.y_convention, options.encoding);
-            let chain = match args.bits {
-                16 => Chain::Rgba16(MipChain { levels: vec![map.bent_normal_map(depth, y, encoding)], encoding }),
-                _ => Chain::Rgba8(MipChain { levels: vec![map.bent_normal_map(depth, y, encoding)], encoding }),
-            };
             let format = if args.bits == 16 { TextureFormat::Rgba16 } else { TextureFormat::Rgba8 };
-            write_into(&mut set, path, &chain, format)?;
+            write_into(&mut set, path, &maps::bent_normals(&asked, map), format)?;
         }
     }
     let written = set.commit()?;
@@ -202,6 +200,17 @@ fn output_file(output: &Path, source: &HeightSource, spec: &str, format: Texture
     output.join(format!("{stem}.{}", if format.is_compressed() { "dds" } else { "png" }))
 }
 
+/// The maps' options `normalmap`'s flags ask for.
+pub fn map_options(args: &NormalmapArgs) -> MapOptions {
+    MapOptions {
+        normals: args.map.options(),
+        bits: args.bits,
+        mip_mode: args.mip_mode,
+        roughness: args.roughness,
+        roughness_layout: args.roughness_layout,
+    }
+}
+
 /// The texel format `--format` and `--bits` ask for together.
 pub fn texel_format(args: &NormalmapArgs) -> Result<TextureFormat, CliError> {
     let format: TextureFormat = args.format;
@@ -216,15 +225,7 @@ pub fn texel_format(args: &NormalmapArgs) -> Result<TextureFormat, CliError> {
     }
 }
 
-/// A chain at the depth its output format stores.
-pub enum Chain {
-    /// 8 bits a channel (RGBA8, BC5, BC7).
-    Rgba8(MipChain),
-    /// 16 bits a channel.
-    Rgba16(MipChain<[u16; 4]>),
-}
-
-/// [`make`] at the depth `format` stores.
+/// [`maps::normal_chain`] at the depth `format` stores, `name` naming the field in errors.
 pub fn make_chain(
     field: &HeightField,
     options: &NormalMapOptions,
@@ -233,10 +234,11 @@ pub fn make_chain(
     format: TextureFormat,
     name: &str,
 ) -> Result<Chain, CliError> {
+    let err = |source| scale_err(source, name);
     Ok(if format == TextureFormat::Rgba16 {
-        Chain::Rgba16(make_texels(field, options, mips, mode, name)?)
+        Chain::Rgba16(maps::normal_chain(field, options, mips, mode).map_err(err)?)
     } else {
-        Chain::Rgba8(make_texels(field, options, mips, mode, name)?)
+        Chain::Rgba8(maps::normal_chain(field, options, mips, mode).map_err(err)?)
     })
 }
 
@@ -257,7 +259,7 @@ pub fn make(
     mode: MipMode,
     name: &str,
 ) -> Result<MipChain, CliError> {
-    make_texels(field, options, mips, mode, name)
+    maps::normal_chain(field, options, mips, mode).map_err(|source| scale_err(source, name))
 }
 
 /// A normal map that could not be made from `name`'s heights, in the command line's words: a
@@ -271,20 +273,17 @@ pub(crate) fn scale_err(source: NormalMapError, name: &str) -> CliError {
     }
 }
 
-/// [`make`] in texels of 8 or 16 bits.
-fn make_texels<T: Texel>(
-    field: &HeightField,
-    options: &NormalMapOptions,
-    mips: bool,
-    mode: MipMode,
-    name: &str,
-) -> Result<MipChain<T>, CliError> {
-    let err = |source| scale_err(source, name);
-    if mips {
-        MipChain::from_height(field, options, mode).map_err(err)
-    } else {
-        let level = normal_map_level0_texels(field, options).map_err(err)?;
-        Ok(MipChain { levels: vec![level], encoding: options.encoding })
+/// A map that could not be made from `name`'s heights, in the command line's words: a value
+/// out of range is its flag's fault (exit status 2), a buffer too big the machine's.
+pub fn map_error(e: MapError, name: &str) -> CliError {
+    match e {
+        MapError::Bits(bits) => CliError::Usage(format!("--bits must be 8 or 16, got {bits}")),
+        MapError::Roughness(r) => CliError::Usage(format!("--roughness must be in [0, 1], got {r}")),
+        MapError::NormalMap(source) => scale_err(source, name),
+        MapError::Heights(HeightMipsError::OutOfMemory(e))
+        | MapError::Horizons(HorizonError::OutOfMemory(e))
+        | MapError::OutOfMemory(e) => CliError::OutOfMemory(e),
+        other => CliError::Path { path: name.into(), reason: other.to_string() },
     }
 }
 

@@ -26,6 +26,8 @@
 //! - [`options`]: the same set up from typed options with their defaults ([`options::SceneOptions`],
 //!   every option `bumpmap render` takes), files loaded and values checked;
 //! - [`motion`]: the light orbiting and the camera turning between frames;
+//! - [`maps`]: one height field into the maps a material is made of (the normal map and its
+//!   chain, the heights, the horizons, the roughness map, LEAN's moments);
 //! - [`assets`]: your own normal map files and meshes with their glTF materials;
 //! - [`inspect`]: what a normal map made elsewhere is (DirectX or OpenGL, a normal map at all,
 //!   its mips, its seam); [`heights`]: its heights back;
@@ -44,6 +46,7 @@ pub mod cpu;
 mod error;
 pub mod heights;
 pub mod inspect;
+pub mod maps;
 pub mod motion;
 pub mod options;
 pub mod renderer;

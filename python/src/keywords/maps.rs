@@ -1,11 +1,12 @@
 //! The map functions' keywords (`normal_map`, `mip_chain`, `height_mips`, `horizon_maps`,
-//! `roughness_map`, `lean_moments`, `read_height_field`): how heights become normals and what
-//! else is made, as the command line's `MapRequest`; `tangents`' algorithm and split angle; and
-//! how `height_from_normals` integrates slopes, as the library's `HeightOptions`.
+//! `roughness_map`, `lean_moments`): how heights become normals and what else is made, as the
+//! library's `MapOptions`; `read_height_field`'s channel; `tangents`' algorithm and split angle;
+//! and how `height_from_normals` integrates slopes, as the library's `HeightOptions`.
 
 use bumpmap::bumpmap_math::integration::check_scale;
 use bumpmap::heights::{HeightChoiceError, HeightMethod, HeightOptions};
-use bumpmap_cli::commands::MapRequest;
+use bumpmap::maps::MapOptions;
+use bumpmap_io::Channel;
 use bumpmap_io::texture_file::TextureFormat;
 use bumpmap_math::tangent::TangentOptions;
 use pyo3::prelude::*;
@@ -13,10 +14,10 @@ use pyo3::types::PyDict;
 
 use super::{Reader, given, unexpected};
 
-/// The keywords `function` takes, and the request they make from the command line's defaults.
-pub fn map_request(function: &str, taken: &[&str], kwargs: Option<&Bound<'_, PyDict>>) -> PyResult<MapRequest> {
+/// The keywords `function` takes, and the options they make from the library's defaults.
+pub fn map_request(function: &str, taken: &[&str], kwargs: Option<&Bound<'_, PyDict>>) -> PyResult<MapOptions> {
     let r = Reader { function };
-    let mut m = MapRequest::default();
+    let mut m = MapOptions::default();
     for (key, value) in given(kwargs)? {
         if !taken.contains(&key.as_str()) {
             return Err(unexpected(function, &key, taken));
@@ -38,7 +39,6 @@ pub fn map_request(function: &str, taken: &[&str], kwargs: Option<&Bound<'_, PyD
             "mip_mode" => m.mip_mode = r.word(&key, v)?,
             "roughness" => m.roughness = r.number(&key, v)?,
             "roughness_layout" => m.roughness_layout = r.word(&key, v)?,
-            "channel" => m.channel = r.word(&key, v)?,
             _ => unreachable!("every keyword a map function takes is read here: {key}"),
         }
     }
@@ -90,6 +90,19 @@ pub fn height_options(function: &str, kwargs: Option<&Bound<'_, PyDict>>) -> PyR
         ),
     })?;
     Ok((options, raw))
+}
+
+/// `read_height_field`'s one keyword: which channel of a colour image holds the heights.
+pub fn channel(function: &str, kwargs: Option<&Bound<'_, PyDict>>) -> PyResult<Channel> {
+    let r = Reader { function };
+    let mut channel = Channel::Luminance;
+    for (key, value) in given(kwargs)? {
+        match key.as_str() {
+            "channel" => channel = r.word(&key, &value)?,
+            _ => return Err(unexpected(function, &key, &["channel"])),
+        }
+    }
+    Ok(channel)
 }
 
 /// `write_texture`'s one keyword: the format the levels are stored in.

@@ -2,13 +2,13 @@
 //! of a closed set, a path, an array — set straight into the field of the options it stands for
 //! (the library's [`SceneOptions`](bumpmap::options::SceneOptions) with the frame's size and
 //! backend, [`CompareOptions`](bumpmap_compare::CompareOptions), `TangentOptions`, a
-//! `TextureFormat`, the maps' `MapRequest`). No text is put together for a command line: the
+//! `TextureFormat`, the maps' `MapOptions`). No text is put together for a command line: the
 //! words of closed sets are the library's ([`Named`]), the ranges are checked by the library, and
 //! the defaults are its own.
 //!
 //! - `render`: `render`'s and `Renderer.prepare`'s keywords → a `Request` and its arrays;
 //! - `compare`: `compare`'s keywords → `CompareOptions`;
-//! - `maps`: the map functions' keywords → a `MapRequest`; `tangents`', `write_texture`'s and
+//! - `maps`: the map functions' keywords → `MapOptions`; `tangents`', `write_texture`'s and
 //!   `height_from_normals`' (→ the library's `HeightOptions`).
 //!
 //! What it does not do: document the keywords (the docstrings read the command's help, which
@@ -20,7 +20,8 @@ mod render;
 
 pub use compare::{COMPARE_KEYWORDS, compare_options};
 pub use maps::{
-    HEIGHT_KEYWORDS, TANGENT_KEYWORDS, height_options, map_keywords, map_request, tangent_options, texture_format,
+    HEIGHT_KEYWORDS, TANGENT_KEYWORDS, channel, height_options, map_keywords, map_request, tangent_options,
+    texture_format,
 };
 pub use render::{KEYWORDS, render_request};
 

@@ -1,14 +1,14 @@
-//! The maps `normalmap` writes beside the normal map, each from the same height field: the
-//! heights as geometry (`--height-out`), the horizon map that ambient occlusion and bent
-//! normals come from, the roughness map and LEAN's moments. What this module does not do: write
-//! files (the command stages them all in one set).
+//! What `normalmap` needs around the maps it writes beside the normal map (`bumpmap::maps`
+//! makes them): the memory they take together, checked before any is made; the heights'
+//! warning; LEAN's file names. What this module does not do: make a map, or write files (the
+//! command stages them all in one set).
 
 use std::path::{Path, PathBuf};
 
-use bumpmap_math::normalmap::NormalMapError;
-use bumpmap_math::{HeightField, MipChain, MipMode, NormalMapOptions};
+use bumpmap::maps::{self, MapOptions};
+use bumpmap_math::{HeightField, HeightMips};
 
-use super::{Chain, make_texels, scale_err};
+use super::map_error;
 use crate::error::CliError;
 
 /// Bytes a texel of level 0 costs beyond the height field itself, as measured (peak resident
@@ -59,50 +59,14 @@ pub(super) fn ensure_room(args: &crate::args::NormalmapArgs, width: usize, heigh
     })
 }
 
-/// `--height-out`'s heights: the field rounded to `bits` first, so the levels and the min–max
-/// bounds are those of the heights stored; a warning where the field leaves [0, 1].
-pub(crate) fn height_levels(field: &HeightField, bits: u8, name: &str) -> Result<bumpmap_math::HeightMips, CliError> {
-    let mut row = Vec::new();
-    let (mut lo, mut hi) = (f32::INFINITY, f32::NEG_INFINITY);
-    for y in 0..field.height() {
-        for &v in field.row(y, &mut row) {
-            (lo, hi) = (lo.min(v), hi.max(v));
-        }
+/// `--height-out`'s heights ([`maps::height_mips`]), with a warning where the field leaves
+/// [0, 1]; `name` names the field.
+pub(crate) fn height_levels(map: &MapOptions, field: &HeightField, name: &str) -> Result<HeightMips, CliError> {
+    let stored = maps::height_mips(map, field).map_err(|e| map_error(e, name))?;
+    if let Some(clamped) = stored.clamped {
+        crate::report::warn(format!("{name}: {clamped} for --height-out"));
     }
-    if lo < 0.0 || hi > 1.0 {
-        crate::report::warn(format!(
-            "{name}: heights from {lo} to {hi} are clamped to [0, 1] for --height-out (1 on the surface, 0 at --depth below it)"
-        ));
-    }
-    let steps = if bits == 16 { 65535 } else { 255 };
-    bumpmap_math::HeightMips::from_field_rounded(field, steps).map_err(|e| match e {
-        bumpmap_math::HeightMipsError::OutOfMemory(e) => CliError::OutOfMemory(e),
-        other => CliError::Path { path: name.into(), reason: other.to_string() },
-    })
-}
-
-/// The horizon map of `field` (`--horizon-out`, and what `--ao-out` and `--bent-normals-out`
-/// are made from), read beyond the edges as `wrap` says.
-pub(crate) fn horizon_map(
-    field: &HeightField,
-    wrap: bumpmap_math::Wrap,
-    name: &str,
-) -> Result<bumpmap_math::HorizonMap, CliError> {
-    bumpmap_math::HorizonMap::from_heights(field, wrap).map_err(|e| match e {
-        bumpmap_math::HorizonError::OutOfMemory(e) => CliError::OutOfMemory(e),
-        other => CliError::Path { path: name.into(), reason: other.to_string() },
-    })
-}
-
-/// `--roughness-out`'s levels ([`bumpmap::options::roughness_map`]), named `name` in errors.
-pub(crate) fn roughness_chain(
-    field: &HeightField,
-    options: &NormalMapOptions,
-    perceptual: f32,
-    layout: bumpmap::options::RoughnessLayout,
-    name: &str,
-) -> Result<MipChain, CliError> {
-    bumpmap::options::roughness_map(field, options, perceptual, layout).map_err(|e| scale_err(e, name))
+    Ok(stored.mips)
 }
 
 /// `--lean-out`'s two files: `L` itself and `L`'s stem with `.mxy-j` before the extension.
@@ -118,33 +82,4 @@ pub(super) fn lean_paths(out: &Path) -> Result<[PathBuf; 2], CliError> {
     let stem = out.file_stem().unwrap_or_default().to_string_lossy();
     let ext = out.extension().unwrap_or_default().to_string_lossy();
     Ok([out.to_path_buf(), out.with_file_name(format!("{stem}.mxy-j.{ext}"))])
-}
-
-/// `--lean-out`'s levels, two planes: (Bx, By, Mxx, Myy) and (Mxy, J, 0, 0), from the 8-bit
-/// normal map's level 0 (the chain `render` draws from, whatever `--bits` the normal map is
-/// written at), by [`LeanMips`](bumpmap_math::LeanMips): the written chain's own level 0 when
-/// it is 8-bit (its mip mode changes no level-0 texel), else one made at 8 bits.
-pub(crate) fn lean_levels(
-    field: &HeightField,
-    options: &NormalMapOptions,
-    written: &Chain,
-    name: &str,
-) -> Result<[Vec<bumpmap_math::Image<[f32; 4]>>; 2], CliError> {
-    let made;
-    let chain: &MipChain = match written {
-        Chain::Rgba8(chain) => chain,
-        Chain::Rgba16(_) => {
-            made = make_texels(field, options, true, MipMode::LengthInAlpha, name)?;
-            &made
-        }
-    };
-    let lean = bumpmap_math::LeanMips::from_level0(&chain.levels[0], chain.levels.len(), chain.encoding)
-        .map_err(|e| CliError::NormalMap { path: name.to_string(), source: NormalMapError::OutOfMemory(e) })?;
-    let plane = |texel: fn(&bumpmap_math::LeanMoments) -> [f32; 4]| {
-        lean.levels
-            .iter()
-            .map(|l| bumpmap_math::Image::new(l.width, l.height, l.texels.iter().map(texel).collect()))
-            .collect()
-    };
-    Ok([plane(|t| [t.b.x, t.b.y, t.m.x, t.m.z]), plane(|t| [t.m.y, t.j, 0.0, 0.0])])
 }

@@ -1,0 +1,228 @@
+//! One height field into the maps a bump-mapped material is made of, each as `bumpmap
+//! normalmap` writes it and the Python package returns it: the normal map (level 0 or its
+//! chain, 8 or 16 bits a channel), the heights the parallax techniques read, the horizon map
+//! (ambient occlusion and bent normals come from it), the roughness map and LEAN's moments.
+//!
+//! ```
+//! use bumpmap::maps::{self, Chain, MapOptions};
+//! use bumpmap::HeightPreset;
+//!
+//! let field = HeightPreset::Bricks.render(64, 64);
+//! let options = MapOptions { bits: 16, ..MapOptions::default() };
+//! let Chain::Rgba16(chain) = maps::normal_map(&options, true, &field).unwrap() else { panic!() };
+//! assert_eq!(chain.levels.len(), 7); // 64² down to 1²
+//! let heights = maps::height_mips(&options, &field).unwrap();
+//! assert!(heights.clamped.is_none(), "the preset's heights are in [0, 1]");
+//! ```
+//!
+//! What this module does not do: read or write files (`bumpmap_io`), print (what a caller may
+//! want to say comes back as data: [`Clamped`]), or refuse a field too big for every output at
+//! once before any is made (each buffer is asked for fallibly; a command that makes several
+//! maps adds up their cost itself).
+
+use bumpmap_math::buffer::OutOfMemory;
+use bumpmap_math::normalmap::{NormalMapError, normal_map_level0_texels};
+use bumpmap_math::{
+    HeightField, HeightMips, HeightMipsError, HorizonError, HorizonMap, Image, LeanMips, MipChain, MipMode,
+    NormalMapOptions, Texel, YConvention,
+};
+
+use crate::options::RoughnessLayout;
+
+/// How the maps are made from heights: the normal map's options and what the other maps need.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct MapOptions {
+    /// How heights become normals: the kernel, the scale, the wrap, the Y convention, the
+    /// encoding. The scale is also the depth, in texels, the horizons and the occlusion are
+    /// taken at.
+    pub normals: NormalMapOptions,
+    /// Bits a channel the normal map and the heights are stored in: 8 or 16.
+    pub bits: u8,
+    /// What the smaller levels of the normal map hold.
+    pub mip_mode: MipMode,
+    /// The surface's own perceptual roughness, in [0, 1], for the roughness map.
+    pub roughness: f32,
+    /// The roughness map's channels.
+    pub roughness_layout: RoughnessLayout,
+}
+
+impl Default for MapOptions {
+    /// Green up (as glTF and Blender read a map), 8 bits, the length in alpha, roughness 0.5 in
+    /// gray: what `bumpmap normalmap` makes with no flags.
+    fn default() -> Self {
+        MapOptions {
+            normals: NormalMapOptions { y_convention: YConvention::YUp, ..Default::default() },
+            bits: 8,
+            mip_mode: MipMode::LengthInAlpha,
+            roughness: 0.5,
+            roughness_layout: RoughnessLayout::Gray,
+        }
+    }
+}
+
+/// Why a map cannot be made.
+#[derive(Debug, thiserror::Error)]
+pub enum MapError {
+    /// Bits a channel other than 8 or 16.
+    #[error("bits must be 8 or 16, got {0}")]
+    Bits(u8),
+    /// A roughness outside [0, 1].
+    #[error("roughness must be in [0, 1], got {0}")]
+    Roughness(f32),
+    /// The normal map (a scale out of range, or its buffers).
+    #[error(transparent)]
+    NormalMap(#[from] NormalMapError),
+    /// The heights' levels.
+    #[error(transparent)]
+    Heights(#[from] HeightMipsError),
+    /// The horizon map.
+    #[error(transparent)]
+    Horizons(#[from] HorizonError),
+    /// A buffer that would not fit.
+    #[error(transparent)]
+    OutOfMemory(#[from] OutOfMemory),
+}
+
+impl MapOptions {
+    /// Refuses bits other than 8 or 16 and a roughness outside [0, 1]. (The scale is checked
+    /// where the normals are made.)
+    pub fn check(&self) -> Result<(), MapError> {
+        if !matches!(self.bits, 8 | 16) {
+            return Err(MapError::Bits(self.bits));
+        }
+        if !(0.0..=1.0).contains(&self.roughness) {
+            return Err(MapError::Roughness(self.roughness));
+        }
+        Ok(())
+    }
+}
+
+/// A chain of RGBA levels at the depth it is stored in.
+#[derive(Clone, Debug)]
+pub enum Chain {
+    /// 8 bits a channel (what RGBA8, BC5 and BC7 files hold).
+    Rgba8(MipChain),
+    /// 16 bits a channel.
+    Rgba16(MipChain<[u16; 4]>),
+}
+
+/// The normal map of `field`: level 0, or every level down to 1×1 with `mips`, at
+/// `options.bits`.
+pub fn normal_map(options: &MapOptions, mips: bool, field: &HeightField) -> Result<Chain, MapError> {
+    options.check()?;
+    Ok(match options.bits {
+        16 => Chain::Rgba16(normal_chain(field, &options.normals, mips, options.mip_mode)?),
+        _ => Chain::Rgba8(normal_chain(field, &options.normals, mips, options.mip_mode)?),
+    })
+}
+
+/// The normal map of `field` in texels `T`: level 0, or every level with `mips`, the smaller
+/// levels as `mode` says.
+pub fn normal_chain<T: Texel>(
+    field: &HeightField,
+    normals: &NormalMapOptions,
+    mips: bool,
+    mode: MipMode,
+) -> Result<MipChain<T>, NormalMapError> {
+    if mips {
+        MipChain::from_height(field, normals, mode)
+    } else {
+        let level = normal_map_level0_texels(field, normals)?;
+        Ok(MipChain { levels: vec![level], encoding: normals.encoding })
+    }
+}
+
+/// Heights outside [0, 1], which the stored heights clamp: 1 is the surface, 0 the parallax
+/// depth below it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Clamped {
+    /// The lowest height of the field.
+    pub lowest: f32,
+    /// The highest.
+    pub highest: f32,
+}
+
+impl std::fmt::Display for Clamped {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(
+            f,
+            "heights from {} to {} are clamped to [0, 1] (1 on the surface, 0 at the depth below it)",
+            self.lowest, self.highest
+        )
+    }
+}
+
+/// The heights as the parallax techniques read them, and whether the field had to be clamped.
+#[derive(Clone, Debug)]
+pub struct StoredHeights {
+    /// The levels and the min–max levels.
+    pub mips: HeightMips,
+    /// The field's range, where it leaves [0, 1].
+    pub clamped: Option<Clamped>,
+}
+
+/// The heights as a height map stores them: level 0 rounded to `options.bits` first, so that
+/// the mean levels and the min–max bounds are those of the heights stored.
+pub fn height_mips(options: &MapOptions, field: &HeightField) -> Result<StoredHeights, MapError> {
+    options.check()?;
+    let mut row = Vec::new();
+    let (mut lowest, mut highest) = (f32::INFINITY, f32::NEG_INFINITY);
+    for y in 0..field.height() {
+        for &v in field.row(y, &mut row) {
+            (lowest, highest) = (lowest.min(v), highest.max(v));
+        }
+    }
+    let clamped = (lowest < 0.0 || highest > 1.0).then_some(Clamped { lowest, highest });
+    let steps = if options.bits == 16 { 65535 } else { 255 };
+    Ok(StoredHeights { mips: HeightMips::from_field_rounded(field, steps)?, clamped })
+}
+
+/// The horizon map of `field`, read beyond its edges as the normal map's wrap says (ambient
+/// occlusion and bent normals are made from it, at the depth `options.normals.scale`).
+pub fn horizon_map(options: &MapOptions, field: &HeightField) -> Result<HorizonMap, MapError> {
+    options.check()?;
+    Ok(HorizonMap::from_heights(field, options.normals.wrap)?)
+}
+
+/// The bent normals of `horizons` (level 0), encoded as the normal map is and at its bits.
+pub fn bent_normals(options: &MapOptions, horizons: &HorizonMap) -> Chain {
+    let (depth, y, encoding) = (options.normals.scale.abs(), options.normals.y_convention, options.normals.encoding);
+    match options.bits {
+        16 => Chain::Rgba16(MipChain { levels: vec![horizons.bent_normal_map(depth, y, encoding)], encoding }),
+        _ => Chain::Rgba8(MipChain { levels: vec![horizons.bent_normal_map(depth, y, encoding)], encoding }),
+    }
+}
+
+/// The roughness map's levels (RGBA8, every level down to 1×1): the surface's roughness made
+/// rougher where the normals a texel averages spread
+/// ([`roughness_map`](crate::options::roughness_map)), in the channels the layout names.
+pub fn roughness_map(options: &MapOptions, field: &HeightField) -> Result<MipChain, MapError> {
+    options.check()?;
+    Ok(crate::options::roughness_map(field, &options.normals, options.roughness, options.roughness_layout)?)
+}
+
+/// LEAN mapping's moments, every level, as two planes: (Bx, By, Mxx, Myy) and (Mxy, J, 0, 0).
+/// They come from the 8-bit normal map's level 0 (what the renderer draws from, whatever bits
+/// the map is stored at): `made`'s, as many levels as it has, when it is an 8-bit chain (its
+/// mip mode changes no texel of level 0, and LEAN makes its own levels); else from a whole
+/// chain made here.
+pub fn lean_moments(
+    options: &MapOptions,
+    field: &HeightField,
+    made: Option<&Chain>,
+) -> Result<[Vec<Image<[f32; 4]>>; 2], MapError> {
+    options.check()?;
+    let own;
+    let chain: &MipChain = match made {
+        Some(Chain::Rgba8(chain)) => chain,
+        _ => {
+            own = normal_chain(field, &options.normals, true, MipMode::LengthInAlpha)?;
+            &own
+        }
+    };
+    let lean = LeanMips::from_level0(&chain.levels[0], chain.levels.len(), chain.encoding)?;
+    let plane = |texel: fn(&bumpmap_math::LeanMoments) -> [f32; 4]| {
+        lean.levels.iter().map(|l| Image::new(l.width, l.height, l.texels.iter().map(texel).collect())).collect()
+    };
+    Ok([plane(|t| [t.b.x, t.b.y, t.m.x, t.m.z]), plane(|t| [t.m.y, t.j, 0.0, 0.0])])
+}
