@@ -1,11 +1,14 @@
 //! `bumpmap._bumpmap`: the native half of the `bumpmap` Python package.
 //!
-//! Every function reads its keywords as typed Python values straight into typed options
-//! (`keywords`: `bumpmap::options::SceneOptions`, `bumpmap_compare::CompareOptions`, the
-//! library's `MapOptions`, `TangentOptions`, a `TextureFormat`, `HeightOptions`). All call
-//! the same code the command runs (`bumpmap_cli::commands`), so a script and `bumpmap` make the
-//! same bytes from the same options. The package's `__init__.py` wraps each one with keyword arguments and
-//! a docstring made from the options' help texts.
+//! Every function reads its keywords as typed Python values straight into the library's typed
+//! options (`keywords`: `bumpmap::frame::FrameRequest`, `bumpmap_compare::CompareOptions`,
+//! `bumpmap::maps::MapOptions`, `TangentOptions`, a `TextureFormat`, `HeightOptions`) and calls
+//! the library's functions the command calls too, so a script and `bumpmap` make the same bytes
+//! from the same options. From the command line's crate (`bumpmap_cli::commands`) it takes
+//! words and files: its errors' and notes' wording (made Python's by `errors`), its reporting
+//! of warnings and progress, and its writers of texture files and `compare`'s folder. The
+//! package's `__init__.py` wraps each function with keyword arguments and a docstring made from
+//! the options' help texts.
 //!
 //! - `keywords`: keywords → typed options;
 //! - `options`: every function's option table for the docstrings;
@@ -205,7 +208,7 @@ fn render<'py>(py: Python<'py>, options: Option<&Bound<'py, PyDict>>) -> PyResul
     let (request, given) = keywords::render_request(py, "render", options.as_ref(), true)?;
     let drawn = interrupt::run_reporting(
         py,
-        move |_, shown| commands::render_given(&request, shown, &given),
+        move |_, shown| commands::render_given(&request, std::path::Path::new("the frame"), shown, &given),
         progress.as_ref(),
     )?
     .map_err(|e| to_py("render", e))?;

@@ -112,9 +112,18 @@ impl Renderer {
         }
         let (request, given) = keywords::render_request(py, "prepare", options, false)?;
         let technique = request.options.technique.technique.name().to_string();
-        let prepared = interrupt::run(py, move |_| commands::prepare_render(&request, &given))?
-            .map_err(|e| to_py("prepare", e))?;
-        let notes = prepared.setup.notes.iter().chain(&prepared.depth_notes).cloned().collect();
+        let prepared = interrupt::run(py, move |_| {
+            let prepared = commands::prepare_render(&request, &given)?;
+            let notes = commands::frame_notes(&prepared);
+            // Said as `render` says them (warnings through `warnings`, notes to the logger),
+            // once, when the scene is prepared; `Scene.notes` keeps them too.
+            for note in &notes {
+                bumpmap_cli::report::setup_line(note);
+            }
+            Ok((prepared, notes))
+        })?
+        .map_err(|e| to_py("prepare", e))?;
+        let (prepared, notes) = prepared;
         Ok(Scene {
             renderer: self.inner.clone(),
             prepared: Arc::new(Mutex::new(prepared.prepared)),

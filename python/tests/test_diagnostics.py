@@ -75,3 +75,14 @@ def test_a_progress_function_that_raises_stops_the_call_with_its_exception():
     with pytest.raises(TypeError, match=r"progress: a function of \(done, total\) or None, not str"):
         bumpmap.render(progress="yes")
     assert bumpmap.render(size=16, progress=None).shape == (16, 16, 4)
+
+
+def test_prepare_says_its_notes_as_render_does(caplog, capfd):
+    """A scene prepared once says what setting it up noted, through the logger, as `render`
+    says it each call; `Scene.notes` keeps the lines."""
+    with caplog.at_level(logging.INFO, logger="bumpmap"):
+        scene = bumpmap.Renderer().prepare(technique="pom", depth=100, size=16)
+    said = [r.getMessage() for r in caplog.records if r.name == "bumpmap" and "carve past" in r.getMessage()]
+    assert len(said) == 1, [r.getMessage() for r in caplog.records]
+    assert any("carve past" in n for n in scene.notes)
+    assert "carve past" not in capfd.readouterr().err

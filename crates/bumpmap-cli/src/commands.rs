@@ -3,7 +3,7 @@
 //! the command line make the same bytes from the same options, and read the same defaults
 //! (`args`'s) to do so.
 //!
-//! `render` and `compare` take typed requests ([`Request`], `bumpmap_compare::CompareOptions`)
+//! `render` and `compare` take typed requests ([`FrameRequest`], `bumpmap_compare::CompareOptions`)
 //! that the command line makes from its flags and the Python package from its keywords; and
 //! `tangents` its `TangentOptions`. The maps made from heights are the library's
 //! (`bumpmap::maps`); [`map_error`] says their errors as `normalmap` does. What
@@ -20,9 +20,9 @@ use bumpmap_math::tangent::{TangentOptions, TangentReport, generate_tangents};
 use crate::error::CliError;
 pub use crate::report::Progress;
 
-pub use crate::render::{Drawn, Frame};
-pub use crate::render::{PreparedArgs, Request};
+pub use crate::render::Drawn;
 pub use crate::setup::{Given, Setup};
+pub use bumpmap::frame::{Frame, FrameRequest, PreparedFrame};
 pub use bumpmap::maps::Chain;
 pub use bumpmap_compare::{Outcome, Rendered, Results, Scores};
 
@@ -52,10 +52,16 @@ pub fn write_texture(
 }
 
 /// `render`'s image (and passes, with `passes`) for a typed request, drawn as the command draws
-/// it, without the output file, with the inputs `given` in memory in place of the files its
-/// options name; the reference shows its tiles' progress as `progress` says.
-pub fn render_given(request: &Request, progress: &Progress, given: &Given) -> Result<Drawn, CliError> {
-    crate::render::draw_request(request, progress, given)
+/// it, without the output file (`output` names the frame in a refusal), with the inputs
+/// `given` in memory in place of the files its options name; the reference shows its tiles'
+/// progress as `progress` says.
+pub fn render_given(
+    request: &FrameRequest,
+    output: &Path,
+    progress: &Progress,
+    given: &Given,
+) -> Result<Drawn, CliError> {
+    crate::render::draw_request(request, output, progress, given)
 }
 
 /// The renderer `--backend` opens (with `auto`, the reason for drawing on the CPU on stderr).
@@ -65,8 +71,14 @@ pub fn open_renderer(backend: bumpmap::BackendChoice) -> Result<bumpmap::Rendere
 
 /// What `render` would draw, set up and prepared once, for drawing many frames of it (moving
 /// the light or the eye) with a [`bumpmap::Renderer`] kept between them.
-pub fn prepare_render(request: &Request, given: &Given) -> Result<PreparedArgs, CliError> {
+pub fn prepare_render(request: &FrameRequest, given: &Given) -> Result<PreparedFrame, CliError> {
     crate::render::prepare_request(request, given)
+}
+
+/// What setting `prepared` up noted, a line each as `render` prints them (a warning's line
+/// starts `warning: `).
+pub fn frame_notes(prepared: &PreparedFrame) -> Vec<String> {
+    crate::render::frame_notes(prepared)
 }
 
 /// `tangents`' mesh for `mesh`: the tangents made by `options.mode` (vertices split where the split angle

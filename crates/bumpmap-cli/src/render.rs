@@ -1,86 +1,47 @@
-//! `bumpmap render`: the options made into a scene and a technique of the catalogue
-//! (`crate::setup`), drawn by the front door's renderer into a PNG (and, with `--passes`, one
-//! PNG per pass).
+//! `bumpmap render`: the flags made into the library's [`FrameRequest`], prepared and drawn by
+//! `bumpmap::frame` on the renderer the backend names, written as a PNG (and, with `--passes`,
+//! one PNG per pass).
 //!
-//! The library refuses what a technique cannot do with typed errors; this module is where they
-//! get the names of the flags that caused them ([`core_err`], [`lib_err`]).
+//! The library refuses what a technique cannot do with typed errors and says what it noted as
+//! data; this module is where they get the names of the flags that caused them ([`frame_err`],
+//! [`core_err`], [`lib_err`], [`frame_notes`]).
 
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
 use bumpmap::bumpmap_core::Feature;
+use bumpmap::bumpmap_math::buffer::OutOfMemory;
+use bumpmap::frame::{DepthNote, FrameError, SceneSize};
 use bumpmap::options::SceneOptions;
-use bumpmap::{BackendChoice, BumpSource, CoreError, Prepared, Renderer, Rgba8Image, Scene, Technique, TechniqueName};
+use bumpmap::{BackendChoice, CoreError, Renderer, Rgba8Image};
 use bumpmap_io::atomic::{FileSet, ensure_not_input};
 use bumpmap_io::image_file::{PngLayout, save_png_into};
 
 use crate::args::RenderArgs;
 use crate::error::CliError;
 
-/// A rendered frame and, when asked for, the framebuffer after each named pass.
-pub struct Frame {
-    /// The final image.
-    pub image: Rgba8Image,
-    /// `(pass name, image)` for Kilgard Figure 12.
-    pub snapshots: Vec<(String, Rgba8Image)>,
-}
+pub use bumpmap::frame::{DEFAULT_SIZE, Frame, FrameRequest, PreparedFrame};
 
-/// What `render` draws, typed: the library's scene options, the frame's size, the backend, and
-/// whether each pass is kept. The command line makes it from its flags, the Python package from
-/// its keywords.
-#[derive(Clone, Debug)]
-pub struct Request {
-    /// What is drawn and how.
-    pub options: SceneOptions,
-    /// The frame's width and height in pixels.
-    pub size: (usize, usize),
-    /// What draws it (the reference always draws on the CPU).
-    pub backend: BackendChoice,
-    /// Keep the framebuffer after each of kilgard's passes.
-    pub passes: bool,
-    /// Where the frame goes, for messages.
-    pub output: PathBuf,
-}
-
-/// `render`'s square frame side when none is given.
-pub const DEFAULT_SIZE: usize = 512;
-
-impl Default for Request {
-    /// What `bumpmap render` draws with no flags (a test holds the two together).
-    fn default() -> Self {
-        Request {
-            options: SceneOptions::default(),
-            size: (DEFAULT_SIZE, DEFAULT_SIZE),
-            backend: BackendChoice::Cpu,
-            passes: false,
-            output: PathBuf::from("out/render.png"),
-        }
-    }
-}
-
-impl Request {
-    /// The request `render`'s flags make.
-    pub fn from_args(args: &RenderArgs) -> Result<Self, CliError> {
-        let size = match (args.width, args.height) {
-            (Some(w), Some(h)) => (w, h),
-            _ => (args.size, args.size),
-        };
-        Ok(Request {
-            options: crate::setup::scene_options(&args.setup)?,
-            size,
-            backend: args.setup.backend.backend,
-            passes: args.passes,
-            output: args.output.clone(),
-        })
-    }
+/// The frame `render`'s flags ask for.
+pub fn frame_request(args: &RenderArgs) -> Result<FrameRequest, CliError> {
+    let size = match (args.width, args.height) {
+        (Some(w), Some(h)) => (w, h),
+        _ => (args.size, args.size),
+    };
+    Ok(FrameRequest {
+        options: crate::setup::scene_options(&args.setup)?,
+        size,
+        backend: args.setup.backend.backend,
+        passes: args.passes,
+    })
 }
 
 /// Runs `bumpmap render`.
 pub fn run(args: &RenderArgs) -> Result<(), CliError> {
-    let request = Request::from_args(args)?;
+    let request = frame_request(args)?;
     let named = request.options.named_inputs();
     ensure_not_input(&args.output, &named.iter().map(PathBuf::as_path).collect::<Vec<_>>())?;
-    let drawn = draw_request(&request, &crate::report::Progress::Bar, &crate::setup::Given::default())?;
+    let drawn = draw_request(&request, &args.output, &crate::report::Progress::Bar, &crate::setup::Given::default())?;
     let inputs: Vec<&Path> = drawn.inputs.iter().map(PathBuf::as_path).collect();
     let written = write_frame(&drawn.frame, &args.output, &inputs)?;
     eprintln!(
@@ -101,39 +62,18 @@ pub struct Drawn {
     pub inputs: Vec<PathBuf>,
 }
 
-/// What `args` describe, set up and prepared once: the frame's size, the scene with the
-/// technique's maps made, and how its inputs were read. A frame that would not fit, `--passes`
-/// without passes, a bad option or input: refused before any drawing.
-pub struct PreparedArgs {
-    /// `--width`×`--height`, or `--size` squared.
-    pub size: (usize, usize),
-    /// The scene with the technique's maps.
-    pub prepared: Prepared,
-    /// The setup it came from (its notes for stderr, the files it read).
-    pub setup: crate::setup::Setup,
-    /// What `--depth` did, for stderr.
-    pub depth_notes: Vec<String>,
+/// Sets up and prepares what `request` describes ([`bumpmap::frame::prepare_frame`]), with the
+/// inputs `given` in memory in place of their options' files; what it refuses, in the flags'
+/// words.
+pub fn prepare_request(request: &FrameRequest, given: &crate::setup::Given) -> Result<PreparedFrame, CliError> {
+    bumpmap::frame::prepare_frame(request, given).map_err(|e| frame_err(e, &request.options, None))
 }
 
-/// Sets up and prepares what `request` describes, with the inputs `given` in memory in place of
-/// their options' files.
-pub fn prepare_request(request: &Request, given: &crate::setup::Given) -> Result<PreparedArgs, CliError> {
-    let (width, height) = request.size;
-    // Refuse an impossible framebuffer, and --passes without passes, before any work.
-    Renderer::check_size(width, height).map_err(lib_err)?;
-    let name = request.options.technique.technique;
-    if request.passes && name != TechniqueName::Kilgard {
-        return Err(CliError::Usage(format!(
-            "--passes shows the three passes of --technique kilgard; {name} draws {}",
-            if name.is_reference() { "no passes (it samples the exact surface)" } else { "one pass per light" }
-        )));
-    }
-    let setup = crate::setup::set_up_options(&request.options, given)?;
-    let bumps = bumps_name(&request.options);
-    let prepared = Prepared::new(&setup.spec, name, &setup.options)
-        .map_err(|e| too_big(prepare_err(e), &setup.spec, bumps.as_deref()))?;
-    let depth_notes = depth_notes(&request.options, &setup.spec, &prepared);
-    Ok(PreparedArgs { size: (width, height), prepared, setup, depth_notes })
+/// What setting `prepared` up noted and what its depth did, a line each as stderr shows them
+/// (a warning's line starts `warning: `).
+pub fn frame_notes(prepared: &PreparedFrame) -> Vec<String> {
+    let setup = prepared.set_up.notes.iter().map(crate::setup::note_line);
+    setup.chain(prepared.depth_notes.iter().map(depth_line)).collect()
 }
 
 /// The file or preset the bumps come from, as messages name it.
@@ -145,23 +85,23 @@ fn bumps_name(options: &SceneOptions) -> Option<String> {
 }
 
 /// Draws what `request` describes: the scene set up, the technique prepared, the frame drawn on
-/// its backend (the reference always on the CPU, its tiles' progress shown as `progress` says).
-/// The notes the assets bring (what a glTF's material gave) go to stderr.
+/// its backend (the reference always on the CPU, its tiles' progress shown as `progress` says)
+/// and refused if black, `output` named in that refusal. The notes the assets bring (what a
+/// glTF's material gave) go to stderr.
 pub fn draw_request(
-    request: &Request,
+    request: &FrameRequest,
+    output: &Path,
     progress: &crate::report::Progress,
     given: &crate::setup::Given,
 ) -> Result<Drawn, CliError> {
     let name = request.options.technique.technique;
-    let PreparedArgs { size: (width, height), prepared, setup, depth_notes } = prepare_request(request, given)?;
-    for note in setup.notes.iter().chain(&depth_notes) {
-        crate::report::setup_line(note);
+    let prepared = prepare_request(request, given)?;
+    for note in frame_notes(&prepared) {
+        crate::report::setup_line(&note);
     }
-    let bumps = bumps_name(&request.options);
-    let too_big = |e| too_big(e, &setup.spec, bumps.as_deref());
     let mut renderer = if name.is_reference() {
         // The reference runs on the CPU whatever the backend; no device need open for it.
-        let mut r = Renderer::new(BackendChoice::Cpu).map_err(lib_err)?;
+        let mut r = Renderer::new(request.backend_for()).map_err(lib_err)?;
         match progress {
             crate::report::Progress::Hidden => {}
             crate::report::Progress::Bar => r.set_reference_progress(Some(reference_bar())),
@@ -172,42 +112,43 @@ pub fn draw_request(
         }
         r
     } else {
-        renderer(request.backend)?
+        renderer(request.backend_for())?
     };
-    let frame =
-        draw(&mut renderer, &prepared.scene, &prepared.technique, width, height, request.passes).map_err(too_big)?;
-    ensure_drawn(frame.image.texels.iter().all(|&[r, g, b, _]| r == 0 && g == 0 && b == 0), &request.output)?;
+    let frame = bumpmap::frame::draw_frame(&mut renderer, &prepared, request.passes)
+        .map_err(|e| frame_err(e, &request.options, Some(output)))?;
     let by = if name.is_reference() {
-        format!("reference, {} samples per pixel", setup.options.reference.samples_per_pixel)
+        format!("reference, {} samples per pixel", prepared.set_up.options.reference.samples_per_pixel)
     } else {
         format!("{name}, {}", renderer.describe())
     };
-    Ok(Drawn { frame, by, inputs: setup.inputs })
+    Ok(Drawn { frame, by, inputs: prepared.set_up.inputs })
 }
 
-/// What `--depth` did, for stderr: clamped to what the surface allows, or a depth whose slopes
-/// the normal map `spec` makes from heights (with `--bump-scale`) does not share.
-pub fn depth_notes(options: &SceneOptions, spec: &bumpmap::SceneSpec, prepared: &Prepared) -> Vec<String> {
-    let mut notes = Vec::new();
-    let Some(asked) = options.heights.depth else { return notes };
-    let Some(object) = prepared.scene.objects.iter().find(|o| o.material.heights.is_some()) else { return notes };
-    let used = object.material.depth;
-    if used < asked * (1.0 - 1e-6) {
-        notes.push(format!(
+/// A frame's refusal in the command line's words: the flags that caused it, the inputs that
+/// made a scene too big, and `output` where a black image was not written.
+pub fn frame_err(e: FrameError, options: &SceneOptions, output: Option<&Path>) -> CliError {
+    match e {
+        FrameError::Passes { technique } => CliError::Usage(format!(
+            "--passes shows the three passes of --technique kilgard; {technique} draws {}",
+            if technique.is_reference() { "no passes (it samples the exact surface)" } else { "one pass per light" }
+        )),
+        FrameError::SetUp(e) => crate::setup::setup_err(e),
+        FrameError::TooBig { size, source } => too_big(source, size, bumps_name(options).as_deref()),
+        FrameError::Black => not_drawn(output.unwrap_or(Path::new("the frame"))),
+        FrameError::Library(e) => lib_err(e),
+    }
+}
+
+/// A depth note as stderr shows it, naming the flags.
+fn depth_line(note: &DepthNote) -> String {
+    match *note {
+        DepthNote::Clamped { asked, used } => format!(
             "note: --depth {asked} would carve past the surface's bounds; drawn at {used} (a quarter of a wall's or floor's shorter side, half a torus's tube radius or a sphere's radius, a quarter of the patch's narrower side)"
-        ));
+        ),
+        DepthNote::Slopes { depth, texels, side, scale } => format!(
+            "note: --depth {depth} is {texels:.3} texels of this surface's mean texel side ({side:.5}); the normal map keeps --bump-scale {scale}'s slopes: add --bump-scale {texels:.3} for the slopes of the geometry"
+        ),
     }
-    let size = object.material.heights.as_ref().map_or((1, 1), |h| (h.width(), h.height()));
-    if let (Some(side), BumpSource::Heights(_)) = (object.texel_side(size), &spec.params.bumps) {
-        let scale = spec.params.normal_map.scale;
-        let texels = used / side;
-        if (texels - scale).abs() > 0.01 * scale.abs().max(1e-6) {
-            notes.push(format!(
-                "note: --depth {used} is {texels:.3} texels of this surface's mean texel side ({side:.5}); the normal map keeps --bump-scale {scale}'s slopes: add --bump-scale {texels:.3} for the slopes of the geometry"
-            ));
-        }
-    }
-    notes
 }
 
 /// Refuses `output` for a frame that came out black (`black`: no pixel has any colour): nothing
@@ -215,31 +156,32 @@ pub fn depth_notes(options: &SceneOptions, spec: &bumpmap::SceneSpec, prepared: 
 /// from the image, so it holds for every backend and the reference alike; the causes are named,
 /// since the image cannot tell them apart.
 pub fn ensure_drawn(black: bool, output: &Path) -> Result<(), CliError> {
-    if !black {
-        return Ok(());
-    }
-    Err(CliError::Path {
+    if black { Err(not_drawn(output)) } else { Ok(()) }
+}
+
+/// [`ensure_drawn`]'s refusal.
+fn not_drawn(output: &Path) -> CliError {
+    CliError::Path {
         path: output.to_path_buf(),
         reason: "not written: the image is black (no pixel was drawn or lit). The object may be out of \
                  view (--eye, --target, --up, --fov), too small or too flat to cover a pixel (--tessellation, \
                  --torus-radii, the mesh), or facing away from the eye or the light (--light, --ambient)"
             .into(),
-    })
+    }
 }
 
 /// An out-of-memory error with the sizes that caused it: the bump texture's (and `bumps`, the
 /// file or preset it came from) and the tessellation's: what a user can make smaller.
-pub(crate) fn too_big(e: CliError, spec: &bumpmap::SceneSpec, bumps: Option<&str>) -> CliError {
-    let CliError::OutOfMemory(oom) = e else { return e };
-    let (w, h) = spec.params.bumps.size();
+pub(crate) fn too_big(oom: OutOfMemory, size: SceneSize, bumps: Option<&str>) -> CliError {
+    let (w, h) = size.bumps;
     let from = bumps.map(|b| format!(" from {b}")).unwrap_or_default();
-    let mesh = match spec.params.tessellation {
+    let mesh = match size.tessellation {
         Some((u, v)) => format!(", tessellation {u}x{v}"),
         None => String::new(),
     };
-    let decal = match &spec.params.decal {
-        Some(d) if !spec.params.default_decal => format!(", decal {}x{}", d.levels()[0].width, d.levels()[0].height),
-        _ => String::new(),
+    let decal = match size.decal {
+        Some((dw, dh)) => format!(", decal {dw}x{dh}"),
+        None => String::new(),
     };
     CliError::Render(format!(
         "this scene (bumps {w}x{h}{from}{decal}{mesh}) is too big for the memory this process may use: {oom}. \
@@ -270,32 +212,6 @@ pub fn renderer(arg: BackendChoice) -> Result<Renderer, CliError> {
         crate::report::note(format!("--backend auto: drawing on the CPU ({why})"));
     }
     Ok(renderer)
-}
-
-/// Draws `technique`'s passes of `scene`; with `snapshots`, also the framebuffer after each
-/// named pass.
-pub fn draw(
-    renderer: &mut Renderer,
-    scene: &Scene,
-    technique: &Technique,
-    width: usize,
-    height: usize,
-    snapshots: bool,
-) -> Result<Frame, CliError> {
-    let mut shots = Vec::new();
-    let mut keep = |name: &str, image: &bumpmap::Rgba8Image| shots.push((name.to_string(), image.clone()));
-    let on_pass: Option<bumpmap::renderer::OnPass> = if snapshots { Some(&mut keep) } else { None };
-    let image = renderer.draw_scene(scene, technique, width, height, on_pass).map_err(lib_err)?;
-    Ok(Frame { image, snapshots: shots })
-}
-
-/// [`lib_err`], but a scene whose maps will not fit is an [`CliError::OutOfMemory`] that
-/// [`too_big`] can name the inputs of.
-pub(crate) fn prepare_err(e: bumpmap::Error) -> CliError {
-    match e {
-        bumpmap::Error::OutOfMemory { source, .. } => CliError::OutOfMemory(source),
-        other => lib_err(other),
-    }
 }
 
 /// A front-door error in the words of the command line.

@@ -150,7 +150,7 @@ fn specular_filter_value(filter: SpecularFilter) -> String {
 }
 
 /// What the library refused, in the words of the command line.
-fn setup_err(e: SetupError) -> CliError {
+pub(crate) fn setup_err(e: SetupError) -> CliError {
     match e {
         SetupError::OutOfRange { option, expected, got } => {
             CliError::Usage(format!("{} must be {expected}, got {got}", flag(option)))
@@ -191,7 +191,7 @@ fn setup_err(e: SetupError) -> CliError {
 }
 
 /// A setup note as a line for stderr, naming flags.
-fn note_line(note: &SetupNote) -> String {
+pub(crate) fn note_line(note: &SetupNote) -> String {
     match note {
         SetupNote::Warning(w) => format!("warning: {w}"),
         SetupNote::Replaces { path, option } => {
@@ -237,8 +237,8 @@ mod tests {
             Command::Render(a) => a,
             _ => unreachable!("render parses as render"),
         };
-        let from_flags = crate::render::Request::from_args(&args).expect("the defaults set up");
-        assert_eq!(format!("{from_flags:?}"), format!("{:?}", crate::render::Request::default()));
+        let from_flags = crate::render::frame_request(&args).expect("the defaults set up");
+        assert_eq!(format!("{from_flags:?}"), format!("{:?}", bumpmap::frame::FrameRequest::default()));
     }
 
     #[test]

@@ -25,6 +25,7 @@
 //!   bumps from a height field or a normal map;
 //! - [`options`]: the same set up from typed options with their defaults ([`options::SceneOptions`],
 //!   every option `bumpmap render` takes), files loaded and values checked;
+//! - [`frame`]: one frame from those options: prepared once, drawn, refused when black;
 //! - [`motion`]: the light orbiting and the camera turning between frames;
 //! - [`maps`]: one height field into the maps a material is made of (the normal map and its
 //!   chain, the heights, the horizons, the roughness map, LEAN's moments);
@@ -44,6 +45,7 @@
 pub mod assets;
 pub mod cpu;
 mod error;
+pub mod frame;
 pub mod heights;
 pub mod inspect;
 pub mod maps;

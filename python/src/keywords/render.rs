@@ -3,9 +3,11 @@
 
 use std::path::PathBuf;
 
+use bumpmap::frame::FrameRequest;
+use bumpmap::maps::Chain;
+use bumpmap::options::Given;
 use bumpmap::options::{DecalChoice, GlossChoice, SceneChoice, SceneOptions};
 use bumpmap::{SceneKind, SelfShadow, TechniqueName};
-use bumpmap_cli::commands::{Chain, Given, Request};
 use bumpmap_io::HeightSource;
 use glam::Vec2;
 use pyo3::exceptions::{PyTypeError, PyValueError};
@@ -39,9 +41,9 @@ pub fn render_request(
     function: &str,
     kwargs: Option<&Bound<'_, PyDict>>,
     with_backend: bool,
-) -> PyResult<(Request, Given)> {
+) -> PyResult<(FrameRequest, Given)> {
     let r = Reader { function };
-    let mut request = Request { output: PathBuf::from("the frame"), ..Request::default() };
+    let mut request = FrameRequest::default();
     let mut arrays = Given::default();
     let mut no_self_shadow = false;
     let (mut size, mut width, mut height) = (None, None, None);

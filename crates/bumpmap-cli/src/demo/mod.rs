@@ -4,6 +4,7 @@
 use std::path::Path;
 use std::sync::Arc;
 
+use bumpmap::frame::draw_passes;
 use bumpmap::{BackendChoice, BumpSource, ParallaxOptions, ParallaxShadow, Renderer, TechniqueName, TechniqueOptions};
 use bumpmap_core::BumpMap;
 use bumpmap_core::scene::{Attenuation, SceneLight, Spot};
@@ -21,7 +22,7 @@ mod normal_maps_in;
 
 use crate::args::{DemoArgs, DemoGpuArg};
 use crate::error::CliError;
-use crate::render::{core_err, draw, lib_err, write_frame};
+use crate::render::{core_err, lib_err, write_frame};
 
 /// One image of the demo: its file, what it shows, and the scene and technique that make it.
 struct DemoRender {
@@ -424,7 +425,7 @@ fn own_assets(renderer: &mut Renderer, out: &Path) -> Result<String, CliError> {
     spec.params.default_decal = false;
     let draw_to = |renderer: &mut Renderer, spec: &SceneSpec, file: &str| -> Result<(), CliError> {
         let prepared = Prepared::new(spec, TechniqueName::Kilgard, &TechniqueOptions::default()).map_err(lib_err)?;
-        let frame = draw(renderer, &prepared.scene, &prepared.technique, SIZE, SIZE, false)?;
+        let frame = draw_passes(renderer, &prepared.scene, &prepared.technique, SIZE, SIZE, false).map_err(lib_err)?;
         write_frame(&frame, &out.join(file), &[])?;
         Ok(())
     };
@@ -458,7 +459,7 @@ fn render_all(renderer: &mut Renderer, dir: &Path, bar: &ProgressBar, label: &st
         bar.set_message(format!("{label}: {}", r.file));
         let (kind, params, technique) = (r.make)();
         let scene = scenes::build(&kind, &params).map_err(core_err)?;
-        let frame = draw(renderer, &scene, &technique, SIZE, SIZE, r.passes)?;
+        let frame = draw_passes(renderer, &scene, &technique, SIZE, SIZE, r.passes).map_err(lib_err)?;
         write_frame(&frame, &dir.join(r.file), &[])?;
         bar.inc(1);
     }
