@@ -56,7 +56,7 @@ fn read_height_field<'py>(
         .to_str()
         .ok_or_else(|| PyValueError::new_err(format!("read_height_field(): {} is not UTF-8", path.display())))?
         .to_string();
-    let channel = keywords::channel("read_height_field", options)?;
+    let channel = keywords::one_word("read_height_field", "channel", bumpmap_io::Channel::Luminance, options)?;
     let field = interrupt::run(py, move |_| HeightSource::parse(&spec).load(channel).map_err(CliError::from))?
         .map_err(|e| to_py("read_height_field", e))?;
     arrays::from_height_field(py, &field)
@@ -72,7 +72,7 @@ fn write_texture(
     levels: &Bound<'_, PyAny>,
     options: Option<&Bound<'_, PyDict>>,
 ) -> PyResult<Vec<PathBuf>> {
-    let asked = keywords::texture_format("write_texture", options)?;
+    let asked = keywords::one_word("write_texture", "format", TextureFormat::Rgba8, options)?;
     let chain = arrays::to_chain(levels)?;
     let sixteen = matches!(chain, bumpmap::maps::Chain::Rgba16(_));
     let format = match (asked, sixteen) {

@@ -22,8 +22,8 @@
 use bumpmap_math::Image;
 use bumpmap_math::inspect::{ConventionVerdict, Inspection, Seam, detect_convention};
 use bumpmap_math::integration::{
-    Boundary, Derivative, DerivativeFit, IntegrationError, IntegrationMethod, Slopes, check_normals, integrate,
-    integrate_fitted,
+    Boundary, Derivative, DerivativeFit, IntegrationError, IntegrationMethod, Slopes, check_normals, check_scale,
+    integrate, integrate_fitted,
 };
 use bumpmap_math::normalmap::YConvention;
 use glam::Vec4;
@@ -76,19 +76,22 @@ bumpmap_math::named!(HeightMethod {
 });
 
 /// Options that contradict each other.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, thiserror::Error)]
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
 pub enum HeightChoiceError {
     /// The `kernel` method without a kernel named (none, or `spectral`).
     #[error(
         "the kernel method undoes the kernel the map was made with, so it needs one named; the fft method fits one itself"
     )]
     KernelUnnamed,
+    /// A scale of 0, not finite, or beyond ±1e6 ([`check_scale`]).
+    #[error(transparent)]
+    Scale(#[from] IntegrationError),
 }
 
 impl HeightOptions {
     /// The options a user's words make: `method`, the `derivative` the map was made with
-    /// (`None`: fitted), its Y convention (`None`: the curl test's) and its scale (checked when
-    /// the heights are made).
+    /// (`None`: fitted), its Y convention (`None`: the curl test's) and its scale, checked here
+    /// so that a caller can refuse it before reading a map.
     ///
     /// ```
     /// use bumpmap::heights::{HeightChoiceError, HeightMethod, HeightOptions};
@@ -100,6 +103,8 @@ impl HeightOptions {
     /// assert_eq!((o.boundary, o.derivative), (Some(Boundary::Periodic), sobel));
     /// assert_eq!(HeightOptions::from_choices(HeightMethod::Kernel, None, None, 4.0), Err(HeightChoiceError::KernelUnnamed));
     /// assert_eq!(HeightOptions::from_choices(HeightMethod::Auto, None, None, 1.0), Ok(HeightOptions::default()));
+    /// let zero = HeightOptions::from_choices(HeightMethod::Auto, None, None, 0.0);
+    /// assert!(matches!(zero, Err(HeightChoiceError::Scale(_))), "a scale of 0 flattens every slope");
     /// ```
     pub fn from_choices(
         method: HeightMethod,
@@ -112,6 +117,7 @@ impl HeightOptions {
             HeightMethod::Fft | HeightMethod::Kernel => Some(Boundary::Periodic),
             HeightMethod::Dct => Some(Boundary::Free),
         };
+        check_scale(scale)?;
         if method == HeightMethod::Kernel && !matches!(derivative, Some(Derivative::Kernel(_))) {
             return Err(HeightChoiceError::KernelUnnamed);
         }

@@ -204,8 +204,8 @@ pub fn roughness_map(options: &MapOptions, field: &HeightField) -> Result<MipCha
 /// LEAN mapping's moments, every level, as two planes: (Bx, By, Mxx, Myy) and (Mxy, J, 0, 0).
 /// They come from the 8-bit normal map's level 0 (what the renderer draws from, whatever bits
 /// the map is stored at): `made`'s, as many levels as it has, when it is an 8-bit chain (its
-/// mip mode changes no texel of level 0, and LEAN makes its own levels); else from a whole
-/// chain made here.
+/// mip mode changes no texel of level 0, and LEAN makes its own levels); else level 0 made
+/// here, with every level down to 1×1.
 pub fn lean_moments(
     options: &MapOptions,
     field: &HeightField,
@@ -213,14 +213,14 @@ pub fn lean_moments(
 ) -> Result<[Vec<Image<[f32; 4]>>; 2], MapError> {
     options.check()?;
     let own;
-    let chain: &MipChain = match made {
-        Some(Chain::Rgba8(chain)) => chain,
+    let (level0, count) = match made {
+        Some(Chain::Rgba8(chain)) => (&chain.levels[0], chain.levels.len()),
         _ => {
-            own = normal_chain(field, &options.normals, true, MipMode::LengthInAlpha)?;
-            &own
+            own = normal_map_level0_texels(field, &options.normals)?;
+            (&own, bumpmap_math::mip::level_count(own.width, own.height))
         }
     };
-    let lean = LeanMips::from_level0(&chain.levels[0], chain.levels.len(), chain.encoding)?;
+    let lean = LeanMips::from_level0(level0, count, options.normals.encoding)?;
     let plane = |texel: fn(&bumpmap_math::LeanMoments) -> [f32; 4]| {
         lean.levels.iter().map(|l| Image::new(l.width, l.height, l.texels.iter().map(texel).collect())).collect()
     };

@@ -3,11 +3,9 @@
 //! library's `MapOptions`; `read_height_field`'s channel; `tangents`' algorithm and split angle;
 //! and how `height_from_normals` integrates slopes, as the library's `HeightOptions`.
 
-use bumpmap::bumpmap_math::integration::check_scale;
+use bumpmap::Named;
 use bumpmap::heights::{HeightChoiceError, HeightMethod, HeightOptions};
 use bumpmap::maps::MapOptions;
-use bumpmap_io::Channel;
-use bumpmap_io::texture_file::TextureFormat;
 use bumpmap_math::tangent::TangentOptions;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
@@ -82,8 +80,8 @@ pub fn height_options(function: &str, kwargs: Option<&Bound<'_, PyDict>>) -> PyR
             _ => return Err(unexpected(function, &key, &HEIGHT_KEYWORDS)),
         }
     }
-    check_scale(scale).map_err(|e| r.value_error("scale", e))?;
     let options = HeightOptions::from_choices(method, derivative, y_convention, scale).map_err(|e| match e {
+        HeightChoiceError::Scale(e) => r.value_error("scale", e),
         HeightChoiceError::KernelUnnamed => r.value_error(
             "method",
             "'kernel' undoes a named kernel: pass kernel= the map's (method='fft' fits one itself)",
@@ -92,30 +90,18 @@ pub fn height_options(function: &str, kwargs: Option<&Bound<'_, PyDict>>) -> PyR
     Ok((options, raw))
 }
 
-/// `read_height_field`'s one keyword: which channel of a colour image holds the heights.
-pub fn channel(function: &str, kwargs: Option<&Bound<'_, PyDict>>) -> PyResult<Channel> {
+/// The one keyword `key` of a function that takes only it, a word of `T`, or `default` when it
+/// is not given (`read_height_field`'s channel, `write_texture`'s format).
+pub fn one_word<T: Named>(function: &str, key: &str, default: T, kwargs: Option<&Bound<'_, PyDict>>) -> PyResult<T> {
     let r = Reader { function };
-    let mut channel = Channel::Luminance;
-    for (key, value) in given(kwargs)? {
-        match key.as_str() {
-            "channel" => channel = r.word(&key, &value)?,
-            _ => return Err(unexpected(function, &key, &["channel"])),
+    let mut word = default;
+    for (given_key, value) in given(kwargs)? {
+        if given_key != key {
+            return Err(unexpected(function, &given_key, &[key]));
         }
+        word = r.word(key, &value)?;
     }
-    Ok(channel)
-}
-
-/// `write_texture`'s one keyword: the format the levels are stored in.
-pub fn texture_format(function: &str, kwargs: Option<&Bound<'_, PyDict>>) -> PyResult<TextureFormat> {
-    let r = Reader { function };
-    let mut format = TextureFormat::Rgba8;
-    for (key, value) in given(kwargs)? {
-        match key.as_str() {
-            "format" => format = r.word(&key, &value)?,
-            _ => return Err(unexpected(function, &key, &["format"])),
-        }
-    }
-    Ok(format)
+    Ok(word)
 }
 
 /// How heights become normals: what every map function takes.

@@ -20,8 +20,7 @@ mod render;
 
 pub use compare::{COMPARE_KEYWORDS, compare_options};
 pub use maps::{
-    HEIGHT_KEYWORDS, TANGENT_KEYWORDS, channel, height_options, map_keywords, map_request, tangent_options,
-    texture_format,
+    HEIGHT_KEYWORDS, TANGENT_KEYWORDS, height_options, map_keywords, map_request, one_word, tangent_options,
 };
 pub use render::{KEYWORDS, render_request};
 

@@ -94,10 +94,8 @@ impl HeightArgs {
     /// The library's options from `--method`, `--kernel`, `--y-convention` and `--scale`.
     pub fn options(&self) -> Result<HeightOptions, crate::error::CliError> {
         use crate::error::CliError;
-        if let Err(e) = bumpmap_math::integration::check_scale(self.scale) {
-            return Err(CliError::Usage(format!("--scale: {e}")));
-        }
         HeightOptions::from_choices(self.method, self.kernel, self.y_convention, self.scale).map_err(|e| match e {
+            HeightChoiceError::Scale(e) => CliError::Usage(format!("--scale: {e}")),
             HeightChoiceError::KernelUnnamed => CliError::Usage(
                 "--method kernel undoes a named kernel: add --kernel NAME (normalmap's --kernel); --method fft fits one itself"
                     .into(),
