@@ -1,13 +1,12 @@
-//! The command line's errors as Python exceptions, in Python's words: `OSError` for files
-//! (`FileNotFoundError` for a missing one), `RuntimeError` for a missing device, `ValueError`
-//! for values and combinations that cannot be drawn or made.
+//! The libraries' errors, as `bumpmap_words` says them, as Python exceptions in Python's words
+//! (each flag named as its keyword): `OSError` for files (`FileNotFoundError` for a missing
+//! one), `RuntimeError` for a missing device, `ValueError` for values and combinations that
+//! cannot be drawn or made.
 
-use bumpmap_cli::error::CliError;
 use bumpmap_io::IoError;
+use bumpmap_words::Error;
 use pyo3::exceptions::{PyFileNotFoundError, PyKeyboardInterrupt, PyOSError, PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
-
-use crate::options::python_words;
 
 pyo3::create_exception!(
     bumpmap,
@@ -19,19 +18,19 @@ pyo3::create_exception!(
 );
 
 /// `e` as the exception `function` raises.
-pub fn to_py(function: &str, e: CliError) -> PyErr {
-    let message = format!("{function}(): {}", python_words(&e.to_string()));
+pub fn to_py(function: &str, e: Error) -> PyErr {
+    let message = format!("{function}(): {}", bumpmap_words::as_keywords(&e.to_string()));
     if e.exit_code() == 2 {
         // A value out of range, however it was noticed (the command line's exit status 2).
         return PyValueError::new_err(message);
     }
     match &e {
-        CliError::Io(IoError::Read { source, .. }) if source.kind() == std::io::ErrorKind::NotFound => {
+        Error::Io(IoError::Read { source, .. }) if source.kind() == std::io::ErrorKind::NotFound => {
             PyFileNotFoundError::new_err(message)
         }
-        CliError::Io(_) | CliError::Path { .. } => PyOSError::new_err(message),
-        CliError::NoDevice(_) => PyRuntimeError::new_err(message),
-        CliError::Interrupted => PyKeyboardInterrupt::new_err(message),
+        Error::Io(_) | Error::Path { .. } => PyOSError::new_err(message),
+        Error::NoDevice(_) => PyRuntimeError::new_err(message),
+        Error::Interrupted => PyKeyboardInterrupt::new_err(message),
         _ => PyValueError::new_err(message),
     }
 }

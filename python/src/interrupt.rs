@@ -23,9 +23,8 @@ use std::time::Duration;
 
 use pyo3::exceptions::PyRuntimeError;
 
-use bumpmap_cli::report::Progress;
-
-use crate::options::python_words;
+use bumpmap_words::as_keywords;
+use bumpmap_words::report::{Diagnostic, ReportFn};
 use pyo3::prelude::*;
 
 /// Whether the caller gave up on the work (Ctrl-C), and whether the work already began to put
@@ -69,21 +68,18 @@ pub fn run<T: Send + 'static>(py: Python<'_>, work: impl FnOnce(&Cancel) -> T + 
     run_reporting(py, move |cancel, _| work(cancel), None)
 }
 
-/// [`run`] for work that shows its progress as the [`Progress`] it is given says: told to
-/// `progress` (a `progress=` function) as the work goes, or hidden without one.
+/// [`run`] for work that tells its progress to the function it is given, where `progress` (a
+/// `progress=` function) asks for it; without one the work gets none and shows nothing.
 pub fn run_reporting<T: Send + 'static>(
     py: Python<'_>,
-    work: impl FnOnce(&Cancel, &Progress) -> T + Send + 'static,
+    work: impl FnOnce(&Cancel, Option<ReportFn>) -> T + Send + 'static,
     progress: Option<&Bound<'_, PyAny>>,
 ) -> PyResult<T> {
     let counter = Arc::new(Counter::default());
-    let shown = match progress {
-        Some(_) => Progress::Report(counter.report_fn()),
-        None => Progress::Hidden,
-    };
+    let shown = progress.map(|_| counter.report_fn());
     let (value, said) = wait(
         py,
-        move |cancel, pool| pool.install(|| bumpmap_cli::report::collect(|| work(cancel, &shown))),
+        move |cancel, pool| pool.install(|| bumpmap_words::report::collect(|| work(cancel, shown))),
         progress.map(|f| (&counter, f)),
     )?;
     say(py, said)?;
@@ -99,7 +95,7 @@ struct Counter {
 
 impl Counter {
     /// The function the work tells its steps to.
-    fn report_fn(self: &Arc<Self>) -> bumpmap_cli::report::ReportFn {
+    fn report_fn(self: &Arc<Self>) -> ReportFn {
         let counter = self.clone();
         Arc::new(move |done, total| {
             counter.total.store(total, Ordering::Relaxed);
@@ -113,20 +109,19 @@ impl Counter {
 }
 
 /// Says in Python what the work said: warnings through `warnings`, notes through `logging`.
-fn say(py: Python<'_>, said: Vec<bumpmap_cli::report::Diagnostic>) -> PyResult<()> {
-    use bumpmap_cli::report::Diagnostic;
+fn say(py: Python<'_>, said: Vec<Diagnostic>) -> PyResult<()> {
     for d in said {
         match d {
             Diagnostic::Warning(w) => {
                 let category = py.get_type::<crate::errors::BumpmapWarning>();
-                let text = std::ffi::CString::new(python_words(&w).replace('\0', " ")).expect("no NUL left");
+                let text = std::ffi::CString::new(as_keywords(&w).replace('\0', " ")).expect("no NUL left");
                 // Level 2: the line that called the package's function, not the function itself.
                 PyErr::warn(py, category.as_any(), &text, 2)?;
             }
             Diagnostic::Note(n) => {
                 py.import("logging")?
                     .call_method1("getLogger", ("bumpmap",))?
-                    .call_method1("info", (python_words(&n),))?;
+                    .call_method1("info", (as_keywords(&n),))?;
             }
         }
     }

@@ -3,25 +3,26 @@
 //! Every function reads its keywords as typed Python values straight into the library's typed
 //! options (`keywords`: `bumpmap::frame::FrameRequest`, `bumpmap_compare::CompareOptions`,
 //! `bumpmap::maps::MapOptions`, `TangentOptions`, a `TextureFormat`, `HeightOptions`) and calls
-//! the library's functions the command calls too, so a script and `bumpmap` make the same bytes
-//! from the same options. From the command line's crate (`bumpmap_cli::commands`) it takes
-//! words and files: its errors' and notes' wording (made Python's by `errors`), its reporting
-//! of warnings and progress, and its writers of texture files and `compare`'s folder. The
-//! package's `__init__.py` wraps each function with keyword arguments and a docstring made from
-//! the options' help texts.
+//! the library's functions the command calls too (`bumpmap::frame`, `bumpmap::maps`,
+//! `bumpmap_compare`, …), so a script and `bumpmap` make the same bytes from the same options.
+//! What the libraries refuse and note is said in `bumpmap_words`' words, which the command line
+//! shows too, each flag named as its keyword. The package's `__init__.py` wraps each function
+//! with keyword arguments and a docstring made from the options' help texts (`options`).
 //!
 //! - `keywords`: keywords → typed options;
 //! - `options`: every function's option table for the docstrings;
 //! - `arrays`: NumPy arrays in and out, their dtype, shape and byte order checked;
 //! - `interrupt`: long work with the GIL released, Ctrl-C honoured;
-//! - `errors`: the command line's errors as Python exceptions;
+//! - `errors`: the libraries' errors, worded, as Python exceptions;
 //! - `pool`: the threads the work runs on, one pool per process (so a forked child works);
 //! - `renderer`: `Renderer` and `Scene`, kept between frames, and a `Mesh` given as the scene;
-//! - `maps`: heights → the normal map, its chain and the maps written beside it.
+//! - `maps`: heights → the normal map, its chain and the maps written beside it;
+//! - `compare`: every technique measured against the reference.
 //!
 //! What it does not do: any image, mesh or rendering work of its own.
 
 mod arrays;
+mod compare;
 mod errors;
 mod interrupt;
 mod keywords;
@@ -33,10 +34,10 @@ mod renderer;
 use std::path::PathBuf;
 
 use bumpmap::inspect::StoredAs;
-use bumpmap_cli::commands;
-use bumpmap_cli::error::CliError;
+use bumpmap::maps::Chain;
 use bumpmap_io::HeightSource;
 use bumpmap_io::texture_file::TextureFormat;
+use bumpmap_words::Error;
 
 use pyo3::exceptions::{PyTypeError, PyValueError};
 use pyo3::prelude::*;
@@ -57,7 +58,7 @@ fn read_height_field<'py>(
         .ok_or_else(|| PyValueError::new_err(format!("read_height_field(): {} is not UTF-8", path.display())))?
         .to_string();
     let channel = keywords::one_word("read_height_field", "channel", bumpmap_io::Channel::Luminance, options)?;
-    let field = interrupt::run(py, move |_| HeightSource::parse(&spec).load(channel).map_err(CliError::from))?
+    let field = interrupt::run(py, move |_| HeightSource::parse(&spec).load(channel).map_err(Error::from))?
         .map_err(|e| to_py("read_height_field", e))?;
     arrays::from_height_field(py, &field)
 }
@@ -91,7 +92,13 @@ fn write_texture(
         (f, false) => f,
     };
     let written = interrupt::run(py, move |cancel| {
-        commands::write_texture(&path, &chain, format, &[], &|| !cancel.begin_commit())
+        let mut set = bumpmap_io::atomic::FileSet::new(&[]);
+        bumpmap::maps::write_chain_into(&mut set, &path, &chain, format).map_err(bumpmap_words::maps::save_error)?;
+        // Nothing goes into place once the caller gave up (Ctrl-C); the staged files go.
+        if !cancel.begin_commit() {
+            return Err(Error::Interrupted);
+        }
+        Ok(set.commit()?)
     })?
     .map_err(|e| to_py("write_texture", e))?;
     Ok(written)
@@ -112,15 +119,15 @@ fn read_texture<'py>(py: Python<'py>, path: PathBuf) -> PyResult<Bound<'py, PyDi
         let convention = bumpmap_math::inspect::detect_convention(&level0.levels[0]).convention.ok();
         Ok::<_, bumpmap_io::IoError>((texture, convention))
     })?
-    .map_err(|e| to_py("read_texture", CliError::from(e)))?;
+    .map_err(|e| to_py("read_texture", Error::from(e)))?;
     // By the name `write_texture(format=)` takes.
     let format = bumpmap::Named::name(texture.format);
     let chain = match texture.levels {
         bumpmap_io::StoredLevels::Rgba8(levels) => {
-            commands::Chain::Rgba8(bumpmap_math::MipChain { levels, encoding: Default::default() })
+            Chain::Rgba8(bumpmap_math::MipChain { levels, encoding: Default::default() })
         }
         bumpmap_io::StoredLevels::Rgba16(levels) => {
-            commands::Chain::Rgba16(bumpmap_math::MipChain { levels, encoding: Default::default() })
+            Chain::Rgba16(bumpmap_math::MipChain { levels, encoding: Default::default() })
         }
     };
     let out = PyDict::new(py);
@@ -152,7 +159,8 @@ fn tangents<'py>(
         if computed {
             mesh.compute_normals();
         }
-        commands::tangents(&options, &mesh).map_err(|e| to_py("tangents", e))
+        bumpmap_math::tangent::generate_tangents(&mesh, &options)
+            .map_err(|e| to_py("tangents", bumpmap_words::maps::tangent_error(e)))
     })??;
     // What the command writes into its glTF: unit vectors, tangents perpendicular to the normals.
     let (normals, tangents, repairs) = bumpmap_io::mesh_file::gltf_normals_and_tangents(&out);
@@ -179,11 +187,11 @@ fn tangents<'py>(
 }
 
 /// Keyword arguments, and the `progress=` function taken out of them.
-type WithProgress<'py> = (Option<Bound<'py, PyDict>>, Option<Bound<'py, PyAny>>);
+pub(crate) type WithProgress<'py> = (Option<Bound<'py, PyDict>>, Option<Bound<'py, PyAny>>);
 
 /// The options without `progress`, and the function it names (None: no reports); anything else
 /// callable or None is a `TypeError`.
-fn take_progress<'py>(function: &str, options: Option<&Bound<'py, PyDict>>) -> PyResult<WithProgress<'py>> {
+pub(crate) fn take_progress<'py>(function: &str, options: Option<&Bound<'py, PyDict>>) -> PyResult<WithProgress<'py>> {
     let Some(options) = options else { return Ok((None, None)) };
     let options = options.copy()?;
     let Some(progress) = options.get_item("progress")? else { return Ok((Some(options), None)) };
@@ -206,48 +214,10 @@ fn take_progress<'py>(function: &str, options: Option<&Bound<'py, PyDict>>) -> P
 fn render<'py>(py: Python<'py>, options: Option<&Bound<'py, PyDict>>) -> PyResult<Bound<'py, PyAny>> {
     let (options, progress) = take_progress("render", options)?;
     let (request, given) = keywords::render_request(py, "render", options.as_ref(), true)?;
-    let drawn = interrupt::run_reporting(
-        py,
-        move |_, shown| commands::render_given(&request, std::path::Path::new("the frame"), shown, &given),
-        progress.as_ref(),
-    )?
-    .map_err(|e| to_py("render", e))?;
-    renderer::frame_array(py, drawn.frame.image)
-}
-
-/// Every technique measured against the reference, as `bumpmap compare` does; returns
-/// `results.json`'s content as a dict, and writes the report folder when `output` is given.
-#[pyfunction]
-#[pyo3(signature = (output = None, options = None))]
-fn compare<'py>(
-    py: Python<'py>,
-    output: Option<PathBuf>,
-    options: Option<&Bound<'py, PyDict>>,
-) -> PyResult<Bound<'py, PyAny>> {
-    let (options, progress) = take_progress("compare", options)?;
-    let compare_options = keywords::compare_options("compare", options.as_ref())?;
-    if let Some(out) = &output {
-        // Before minutes of work: an output that cannot be a folder.
-        commands::check_compare_output(out).map_err(|e| to_py("compare", e))?;
-    }
-    // Measured and written on the worker, so Ctrl-C also stops the writing (nothing is put
-    // in place once it came).
-    let results = interrupt::run_reporting(
-        py,
-        move |cancel, shown| {
-            let named = output.as_deref().unwrap_or(std::path::Path::new("the results"));
-            let (results, inputs) = commands::compare_options(&compare_options, Some(named), shown)?;
-            if let Some(out) = &output {
-                let inputs: Vec<&std::path::Path> = inputs.iter().map(PathBuf::as_path).collect();
-                commands::write_compare(out, &results, &inputs, &|| !cancel.begin_commit())?;
-            }
-            Ok::<_, CliError>(results)
-        },
-        progress.as_ref(),
-    )?
-    .map_err(|e| to_py("compare", e))?;
-    let json = commands::compare_json(&results);
-    py.import("json")?.call_method1("loads", (json,))
+    let drawn =
+        interrupt::run_reporting(py, move |_, shown| renderer::draw(&request, &given, shown), progress.as_ref())?
+            .map_err(|e| to_py("render", e))?;
+    renderer::frame_array(py, drawn.image)
 }
 
 /// What a normal map is, as `bumpmap inspect --json` says it, as a dict: a file (`source` a
@@ -265,7 +235,7 @@ fn inspect<'py>(py: Python<'py>, source: &Bound<'py, PyAny>) -> PyResult<Bound<'
             ))
         })?;
         interrupt::run(py, move |_| bumpmap::inspect::inspect_file(&path))?
-            .map_err(|e| to_py("inspect", commands::library_error(e)))?
+            .map_err(|e| to_py("inspect", bumpmap_words::frame::lib_err(e)))?
     };
     py.import("json")?.call_method1("loads", (report.to_json().to_string(),))
 }
@@ -282,8 +252,8 @@ fn height_from_normals<'py>(
     let (height_options, raw) = keywords::height_options("height_from_normals", options)?;
     let map = arrays::normal_texels(normals)?;
     let heights = interrupt::run(py, move |_| {
-        let level0 = map.levels.first().cloned().ok_or_else(|| CliError::Render("the map has no texels".into()))?;
-        bumpmap::heights::heights_from_normals(&level0, &height_options).map_err(|e| CliError::Render(e.to_string()))
+        let level0 = map.levels.first().cloned().ok_or_else(|| Error::Render("the map has no texels".into()))?;
+        bumpmap::heights::heights_from_normals(&level0, &height_options).map_err(|e| Error::Render(e.to_string()))
     })?
     .map_err(|e| to_py("height_from_normals", e))?;
     let texels = if raw { heights.texels.clone() } else { heights.normalized() };
@@ -349,7 +319,7 @@ fn _bumpmap(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(read_texture, m)?)?;
     m.add_function(wrap_pyfunction!(tangents, m)?)?;
     m.add_function(wrap_pyfunction!(render, m)?)?;
-    m.add_function(wrap_pyfunction!(compare, m)?)?;
+    m.add_function(wrap_pyfunction!(compare::compare, m)?)?;
     m.add_function(wrap_pyfunction!(option_table, m)?)?;
     m.add_function(wrap_pyfunction!(techniques, m)?)?;
     m.add_function(wrap_pyfunction!(keyword_names, m)?)?;

@@ -5,7 +5,7 @@
 //! command calls too.
 
 use bumpmap::maps::{self, Chain, MapOptions};
-use bumpmap_cli::commands;
+use bumpmap_words::maps::map_error;
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
 
@@ -28,10 +28,8 @@ fn chain_of<'py>(
 ) -> PyResult<Vec<Bound<'py, PyAny>>> {
     let map = request(function, options)?;
     let field = arrays::height_field(heights)?;
-    let chain = interrupt::run(py, move |_| {
-        maps::normal_map(&map, mips, &field).map_err(|e| commands::map_error(e, "heights"))
-    })?
-    .map_err(|e| to_py(function, e))?;
+    let chain = interrupt::run(py, move |_| maps::normal_map(&map, mips, &field).map_err(|e| map_error(e, "heights")))?
+        .map_err(|e| to_py(function, e))?;
     arrays::from_chain(py, chain)
 }
 
@@ -70,9 +68,9 @@ pub fn height_mips<'py>(
     let map = request("height_mips", options)?;
     let field = arrays::height_field(heights)?;
     let mips = interrupt::run(py, move |_| {
-        let stored = maps::height_mips(&map, &field).map_err(|e| commands::map_error(e, "heights"))?;
+        let stored = maps::height_mips(&map, &field).map_err(|e| map_error(e, "heights"))?;
         if let Some(clamped) = stored.clamped {
-            bumpmap_cli::report::warn(format!("heights: {clamped}"));
+            bumpmap_words::report::warn(format!("heights: {clamped}"));
         }
         Ok(stored.mips)
     })?
@@ -101,9 +99,8 @@ pub fn horizon_maps<'py>(
     let request = request("horizon_maps", options)?;
     let field = arrays::height_field(heights)?;
     let asked = request;
-    let map =
-        interrupt::run(py, move |_| maps::horizon_map(&asked, &field).map_err(|e| commands::map_error(e, "heights")))?
-            .map_err(|e| to_py("horizon_maps", e))?;
+    let map = interrupt::run(py, move |_| maps::horizon_map(&asked, &field).map_err(|e| map_error(e, "heights")))?
+        .map_err(|e| to_py("horizon_maps", e))?;
     let depth = request.normals.scale.abs();
     let levels: Vec<_> = map
         .levels()
@@ -131,9 +128,8 @@ pub fn roughness_map<'py>(
 ) -> PyResult<Bound<'py, PyList>> {
     let map = request("roughness_map", options)?;
     let field = arrays::height_field(heights)?;
-    let chain =
-        interrupt::run(py, move |_| maps::roughness_map(&map, &field).map_err(|e| commands::map_error(e, "heights")))?
-            .map_err(|e| to_py("roughness_map", e))?;
+    let chain = interrupt::run(py, move |_| maps::roughness_map(&map, &field).map_err(|e| map_error(e, "heights")))?
+        .map_err(|e| to_py("roughness_map", e))?;
     PyList::new(py, arrays::from_chain(py, Chain::Rgba8(chain))?)
 }
 
@@ -148,10 +144,9 @@ pub fn lean_moments<'py>(
 ) -> PyResult<(Bound<'py, PyList>, Bound<'py, PyList>)> {
     let map = request("lean_moments", options)?;
     let field = arrays::height_field(heights)?;
-    let planes = interrupt::run(py, move |_| {
-        maps::lean_moments(&map, &field, None).map_err(|e| commands::map_error(e, "heights"))
-    })?
-    .map_err(|e| to_py("lean_moments", e))?;
+    let planes =
+        interrupt::run(py, move |_| maps::lean_moments(&map, &field, None).map_err(|e| map_error(e, "heights")))?
+            .map_err(|e| to_py("lean_moments", e))?;
     let [first, second] = planes.map(|levels| {
         levels
             .iter()

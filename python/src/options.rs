@@ -1,12 +1,16 @@
-//! Every function's option table — help texts, defaults, choices, read from the command's own
-//! definition — which the docstrings, signatures and stubs are made from, and messages in
-//! Python's words (`bump_scale`, not `--bump-scale`). The keywords themselves are read by
-//! `keywords`, into typed options.
+//! Every function's option table — help texts, defaults, choices — which the docstrings,
+//! signatures and stubs are made from, in Python's words (`bump_scale`, not `--bump-scale`). The
+//! table is the command line's (`options.json`, compiled in; `bumpmap_cli::args::options_table`
+//! makes it and a test of the command line keeps the file current), so each help text is
+//! written once. The keywords themselves are read by `keywords`, into typed options.
 //!
-//! What it does not do: decide any default or range itself; those live in `bumpmap_cli::args`.
+//! What it does not do: decide any default or range itself; those are the library's and the
+//! command line's.
 
-use bumpmap_cli::args::Cli;
-use clap::{Arg, ArgAction, CommandFactory};
+use std::sync::OnceLock;
+
+use bumpmap_words::{as_keywords, keyword};
+use serde_json::Value;
 
 /// One option as the docstrings show it: `(keyword, default as the command line writes it,
 /// help, choices, is a flag)`.
@@ -37,81 +41,36 @@ pub const FUNCTIONS: [Function; 12] = [
     Function { name: "height_from_normals", command: "height" },
 ];
 
-/// A keyword's name for an option's long name: `bump-scale` → `bump_scale`.
-fn keyword(long: &str) -> String {
-    long.replace('-', "_")
+/// The commands' option table, parsed once.
+fn table() -> &'static Value {
+    static TABLE: OnceLock<Value> = OnceLock::new();
+    TABLE.get_or_init(|| serde_json::from_str(include_str!("options.json")).expect("options.json is the CLI's JSON"))
+}
+
+/// A string field of a row ("" where absent).
+fn text<'a>(row: &'a Value, key: &str) -> &'a str {
+    row[key].as_str().unwrap_or_default()
 }
 
 impl Function {
-    /// The command's arguments this function takes, in the order `--help` lists them.
-    fn arguments(&self) -> Vec<Arg> {
-        let taken = crate::keywords::names(self.name).expect("every function with options reads keywords");
-        let command = Cli::command();
-        let sub = command.find_subcommand(self.command).expect("the function's command exists").clone();
-        sub.get_arguments()
-            .filter(|a| {
-                let Some(long) = a.get_long() else { return false };
-                if matches!(long, "help" | "version") {
-                    return false;
-                }
-                taken.contains(&keyword(long).as_str())
-            })
-            .cloned()
-            .collect()
-    }
-
-    /// Each option the function takes.
+    /// Each option the function takes, in the order `--help` lists them.
     pub fn describe(&self) -> Vec<OptionRow> {
-        self.arguments()
-            .iter()
-            .map(|a| {
-                let defaults: Vec<String> =
-                    a.get_default_values().iter().map(|v| v.to_string_lossy().into_owned()).collect();
-                let flag = matches!(a.get_action(), ArgAction::SetTrue);
-                let default = if flag || defaults.is_empty() { None } else { Some(defaults.join(",")) };
-                // A flag's "values" are clap's true and false: not choices to document.
-                let values = if flag { Vec::new() } else { a.get_possible_values() };
-                let choices = values.iter().map(|p| p.get_name().to_string()).collect();
-                let mut help = python_words(&a.get_help().map(|h| h.to_string()).unwrap_or_default());
+        let taken = crate::keywords::names(self.name).expect("every function with options reads keywords");
+        let rows = table()[self.command].as_array().expect("the function's command is in the table");
+        rows.iter()
+            .filter(|row| taken.contains(&keyword(text(row, "long")).as_str()))
+            .map(|row| {
+                let values = row["values"].as_array().map(Vec::as_slice).unwrap_or_default();
+                let mut help = as_keywords(text(row, "help"));
                 // Each value's meaning, where the set gives one, as `--help` lists it: one
                 // "\n- name: meaning" line each.
-                for value in values.iter().filter(|v| v.get_help().is_some()) {
-                    let meaning = python_words(&value.get_help().map(|h| h.to_string()).unwrap_or_default());
-                    help.push_str(&format!("\n- {}: {meaning}", value.get_name()));
+                for value in values.iter().filter(|v| v["help"].is_string()) {
+                    help.push_str(&format!("\n- {}: {}", text(value, "name"), as_keywords(text(value, "help"))));
                 }
-                (keyword(a.get_long().expect("taken arguments are long")), default, help, choices, flag)
+                let choices = values.iter().map(|v| text(v, "name").to_string()).collect();
+                let default = row["default"].as_str().map(str::to_string);
+                (keyword(text(row, "long")), default, help, choices, row["flag"] == true)
             })
             .collect()
     }
-}
-
-/// A message in Python's words: each `--long-name` (and its `<VALUE>` placeholder) becomes the
-/// keyword `long_name`.
-pub fn python_words(message: &str) -> String {
-    let mut out = String::with_capacity(message.len());
-    let mut rest = message;
-    while let Some(i) = rest.find("--") {
-        let (before, after) = rest.split_at(i);
-        out.push_str(before);
-        let name_len = after[2..]
-            .find(|c: char| !(c.is_ascii_lowercase() || c.is_ascii_digit() || c == '-'))
-            .unwrap_or(after.len() - 2);
-        let starts_word = before.is_empty() || before.ends_with([' ', '\'', '(', '"', ',', '`', '[', '/']);
-        if name_len == 0 || !starts_word || !after[2..].starts_with(|c: char| c.is_ascii_lowercase()) {
-            out.push_str("--");
-            rest = &after[2..];
-            continue;
-        }
-        out.push_str(&keyword(&after[2..2 + name_len]));
-        rest = &after[2 + name_len..];
-        // `--scale <SCALE>`: the placeholder goes too.
-        if let Some(p) = rest.strip_prefix(" <")
-            && let Some(end) = p.find('>')
-            && p[..end].chars().all(|c| c.is_ascii_uppercase() || c == '_' || c == '.')
-        {
-            rest = &p[end + 1..];
-        }
-    }
-    out.push_str(rest);
-    out
 }

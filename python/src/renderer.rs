@@ -2,16 +2,21 @@
 //! scene set up and prepared once, drawn frame after frame with the light or the eye moved; and
 //! the arrays `render` takes where the command line takes files (a `bumpmap.Mesh` as the scene).
 //!
-//! Both sit on the library's `bumpmap::Renderer` and `bumpmap::Prepared`, prepared by the same
-//! setup `bumpmap render` runs (`commands::prepare_render`), so a frame is the command's frame.
+//! Both sit on the library's `bumpmap::Renderer` and `bumpmap::Prepared`, prepared by
+//! `bumpmap::frame::prepare_frame` as `bumpmap render` prepares them, so a frame is the
+//! command's frame; `render()` is [`draw`], the same steps for one frame.
 //!
 //! What it does not do: read frames back asynchronously, or draw one scene on another
 //! renderer's backend (a scene keeps the renderer it was prepared for).
 
 use std::sync::{Arc, Mutex, PoisonError};
 
+use bumpmap::frame::{Frame, FrameRequest, PreparedFrame};
 use bumpmap::maps::Chain;
-use bumpmap_cli::commands;
+use bumpmap::options::Given;
+use bumpmap_words::Error;
+use bumpmap_words::frame::{frame_err, frame_notes, lib_err, on_the_cpu};
+use bumpmap_words::report::ReportFn;
 use glam::Vec3;
 use pyo3::exceptions::{PyRuntimeError, PyTypeError, PyValueError};
 use pyo3::prelude::*;
@@ -19,6 +24,44 @@ use pyo3::types::PyDict;
 
 use crate::errors::to_py;
 use crate::{arrays, interrupt, keywords};
+
+/// Sets up and prepares what `request` describes, with the inputs `given` in memory, and says
+/// what that noted as `render` says it (warnings through `warnings`, notes to the logger, once
+/// the work returns); returns the notes too, in Python's words.
+fn prepare(request: &FrameRequest, given: &Given) -> Result<(PreparedFrame, Vec<String>), Error> {
+    let prepared = bumpmap::frame::prepare_frame(request, given).map_err(|e| frame_err(e, &request.options, None))?;
+    let notes = frame_notes(&prepared);
+    for note in &notes {
+        bumpmap_words::report::setup_line(note);
+    }
+    Ok((prepared, notes.iter().map(|n| bumpmap_words::as_keywords(n)).collect()))
+}
+
+/// Opens `backend` ([`note_fallback`]).
+fn open(backend: bumpmap::BackendChoice) -> Result<bumpmap::Renderer, Error> {
+    let renderer = bumpmap::Renderer::new(backend).map_err(lib_err)?;
+    note_fallback(&renderer);
+    Ok(renderer)
+}
+
+/// With `auto`, notes why `renderer` draws on the CPU, if it does.
+fn note_fallback(renderer: &bumpmap::Renderer) {
+    if let Some(why) = renderer.fallback_reason() {
+        bumpmap_words::report::note(on_the_cpu(why));
+    }
+}
+
+/// `render()`'s frame: what `request` describes prepared ([`prepare`]) and drawn on its
+/// backend, the reference's tiles told to `progress`; a black frame refused.
+pub fn draw(request: &FrameRequest, given: &Given, progress: Option<ReportFn>) -> Result<Frame, Error> {
+    let (prepared, _) = prepare(request, given)?;
+    let progress: Option<bumpmap::renderer::Progress> =
+        progress.map(|f| Arc::new(move |done: usize, total: usize| f(done as u64, total as u64)) as _);
+    let mut renderer = bumpmap::frame::renderer_for(request, progress).map_err(lib_err)?;
+    note_fallback(&renderer);
+    bumpmap::frame::draw_frame(&mut renderer, &prepared, request.passes)
+        .map_err(|e| frame_err(e, &request.options, Some(std::path::Path::new("the frame"))))
+}
 
 /// A `bumpmap.Mesh` (anything with its attributes) given as the scene: the mesh `--scene
 /// mesh:FILE` would read, without a material.
@@ -74,8 +117,7 @@ impl Renderer {
                 <bumpmap::BackendChoice as bumpmap::Named>::names().join(", ")
             ))
         })?;
-        let renderer = interrupt::run(py, move |_| bumpmap_cli::commands::open_renderer(choice))?
-            .map_err(|e| to_py("Renderer", e))?;
+        let renderer = interrupt::run(py, move |_| open(choice))?.map_err(|e| to_py("Renderer", e))?;
         Ok(Self { inner: Arc::new(Mutex::new(Some(renderer))) })
     }
 
@@ -112,18 +154,9 @@ impl Renderer {
         }
         let (request, given) = keywords::render_request(py, "prepare", options, false)?;
         let technique = request.options.technique.technique.name().to_string();
-        let prepared = interrupt::run(py, move |_| {
-            let prepared = commands::prepare_render(&request, &given)?;
-            let notes = commands::frame_notes(&prepared);
-            // Said as `render` says them (warnings through `warnings`, notes to the logger),
-            // once, when the scene is prepared; `Scene.notes` keeps them too.
-            for note in &notes {
-                bumpmap_cli::report::setup_line(note);
-            }
-            Ok((prepared, notes))
-        })?
-        .map_err(|e| to_py("prepare", e))?;
-        let (prepared, notes) = prepared;
+        // Its notes said once, when the scene is prepared; `Scene.notes` keeps them too.
+        let (prepared, notes) =
+            interrupt::run(py, move |_| prepare(&request, &given))?.map_err(|e| to_py("prepare", e))?;
         Ok(Scene {
             renderer: self.inner.clone(),
             prepared: Arc::new(Mutex::new(prepared.prepared)),
@@ -185,7 +218,7 @@ impl Scene {
             let Some(renderer) = renderer.as_mut() else { return Ok(None) };
             pool.install(|| renderer.draw_scene(&prepared.scene, &prepared.technique, w, h, None)).map(Some)
         })?
-        .map_err(|e| to_py("Scene.render", commands::library_error(e)))?
+        .map_err(|e| to_py("Scene.render", lib_err(e)))?
         .ok_or_else(closed)?;
         frame_array(py, image)
     }

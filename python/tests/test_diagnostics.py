@@ -79,10 +79,13 @@ def test_a_progress_function_that_raises_stops_the_call_with_its_exception():
 
 def test_prepare_says_its_notes_as_render_does(caplog, capfd):
     """A scene prepared once says what setting it up noted, through the logger, as `render`
-    says it each call; `Scene.notes` keeps the lines."""
+    says it each call; `Scene.notes` keeps the lines, in the same words."""
     with caplog.at_level(logging.INFO, logger="bumpmap"):
         scene = bumpmap.Renderer().prepare(technique="pom", depth=100, size=16)
     said = [r.getMessage() for r in caplog.records if r.name == "bumpmap" and "carve past" in r.getMessage()]
     assert len(said) == 1, [r.getMessage() for r in caplog.records]
     assert any("carve past" in n for n in scene.notes)
+    # In Python's words, as the logger says them: keywords, not the command line's flags.
+    assert said[0] in scene.notes
+    assert not any("--" in n for n in scene.notes), scene.notes
     assert "carve past" not in capfd.readouterr().err

@@ -101,8 +101,8 @@ fn bench_reference(scene: &str, size: usize, spp: usize, runs: u32, json: bool) 
     let kind = SceneKind::parse(scene)
         .ok_or_else(|| CliError::Usage(format!("unknown scene '{scene}': use {}", SceneKind::built_in_names())))?;
     // The framebuffer limit `render` and `compare` apply, before any work.
-    bumpmap::Renderer::check_size(size, size).map_err(crate::render::lib_err)?;
-    let scene_value = scenes::build(&kind, &SceneParams::default()).map_err(crate::render::core_err)?;
+    bumpmap::Renderer::check_size(size, size).map_err(bumpmap_words::frame::lib_err)?;
+    let scene_value = scenes::build(&kind, &SceneParams::default()).map_err(bumpmap_words::frame::core_err)?;
     let options = bumpmap_reference::ReferenceOptions { samples_per_pixel: spp, ..Default::default() };
     let mut failure = None;
     let stats = time_runs(runs, || {
@@ -111,7 +111,7 @@ fn bench_reference(scene: &str, size: usize, spp: usize, runs: u32, json: bool) 
         }
     });
     if let Some(e) = failure {
-        return Err(CliError::Render(crate::render::reference_err(e)));
+        return Err(CliError::Render(bumpmap_words::frame::reference_err(e)));
     }
     let threads = rayon::current_num_threads();
     let msamples = (size * size * spp) as f64 / stats.median / 1e3;
@@ -290,7 +290,7 @@ fn bench_tangents(
 /// clearing and every pass are, and on the GPU the wait for the frame to finish (as the peer's
 /// `glFinish`; neither reads the frame back).
 fn bench_render(args: &BenchRenderArgs) -> Result<(), CliError> {
-    use crate::render::lib_err;
+    use bumpmap_words::frame::lib_err;
     let (size, frames, runs) = (args.size, args.frames, args.runs);
     bumpmap::Renderer::check_size(size, size).map_err(lib_err)?;
     let name = args.setup.technique.technique.0;

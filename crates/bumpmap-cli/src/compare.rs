@@ -6,12 +6,13 @@ use std::cell::RefCell;
 use std::path::{Path, PathBuf};
 
 use bumpmap::SceneKind;
-use bumpmap_compare::{CompareError, CompareNote, CompareOptions, Results};
+use bumpmap_compare::{CompareNote, CompareOptions, Results};
 use bumpmap_io::HeightSource;
 
 use crate::args::CompareArgs;
 use crate::error::CliError;
 use crate::report::{Progress, Steps};
+use bumpmap_words::compare::compare_err;
 
 /// Runs `bumpmap compare`.
 pub fn run(args: &CompareArgs) -> Result<(), CliError> {
@@ -107,10 +108,7 @@ impl bumpmap_compare::Progress for Shown<'_> {
     }
 
     fn note(&self, note: &CompareNote) {
-        let line = match note {
-            CompareNote::Skipped { name, reason } => format!("skipped {name}: {reason}"),
-            CompareNote::OnTheCpu { reason } => format!("--backend auto: drawing on the CPU ({reason})"),
-        };
+        let line = bumpmap_words::compare::note_line(note);
         match self.steps.borrow().as_ref() {
             Some(s) => s.suspend(|| crate::report::note(line)),
             None => crate::report::note(line),
@@ -121,42 +119,6 @@ impl bumpmap_compare::Progress for Shown<'_> {
         if let Some(s) = self.steps.borrow().as_ref() {
             s.finish();
         }
-    }
-}
-
-/// What `bumpmap_compare` refused, in the words of the command line; `args`, where given, names
-/// the height field and the output.
-fn compare_err(e: CompareError, bumps: Option<&str>, output: Option<&Path>) -> CliError {
-    match e {
-        CompareError::NotASurface(kind) => CliError::Usage(format!(
-            "--scene {}: compare takes a built-in surface ({}), because the reference evaluates the exact surface",
-            kind.name(),
-            SceneKind::built_in_names()
-        )),
-        CompareError::BumpScale(b) => CliError::Usage(format!("--bump-scale must be a number ≥ 0, got {b}")),
-        CompareError::Spp(spp) => {
-            CliError::Usage(format!("--spp must be in 1..={}, got {spp}", bumpmap::options::MAX_SAMPLES_PER_PIXEL))
-        }
-        CompareError::Twice(name) => CliError::Usage(format!("--techniques names {name} twice")),
-        CompareError::TooBig { source, bumps: (w, h) } => CliError::Render(format!(
-            "this scene (bumps {w}x{h}{}) is too big for the memory this process may use: {source}. \
-             The README's \"Memory\" section gives what the largest inputs need; a smaller --height-field needs less",
-            bumps.map(|b| format!(" from {b}")).unwrap_or_default()
-        )),
-        CompareError::BlackReference => CliError::Path {
-            path: output.map(Path::to_path_buf).unwrap_or_default(),
-            reason:
-                "not written: the reference is black (nothing in view is lit); try another --scene or --height-field"
-                    .into(),
-        },
-        CompareError::OutputIsAFile(path) => {
-            CliError::Path { path, reason: "is a file; compare writes a folder of results".into() }
-        }
-        CompareError::Interrupted => CliError::Interrupted,
-        CompareError::Reference(e) => CliError::Render(crate::render::reference_err(e)),
-        CompareError::Io(e) => CliError::Io(e),
-        CompareError::Library(e) => crate::render::lib_err(e),
-        e @ (CompareError::Study { .. } | CompareError::NormalMap { .. }) => CliError::Render(e.to_string()),
     }
 }
 

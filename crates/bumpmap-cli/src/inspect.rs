@@ -19,7 +19,7 @@ pub fn run_inspect(args: &InspectArgs) -> Result<(), CliError> {
     let mut files: Vec<PathBuf> = Vec::new();
     for input in &args.inputs {
         if input.is_dir() {
-            let found = maps_in_folder(input).map_err(crate::render::lib_err)?;
+            let found = maps_in_folder(input).map_err(bumpmap_words::frame::lib_err)?;
             if found.is_empty() {
                 return Err(CliError::Path {
                     path: input.clone(),
@@ -43,7 +43,7 @@ pub fn run_inspect(args: &InspectArgs) -> Result<(), CliError> {
                     print_report(&report);
                 }
             }
-            Err(e) if files.len() == 1 && !args.json => return Err(crate::render::lib_err(e)),
+            Err(e) if files.len() == 1 && !args.json => return Err(bumpmap_words::frame::lib_err(e)),
             Err(e) => {
                 failed += 1;
                 eprintln!("error: {e}");
@@ -93,7 +93,7 @@ pub fn run_height(args: &HeightArgs) -> Result<(), CliError> {
         )));
     }
     bumpmap_io::atomic::ensure_not_input(&args.output, &[&args.input])?;
-    let map = read_file(&args.input).map_err(crate::render::lib_err)?;
+    let map = read_file(&args.input).map_err(bumpmap_words::frame::lib_err)?;
     // Level 0's questions only: what height needs (the kind, the curl and seam tests).
     let inspection = bumpmap_math::inspect::inspect(&map.levels[..map.levels.len().min(1)], map.two_channel)
         .ok_or_else(|| CliError::Render(format!("{}: no texels", args.input.display())))?;

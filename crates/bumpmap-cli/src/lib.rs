@@ -1,16 +1,16 @@
 //! The `bumpmap` command line as a library: `main.rs` parses and calls [`run`]; the fuzz
 //! targets (`fuzz/`) reach the argument parser through [`args::Cli`]. Each subcommand lives in
-//! its own module.
+//! its own module. The work is the libraries' (`bumpmap`, `bumpmap_compare`); what they refuse
+//! and note is worded by `bumpmap_words`, which the Python package shares.
 //!
-//! - [`args`]: the command line (clap), a module per command, its value parsers and limits;
+//! - [`args`]: the command line (clap), a module per command, its value parsers and limits, and
+//!   the options as a table ([`args::options_table`]) the Python package's docstrings come from;
 //! - `setup`, `compare`: the flags made into the libraries' options (`bumpmap::options`,
-//!   `bumpmap_compare`), and what those refuse put back in the flags' words;
+//!   `bumpmap_compare`);
 //! - `normalmap`, `cubemap`, `mesh` (tangents), `render`, `bench`, `demo`, `view`, `inspect`
 //!   (inspect and height): the subcommands, drawing through the `bumpmap` crate's renderer;
-//! - [`commands`]: the commands as functions over their parsed arguments, returning what they
-//!   would write (the Python package calls these);
-//! - [`error`]: every layer's errors as one type, in the words of the command line;
-//! - [`report`]: warnings, notes and progress, on stderr or collected for a caller.
+//! - [`error`]: every layer's errors as one type (`bumpmap_words::Error`), with exit statuses;
+//! - `report`: progress as a bar on stderr (warnings and notes are `bumpmap_words::report`'s).
 
 // The argument structs' doc comments are clap's help texts, written for a terminal: their
 // `[dir:]X,Y,Z` and `[0,1]` are not intra-doc links.
@@ -19,7 +19,6 @@
 
 pub mod args;
 mod bench;
-pub mod commands;
 mod compare;
 mod cubemap;
 mod demo;
@@ -28,7 +27,7 @@ mod inspect;
 mod mesh;
 mod normalmap;
 mod render;
-pub mod report;
+mod report;
 mod setup;
 mod view;
 

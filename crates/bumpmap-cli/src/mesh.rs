@@ -8,6 +8,7 @@ use bumpmap_math::tangent::{TangentOptions, generate_tangents};
 
 use crate::args::TangentsArgs;
 use crate::error::CliError;
+use bumpmap_words::maps::tangent_error;
 
 fn mesh_err(path: &Path, e: impl std::fmt::Display) -> CliError {
     CliError::Path { path: path.to_path_buf(), reason: e.to_string() }
@@ -68,17 +69,8 @@ pub fn run(args: &TangentsArgs) -> Result<(), CliError> {
 /// The tangent options `args` give, `--split-angle` checked.
 pub fn tangent_options(args: &TangentsArgs) -> Result<TangentOptions, CliError> {
     let options = TangentOptions { mode: args.mode, split_angle_degrees: args.split_angle };
-    check_tangent_options(&options)?;
+    options.check().map_err(tangent_error)?;
     Ok(options)
-}
-
-/// Refuses a split angle outside [0, 180] degrees.
-pub fn check_tangent_options(options: &TangentOptions) -> Result<(), CliError> {
-    let angle = options.split_angle_degrees;
-    if !(0.0..=180.0).contains(&angle) {
-        return Err(CliError::Usage(format!("--split-angle must be in [0, 180], got {angle}")));
-    }
-    Ok(())
 }
 
 /// The bytes of a PNG normal map for a glTF material, after decoding it once to be sure it is

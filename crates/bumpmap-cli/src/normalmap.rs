@@ -2,14 +2,13 @@
 
 use std::path::{Path, PathBuf};
 
-use bumpmap::maps::{self, Chain, MapError, MapOptions};
+use bumpmap::maps::{self, Chain, MapOptions};
 use bumpmap_io::atomic::{FileSet, ensure_not_input};
 use bumpmap_io::height_file::HeightBits;
-use bumpmap_io::image_file::{PngLayout, save_png_into, save_png16_into};
 use bumpmap_io::texture_file::{Level, TextureFormat, TextureLayout, write_dds_into, write_ktx2_into};
 use bumpmap_io::{Channel, HeightSource};
-use bumpmap_math::normalmap::{MAX_SCALE, NormalMapError};
-use bumpmap_math::{HeightField, HeightMipsError, HorizonError, MipChain, MipMode, NormalMapOptions};
+use bumpmap_math::{HeightField, MipChain, MipMode, NormalMapOptions};
+use bumpmap_words::maps::{map_error, save_error, scale_err};
 use indicatif::{ProgressBar, ProgressStyle};
 use rayon::prelude::*;
 
@@ -47,7 +46,7 @@ pub fn run(args: &NormalmapArgs) -> Result<(), CliError> {
     let source = HeightSource::parse(&args.input);
     let format = texel_format(args)?;
     let output = output_file(&args.output, &source, &args.input, format);
-    check_format(&output, format)?;
+    maps::check_container(&output, format).map_err(save_error)?;
     let inputs: Vec<&Path> = source.path().into_iter().collect();
     let lean_out = args.lean_out.as_ref().map(|l| lean_paths(l)).transpose()?;
     for out in std::iter::once(&output).chain(&args.roughness_out).chain(lean_out.iter().flatten()) {
@@ -108,9 +107,6 @@ pub fn run(args: &NormalmapArgs) -> Result<(), CliError> {
             taken.push((flag, file.clone()));
         }
     }
-    if let Some(b) = &args.bent_normals_out {
-        check_format(b, TextureFormat::Rgba8)?;
-    }
     let field = source.load(channel)?;
     extras::ensure_room(args, field.width(), field.height())?;
     let asked = map_options(args);
@@ -147,9 +143,9 @@ pub fn run(args: &NormalmapArgs) -> Result<(), CliError> {
     // The heights are not needed to write the chain: a 16384² field is 1 GiB of floats.
     drop(field);
     let mut set = FileSet::new(&inputs);
-    write_into(&mut set, &output, &levels, format)?;
+    maps::write_chain_into(&mut set, &output, &levels, format).map_err(save_error)?;
     if let (Some(out), Some(chain)) = (&args.roughness_out, roughness) {
-        write_into(&mut set, out, &Chain::Rgba8(chain), TextureFormat::Rgba8)?;
+        maps::write_chain_into(&mut set, out, &Chain::Rgba8(chain), TextureFormat::Rgba8).map_err(save_error)?;
     }
     if let (Some(paths), Some(planes)) = (&lean_out, &lean) {
         for (path, plane) in paths.iter().zip(planes) {
@@ -177,7 +173,7 @@ pub fn run(args: &NormalmapArgs) -> Result<(), CliError> {
         }
         if let Some(path) = &args.bent_normals_out {
             let format = if args.bits == 16 { TextureFormat::Rgba16 } else { TextureFormat::Rgba8 };
-            write_into(&mut set, path, &maps::bent_normals(&asked, map), format)?;
+            maps::write_chain_into(&mut set, path, &maps::bent_normals(&asked, map), format).map_err(save_error)?;
         }
     }
     let written = set.commit()?;
@@ -262,31 +258,6 @@ pub fn make(
     maps::normal_chain(field, options, mips, mode).map_err(|source| scale_err(source, name))
 }
 
-/// A normal map that could not be made from `name`'s heights, in the command line's words: a
-/// scale out of range is the flag's fault, not the input's.
-pub(crate) fn scale_err(source: NormalMapError, name: &str) -> CliError {
-    match source {
-        NormalMapError::BadScale(s) => CliError::Usage(format!(
-            "--scale must be a number in [-{MAX_SCALE:e}, {MAX_SCALE:e}], got {s} (for {name})"
-        )),
-        source => CliError::NormalMap { path: name.to_string(), source },
-    }
-}
-
-/// A map that could not be made from `name`'s heights, in the command line's words: a value
-/// out of range is its flag's fault (exit status 2), a buffer too big the machine's.
-pub fn map_error(e: MapError, name: &str) -> CliError {
-    match e {
-        MapError::Bits(bits) => CliError::Usage(format!("--bits must be 8 or 16, got {bits}")),
-        MapError::Roughness(r) => CliError::Usage(format!("--roughness must be in [0, 1], got {r}")),
-        MapError::NormalMap(source) => scale_err(source, name),
-        MapError::Heights(HeightMipsError::OutOfMemory(e))
-        | MapError::Horizons(HorizonError::OutOfMemory(e))
-        | MapError::OutOfMemory(e) => CliError::OutOfMemory(e),
-        other => CliError::Path { path: name.into(), reason: other.to_string() },
-    }
-}
-
 pub use bumpmap_io::image_file::level_path;
 
 /// Writes a chain by the output's extension: PNG files, or one DDS / KTX2 file.
@@ -294,60 +265,10 @@ pub fn write(out: &Path, chain: MipChain) -> Result<(), CliError> {
     write_set(out, &Chain::Rgba8(chain), &[], TextureFormat::Rgba8).map(|_| ())
 }
 
-/// A compressed format needs a container that holds it.
-pub fn check_format(out: &Path, format: TextureFormat) -> Result<(), CliError> {
-    let ext = out.extension().map(|e| e.to_string_lossy().to_ascii_lowercase()).unwrap_or_default();
-    if format.is_compressed() && ext == "png" {
-        return Err(CliError::Usage(format!(
-            "{}: --format {} needs a .dds or .ktx2 output (PNG holds uncompressed texels only)",
-            out.display(),
-            format.dxgi_name()
-        )));
-    }
-    Ok(())
-}
-
 /// [`write`], all files or none, none of them replacing one of `inputs`, texels of DDS and
 /// KTX2 files in `format`; returns the paths.
 pub fn write_set(out: &Path, chain: &Chain, inputs: &[&Path], format: TextureFormat) -> Result<Vec<PathBuf>, CliError> {
-    let mut set = FileSet::new(inputs);
-    write_into(&mut set, out, chain, format)?;
-    Ok(set.commit()?)
-}
-
-/// [`write_set`]'s files staged into `set`, to be committed (or dropped) by the caller.
-pub fn write_into(set: &mut FileSet, out: &Path, chain: &Chain, format: TextureFormat) -> Result<(), CliError> {
-    let ext = out.extension().map(|e| e.to_string_lossy().to_ascii_lowercase()).unwrap_or_default();
-    let images = || TextureLayout {
-        faces: vec![match chain {
-            Chain::Rgba8(c) => c.levels.iter().map(Level::from).collect(),
-            Chain::Rgba16(c) => c.levels.iter().map(Level::from).collect(),
-        }],
-    };
-    match ext.as_str() {
-        "png" => {
-            match chain {
-                Chain::Rgba8(c) => {
-                    for (k, level) in c.levels.iter().enumerate() {
-                        let path = level_path(out, k);
-                        save_png_into(set, &path, level.width, level.height, PngLayout::Rgba8, level.as_bytes())?;
-                    }
-                }
-                Chain::Rgba16(c) => {
-                    for (k, level) in c.levels.iter().enumerate() {
-                        save_png16_into(set, &level_path(out, k), level)?;
-                    }
-                }
-            }
-            Ok(())
-        }
-        "dds" => Ok(write_dds_into(set, out, &images(), format)?),
-        "ktx2" => Ok(write_ktx2_into(set, out, &images(), format)?),
-        _ => {
-            Err(bumpmap_io::IoError::UnsupportedOutput { path: out.to_path_buf(), expected: ".png, .dds or .ktx2" }
-                .into())
-        }
-    }
+    maps::write_chain(out, chain, format, inputs).map_err(save_error)
 }
 
 fn run_folder(
@@ -464,4 +385,22 @@ fn run_folder(
 pub fn write_text(path: &Path, text: &str) -> Result<(), CliError> {
     use std::io::Write;
     Ok(bumpmap_io::atomic::write_atomic(path, |w| w.write_all(text.as_bytes()))?)
+}
+
+#[cfg(test)]
+mod tests {
+    use bumpmap::maps::MapOptions;
+    use clap::Parser;
+
+    use crate::args::{Cli, Command};
+
+    #[test]
+    fn normalmaps_defaults_are_the_librarys() {
+        let Command::Normalmap(args) =
+            Cli::try_parse_from(["bumpmap", "normalmap", "bricks", "-o", "n.png"]).expect("parses").command
+        else {
+            unreachable!("normalmap parses as normalmap")
+        };
+        assert_eq!(super::map_options(&args), MapOptions::default());
+    }
 }

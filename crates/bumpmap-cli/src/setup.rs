@@ -8,15 +8,15 @@
 use std::path::PathBuf;
 
 use bumpmap::options::{
-    CameraOptions, DecalChoice, GlossChoice, HeightsOptions, LightOptions, MaterialOptions, SceneChoice, SceneOption,
-    SceneOptions, SetupError, SetupNote, TechniqueChoice,
+    CameraOptions, DecalChoice, GlossChoice, HeightsOptions, LightOptions, MaterialOptions, SceneChoice, SceneOptions,
+    TechniqueChoice,
 };
-use bumpmap::{Named, SceneKind, SceneSpec, SelfShadow, SpecularFilter, TechniqueOptions};
+use bumpmap::{SceneKind, SceneSpec, SelfShadow, TechniqueOptions};
 use bumpmap_io::HeightSource;
 
 use crate::args::SceneSetup;
 use crate::error::CliError;
-use crate::render::lib_err;
+use bumpmap_words::setup::{note_line, setup_err};
 
 pub use bumpmap::options::Given;
 
@@ -60,11 +60,6 @@ pub fn set_up_options(options: &SceneOptions, given: &Given) -> Result<Setup, Cl
         inputs: set_up.inputs,
         notes: set_up.notes.iter().map(note_line).collect(),
     })
-}
-
-/// The flag that sets `option`.
-pub fn flag(option: SceneOption) -> String {
-    format!("--{}", option.name().replace('_', "-"))
 }
 
 /// The library's options as the flags give them; only the scene's name can be wrong here.
@@ -144,73 +139,12 @@ pub fn scene_options(s: &SceneSetup) -> Result<SceneOptions, CliError> {
     })
 }
 
-/// `--specular-filter`'s value for `filter`.
-fn specular_filter_value(filter: SpecularFilter) -> String {
-    filter.name().to_owned()
-}
-
-/// What the library refused, in the words of the command line.
-pub(crate) fn setup_err(e: SetupError) -> CliError {
-    match e {
-        SetupError::OutOfRange { option, expected, got } => {
-            CliError::Usage(format!("{} must be {expected}, got {got}", flag(option)))
-        }
-        SetupError::KilgardOnly { option, technique } => CliError::Render(format!(
-            "{} belongs to --technique kilgard's register combiners; --technique {technique} takes --shininess and computes in float",
-            flag(option)
-        )),
-        SetupError::SpecularFilterNotDrawn { technique } => CliError::Render(format!(
-            "--specular-filter shapes the single pass's float specular; --technique {technique} does not draw with it (use --technique toksvig, or single-pass and its family)"
-        )),
-        SetupError::CubeNormalizes => CliError::Usage(
-            "--technique single-pass-cube normalizes by the cube map: drop --normalize math, or use --technique single-pass".into(),
-        ),
-        SetupError::RoughnessMapUnread { technique, specular_filter } => CliError::Usage(format!(
-            "--roughness-map is read by the roughness-map specular filter: add --technique roughness-map (or --specular-filter roughness-map), not --technique {technique}{}",
-            match specular_filter {
-                SpecularFilter::None => String::new(),
-                f => format!(" with --specular-filter {}", specular_filter_value(f)),
-            }
-        )),
-        SetupError::NoMinMax { path, minmax, technique } => CliError::Path {
-            path,
-            reason: format!(
-                "has no min–max levels beside it ({} not found), and --technique {technique} walks them: \
-                 write the heights again with `bumpmap normalmap --mips --height-out H`, or use --technique pom",
-                minmax.display()
-            ),
-        },
-        e @ SetupError::LevelSize { .. } => CliError::Render(format!("{e} (--roughness-map's levels)")),
-        SetupError::Io(e) => CliError::Io(e),
-        SetupError::Library(e) => lib_err(e),
-        e @ (SetupError::MeshValues { .. }
-        | SetupError::NoExtent { .. }
-        | SetupError::TooBig { .. }
-        | SetupError::SizeMismatch { .. }) => CliError::Render(e.to_string()),
-    }
-}
-
-/// A setup note as a line for stderr, naming flags.
-pub(crate) fn note_line(note: &SetupNote) -> String {
-    match note {
-        SetupNote::Warning(w) => format!("warning: {w}"),
-        SetupNote::Replaces { path, option } => {
-            format!("{}: {} replaces the material's {}", path.display(), flag(*option), SetupNote::replaced(*option))
-        }
-        SetupNote::NothingToScale { path } => format!(
-            "{}: --bump-scale has nothing to scale: the material has no normalTexture (--height-field or --normal-map add bumps)",
-            path.display()
-        ),
-        n @ SetupNote::OneRoughnessLevel { .. } => {
-            format!("warning: {n}; `bumpmap normalmap --mips --roughness-out` writes every level")
-        }
-        n @ SetupNote::About { .. } => n.to_string(),
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use clap::{CommandFactory, Parser};
+
+    use bumpmap::options::SceneOption;
+    use bumpmap_words::setup::flag;
 
     use super::*;
     use crate::args::{Cli, Command};

@@ -74,6 +74,9 @@ pub enum MeshError {
     /// Tangents asked of a mesh without normals.
     #[error("the mesh has no normals")]
     NoNormals,
+    /// A split angle outside [0, 180] degrees ([`TangentOptions`](crate::tangent::TangentOptions)).
+    #[error("the split angle must be in [0, 180] degrees, got {0}")]
+    SplitAngle(f32),
     /// The MikkTSpace implementation gave up.
     #[error("MikkTSpace failed: {0}")]
     MikkTSpace(String),

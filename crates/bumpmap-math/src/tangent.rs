@@ -62,6 +62,18 @@ impl Default for TangentOptions {
     }
 }
 
+impl TangentOptions {
+    /// Refuses a split angle outside [0, 180] degrees ([`MeshError::SplitAngle`]):
+    /// [`generate_tangents`] checks it first, and a caller may check it before reading a mesh.
+    pub fn check(&self) -> Result<(), MeshError> {
+        let angle = self.split_angle_degrees;
+        if !(0.0..=180.0).contains(&angle) {
+            return Err(MeshError::SplitAngle(angle));
+        }
+        Ok(())
+    }
+}
+
 /// What tangent generation found.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct TangentReport {
@@ -78,6 +90,7 @@ pub struct TangentReport {
 /// Generates tangents, returning the mesh (possibly with split vertices) and a report.
 /// Needs normals and texture coordinates; fails on invalid meshes.
 pub fn generate_tangents(mesh: &Mesh, options: &TangentOptions) -> Result<(Mesh, TangentReport), MeshError> {
+    options.check()?;
     mesh.validate()?;
     if mesh.texcoords.is_empty() {
         return Err(MeshError::NoTexcoords);

@@ -32,6 +32,10 @@ use crate::{
 /// The square frame's side when none is given.
 pub const DEFAULT_SIZE: usize = 512;
 
+/// The longest side a frame may have, the reference's limit (the CPU framebuffer's limit on the
+/// pixel count applies as well: [`Renderer::check_size`]).
+pub const MAX_SIDE: usize = bumpmap_reference::MAX_SIDE;
+
 /// A frame to draw, typed: the scene options, the frame's size, the backend, and whether each of
 /// kilgard's passes is kept.
 #[derive(Clone, Debug)]
@@ -182,6 +186,17 @@ pub fn prepare_frame(request: &FrameRequest, given: &Given) -> Result<PreparedFr
     let prepared = Prepared::new(&set_up.spec, name, &set_up.options).map_err(|e| too_big(e, &set_up.spec))?;
     let depth_notes = depth_notes(&request.options, &set_up.spec, &prepared);
     Ok(PreparedFrame { size: request.size, prepared, set_up, depth_notes })
+}
+
+/// The renderer `request` draws on: its backend ([`FrameRequest::backend_for`]: the CPU for the
+/// reference, so no device opens for it), the reference's tiles told to `progress`. For `auto`,
+/// [`Renderer::fallback_reason`] says why it drew on the CPU, if it did.
+pub fn renderer_for(request: &FrameRequest, progress: Option<crate::renderer::Progress>) -> Result<Renderer, Error> {
+    let mut renderer = Renderer::new(request.backend_for())?;
+    if request.options.technique.technique.is_reference() {
+        renderer.set_reference_progress(progress);
+    }
+    Ok(renderer)
 }
 
 /// Draws `frame` with `renderer`, keeping each of kilgard's passes with `passes`; refuses a

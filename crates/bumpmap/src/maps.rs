@@ -15,10 +15,16 @@
 //! assert!(heights.clamped.is_none(), "the preset's heights are in [0, 1]");
 //! ```
 //!
-//! What this module does not do: read or write files (`bumpmap_io`), print (what a caller may
+//! [`write_chain`] writes a chain as `normalmap -o` does (PNG files, or one DDS or KTX2 file).
+//!
+//! What this module does not do: read files (`bumpmap_io`), write any but a chain, print (what a caller may
 //! want to say comes back as data: [`Clamped`]), or refuse a field too big for every output at
 //! once before any is made (each buffer is asked for fallibly; a command that makes several
 //! maps adds up their cost itself).
+
+mod files;
+
+pub use files::{SaveError, check_container, write_chain, write_chain_into};
 
 use bumpmap_math::buffer::OutOfMemory;
 use bumpmap_math::normalmap::{NormalMapError, normal_map_level0_texels};

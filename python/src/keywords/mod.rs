@@ -48,8 +48,8 @@ pub fn names(function: &str) -> Option<Vec<&'static str>> {
 /// and a bound on an iterator that never ends.
 pub(super) const MAX_VALUES: usize = 4096;
 
-/// The most pixels a side of the frame takes (the command line's bound).
-pub(super) const MAX_SIDE: usize = bumpmap_cli::args::MAX_SIDE;
+/// The most pixels a side of the frame takes (the library's bound).
+pub(super) use bumpmap::frame::MAX_SIDE;
 
 /// One call's keywords, read: the function's name for messages.
 pub(super) struct Reader<'a> {

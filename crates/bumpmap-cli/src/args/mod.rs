@@ -9,6 +9,7 @@ mod demo;
 mod inspect;
 mod normalmap;
 mod render;
+mod table;
 mod tangents;
 mod view;
 
@@ -19,6 +20,7 @@ pub use demo::*;
 pub use inspect::*;
 pub use normalmap::*;
 pub use render::*;
+pub use table::{options_table, options_table_text};
 pub use tangents::*;
 pub use view::*;
 
@@ -118,9 +120,8 @@ pub fn parse_repeat(s: &str) -> Result<(f32, f32), String> {
     if ok(a) && ok(b) { Ok((a, b)) } else { Err(format!("repeats must be non-zero and within ±1024, got '{s}'")) }
 }
 
-/// The largest image side `render` and `bench render` take (the CPU framebuffer's limit on
-/// the pixel count applies as well).
-pub const MAX_SIDE: usize = 16384;
+/// The largest image side `render` and `bench render` take: the library's.
+pub use bumpmap::frame::MAX_SIDE;
 
 /// An image side in pixels, 1..=[`MAX_SIDE`].
 pub fn parse_side(s: &str) -> Result<usize, String> {

@@ -22,7 +22,8 @@ mod normal_maps_in;
 
 use crate::args::{DemoArgs, DemoGpuArg};
 use crate::error::CliError;
-use crate::render::{core_err, lib_err, write_frame};
+use crate::render::write_frame;
+use bumpmap_words::frame::{core_err, lib_err};
 
 /// One image of the demo: its file, what it shows, and the scene and technique that make it.
 struct DemoRender {

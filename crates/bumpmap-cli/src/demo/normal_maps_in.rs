@@ -29,7 +29,7 @@ pub fn write(out: &Path, maps: &[&str], heights: &str, normals: &str) -> Result<
     let mut text = String::new();
     for name in maps {
         let path = out.join(name);
-        let map = read_map(&path).map_err(crate::render::lib_err)?;
+        let map = read_map(&path).map_err(bumpmap_words::frame::lib_err)?;
         for line in inspect_map(name, &map).lines() {
             text += &line;
             text.push('\n');
@@ -38,7 +38,7 @@ pub fn write(out: &Path, maps: &[&str], heights: &str, normals: &str) -> Result<
     crate::normalmap::write_text(&out.join(INSPECT_TEXT), &text)?;
 
     let field = bumpmap_io::load_height_field(&out.join(heights), bumpmap_io::Channel::Luminance)?;
-    let map = read_file(&out.join(normals)).map_err(crate::render::lib_err)?;
+    let map = read_file(&out.join(normals)).map_err(bumpmap_words::frame::lib_err)?;
     let report = inspect_map(normals, &map);
     let level0 = &map.levels[0];
     // The demo's maps are made at the default scale: given it, the heights come back in the

@@ -8,8 +8,8 @@ use std::path::{Path, PathBuf};
 use bumpmap::maps::{self, MapOptions};
 use bumpmap_math::{HeightField, HeightMips};
 
-use super::map_error;
 use crate::error::CliError;
+use bumpmap_words::maps::map_error;
 
 /// Bytes a texel of level 0 costs beyond the height field itself, as measured (peak resident
 /// memory of `normalmap bricks@4096 --mips` with each output alone, less the run without it,

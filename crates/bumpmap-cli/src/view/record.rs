@@ -11,7 +11,7 @@ use super::keys::Action;
 use super::state::Viewer;
 use crate::args::{SceneSetup, ViewArgs};
 use crate::error::CliError;
-use crate::render::lib_err;
+use bumpmap_words::frame::lib_err;
 
 /// `frames` frames of `prepared` at `width`×`height`, its first light carried once round the
 /// point looked at (`bumpmap::motion::LightOrbit`), as RGB bytes; `tick` after each. What
@@ -74,7 +74,7 @@ pub fn run(args: &ViewArgs, setup: SceneSetup, out: &Path, inputs: &[&Path]) -> 
     let images = orbit(&mut renderer, &mut prepared, width, height, frames, || bar.inc(1))?;
     bar.finish_and_clear();
     let lit = images.iter().any(|frame| frame.iter().any(|&c| c != 0));
-    crate::render::ensure_drawn(!lit, out)?;
+    bumpmap_words::frame::ensure_drawn(!lit, out)?;
     let mut set = FileSet::new(&inputs);
     save_apng_into(&mut set, out, width, height, &images, args.frame_ms)?;
     set.commit()?;

@@ -108,7 +108,7 @@ impl Viewer {
         let scenes = scenes_with(&base.spec.kind);
         let choices = Choices { scene: scenes.iter().position(|k| *k == base.spec.kind).unwrap_or(0), ..choices };
         let mut heights = None;
-        let prepared = prepare(&base, &scenes, &choices, &mut heights).map_err(crate::render::lib_err)?;
+        let prepared = prepare(&base, &scenes, &choices, &mut heights).map_err(bumpmap_words::frame::lib_err)?;
         let (home, orbit) = (prepared.scene.camera, LightOrbit::of(&prepared.scene));
         Ok(Self {
             args,

@@ -27,7 +27,7 @@ use super::overlay::{self, Corner};
 use super::state::{Effect, Viewer};
 use crate::args::{SceneSetup, ViewArgs};
 use crate::error::CliError;
-use crate::render::lib_err;
+use bumpmap_words::frame::lib_err;
 
 /// The seconds of the light's orbit each scripted frame advances: the same pictures on every
 /// machine, whatever its frame rate.
