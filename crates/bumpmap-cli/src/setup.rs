@@ -34,20 +34,10 @@ pub struct Setup {
     pub notes: Vec<String>,
 }
 
-/// Files the options name, before anything is read: an output must replace none of them.
-pub fn named_inputs(s: &SceneSetup) -> Result<Vec<PathBuf>, CliError> {
-    Ok(scene_options(s)?.named_inputs())
-}
-
 /// Reads the options: checks their ranges, loads the files they name and builds the scene
 /// description, the technique and its options.
 pub fn setup(s: &SceneSetup) -> Result<Setup, CliError> {
-    setup_given(s, &Given::default())
-}
-
-/// [`setup`], with the inputs `given` in memory in place of the files their options name.
-pub fn setup_given(s: &SceneSetup, given: &Given) -> Result<Setup, CliError> {
-    set_up_options(&scene_options(s)?, given)
+    set_up_options(&scene_options(s)?, &Given::default())
 }
 
 /// Sets `options` up, with the inputs `given` in memory in place of their files; what the

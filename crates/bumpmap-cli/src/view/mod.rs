@@ -32,7 +32,11 @@ use crate::error::CliError;
 /// Runs `bumpmap view`.
 pub fn run(args: &ViewArgs) -> Result<(), CliError> {
     let setup = with_file(args)?;
-    let named = crate::setup::named_inputs(&setup)?;
+    // The flags made into options once: the viewer keeps these and changes them as keys and
+    // dropped files ask.
+    let options = crate::setup::scene_options(&setup)?;
+    let backend = setup.backend.backend;
+    let named = options.named_inputs();
     let inputs: Vec<&Path> = named.iter().map(PathBuf::as_path).collect();
     for (flag, out, what) in
         [("--record", &args.record, "an animated PNG"), ("--screenshot", &args.screenshot, "a PNG")]
@@ -61,9 +65,9 @@ pub fn run(args: &ViewArgs) -> Result<(), CliError> {
         )));
     }
     match &args.record {
-        Some(out) => record::run(args, setup, out, &inputs),
+        Some(out) => record::run(args, options, backend, out, &inputs),
         #[cfg(feature = "viewer")]
-        None => window::run(args, setup, &inputs),
+        None => window::run(args, options, backend, &inputs),
         #[cfg(not(feature = "viewer"))]
         None => Err(CliError::Usage(
             "this build of bumpmap has no window (built without the `viewer` feature); --record still works".into(),

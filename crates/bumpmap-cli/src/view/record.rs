@@ -9,8 +9,9 @@ use bumpmap_io::image_file::save_apng_into;
 
 use super::keys::Action;
 use super::state::Viewer;
-use crate::args::{SceneSetup, ViewArgs};
+use crate::args::ViewArgs;
 use crate::error::CliError;
+use bumpmap::options::SceneOptions;
 use bumpmap_words::frame::lib_err;
 
 /// `frames` frames of `prepared` at `width`×`height`, its first light carried once round the
@@ -38,14 +39,19 @@ pub fn orbit(
 pub const DEFAULT_FRAMES: u32 = 48;
 
 /// Writes the recording.
-pub fn run(args: &ViewArgs, setup: SceneSetup, out: &Path, inputs: &[&Path]) -> Result<(), CliError> {
+pub fn run(
+    args: &ViewArgs,
+    options: SceneOptions,
+    backend: bumpmap::BackendChoice,
+    out: &Path,
+    inputs: &[&Path],
+) -> Result<(), CliError> {
     let (width, height) = args.frame_size();
     bumpmap::Renderer::check_size(width, height).map_err(lib_err)?;
     let frames = args.frames.unwrap_or(DEFAULT_FRAMES) as usize;
     let bytes = (frames * width * height * 3) as u64;
     bumpmap::bumpmap_math::buffer::ensure_available(bytes, "the recording's frames").map_err(CliError::OutOfMemory)?;
-    let backend = setup.backend.backend;
-    let mut viewer = Viewer::new(setup)?;
+    let mut viewer = Viewer::new(options)?;
     let read: Vec<PathBuf> = inputs.iter().map(|p| p.to_path_buf()).chain(viewer.inputs().iter().cloned()).collect();
     let inputs: Vec<&Path> = read.iter().map(PathBuf::as_path).collect();
     bumpmap_io::atomic::ensure_not_input(out, &inputs)?;

@@ -6,31 +6,36 @@
 //!
 //! A change that cannot be drawn (a technique that cannot draw the scene, a file that cannot be
 //! read) is undone: the old scene stays and the reason becomes [`Viewer::message`].
+//!
+//! The viewer keeps the scene's [`SceneOptions`] (the flags made into options once) and changes
+//! them where a key or a dropped file asks; `state/prepare.rs` makes the scene and technique a
+//! set of [`Choices`] describes.
 
 // Built without the window (the `viewer` feature off: the Python module), only `--record` uses
 // the model, and what only the window reads goes unused.
 #![cfg_attr(not(feature = "viewer"), allow(dead_code))]
 
 use std::path::{Path, PathBuf};
-use std::sync::Arc;
 
 use bumpmap::bumpmap_core::parallax::{MAX_LAYERS, ParallaxMethod};
-use bumpmap::bumpmap_core::state::Sampler;
 use bumpmap::motion::{LightOrbit, MAX_TILT, orbit_camera};
+use bumpmap::options::{Given, SceneChoice, SceneOptions};
 use bumpmap::{
-    BumpSource, Camera, HeightField, HeightMips, MipMode, Normalize, ParallaxShadow, Prepared, ReferenceOptions,
-    SceneKind, SelfShadow, SpecularFilter, Technique, TechniqueName, TechniqueOptions,
+    BumpSource, Camera, MipMode, Normalize, ParallaxShadow, Prepared, ReferenceOptions, SceneKind, SpecularFilter,
+    Technique, TechniqueName,
 };
-use glam::Vec3;
+use bumpmap_io::HeightSource;
 
 use super::keys::Action;
-use crate::args::SceneSetup;
+
 use crate::error::CliError;
-use crate::setup::Setup;
+use crate::setup::{Setup, set_up_options};
 
 mod choices;
+mod prepare;
 
 pub use choices::{Choices, Effect, Mips, View};
+use prepare::{HeightsCache, prepare};
 
 /// The samples per pixel the reference is drawn with, one step per frame while nothing moves:
 /// a rough picture at once, then more, then `--spp`'s (64 by default) a few frames later.
@@ -41,7 +46,9 @@ pub const TURNS_PER_SECOND: f32 = 0.125;
 
 /// The viewer's state and the scene it has prepared.
 pub struct Viewer {
-    args: SceneSetup,
+    /// The options the scene is set up from: the flags', then what keys and dropped files
+    /// changed.
+    options: SceneOptions,
     base: Setup,
     /// The scenes `o` cycles through.
     pub scenes: Vec<SceneKind>,
@@ -61,9 +68,6 @@ pub struct Viewer {
     heights: HeightsCache,
 }
 
-/// A height field and the heights as geometry made from it.
-type HeightsCache = Option<(Arc<HeightField>, Arc<HeightMips>)>;
-
 /// The scenes a viewer offers: the four the issue names, and the one it started on when that
 /// is another (the floor, the wall on the floor, a loaded mesh).
 fn scenes_with(kind: &SceneKind) -> Vec<SceneKind> {
@@ -75,13 +79,13 @@ fn scenes_with(kind: &SceneKind) -> Vec<SceneKind> {
 }
 
 impl Viewer {
-    /// The viewer on what `args` describe (files loaded, technique prepared).
-    pub fn new(args: SceneSetup) -> Result<Self, CliError> {
-        let base = crate::setup::setup(&args)?;
+    /// The viewer on what `options` describe (files loaded, technique prepared).
+    pub fn new(options: SceneOptions) -> Result<Self, CliError> {
+        let base = set_up_options(&options, &Given::default())?;
         for note in &base.notes {
             eprintln!("{note}");
         }
-        let name = args.technique.technique.0;
+        let name = options.technique.technique;
         let choices = Choices {
             technique: TechniqueName::ALL.iter().position(|&t| t == name).unwrap_or(0),
             scene: 0,
@@ -96,7 +100,7 @@ impl Viewer {
             cube: base.options.single_pass.normalize == Normalize::Cube,
             nearest: false,
             specular_filter: base.options.single_pass.specular_filter,
-            bump_scale: args.scene.bump_scale.unwrap_or(match base.spec.params.bumps {
+            bump_scale: options.bump_scale.unwrap_or(match base.spec.params.bumps {
                 BumpSource::Heights(_) => base.spec.params.normal_map.scale,
                 BumpSource::NormalMap(_) => 1.0,
             }),
@@ -111,7 +115,7 @@ impl Viewer {
         let prepared = prepare(&base, &scenes, &choices, &mut heights).map_err(bumpmap_words::frame::lib_err)?;
         let (home, orbit) = (prepared.scene.camera, LightOrbit::of(&prepared.scene));
         Ok(Self {
-            args,
+            options,
             base,
             scenes,
             choices,
@@ -288,11 +292,10 @@ impl Viewer {
             && matches!(self.base.spec.params.bumps, BumpSource::NormalMap(_))
         {
             // A normal map's scale is applied as it is read (glTF's normalTexture.scale).
-            let mut args = self.args.clone();
-            args.scene.bump_scale = Some(choices.bump_scale);
-            match crate::setup::setup(&args) {
+            let options = SceneOptions { bump_scale: Some(choices.bump_scale), ..self.options.clone() };
+            match set_up_options(&options, &Given::default()) {
                 Ok(base) => {
-                    self.args = args;
+                    self.options = options;
                     self.base = base;
                 }
                 Err(e) => {
@@ -327,28 +330,29 @@ impl Viewer {
     /// normal map goes onto it. A file that cannot be read leaves everything as it was, with
     /// the reason in [`Viewer::message`]; the message on success says what it was taken for.
     pub fn load(&mut self, path: &Path) -> Result<String, String> {
-        let mut args = self.args.clone();
+        let mut options = self.options.clone();
         let what = super::files::classify(path)?;
         let shown = path.display();
         let note = match what {
             super::files::Kind::Mesh => {
-                args.scene.scene = format!("mesh:{}", path.display());
+                options.scene = SceneChoice::Mesh(path.to_path_buf());
                 format!("{shown}: a mesh, replacing the surface")
             }
             super::files::Kind::HeightField => {
-                args.scene.height_field = Some(path.display().to_string());
-                args.scene.normal_map = None;
-                args.scene.bump_scale = None;
+                // The file itself, even where its name reads as a preset's ("bricks").
+                options.height_field = Some(HeightSource::File(path.to_path_buf()));
+                options.normal_map = None;
+                options.bump_scale = None;
                 format!("{shown}: a height field")
             }
             super::files::Kind::NormalMap => {
-                args.scene.normal_map = Some(path.to_path_buf());
-                args.scene.height_field = None;
-                args.scene.bump_scale = None;
+                options.normal_map = Some(path.to_path_buf());
+                options.height_field = None;
+                options.bump_scale = None;
                 format!("{shown}: a normal map")
             }
         };
-        let base = crate::setup::setup(&args).map_err(|e| e.to_string())?;
+        let base = set_up_options(&options, &Given::default()).map_err(|e| e.to_string())?;
         let scenes = scenes_with(&base.spec.kind);
         let mut choices = self.choices.clone();
         if let super::files::Kind::Mesh = what {
@@ -369,7 +373,7 @@ impl Viewer {
         let Some((choices, prepared)) = found else {
             return Err(format!("{shown}: no technique can draw it"));
         };
-        self.args = args;
+        self.options = options;
         self.base = base;
         self.scenes = scenes;
         self.choices = choices;
@@ -434,80 +438,6 @@ impl Viewer {
             if off.is_empty() { String::new() } else { format!(" | off: {}", off.join(", ")) },
         )
     }
-}
-
-/// The scene and technique `choices` describe, on `base`; the heights as geometry from
-/// `heights` when they were made from the same field, else made and kept there.
-fn prepare(
-    base: &Setup,
-    scenes: &[SceneKind],
-    c: &Choices,
-    heights: &mut HeightsCache,
-) -> Result<Prepared, bumpmap::Error> {
-    let mut spec = base.spec.clone();
-    spec.kind = scenes[c.scene].clone();
-    let params = &mut spec.params;
-    let name = TechniqueName::ALL[c.technique];
-    let takes_heights = name.parallax_method().is_some() || name == TechniqueName::ReferenceDisplaced;
-    if let (true, None, BumpSource::Heights(field)) = (takes_heights, &params.height_mips, &params.bumps) {
-        let mips = match heights {
-            Some((made_from, mips)) if Arc::ptr_eq(made_from, field) => mips.clone(),
-            _ => {
-                let mips = Arc::new(HeightMips::from_field(field).map_err(bumpmap::CoreError::from)?);
-                *heights = Some((field.clone(), mips.clone()));
-                mips
-            }
-        };
-        params.height_mips = Some(mips);
-    }
-    if let BumpSource::Heights(_) = params.bumps {
-        params.normal_map.scale = c.bump_scale;
-    }
-    params.shininess = c.shininess;
-    params.depth = c.depth;
-    if !c.decal {
-        params.decal = None;
-        params.default_decal = false;
-        if let Some(parts) = &mut params.parts {
-            Arc::make_mut(parts).replace_decals(None);
-        }
-    }
-    if !c.diffuse {
-        params.diffuse = Vec3::ZERO;
-    }
-    if !c.specular {
-        params.specular = Vec3::ZERO;
-    }
-    params.mip_mode = if c.mips == Mips::Renormalized { MipMode::Renormalize } else { MipMode::LengthInAlpha };
-    let sampler = match (c.nearest, c.mips) {
-        (true, _) => Sampler::NEAREST_REPEAT,
-        (false, Mips::None) => Sampler::LINEAR_REPEAT,
-        (false, _) => Sampler::TRILINEAR_REPEAT,
-    };
-    let mut options: TechniqueOptions = base.options.clone();
-    options.parallax.layers = c.layers;
-    options.parallax.shadow = c.parallax_shadow;
-    options.kilgard.self_shadow = c.self_shadow;
-    options.kilgard.sampler = sampler;
-    options.emboss.sampler = sampler;
-    let sp = &mut options.single_pass;
-    sp.sampler = sampler;
-    sp.normalize = if c.cube { Normalize::Cube } else { Normalize::Math };
-    sp.specular_filter = c.specular_filter;
-    if !c.self_shadow {
-        sp.self_shadow = SelfShadow::Off;
-        options.reference.self_shadow = SelfShadow::Off;
-    } else if sp.self_shadow == SelfShadow::Off {
-        sp.self_shadow = SelfShadow::Ramp;
-        options.reference.self_shadow = SelfShadow::Ramp;
-    }
-    let prepared = Prepared::new(&spec, name, &options)?;
-    // What the technique cannot draw is refused here, so the choice is undone, rather than
-    // when the frame is drawn.
-    if !name.is_reference() {
-        prepared.technique.passes(&prepared.scene)?;
-    }
-    Ok(prepared)
 }
 
 #[cfg(test)]

@@ -25,8 +25,9 @@ use winit::window::{Window, WindowId};
 use super::keys::Action;
 use super::overlay::{self, Corner};
 use super::state::{Effect, Viewer};
-use crate::args::{SceneSetup, ViewArgs};
+use crate::args::ViewArgs;
 use crate::error::CliError;
+use bumpmap::options::SceneOptions;
 use bumpmap_words::frame::lib_err;
 
 /// The seconds of the light's orbit each scripted frame advances: the same pictures on every
@@ -34,10 +35,9 @@ use bumpmap_words::frame::lib_err;
 const SCRIPTED_FRAME_SECONDS: f32 = 1.0 / 30.0;
 
 /// Opens the window and runs until it is closed (or the script ends).
-pub fn run(args: &ViewArgs, setup: SceneSetup, inputs: &[&Path]) -> Result<(), CliError> {
+pub fn run(args: &ViewArgs, options: SceneOptions, backend: BackendChoice, inputs: &[&Path]) -> Result<(), CliError> {
     ensure_display()?;
-    let backend = setup.backend.backend;
-    let viewer = Viewer::new(setup)?;
+    let viewer = Viewer::new(options)?;
     let reference_only = viewer.technique().is_reference();
     let renderer = if reference_only && backend == bumpmap::BackendChoice::Auto {
         Renderer::new(BackendChoice::Cpu).map_err(lib_err)?

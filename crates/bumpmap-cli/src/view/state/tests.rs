@@ -1,7 +1,11 @@
 //! The viewer's model without a window: every key's effect.
 
-use super::*;
+use std::sync::Arc;
+
 use clap::Parser;
+use glam::Vec3;
+
+use super::*;
 
 fn viewer(extra: &[&str]) -> Viewer {
     let mut words = vec!["bumpmap", "view", "--backend", "cpu", "--tessellation", "16,8"];
@@ -9,7 +13,7 @@ fn viewer(extra: &[&str]) -> Viewer {
     let crate::args::Command::View(args) = crate::args::Cli::try_parse_from(words).unwrap().command else {
         unreachable!("parsed as view")
     };
-    Viewer::new(args.setup).unwrap()
+    Viewer::new(crate::setup::scene_options(&args.setup).unwrap()).unwrap()
 }
 
 fn normal_texels(v: &Viewer) -> Vec<[u8; 4]> {
@@ -139,6 +143,35 @@ fn a_file_that_cannot_be_read_keeps_the_scene_and_says_why() {
     assert_eq!((v.choices.clone(), normal_texels(&v)), before);
     let err = v.load(Path::new("/nonexistent/model.obj")).unwrap_err();
     assert!(err.contains("model.obj"), "{err}");
+}
+
+#[test]
+fn dropped_files_go_onto_the_scene_as_what_they_are() {
+    let dir = std::env::temp_dir().join(format!("bumpmap-view-drop-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    // Heights: a gray image with one raised square.
+    let heights = dir.join("heights.png");
+    image::GrayImage::from_fn(32, 32, |x, y| {
+        image::Luma([if (8..24).contains(&x) && (8..24).contains(&y) { 200 } else { 40 }])
+    })
+    .save(&heights)
+    .unwrap();
+    let mut v = viewer(&["--technique", "single-pass"]);
+    let bricks = normal_texels(&v);
+    let said = v.load(&heights).unwrap();
+    assert!(said.ends_with("a height field"), "{said}");
+    let from_heights = normal_texels(&v);
+    assert_ne!(from_heights, bricks, "the scene's normal map is made from the dropped heights");
+    assert_eq!(v.options.height_field, Some(HeightSource::File(heights.clone())));
+    // A normal map replaces the heights, drawn at its own scale.
+    let map = dir.join("map.png");
+    image::RgbaImage::from_pixel(16, 16, image::Rgba([160, 128, 230, 255])).save(&map).unwrap();
+    let said = v.load(&map).unwrap();
+    assert!(said.ends_with("a normal map"), "{said}");
+    assert_eq!((v.options.normal_map.as_deref(), v.options.height_field.as_ref()), (Some(map.as_path()), None));
+    assert_eq!(v.choices.bump_scale, 1.0);
+    assert_ne!(normal_texels(&v), from_heights);
+    std::fs::remove_dir_all(&dir).unwrap();
 }
 
 #[test]
