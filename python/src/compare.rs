@@ -17,11 +17,10 @@ use pyo3::types::PyDict;
 use crate::errors::to_py;
 use crate::{interrupt, keywords, take_progress};
 
-/// `compare`'s steps counted and told to a `progress=` function (where there is one), its notes
-/// said as notes.
+/// `compare`'s steps told to a `progress=` function (where there is one), its notes said as
+/// notes.
 struct Shown {
     report: Option<ReportFn>,
-    done: AtomicU64,
     total: AtomicU64,
 }
 
@@ -30,8 +29,7 @@ impl bumpmap_compare::Progress for Shown {
         self.total.store(steps, Ordering::Relaxed);
     }
 
-    fn advance(&self, _done: u64) {
-        let done = self.done.fetch_add(1, Ordering::Relaxed) + 1;
+    fn advance(&self, done: u64) {
         if let Some(f) = &self.report {
             f(done, self.total.load(Ordering::Relaxed));
         }
@@ -64,7 +62,7 @@ pub fn compare<'py>(
         move |cancel, report| {
             let named = output.as_deref().unwrap_or(Path::new("the results"));
             let bumps = compare_options.height_field.to_string();
-            let shown = Shown { report, done: AtomicU64::new(0), total: AtomicU64::new(0) };
+            let shown = Shown { report, total: AtomicU64::new(0) };
             let (results, inputs) = bumpmap_compare::measure(&compare_options, &shown)
                 .map_err(|e| compare_err(e, Some(&bumps), Some(named)))?;
             if let Some(out) = &output {

@@ -15,7 +15,7 @@ use bumpmap::frame::{Frame, FrameRequest, PreparedFrame};
 use bumpmap::maps::Chain;
 use bumpmap::options::Given;
 use bumpmap_words::Error;
-use bumpmap_words::frame::{frame_err, frame_notes, lib_err, on_the_cpu};
+use bumpmap_words::frame::{frame_err, lib_err, note_fallback, say_frame_notes};
 use bumpmap_words::report::ReportFn;
 use glam::Vec3;
 use pyo3::exceptions::{PyRuntimeError, PyTypeError, PyValueError};
@@ -30,25 +30,15 @@ use crate::{arrays, interrupt, keywords};
 /// the work returns); returns the notes too, in Python's words.
 fn prepare(request: &FrameRequest, given: &Given) -> Result<(PreparedFrame, Vec<String>), Error> {
     let prepared = bumpmap::frame::prepare_frame(request, given).map_err(|e| frame_err(e, &request.options, None))?;
-    let notes = frame_notes(&prepared);
-    for note in &notes {
-        bumpmap_words::report::setup_line(note);
-    }
-    Ok((prepared, notes.iter().map(|n| bumpmap_words::as_keywords(n)).collect()))
+    let notes = say_frame_notes(&prepared).iter().map(|n| bumpmap_words::as_keywords(n)).collect();
+    Ok((prepared, notes))
 }
 
-/// Opens `backend` ([`note_fallback`]).
+/// Opens `backend`; with `auto`, notes why it draws on the CPU, if it does.
 fn open(backend: bumpmap::BackendChoice) -> Result<bumpmap::Renderer, Error> {
     let renderer = bumpmap::Renderer::new(backend).map_err(lib_err)?;
     note_fallback(&renderer);
     Ok(renderer)
-}
-
-/// With `auto`, notes why `renderer` draws on the CPU, if it does.
-fn note_fallback(renderer: &bumpmap::Renderer) {
-    if let Some(why) = renderer.fallback_reason() {
-        bumpmap_words::report::note(on_the_cpu(why));
-    }
 }
 
 /// `render()`'s frame: what `request` describes prepared ([`prepare`]) and drawn on its
@@ -60,7 +50,7 @@ pub fn draw(request: &FrameRequest, given: &Given, progress: Option<ReportFn>) -
     let mut renderer = bumpmap::frame::renderer_for(request, progress).map_err(lib_err)?;
     note_fallback(&renderer);
     bumpmap::frame::draw_frame(&mut renderer, &prepared, request.passes)
-        .map_err(|e| frame_err(e, &request.options, Some(std::path::Path::new("the frame"))))
+        .map_err(|e| frame_err(e, &request.options, None))
 }
 
 /// A `bumpmap.Mesh` (anything with its attributes) given as the scene: the mesh `--scene

@@ -1,5 +1,5 @@
 //! `bumpmap compare`: the flags made into `bumpmap_compare`'s options, its steps shown as a bar,
-//! its refusals in the command line's words. The measuring, the studies and the report are
+//! its refusals in the command line's words (`bumpmap_words::compare`). The measuring, the studies and the report are
 //! `bumpmap_compare`'s.
 
 use std::cell::RefCell;

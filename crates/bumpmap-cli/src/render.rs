@@ -3,8 +3,8 @@
 //! one PNG per pass).
 //!
 //! The library refuses what a technique cannot do with typed errors and says what it noted as
-//! data; this module is where they get the names of the flags that caused them ([`frame_err`],
-//! [`core_err`], [`lib_err`], [`frame_notes`]).
+//! data; `bumpmap_words::frame` names the flags that caused them, for this command and for
+//! Python alike.
 
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
@@ -12,7 +12,7 @@ use std::sync::Arc;
 use bumpmap::{BackendChoice, Renderer, Rgba8Image};
 use bumpmap_io::atomic::{FileSet, ensure_not_input};
 use bumpmap_io::image_file::{PngLayout, save_png_into};
-use bumpmap_words::frame::{frame_err, frame_notes, lib_err, on_the_cpu};
+use bumpmap_words::frame::{frame_err, lib_err, note_fallback, say_frame_notes};
 
 use crate::args::RenderArgs;
 use crate::error::CliError;
@@ -78,9 +78,7 @@ pub fn draw_request(
 ) -> Result<Drawn, CliError> {
     let name = request.options.technique.technique;
     let prepared = prepare_request(request, given)?;
-    for note in frame_notes(&prepared) {
-        crate::report::setup_line(&note);
-    }
+    say_frame_notes(&prepared);
     let reference_progress = match progress {
         crate::report::Progress::Hidden => None,
         crate::report::Progress::Bar => Some(reference_bar()),
@@ -117,13 +115,6 @@ pub fn renderer(arg: BackendChoice) -> Result<Renderer, CliError> {
     let renderer = Renderer::new(arg).map_err(lib_err)?;
     note_fallback(&renderer);
     Ok(renderer)
-}
-
-/// Says why `--backend auto` drew on the CPU, if it did.
-fn note_fallback(renderer: &Renderer) {
-    if let Some(why) = renderer.fallback_reason() {
-        crate::report::note(on_the_cpu(why));
-    }
 }
 
 /// Writes `out` and, for each pass image of the frame, `OUT.NAME.png` beside it, all or none,

@@ -3,7 +3,7 @@
 
 use indicatif::{ProgressBar, ProgressStyle};
 
-pub use bumpmap_words::report::{note, setup_line, warn};
+pub use bumpmap_words::report::{note, warn};
 
 /// How long work shows its progress.
 #[derive(Clone, Default)]

@@ -1,6 +1,7 @@
 //! The option groups `render`, `bench render` and `view` share, turned into the library's
 //! [`SceneOptions`] and set up there; what the library refuses or notes, put in the command
-//! line's words (the flag that caused it). Values out of range are usage errors (status 2).
+//! line's words by `bumpmap_words::setup` (the flag that caused it). Values out of range are
+//! usage errors (status 2).
 //!
 //! What this module does not do: check a value, load a file or build a scene (all
 //! `bumpmap::options`'s), or draw (`bumpmap::Renderer`).

@@ -3,11 +3,11 @@
 
 use std::path::Path;
 
-use bumpmap::CoreError;
 use bumpmap::bumpmap_core::Feature;
 use bumpmap::bumpmap_math::buffer::OutOfMemory;
 use bumpmap::frame::{DepthNote, FrameError, PreparedFrame, SceneSize};
 use bumpmap::options::SceneOptions;
+use bumpmap::{CoreError, Renderer};
 
 use crate::Error;
 
@@ -17,11 +17,29 @@ pub fn on_the_cpu(why: &str) -> String {
     format!("--backend auto: drawing on the CPU ({why})")
 }
 
+/// Says why `renderer` draws on the CPU when `--backend auto` opened it there, as a note
+/// ([`crate::report::note`]); nothing otherwise.
+pub fn note_fallback(renderer: &Renderer) {
+    if let Some(why) = renderer.fallback_reason() {
+        crate::report::note(on_the_cpu(why));
+    }
+}
+
 /// What setting `prepared` up noted and what its depth did, a line each as stderr shows them
 /// (a warning's line starts `warning: `).
 pub fn frame_notes(prepared: &PreparedFrame) -> Vec<String> {
     let setup = prepared.set_up.notes.iter().map(crate::setup::note_line);
     setup.chain(prepared.depth_notes.iter().map(depth_line)).collect()
+}
+
+/// Says [`frame_notes`] (each warning as a warning, the rest as notes: [`crate::report`]) and
+/// returns them.
+pub fn say_frame_notes(prepared: &PreparedFrame) -> Vec<String> {
+    let notes = frame_notes(prepared);
+    for note in &notes {
+        crate::report::setup_line(note);
+    }
+    notes
 }
 
 /// The file or preset the bumps come from, as messages name it.
