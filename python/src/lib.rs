@@ -57,7 +57,7 @@ fn read_height_field<'py>(
         .to_str()
         .ok_or_else(|| PyValueError::new_err(format!("read_height_field(): {} is not UTF-8", path.display())))?
         .to_string();
-    let channel = keywords::one_word("read_height_field", "channel", bumpmap_io::Channel::Luminance, options)?;
+    let channel = keywords::one_word("read_height_field", bumpmap::option_table::CHANNEL, options)?;
     let field = interrupt::run(py, move |_| HeightSource::parse(&spec).load(channel).map_err(Error::from))?
         .map_err(|e| to_py("read_height_field", e))?;
     arrays::from_height_field(py, &field)
@@ -73,7 +73,7 @@ fn write_texture(
     levels: &Bound<'_, PyAny>,
     options: Option<&Bound<'_, PyDict>>,
 ) -> PyResult<Vec<PathBuf>> {
-    let asked = keywords::one_word("write_texture", "format", TextureFormat::Rgba8, options)?;
+    let asked = keywords::one_word("write_texture", bumpmap::option_table::FORMAT, options)?;
     let chain = arrays::to_chain(levels)?;
     let sixteen = matches!(chain, bumpmap::maps::Chain::Rgba16(_));
     let format = match (asked, sixteen) {
@@ -177,7 +177,8 @@ fn tangents<'py>(
     let r = PyDict::new(py);
     r.set_item("degenerate_uv", report.degenerate_uv)?;
     r.set_item("degenerate_geometry", report.degenerate_geometry)?;
-    r.set_item("mirrored", report.mirrored)?;
+    // Mirrored as the image is displayed (glTF's w = −1), as `bumpmap tangents` says it.
+    r.set_item("mirrored", bumpmap_io::mesh_file::mirrored_as_displayed(&out))?;
     r.set_item("vertices_split", report.vertices_split)?;
     r.set_item("normals_computed", computed)?;
     r.set_item("normals_repaired", repairs.normals)?;
@@ -265,15 +266,15 @@ fn height_from_normals<'py>(
 #[pyfunction(name = "options")]
 fn option_table(function: &str) -> PyResult<Vec<options::OptionRow>> {
     options::FUNCTIONS
-        .iter()
-        .find(|f| f.name == function)
-        .map(|f| f.describe())
+        .contains(&function)
+        .then(|| options::describe(function))
+        .flatten()
         .ok_or_else(|| PyValueError::new_err(format!("no function {function} takes options")))
 }
 
 /// Every keyword `function` reads.
 #[pyfunction(name = "keywords")]
-fn keyword_names(function: &str) -> PyResult<Vec<&'static str>> {
+fn keyword_names(function: &str) -> PyResult<Vec<String>> {
     keywords::names(function).ok_or_else(|| PyValueError::new_err(format!("{function} reads no keywords")))
 }
 

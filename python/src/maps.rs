@@ -14,8 +14,7 @@ use crate::{arrays, interrupt, keywords};
 
 /// `function`'s keywords as the request they make.
 fn request(function: &str, options: Option<&Bound<'_, PyDict>>) -> PyResult<MapOptions> {
-    let taken = keywords::map_keywords(function).expect("a map function");
-    keywords::map_request(function, &taken, options)
+    keywords::map_request(function, options)
 }
 
 /// `normalmap`'s chain for an array of heights: level 0, or every level with `mips`.

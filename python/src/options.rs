@@ -1,76 +1,64 @@
 //! Every function's option table — help texts, defaults, choices — which the docstrings,
-//! signatures and stubs are made from, in Python's words (`bump_scale`, not `--bump-scale`). The
-//! table is the command line's (`options.json`, compiled in; `bumpmap_cli::args::options_table`
-//! makes it and a test of the command line keeps the file current), so each help text is
-//! written once. The keywords themselves are read by `keywords`, into typed options.
+//! signatures and stubs are made from, in Python's words (`bump_scale`, not `--bump-scale`).
+//! The tables are the library's (`bumpmap::option_table`, `bumpmap_compare::option_table`),
+//! which the command line's arguments are made from too, so each help text, default and
+//! choice is written once. The keywords themselves are read by `keywords`, into typed options.
 //!
-//! What it does not do: decide any default or range itself; those are the library's and the
-//! command line's.
+//! What it does not do: decide any default or range itself; those are the library's.
 
-use std::sync::OnceLock;
-
-use bumpmap_words::{as_keywords, keyword};
-use serde_json::Value;
+use bumpmap::option_table::{self, Kind, Opt};
+use bumpmap_words::as_keywords;
 
 /// One option as the docstrings show it: `(keyword, default as the command line writes it,
 /// help, choices, is a flag)`.
 pub type OptionRow = (String, Option<String>, String, Vec<String>, bool);
 
-/// A Python function and the command whose options it takes as keywords (those of its options
-/// whose keyword `keywords::names` lists).
-pub struct Function {
-    /// The Python name.
-    pub name: &'static str,
-    /// The subcommand.
-    command: &'static str,
-}
-
-/// Every function that takes options, by Python name, and its command.
-pub const FUNCTIONS: [Function; 12] = [
-    Function { name: "normal_map", command: "normalmap" },
-    Function { name: "mip_chain", command: "normalmap" },
-    Function { name: "height_mips", command: "normalmap" },
-    Function { name: "horizon_maps", command: "normalmap" },
-    Function { name: "roughness_map", command: "normalmap" },
-    Function { name: "lean_moments", command: "normalmap" },
-    Function { name: "read_height_field", command: "normalmap" },
-    Function { name: "write_texture", command: "normalmap" },
-    Function { name: "tangents", command: "tangents" },
-    Function { name: "render", command: "render" },
-    Function { name: "compare", command: "compare" },
-    Function { name: "height_from_normals", command: "height" },
+/// Every function that takes options, by Python name.
+pub const FUNCTIONS: [&str; 12] = [
+    "normal_map",
+    "mip_chain",
+    "height_mips",
+    "horizon_maps",
+    "roughness_map",
+    "lean_moments",
+    "read_height_field",
+    "write_texture",
+    "tangents",
+    "render",
+    "compare",
+    "height_from_normals",
 ];
 
-/// The commands' option table, parsed once.
-fn table() -> &'static Value {
-    static TABLE: OnceLock<Value> = OnceLock::new();
-    TABLE.get_or_init(|| serde_json::from_str(include_str!("options.json")).expect("options.json is the CLI's JSON"))
-}
-
-/// A string field of a row ("" where absent).
-fn text<'a>(row: &'a Value, key: &str) -> &'a str {
-    row[key].as_str().unwrap_or_default()
-}
-
-impl Function {
-    /// Each option the function takes, in the order `--help` lists them.
-    pub fn describe(&self) -> Vec<OptionRow> {
-        let taken = crate::keywords::names(self.name).expect("every function with options reads keywords");
-        let rows = table()[self.command].as_array().expect("the function's command is in the table");
-        rows.iter()
-            .filter(|row| taken.contains(&keyword(text(row, "long")).as_str()))
-            .map(|row| {
-                let values = row["values"].as_array().map(Vec::as_slice).unwrap_or_default();
-                let mut help = as_keywords(text(row, "help"));
-                // Each value's meaning, where the set gives one, as `--help` lists it: one
-                // "\n- name: meaning" line each.
-                for value in values.iter().filter(|v| v["help"].is_string()) {
-                    help.push_str(&format!("\n- {}: {}", text(value, "name"), as_keywords(text(value, "help"))));
-                }
-                let choices = values.iter().map(|v| text(v, "name").to_string()).collect();
-                let default = row["default"].as_str().map(str::to_string);
-                (keyword(text(row, "long")), default, help, choices, row["flag"] == true)
-            })
-            .collect()
+/// Each option `function` takes, in the order its table lists them; `None` for a function that
+/// takes none.
+pub fn describe(function: &str) -> Option<Vec<OptionRow>> {
+    fn rows<R: Default>(table: &[Opt<R>]) -> Vec<OptionRow> {
+        table.iter().map(row_of).collect()
     }
+    let taken = crate::keywords::names(function)?;
+    let all = match function {
+        "render" => option_table::render().map(row_of).collect(),
+        "compare" => rows(bumpmap_compare::option_table::COMPARE),
+        "tangents" => rows(option_table::TANGENTS),
+        "height_from_normals" => rows(option_table::HEIGHTS),
+        "read_height_field" => rows(option_table::CHANNEL),
+        "write_texture" => rows(option_table::FORMAT),
+        _ => rows(option_table::MAPS),
+    };
+    Some(all.into_iter().filter(|row| taken.contains(&row.0)).collect())
+}
+
+/// A row of the library's option table as the docstrings show it: the help in keywords, each
+/// value of a closed set with its meaning on a line of its own.
+fn row_of<R: Default>(option: &Opt<R>) -> OptionRow {
+    let kind = option.kind();
+    let mut help = as_keywords(option.help);
+    let mut choices = Vec::new();
+    if let Kind::Word(words) | Kind::List(Some(words)) = &kind {
+        for word in words {
+            help.push_str(&format!("\n- {}: {}", word.name, as_keywords(&word.help)));
+            choices.push(word.name.to_string());
+        }
+    }
+    (option.keyword(), option.default_text(), help, choices, kind == Kind::Flag)
 }

@@ -105,9 +105,9 @@ def test_a_height_map_file_renders(tmp_path, cli):
 
 
 def test_heights_errors_are_exceptions(tmp_path):
-    with pytest.raises(ValueError, match=r"depth must be a positive number of the scene's units, got 0"):
+    with pytest.raises(ValueError, match=r"render\(\): depth: '0' is not a depth: give a positive number of the scene's units"):
         bumpmap.render(technique="pom", depth=0)
-    with pytest.raises(ValueError, match=r"layers must be in 1..=256, got 999"):
+    with pytest.raises(ValueError, match=r"render\(\): layers: 999 is not in 1\.\.=256"):
         bumpmap.render(technique="pom", layers=999)
     with pytest.raises(ValueError, match=r"parallax_shadow.*possible values: off, hard, soft, horizon"):
         bumpmap.render(technique="pom", parallax_shadow="sharp")

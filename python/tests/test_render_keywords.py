@@ -91,11 +91,11 @@ def test_wrong_values_name_the_keyword():
         (ValueError, r"ambient must be in \[0, 1\], got 1\.5", dict(ambient=1.5)),
         (ValueError, r"invalid value 'kilgrad' for technique; possible values: kilgard, single-pass", dict(technique="kilgrad")),
         (TypeError, r"render\(\): filter takes a string, got int", dict(filter=3)),
-        (ValueError, r"tessellation must be two counts in 1\.\.=2048, got 0,5", dict(tessellation=(0, 5))),
-        (ValueError, r"render\(\): tessellation: takes two whole numbers", dict(tessellation=(2.5, 5))),
-        (ValueError, r"repeat must be two numbers, non-zero and within ±1024", dict(repeat=(0, 2))),
-        (ValueError, r"spp must be in 1\.\.=4096, got 0", dict(spp=0)),
-        (ValueError, r"cube_size must be in 1\.\.=1024, got 5000", dict(cube_size=5000)),
+        (ValueError, r"render\(\): tessellation: '0' is not a count in 1\.\.=2048", dict(tessellation=(0, 5))),
+        (ValueError, r"render\(\): tessellation: '2\.5' is not a count in 1\.\.=2048", dict(tessellation=(2.5, 5))),
+        (ValueError, r"render\(\): repeat: repeats must be non-zero and within ±1024, got '0,2'", dict(repeat=(0, 2))),
+        (ValueError, r"render\(\): spp: 0 is not in 1\.\.=4096", dict(spp=0)),
+        (ValueError, r"render\(\): cube_size: 5000 is not in 1\.\.=1024", dict(cube_size=5000)),
         (ValueError, r"render\(\): spp: -3 is not a count", dict(spp=-3)),
         (ValueError, r"a \"position\" or a \"direction\"", dict(light={"colour": (1, 1, 1)})),
         (ValueError, r"render\(\): light: a light's colour must be finite and not negative", dict(light="1,1,1@-1,0,0")),
@@ -104,9 +104,9 @@ def test_wrong_values_name_the_keyword():
         (ValueError, r"render\(\): attenuation: 'fast' is not a number", dict(attenuation="fast")),
         (ValueError, r"y_convention is given only with normal_map", dict(y_convention="directx")),
         (ValueError, r"height_field and normal_map cannot both be given", dict(height_field="bricks", normal_map="n.png")),
-        (ValueError, r"size is a square's side; give it or width and height, not both", dict(size=8, width=8, height=8)),
-        (ValueError, r"width and height are given together", dict(width=8)),
-        (ValueError, r"size: 0 is not a size in 1\.\.=16384 pixels", dict(size=0)),
+        (ValueError, r"render\(\): size and width cannot both be given", dict(size=8, width=8, height=8)),
+        (ValueError, r"render\(\): width is given only with height", dict(width=8)),
+        (ValueError, r"render\(\): size: '0' is not a size in 1\.\.=16384 pixels", dict(size=0)),
         (TypeError, r"unexpected keyword argument 'colour' \(it takes: allow_outside_paths, ambient", dict(colour=1)),
         (TypeError, r"no_self_shadow is True or False, got int", dict(no_self_shadow=1)),
         (ValueError, r"unknown scene 'donut': use torus, wall", dict(scene="donut")),
@@ -138,7 +138,7 @@ def test_prepare_reads_the_same_keywords():
 def test_compare_reads_typed_keywords():
     with pytest.raises(ValueError, match=r"compare\(\): invalid value 'golf' for studies; possible values: all, none, golf-ball"):
         bumpmap.compare(studies=["golf"])
-    with pytest.raises(ValueError, match=r"spp must be in 1\.\.=4096, got 0"):
+    with pytest.raises(ValueError, match=r"compare\(\): spp: 0 is not in 1\.\.=4096"):
         bumpmap.compare(size=8, spp=0, studies="none")
     with pytest.raises(TypeError, match=r"compare\(\) got an unexpected keyword argument 'light' \(it takes: backend, bump_scale"):
         bumpmap.compare(light=(1, 2, 3))
@@ -160,7 +160,7 @@ def test_map_keywords_are_typed_values():
         bumpmap.mip_chain(heights, kernel=3)
     with pytest.raises(ValueError, match=r"invalid value 'up' for y_convention; possible values: opengl, directx"):
         bumpmap.horizon_maps(heights, y_convention="up")
-    with pytest.raises(ValueError, match=r"roughness must be in \[0, 1\], got 1.5"):
+    with pytest.raises(ValueError, match=r"roughness_map\(\): roughness: '1\.5' is not in \[0, 1\]"):
         bumpmap.roughness_map(heights, roughness=1.5)
     with pytest.raises(ValueError, match=r"invalid value 'cyan' for channel; possible values: luminance, red"):
         bumpmap.read_height_field("bricks@32", channel="cyan")

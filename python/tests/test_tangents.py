@@ -23,7 +23,23 @@ def test_tangents_equal_the_cli(tmp_path, cli, mode):
     assert np.array_equal(ours["indices"], theirs["indices"])
     # The mirrored half has glTF's w = -1, the rest +1: both occur.
     assert set(np.unique(ours["tangents"][:, 3])) == {-1.0, 1.0}
-    assert ours["report"]["mirrored"] > 0
+    # "mirrored" counts the triangles mirrored as the image is displayed, as the command says it:
+    # those whose corners carry glTF's w = -1 (the report once counted the others).
+    first_w = ours["tangents"][ours["indices"][:, 0], 3]
+    assert ours["report"]["mirrored"] == int(np.sum(first_w == -1.0))
+    assert 0 < ours["report"]["mirrored"] < len(ours["indices"])
+
+
+def test_mirrored_counts_the_triangles_mirrored_as_displayed():
+    # The grid's last quarter of columns mirrors its texture in u (v runs down the image, as glTF's
+    # does): a quarter of the triangles show the image mirrored, glTF's w = -1 on them.
+    positions, normals, uvs, indices = wavy_grid(mirror_half=False)
+    x = positions[:, 0]
+    uvs[:, 0] = np.where(x > 0.75, 1.5 - x, x)
+    out = bumpmap.tangents(positions, normals, uvs, indices)
+    assert out["report"]["mirrored"] == len(indices) // 4
+    first_w = out["tangents"][out["indices"][:, 0], 3]
+    assert int(np.sum(first_w == -1.0)) == len(indices) // 4
 
 
 def test_split_vertices_and_computed_normals():

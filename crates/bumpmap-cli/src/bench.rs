@@ -293,7 +293,7 @@ fn bench_render(args: &BenchRenderArgs) -> Result<(), CliError> {
     use bumpmap_words::frame::lib_err;
     let (size, frames, runs) = (args.size, args.frames, args.runs);
     bumpmap::Renderer::check_size(size, size).map_err(lib_err)?;
-    let name = args.setup.technique.technique.0;
+    let name = args.setup.0.options.technique.technique;
     if name.is_reference() {
         return Err(CliError::Usage(format!(
             "bench render times frames of the pass-drawing techniques; {name} has its own: bench reference"
@@ -304,7 +304,7 @@ fn bench_render(args: &BenchRenderArgs) -> Result<(), CliError> {
         eprintln!("{note}");
     }
     let mut prepared = bumpmap::Prepared::new(&setup.spec, name, &setup.options).map_err(lib_err)?;
-    let mut renderer = crate::render::renderer(args.setup.backend.backend)?;
+    let mut renderer = crate::render::renderer(args.setup.0.backend)?;
     let orbit = bumpmap::motion::LightOrbit::of(&prepared.scene);
     let mut frame = |k: u32| -> Result<(), CliError> {
         orbit.place(&mut prepared.scene, k as f32 / frames as f32, 0.0);
@@ -323,7 +323,7 @@ fn bench_render(args: &BenchRenderArgs) -> Result<(), CliError> {
     }
     let threads = rayon::current_num_threads();
     let fps = frames as f64 / (stats.median / 1e3);
-    let scene_name = &args.setup.scene.scene;
+    let scene_name = args.setup.0.options.scene.to_string();
     let (kind, device) = (renderer.backend().name(), renderer.describe());
     if args.json {
         println!(

@@ -5,9 +5,7 @@
 use std::cell::RefCell;
 use std::path::{Path, PathBuf};
 
-use bumpmap::SceneKind;
 use bumpmap_compare::{CompareNote, CompareOptions, Results};
-use bumpmap_io::HeightSource;
 
 use crate::args::CompareArgs;
 use crate::error::CliError;
@@ -63,25 +61,9 @@ pub fn write(
     bumpmap_compare::write(out, results, inputs, cancelled).map_err(|e| compare_err(e, None, None))
 }
 
-/// The library's options as the flags give them; only the scene's name can be wrong here.
+/// The library's options as the flags give them (the library's table read them).
 pub fn compare_options(args: &CompareArgs) -> Result<CompareOptions, CliError> {
-    let scene = SceneKind::parse(&args.scene).ok_or_else(|| {
-        CliError::Usage(format!(
-            "unknown scene '{}': compare takes a built-in surface ({}), because the reference evaluates the exact surface",
-            args.scene,
-            SceneKind::built_in_names()
-        ))
-    })?;
-    Ok(CompareOptions {
-        scene,
-        height_field: HeightSource::parse(&args.height_field),
-        bump_scale: args.bump_scale,
-        size: args.size,
-        spp: args.spp,
-        backend: args.backend,
-        techniques: args.techniques.clone(),
-        studies: args.studies(),
-    })
+    Ok(args.options.0.clone())
 }
 
 /// `compare`'s steps on a bar (or told to a function), its notes on stderr.

@@ -86,7 +86,7 @@ pub fn run_height(args: &HeightArgs) -> Result<(), CliError> {
         );
     }
     let format = GrayFormat::for_path(&args.output, args.bits);
-    if args.raw && format != GrayFormat::Exr {
+    if args.choices.0.raw && format != GrayFormat::Exr {
         return Err(CliError::Usage(format!(
             "--raw writes heights outside 0..1, which a PNG cannot hold: name an .exr output, not {}",
             args.output.display()
@@ -140,7 +140,7 @@ pub fn run_height(args: &HeightArgs) -> Result<(), CliError> {
         ),
     };
     let flat = hi - lo <= f32::EPSILON * lo.abs().max(1.0);
-    let samples = if args.raw { heights.texels.clone() } else { heights.normalized() };
+    let samples = if args.choices.0.raw { heights.texels.clone() } else { heights.normalized() };
     let mut set = FileSet::new(&[&args.input]);
     save_gray_into(&mut set, &args.output, heights.width, heights.height, &samples, format)?;
     set.commit()?;
@@ -163,8 +163,8 @@ pub fn run_height(args: &HeightArgs) -> Result<(), CliError> {
         heights.width,
         heights.height,
         hi - lo,
-        args.scale,
-        if args.raw { "as they are (--raw)".to_string() } else { "mapped onto 0..1".to_string() }
+        args.choices.0.scale,
+        if args.choices.0.raw { "as they are (--raw)".to_string() } else { "mapped onto 0..1".to_string() }
     );
     Ok(())
 }

@@ -3,8 +3,8 @@
 //! its own module. The work is the libraries' (`bumpmap`, `bumpmap_compare`); what they refuse
 //! and note is worded by `bumpmap_words`, which the Python package shares.
 //!
-//! - [`args`]: the command line (clap), a module per command, its value parsers and limits, and
-//!   the options as a table ([`args::options_table`]) the Python package's docstrings come from;
+//! - [`args`]: the command line (clap), a module per command; the options the library declares
+//!   as tables (`bumpmap::option_table`) become arguments through [`args::table`];
 //! - `setup`, `compare`: the flags made into the libraries' options (`bumpmap::options`,
 //!   `bumpmap_compare`);
 //! - `normalmap`, `cubemap`, `mesh` (tangents), `render`, `bench`, `demo`, `view`, `inspect`

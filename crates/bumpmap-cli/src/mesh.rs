@@ -47,13 +47,7 @@ pub fn run(args: &TangentsArgs) -> Result<(), CliError> {
     );
     println!("  degenerate in texture space: {} triangles", report.degenerate_uv);
     println!("  degenerate in space:         {} triangles", report.degenerate_geometry);
-    // Texture space runs t down the image, so a texture mirrored as displayed has w = +1 here:
-    // glTF's w = -1.
-    let mirrored = mesh
-        .indices
-        .iter()
-        .filter(|t| bumpmap_io::mesh_file::gltf_handedness(mesh.tangents[t[0] as usize].w) < 0.0)
-        .count();
+    let mirrored = bumpmap_io::mesh_file::mirrored_as_displayed(&mesh);
     println!("  mirrored (glTF w = -1):      {mirrored} triangles");
     println!("  vertices split:              {}", report.vertices_split);
     if repaired.normals + repaired.tangents > 0 {
@@ -68,7 +62,7 @@ pub fn run(args: &TangentsArgs) -> Result<(), CliError> {
 
 /// The tangent options `args` give, `--split-angle` checked.
 pub fn tangent_options(args: &TangentsArgs) -> Result<TangentOptions, CliError> {
-    let options = TangentOptions { mode: args.mode, split_angle_degrees: args.split_angle };
+    let options = args.tangents.0;
     options.check().map_err(tangent_error)?;
     Ok(options)
 }

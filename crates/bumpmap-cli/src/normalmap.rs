@@ -25,8 +25,8 @@ const IMAGE_EXTENSIONS: [&str; 13] =
     ["png", "tga", "bmp", "jpg", "jpeg", "tif", "tiff", "pgm", "ppm", "pbm", "pam", "pnm", "exr"];
 
 pub fn run(args: &NormalmapArgs) -> Result<(), CliError> {
-    let options = args.map.options();
-    let channel: Channel = args.map.channel;
+    let options = args.maps.0.normals;
+    let channel: Channel = args.channel.0;
     let input = Path::new(&args.input);
     if input.is_dir() {
         if args.roughness_out.is_some()
@@ -111,7 +111,7 @@ pub fn run(args: &NormalmapArgs) -> Result<(), CliError> {
     extras::ensure_room(args, field.width(), field.height())?;
     let asked = map_options(args);
     let err = |e| map_error(e, &args.input);
-    let levels = make_chain(&field, &options, args.mips, args.mip_mode, format, &args.input)?;
+    let levels = make_chain(&field, &options, args.mips, args.maps.0.mip_mode, format, &args.input)?;
     let horizons = if args.horizon_out.is_some() || args.ao_out.is_some() || args.bent_normals_out.is_some() {
         Some(maps::horizon_map(&asked, &field).map_err(err)?)
     } else {
@@ -130,9 +130,12 @@ pub fn run(args: &NormalmapArgs) -> Result<(), CliError> {
         None => None,
     };
     // glTF's ORM texture holds the occlusion in red: with --ao-out, the occlusion's own levels.
-    if let (Some(chain), Some(map), true, Some(_)) =
-        (&mut roughness, &horizons, args.roughness_layout == bumpmap::options::RoughnessLayout::Gltf, &args.ao_out)
-    {
+    if let (Some(chain), Some(map), true, Some(_)) = (
+        &mut roughness,
+        &horizons,
+        args.maps.0.roughness_layout == bumpmap::options::RoughnessLayout::Gltf,
+        &args.ao_out,
+    ) {
         let ao = map.ambient_occlusion_levels(options.scale.abs()).map_err(CliError::OutOfMemory)?;
         for (level, occlusion) in chain.levels.iter_mut().zip(&ao) {
             for (texel, &v) in level.texels.iter_mut().zip(&occlusion.texels) {
@@ -156,7 +159,7 @@ pub fn run(args: &NormalmapArgs) -> Result<(), CliError> {
             }
         }
     }
-    let bits = if args.bits == 16 { HeightBits::Sixteen } else { HeightBits::Eight };
+    let bits = if args.maps.0.bits == 16 { HeightBits::Sixteen } else { HeightBits::Eight };
     if let (Some(path), Some(heights)) = (&args.height_out, &heights) {
         bumpmap_io::height_file::write_heights_into(&mut set, path, heights, bits)?;
     }
@@ -172,7 +175,7 @@ pub fn run(args: &NormalmapArgs) -> Result<(), CliError> {
             bumpmap_io::horizon_file::write_gray_into(&mut set, path, (map.width(), map.height()), &ao, bits)?;
         }
         if let Some(path) = &args.bent_normals_out {
-            let format = if args.bits == 16 { TextureFormat::Rgba16 } else { TextureFormat::Rgba8 };
+            let format = if args.maps.0.bits == 16 { TextureFormat::Rgba16 } else { TextureFormat::Rgba8 };
             maps::write_chain_into(&mut set, path, &maps::bent_normals(&asked, map), format).map_err(save_error)?;
         }
     }
@@ -198,19 +201,13 @@ fn output_file(output: &Path, source: &HeightSource, spec: &str, format: Texture
 
 /// The maps' options `normalmap`'s flags ask for.
 pub fn map_options(args: &NormalmapArgs) -> MapOptions {
-    MapOptions {
-        normals: args.map.options(),
-        bits: args.bits,
-        mip_mode: args.mip_mode,
-        roughness: args.roughness,
-        roughness_layout: args.roughness_layout,
-    }
+    args.maps.0
 }
 
 /// The texel format `--format` and `--bits` ask for together.
 pub fn texel_format(args: &NormalmapArgs) -> Result<TextureFormat, CliError> {
-    let format: TextureFormat = args.format;
-    match (format, args.bits) {
+    let format: TextureFormat = args.format.0;
+    match (format, args.maps.0.bits) {
         (TextureFormat::Rgba8, 16) => Ok(TextureFormat::Rgba16),
         (TextureFormat::Rgba16, _) => Ok(TextureFormat::Rgba16),
         (f, 16) => Err(CliError::Usage(format!(
@@ -364,7 +361,7 @@ fn run_folder(
                 .map_err(CliError::from)
                 .and_then(|_| Ok(bumpmap_io::load_height_field(file, channel)?))
                 .and_then(|field| {
-                    make_chain(&field, options, args.mips, args.mip_mode, format, &file.display().to_string())
+                    make_chain(&field, options, args.mips, args.maps.0.mip_mode, format, &file.display().to_string())
                 })
                 .and_then(|chain| write_set(&out, &chain, &[file], format).map(|_| ()));
             bar.inc(1);

@@ -17,20 +17,11 @@ use bumpmap_words::frame::{frame_err, lib_err, note_fallback, say_frame_notes};
 use crate::args::RenderArgs;
 use crate::error::CliError;
 
-pub use bumpmap::frame::{DEFAULT_SIZE, Frame, FrameRequest, PreparedFrame};
+pub use bumpmap::frame::{Frame, FrameRequest, PreparedFrame};
 
 /// The frame `render`'s flags ask for.
 pub fn frame_request(args: &RenderArgs) -> Result<FrameRequest, CliError> {
-    let size = match (args.width, args.height) {
-        (Some(w), Some(h)) => (w, h),
-        _ => (args.size, args.size),
-    };
-    Ok(FrameRequest {
-        options: crate::setup::scene_options(&args.setup)?,
-        size,
-        backend: args.setup.backend.backend,
-        passes: args.passes,
-    })
+    Ok(FrameRequest { size: args.frame.0.size, passes: args.passes, ..args.setup.0.clone() })
 }
 
 /// Runs `bumpmap render`.

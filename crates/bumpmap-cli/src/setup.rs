@@ -3,17 +3,14 @@
 //! line's words by `bumpmap_words::setup` (the flag that caused it). Values out of range are
 //! usage errors (status 2).
 //!
-//! What this module does not do: check a value, load a file or build a scene (all
+//! What this module does not do: read the flags (the library's option table, through
+//! `crate::args`), check a value, load a file or build a scene (all
 //! `bumpmap::options`'s), or draw (`bumpmap::Renderer`).
 
 use std::path::PathBuf;
 
-use bumpmap::options::{
-    CameraOptions, DecalChoice, GlossChoice, HeightsOptions, LightOptions, MaterialOptions, SceneChoice, SceneOptions,
-    TechniqueChoice,
-};
-use bumpmap::{SceneKind, SceneSpec, SelfShadow, TechniqueOptions};
-use bumpmap_io::HeightSource;
+use bumpmap::options::SceneOptions;
+use bumpmap::{SceneSpec, TechniqueOptions};
 
 use crate::args::SceneSetup;
 use crate::error::CliError;
@@ -38,7 +35,7 @@ pub struct Setup {
 /// Reads the options: checks their ranges, loads the files they name and builds the scene
 /// description, the technique and its options.
 pub fn setup(s: &SceneSetup) -> Result<Setup, CliError> {
-    set_up_options(&scene_options(s)?, &Given::default())
+    set_up_options(&s.0.options, &Given::default())
 }
 
 /// Sets `options` up, with the inputs `given` in memory in place of their files; what the
@@ -53,88 +50,17 @@ pub fn set_up_options(options: &SceneOptions, given: &Given) -> Result<Setup, Cl
     })
 }
 
-/// The library's options as the flags give them; only the scene's name can be wrong here.
-pub fn scene_options(s: &SceneSetup) -> Result<SceneOptions, CliError> {
-    let (scene, camera, l, m, t, h) = (&s.scene, &s.camera, &s.lights, &s.material, &s.technique, &s.heights);
-    let choice = SceneChoice::parse(&scene.scene).ok_or_else(|| {
-        CliError::Usage(format!("unknown scene '{}': use {} or mesh:FILE", scene.scene, SceneKind::built_in_names()))
-    })?;
-    Ok(SceneOptions {
-        scene: choice,
-        height_field: scene.height_field.as_deref().map(HeightSource::parse),
-        normal_map: scene.normal_map.clone(),
-        rebuild_mips: scene.rebuild_mips,
-        y_convention: scene.y_convention,
-        bump_scale: scene.bump_scale,
-        decal: scene.decal.as_deref().map(|d| match d {
-            "none" => DecalChoice::None,
-            path => DecalChoice::File(PathBuf::from(path)),
-        }),
-        torus_radii: scene.torus_radii,
-        tessellation: scene.tessellation,
-        repeat: scene.repeat.map(|(s, t)| glam::Vec2::new(s, t)),
-        allow_outside_paths: scene.allow_outside_paths,
-        obj_texcoords: scene.obj_v,
-        camera: CameraOptions {
-            eye: camera.eye,
-            target: camera.target,
-            up: camera.up,
-            fov_y_degrees: camera.fov,
-            viewer: camera.viewer,
-        },
-        lights: LightOptions {
-            lights: l.lights.clone(),
-            attenuation: l.attenuation,
-            spot: l.spot,
-            spot_cutoff_degrees: l.spot_cutoff,
-            spot_exponent: l.spot_exponent,
-            spot_pattern: l.spot_pattern.as_deref().map(HeightSource::parse),
-        },
-        material: MaterialOptions {
-            ambient: m.ambient,
-            diffuse: m.diffuse,
-            specular: m.specular,
-            shininess: m.shininess,
-            gloss: match m.gloss.as_deref() {
-                None | Some("none") => GlossChoice::None,
-                Some("decal-alpha") => GlossChoice::DecalAlpha,
-                Some("bricks") => GlossChoice::Bricks,
-                Some(path) => GlossChoice::File(PathBuf::from(path)),
-            },
-            roughness_map: m.roughness_map.clone(),
-            roughness_layout: m.roughness_layout,
-        },
-        technique: TechniqueChoice {
-            technique: t.technique.0,
-            samples_per_pixel: t.spp,
-            filter: t.filter,
-            self_shadow: if t.no_self_shadow { SelfShadow::Off } else { t.self_shadow },
-            precision: t.precision,
-            specular_mode: t.specular_mode,
-            cube_size: t.cube_size,
-            normalize: t.normalize,
-            half_angle: t.half_angle,
-            specular_shadow: t.specular_shadow,
-            specular_filter: t.specular_filter,
-        },
-        heights: HeightsOptions {
-            depth: h.depth,
-            height_map: h.height_map.clone(),
-            horizon_map: h.horizon_map.clone(),
-            layers: h.layers,
-            parallax_shadow: h.parallax_shadow,
-            silhouettes: h.silhouettes,
-            write_depth: h.write_depth,
-            ambient_occlusion: h.ambient_occlusion,
-        },
-    })
+/// The library's options as the flags give them (the table read them: `crate::args::SceneSetup`).
+pub fn scene_options(s: &SceneSetup) -> SceneOptions {
+    s.0.options.clone()
 }
 
 #[cfg(test)]
 mod tests {
     use clap::{CommandFactory, Parser};
 
-    use bumpmap::options::SceneOption;
+    use bumpmap::SelfShadow;
+    use bumpmap::options::{DecalChoice, GlossChoice, SceneChoice, SceneOption};
     use bumpmap_words::setup::flag;
 
     use super::*;
@@ -152,7 +78,7 @@ mod tests {
     fn the_flags_defaults_are_the_librarys() {
         // Debug text compares every field, floats included, without the options needing
         // PartialEq (a light's spotlight pattern is an image).
-        let from_flags = scene_options(&render_setup(&[])).expect("the defaults set up");
+        let from_flags = scene_options(&render_setup(&[]));
         assert_eq!(format!("{from_flags:?}"), format!("{:?}", SceneOptions::default()));
     }
 
@@ -193,8 +119,7 @@ mod tests {
             "single-pass",
             "--filter",
             "nearest",
-        ]))
-        .expect("sets up");
+        ]));
         assert_eq!(o.scene, SceneChoice::Mesh(PathBuf::from("m.obj")));
         assert_eq!(o.decal, Some(DecalChoice::None));
         assert_eq!(o.material.gloss, GlossChoice::Bricks);

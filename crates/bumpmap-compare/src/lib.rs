@@ -19,6 +19,7 @@
 //! ```
 //!
 //! - this crate's root: the options, the technique catalogue and the renders, all files or none;
+//! - [`option_table`]: `compare`'s options as data, which the command line and Python read;
 //! - [`studies`]: the golf ball (Kilgard §2.4.2), embossing (§3.1) and Peercy's Figures 5–7;
 //! - [`parallax`]: heights as geometry, every march against the displaced reference on a wall
 //!   seen at grazing angles;
@@ -37,6 +38,7 @@
 
 mod error;
 mod metrics;
+pub mod option_table;
 mod options;
 pub mod parallax;
 mod plots;

@@ -153,6 +153,15 @@ impl bumpmap_math::Named for TechniqueName {
     fn description(self) -> &'static str {
         TechniqueName::description(self)
     }
+
+    /// The description, and what the technique needs (`[needs a height field]`).
+    fn help(self) -> String {
+        let needs: Vec<&str> = self.requirements().iter().map(|r| r.brief()).collect();
+        match needs.as_slice() {
+            [] => self.description().to_string(),
+            needs => format!("{} [needs {}]", self.description(), needs.join(" and ")),
+        }
+    }
 }
 
 impl TechniqueName {

@@ -193,6 +193,15 @@ pub fn gltf_handedness(w: f32) -> f32 {
     -w
 }
 
+/// Triangles whose texture is mirrored as the image is displayed: glTF's handedness −1 at their
+/// first corner (after splitting, a triangle's corners agree). This is what `bumpmap tangents`
+/// and Python's `tangents` report as mirrored; the tangent report's own count
+/// (`TangentReport::mirrored`, `w = −1` in this crate's texture space, whose t runs down the
+/// image) counts the other triangles of a mesh read from a file.
+pub fn mirrored_as_displayed(mesh: &Mesh) -> usize {
+    mesh.indices.iter().filter(|t| gltf_handedness(mesh.tangents[t[0] as usize].w) < 0.0).count()
+}
+
 /// A mesh file format.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum MeshFormat {

@@ -25,6 +25,12 @@ pub trait Named: Copy + PartialEq + Send + Sync + 'static {
     /// One line on what this value does, for `--help` and docstrings.
     fn description(self) -> &'static str;
 
+    /// One line for a list of choices (`--help`, docstrings): the description, and what this
+    /// value needs where it has such a condition.
+    fn help(self) -> String {
+        self.description().to_string()
+    }
+
     /// Other words accepted for this value.
     fn aliases(self) -> &'static [&'static str] {
         &[]

@@ -81,7 +81,9 @@ pub struct TangentReport {
     pub degenerate_uv: usize,
     /// Triangles of zero area in space.
     pub degenerate_geometry: usize,
-    /// Triangles whose texture space is mirrored (w = −1).
+    /// Triangles whose texture space is mirrored (w = −1 in this crate's (s, t)). For a mesh read
+    /// from a file, whose t runs down the image, these are the triangles *not* mirrored as the
+    /// image is displayed; `bumpmap_io::mesh_file::mirrored_as_displayed` counts those.
     pub mirrored: usize,
     /// Vertices added by splitting.
     pub vertices_split: usize,

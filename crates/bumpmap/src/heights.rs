@@ -125,6 +125,37 @@ impl HeightOptions {
     }
 }
 
+/// What a user chooses of [`HeightOptions`], as `bumpmap height` and Python's
+/// `height_from_normals` take it: the method by name, `auto` where the map's own tests decide,
+/// and whether the heights are kept as they are. [`HeightChoices::options`] checks them.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct HeightChoices {
+    /// How the slopes are integrated.
+    pub method: HeightMethod,
+    /// The difference the map was made with (`None`: fitted).
+    pub kernel: Option<Derivative>,
+    /// The scale the map was made with.
+    pub scale: f32,
+    /// Which way the map's green points (`None`: the curl test's verdict).
+    pub y_convention: Option<YConvention>,
+    /// Keep the heights as they are (texels divided by the scale, mean zero) instead of mapping
+    /// them onto [0, 1].
+    pub raw: bool,
+}
+
+impl Default for HeightChoices {
+    fn default() -> Self {
+        HeightChoices { method: HeightMethod::Auto, kernel: None, scale: 1.0, y_convention: None, raw: false }
+    }
+}
+
+impl HeightChoices {
+    /// The options they make ([`HeightOptions::from_choices`]).
+    pub fn options(&self) -> Result<HeightOptions, HeightChoiceError> {
+        HeightOptions::from_choices(self.method, self.kernel, self.y_convention, self.scale)
+    }
+}
+
 /// Where a choice came from.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Chosen {

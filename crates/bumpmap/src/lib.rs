@@ -25,6 +25,8 @@
 //!   bumps from a height field or a normal map;
 //! - [`options`]: the same set up from typed options with their defaults ([`options::SceneOptions`],
 //!   every option `bumpmap render` takes), files loaded and values checked;
+//! - [`option_table`]: every option of a command as data (name, kind, default, help, what it
+//!   needs), which the command line and the Python package are made from;
 //! - [`frame`]: one frame from those options: prepared once, drawn, refused when black;
 //! - [`motion`]: the light orbiting and the camera turning between frames;
 //! - [`maps`]: one height field into the maps a material is made of (the normal map and its
@@ -50,6 +52,7 @@ pub mod heights;
 pub mod inspect;
 pub mod maps;
 pub mod motion;
+pub mod option_table;
 pub mod options;
 pub mod renderer;
 

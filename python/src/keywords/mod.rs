@@ -14,42 +14,95 @@
 //! What it does not do: document the keywords (the docstrings read the command's help, which
 //! reads the same library names), or set anything up (`bumpmap::options`).
 
-mod compare;
 mod maps;
 mod render;
 
-pub use compare::{COMPARE_KEYWORDS, compare_options};
-pub use maps::{
-    HEIGHT_KEYWORDS, TANGENT_KEYWORDS, height_options, map_keywords, map_request, one_word, tangent_options,
-};
-pub use render::{KEYWORDS, render_request};
+pub use maps::{compare_options, height_options, map_keywords, map_request, one_word, tangent_options};
+pub use render::render_request;
 
 use std::path::PathBuf;
 
-use bumpmap::{Attenuation, Named, SceneLight};
+use bumpmap::option_table::{self, Kind, Opt, Together, Value, check_together};
+use bumpmap::{Attenuation, SceneLight};
 use glam::Vec3;
 use pyo3::exceptions::{PyTypeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::{PyBool, PyDict, PyFloat, PyList, PyString, PyTuple};
 
-/// Every keyword `function` reads, or `None` for a function that reads none.
-pub fn names(function: &str) -> Option<Vec<&'static str>> {
-    match function {
-        "render" => Some(KEYWORDS.to_vec()),
-        "compare" => Some(COMPARE_KEYWORDS.to_vec()),
-        "tangents" => Some(TANGENT_KEYWORDS.to_vec()),
-        "height_from_normals" => Some(HEIGHT_KEYWORDS.to_vec()),
-        "write_texture" => Some(vec!["format"]),
-        f => map_keywords(f),
+/// Every keyword `function` reads, or `None` for a function that reads none: the keywords of
+/// its option table's rows (the map functions each a part of the maps' table).
+pub fn names(function: &str) -> Option<Vec<String>> {
+    fn of<R>(rows: &[Opt<R>]) -> Vec<String> {
+        rows.iter().map(Opt::keyword).collect()
     }
+    match function {
+        "render" => Some(render::keywords(true)),
+        "compare" => Some(of(bumpmap_compare::option_table::COMPARE)),
+        "tangents" => Some(of(option_table::TANGENTS)),
+        "height_from_normals" => Some(of(option_table::HEIGHTS)),
+        "write_texture" => Some(of(option_table::FORMAT)),
+        "read_height_field" => Some(of(option_table::CHANNEL)),
+        f => map_keywords(f).map(|k| k.iter().map(|k| k.to_string()).collect()),
+    }
+}
+
+/// Reads a keyword's value where the option's kind does not (`Ok(None)`: read it as the kind).
+pub(super) type Special<'a> = dyn FnMut(&str, &Bound<'_, PyAny>) -> PyResult<Option<Value>> + 'a;
+
+/// Reads `function`'s keywords into `target` through the rows of `tables` that `taken` lists:
+/// each value read as its row's kind (or by `special`, for what a row's kind does not cover,
+/// such as arrays in place of files), the options given together checked, then each set by its
+/// row in the tables' order.
+pub(super) fn read_table<R: Default + 'static>(
+    function: &str,
+    tables: &[&'static [Opt<R>]],
+    taken: &[String],
+    kwargs: Option<&Bound<'_, PyDict>>,
+    target: &mut R,
+    special: &mut Special<'_>,
+) -> PyResult<()> {
+    let r = Reader { function };
+    let mut values: Vec<(&'static Opt<R>, String, Value)> = Vec::new();
+    for (key, value) in given(kwargs)? {
+        let row = tables.iter().flat_map(|t| t.iter()).find(|o| o.keyword() == key && taken.contains(&key));
+        let Some(row) = row else {
+            return Err(unexpected(function, &key, &taken.iter().map(String::as_str).collect::<Vec<_>>()));
+        };
+        let read = match special(&key, &value)? {
+            Some(read) => read,
+            None => r.value(&key, &row.kind(), &value)?,
+        };
+        // A flag set False is a flag not given.
+        if read != Value::Flag(false) {
+            values.push((row, key, read));
+        }
+    }
+    let present: Vec<&str> = values.iter().map(|(row, _, _)| row.name).collect();
+    for table in tables {
+        check_together(table, &present).map_err(|e| together(function, e))?;
+    }
+    for row in tables.iter().flat_map(|t| t.iter()) {
+        for (_, key, value) in values.iter().filter(|(given, _, _)| std::ptr::eq(*given, row)) {
+            row.set(target, value.clone()).map_err(|e| r.value_error(key, e))?;
+        }
+    }
+    Ok(())
+}
+
+/// Options given together that cannot be, in keywords.
+fn together(function: &str, e: Together) -> PyErr {
+    let k = |name: &str| name.replace('-', "_");
+    PyValueError::new_err(match e {
+        Together::Needs { option, needs } => format!("{function}(): {} is given only with {}", k(option), k(needs)),
+        Together::Excludes { option, other } => {
+            format!("{function}(): {} and {} cannot both be given", k(option), k(other))
+        }
+    })
 }
 
 /// The most lights one keyword reads from a sequence or iterator: past the 64 a scene takes,
 /// and a bound on an iterator that never ends.
 pub(super) const MAX_VALUES: usize = 4096;
-
-/// The most pixels a side of the frame takes (the library's bound).
-pub(super) use bumpmap::frame::MAX_SIDE;
 
 /// One call's keywords, read: the function's name for messages.
 pub(super) struct Reader<'a> {
@@ -117,31 +170,6 @@ impl Reader<'_> {
 
     pub(super) fn vec3(&self, key: &str, value: &Bound<'_, PyAny>) -> PyResult<Vec3> {
         self.numbers::<3>(key, value).map(Vec3::from)
-    }
-
-    /// A word of the closed set `T`.
-    pub(super) fn word<T: Named>(&self, key: &str, value: &Bound<'_, PyAny>) -> PyResult<T> {
-        let word: String = value.cast::<PyString>().map_err(|_| self.type_error(key, "a string", value))?.extract()?;
-        T::parse(&word).ok_or_else(|| {
-            PyValueError::new_err(format!(
-                "{}(): invalid value '{word}' for {key}; possible values: {}",
-                self.function,
-                T::names().join(", ")
-            ))
-        })
-    }
-
-    /// `"auto"` (`None`: the library decides) or a word of the closed set `T`.
-    pub(super) fn word_or_auto<T: Named>(&self, key: &str, value: &Bound<'_, PyAny>) -> PyResult<Option<T>> {
-        let word: String = value.cast::<PyString>().map_err(|_| self.type_error(key, "a string", value))?.extract()?;
-        bumpmap::bumpmap_math::named::parse_or_auto(&word).ok_or_else(|| {
-            PyValueError::new_err(format!(
-                "{}(): invalid value '{word}' for {key}; possible values: {}, {}",
-                self.function,
-                bumpmap::bumpmap_math::named::AUTO,
-                T::names().join(", ")
-            ))
-        })
     }
 
     /// A string or a path (`os.PathLike`).
@@ -233,24 +261,53 @@ impl Reader<'_> {
         let [constant, linear, quadratic] = self.numbers::<3>("attenuation", value)?;
         Ok(Attenuation::Polynomial { constant, linear, quadratic })
     }
-
-    /// A frame side in 1..=MAX_SIDE.
-    pub(super) fn side(&self, key: &str, value: &Bound<'_, PyAny>) -> PyResult<usize> {
-        let v = self.count(key, value)?;
-        if !(1..=MAX_SIDE as u64).contains(&v) {
-            return Err(self.value_error(key, format!("{v} is not a size in 1..={MAX_SIDE} pixels")));
-        }
-        Ok(v as usize)
-    }
-
-    /// A count that fits a `u32` (its range is the library's to check).
-    pub(super) fn u32(&self, key: &str, value: &Bound<'_, PyAny>) -> PyResult<u32> {
-        let v = self.count(key, value)?;
-        u32::try_from(v).map_err(|_| self.value_error(key, format!("{v} is far out of range")))
-    }
 }
 
 impl Reader<'_> {
+    /// A value of the option table's `kind`: True or False, a number, a whole number, a tuple of
+    /// numbers, a word of the set, a string or path, lights, an attenuation.
+    pub(super) fn value(&self, key: &str, kind: &Kind, value: &Bound<'_, PyAny>) -> PyResult<Value> {
+        Ok(match kind {
+            Kind::Flag => Value::Flag(self.flag(key, value)?),
+            Kind::Number => Value::Number(self.number(key, value)?),
+            Kind::Whole { .. } => Value::Whole(self.count(key, value)?),
+            Kind::Numbers(2) => Value::Numbers(self.numbers::<2>(key, value)?.to_vec()),
+            Kind::Numbers(3) => Value::Numbers(self.numbers::<3>(key, value)?.to_vec()),
+            Kind::Numbers(n) => unreachable!("no option takes {n} numbers"),
+            Kind::Word(choices) => {
+                let word: String =
+                    value.cast::<PyString>().map_err(|_| self.type_error(key, "a string", value))?.extract()?;
+                if !choices.iter().any(|c| c.name == word || c.aliases.contains(&word.as_str())) {
+                    let names: Vec<&str> = choices.iter().map(|c| c.name).collect();
+                    return Err(PyValueError::new_err(format!(
+                        "{}(): invalid value '{word}' for {key}; possible values: {}",
+                        self.function,
+                        names.join(", ")
+                    )));
+                }
+                Value::Word(word)
+            }
+            Kind::Text => Value::Text(self.text(key, value)?),
+            Kind::Path => Value::Path(self.path(key, value)?),
+            Kind::Lights => Value::Lights(self.lights(value)?),
+            Kind::Attenuation => Value::Attenuation(self.attenuation(value)?),
+            Kind::List(choices) => {
+                let words = self.words(key, value)?;
+                if let Some(choices) = choices
+                    && let Some(w) = words.iter().find(|w| !choices.iter().any(|c| c.name == *w))
+                {
+                    let names: Vec<&str> = choices.iter().map(|c| c.name).collect();
+                    return Err(PyValueError::new_err(format!(
+                        "{}(): invalid value '{w}' for {key}; possible values: {}",
+                        self.function,
+                        names.join(", ")
+                    )));
+                }
+                Value::Words(words)
+            }
+        })
+    }
+
     /// Words: one string (comma-separated, as the command line takes them) or a list of them.
     pub(super) fn words(&self, key: &str, value: &Bound<'_, PyAny>) -> PyResult<Vec<String>> {
         if let Ok(s) = value.cast::<PyString>() {

@@ -4,12 +4,16 @@ use std::path::PathBuf;
 
 use clap::Args;
 
-use bumpmap::heights::{HeightChoiceError, HeightMethod, HeightOptions};
-use bumpmap_math::YConvention;
-use bumpmap_math::integration::Derivative;
+use bumpmap::heights::{HeightChoiceError, HeightChoices, HeightOptions};
+use bumpmap::option_table::HEIGHTS;
 
 use super::normalmap::parse_bits;
-use crate::args::{OrAuto, choice, choice_or_auto, parse_f32};
+use crate::args::table::{Table, rows};
+
+rows!(
+    /// How a normal map's slopes become heights: the library's [`HEIGHTS`] table.
+    Heights: HeightChoices = HEIGHTS
+);
 
 /// `bumpmap inspect`.
 #[derive(Args, Debug)]
@@ -63,25 +67,9 @@ pub struct HeightArgs {
     /// Output: .png (16-bit gray, or --bits 8) or .exr (32-bit float)
     #[arg(short, long)]
     pub output: PathBuf,
-    /// How the slopes are integrated
-    #[arg(long, default_value = "auto", value_parser = choice::<HeightMethod>())]
-    pub method: HeightMethod,
-    /// The difference the map was made with (normalmap's --kernel)
-    #[arg(long, default_value = "auto", value_parser = choice_or_auto::<Derivative>(
-        "Fit every kernel and the spectral derivative iω to the slopes and take the one that explains them best"
-    ))]
-    pub kernel: OrAuto<Derivative>,
-    /// The scale the map was made with (normalmap's --scale): heights come back divided by it
-    #[arg(long, value_parser = parse_f32, default_value_t = 1.0)]
-    pub scale: f32,
-    /// Which way the map's green points
-    #[arg(long = "y-convention", default_value = "auto", value_parser = choice_or_auto::<YConvention>(
-        "The curl test's verdict (opengl where it cannot decide), said on stderr"
-    ))]
-    pub y_convention: OrAuto<YConvention>,
-    /// Write the heights as they are (texels divided by --scale, mean zero) instead of mapped onto 0..1; needs an .exr output
-    #[arg(long)]
-    pub raw: bool,
+    /// How the slopes are integrated: the library's [`HEIGHTS`] table.
+    #[command(flatten)]
+    pub choices: Table<Heights>,
     /// Bits per channel of a PNG output: 8 or 16
     #[arg(long, default_value_t = 16, value_parser = parse_bits)]
     pub bits: u8,
@@ -94,7 +82,7 @@ impl HeightArgs {
     /// The library's options from `--method`, `--kernel`, `--y-convention` and `--scale`.
     pub fn options(&self) -> Result<HeightOptions, crate::error::CliError> {
         use crate::error::CliError;
-        HeightOptions::from_choices(self.method, self.kernel, self.y_convention, self.scale).map_err(|e| match e {
+        self.choices.0.options().map_err(|e| match e {
             HeightChoiceError::Scale(e) => CliError::Usage(format!("--scale: {e}")),
             HeightChoiceError::KernelUnnamed => CliError::Usage(
                 "--method kernel undoes a named kernel: add --kernel NAME (normalmap's --kernel); --method fft fits one itself"

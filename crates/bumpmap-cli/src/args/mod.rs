@@ -9,7 +9,7 @@ mod demo;
 mod inspect;
 mod normalmap;
 mod render;
-mod table;
+pub mod table;
 mod tangents;
 mod view;
 
@@ -20,7 +20,6 @@ pub use demo::*;
 pub use inspect::*;
 pub use normalmap::*;
 pub use render::*;
-pub use table::{options_table, options_table_text};
 pub use tangents::*;
 pub use view::*;
 
@@ -76,49 +75,9 @@ pub enum Command {
     Height(HeightArgs),
 }
 
-/// One number as typed: text that overflows single precision (`1e40`) is refused with the
-/// text, rather than becoming `inf` and reported as that; `NaN` and `inf` typed as such pass,
-/// for the option's own range check to name.
-pub fn parse_f32(s: &str) -> Result<f32, String> {
-    let v = s.trim().parse::<f32>().map_err(|_| format!("'{s}' is not a number"))?;
-    if v.is_infinite() && !s.to_ascii_lowercase().contains("inf") {
-        return Err(format!("'{s}' is beyond single precision (about ±3.4e38)"));
-    }
-    Ok(v)
-}
-
-/// Three numbers, `X,Y,Z`.
-pub fn parse_vec3(s: &str) -> Result<glam::Vec3, String> {
-    let v: Vec<f32> = s
-        .split(',')
-        .map(|p| p.trim().parse::<f32>().map_err(|_| format!("'{p}' is not a number")))
-        .collect::<Result<_, _>>()?;
-    match v.as_slice() {
-        [x, y, z] if v.iter().all(|c| c.is_finite()) => Ok(glam::Vec3::new(*x, *y, *z)),
-        _ => Err(format!("expected X,Y,Z (three finite numbers), got '{s}'")),
-    }
-}
-
-/// Two numbers, `A,B`.
-pub fn parse_pair(s: &str) -> Result<(f32, f32), String> {
-    let v: Vec<f32> = s
-        .split(',')
-        .map(|p| p.trim().parse::<f32>().map_err(|_| format!("'{p}' is not a number")))
-        .collect::<Result<_, _>>()?;
-    match v.as_slice() {
-        [a, b] if a.is_finite() && b.is_finite() => Ok((*a, *b)),
-        _ => Err(format!("expected A,B (two finite numbers), got '{s}'")),
-    }
-}
-
-/// Texture repeats `S,T`: two finite numbers, neither 0 (a map made for the surface is addressed
-/// with 1/repeat) and neither beyond ±1024 (texture coordinates stay well inside single
-/// precision's whole numbers).
-pub fn parse_repeat(s: &str) -> Result<(f32, f32), String> {
-    let (a, b) = parse_pair(s)?;
-    let ok = |v: f32| v != 0.0 && v.abs() <= 1024.0;
-    if ok(a) && ok(b) { Ok((a, b)) } else { Err(format!("repeats must be non-zero and within ±1024, got '{s}'")) }
-}
+/// One number as typed (the library's reading: text beyond single precision is refused with the
+/// text, `NaN` and `inf` typed as such pass, for the option's own range check to name).
+pub use bumpmap::option_table::parse_number as parse_f32;
 
 /// The largest image side `render` and `bench render` take: the library's.
 pub use bumpmap::frame::MAX_SIDE;
@@ -132,22 +91,6 @@ pub fn parse_side(s: &str) -> Result<usize, String> {
         .ok_or_else(|| format!("'{s}' is not a size in 1..={MAX_SIDE} pixels"))
 }
 
-/// The most quads along u or v (the library's bound).
-pub use bumpmap::options::MAX_TESSELLATION;
-
-/// Two positive integers, `U,V`.
-pub fn parse_counts(s: &str) -> Result<(usize, usize), String> {
-    let (a, b) = s.split_once(',').ok_or_else(|| format!("expected U,V, got '{s}'"))?;
-    let p = |x: &str| {
-        x.trim()
-            .parse::<usize>()
-            .ok()
-            .filter(|&n| (1..=MAX_TESSELLATION).contains(&n))
-            .ok_or_else(|| format!("'{x}' is not a count in 1..={MAX_TESSELLATION}"))
-    };
-    Ok((p(a)?, p(b)?))
-}
-
 /// A value of `T`, or `None` where the option says `auto`. (An alias, so that clap's derive takes
 /// the whole `Option` as the option's value rather than make the option optional.)
 pub type OrAuto<T> = Option<T>;
@@ -155,9 +98,8 @@ pub type OrAuto<T> = Option<T>;
 /// [`choice`] with `auto` (`None`: the tool decides, as `auto_help` says) listed first.
 pub fn choice_or_auto<T: Named>(auto_help: &'static str) -> impl TypedValueParser<Value = OrAuto<T>> {
     let auto = PossibleValue::new(bumpmap_math::named::AUTO).help(auto_help);
-    let values = std::iter::once(auto).chain(
-        T::ALL.iter().map(|v| PossibleValue::new(v.name()).help(v.description()).aliases(v.aliases().iter().copied())),
-    );
+    let values = std::iter::once(auto)
+        .chain(T::ALL.iter().map(|v| PossibleValue::new(v.name()).help(v.help()).aliases(v.aliases().iter().copied())));
     PossibleValuesParser::new(values)
         .map(|word| bumpmap_math::named::parse_or_auto::<T>(&word).expect("clap accepts only auto and the set's names"))
 }
@@ -166,7 +108,7 @@ pub fn choice_or_auto<T: Named>(auto_help: &'static str) -> impl TypedValueParse
 /// descriptions are what `--help` lists and what the option takes.
 pub fn choice<T: Named>() -> impl TypedValueParser<Value = T> {
     let values =
-        T::ALL.iter().map(|v| PossibleValue::new(v.name()).help(v.description()).aliases(v.aliases().iter().copied()));
+        T::ALL.iter().map(|v| PossibleValue::new(v.name()).help(v.help()).aliases(v.aliases().iter().copied()));
     // An option with `ignore_case` hands over the word as typed: it is matched the same way.
     PossibleValuesParser::new(values).map(|word| {
         T::parse(&word)

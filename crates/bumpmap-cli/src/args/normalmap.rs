@@ -1,57 +1,35 @@
-//! `bumpmap normalmap`'s options, and the kernel, wrap, encoding, mip-mode and channel choices
-//! every command that makes a normal map shares.
+//! `bumpmap normalmap`'s options: the library's map, channel and format tables, and the files
+//! the command writes.
 
 use std::path::PathBuf;
 
+use bumpmap::maps::MapOptions;
+use bumpmap::option_table::{CHANNEL, FORMAT, MAPS};
 use bumpmap_io::Channel;
-use bumpmap_math::{Encoding, Kernel, MipMode, Wrap};
+use bumpmap_io::texture_file::TextureFormat;
 use clap::Args;
 
-use bumpmap::YConvention;
-use bumpmap::options::RoughnessLayout;
+use crate::args::table::{Table, rows};
 
-use bumpmap_io::texture_file::TextureFormat;
-
-use crate::args::{choice, parse_f32};
-
-/// Options that decide how heights become normals; shared by every command that makes one.
-#[derive(Args, Debug, Clone)]
-pub struct NormalMapOpts {
-    /// Finite-difference kernel for ∂F/∂u and ∂F/∂v
-    #[arg(long, value_parser = choice::<Kernel>(), default_value = "forward")]
-    pub kernel: Kernel,
-    /// Bump height: heights are in [0,1], derivatives per texel, n ∝ (−scale·∂F/∂u, −scale·∂F/∂v, 1)
-    #[arg(value_parser = parse_f32, long, default_value_t = 4.0, allow_negative_numbers = true)]
-    pub scale: f32,
-    /// What the kernel reads beyond the edges
-    #[arg(long, value_parser = choice::<Wrap>(), default_value = "repeat")]
-    pub wrap: Wrap,
-    /// Byte encoding of the normal's components
-    #[arg(long, value_parser = choice::<Encoding>(), default_value = "unorm")]
-    pub encoding: Encoding,
-    /// Which way green points in the file, as the image is displayed: opengl (alias y-up: glTF, Blender, Unity) or directx (alias y-down: Unreal)
-    #[arg(long = "y-convention", value_parser = choice::<YConvention>(), default_value = "opengl")]
-    pub y_convention: YConvention,
-    /// Which channel of a colour image holds the heights (greyscale images: their grey value)
-    #[arg(long, value_parser = choice::<Channel>(), default_value = "luminance")]
-    pub channel: Channel,
-}
-
-impl NormalMapOpts {
-    /// The options as the library takes them.
-    pub fn options(&self) -> bumpmap_math::NormalMapOptions {
-        bumpmap_math::NormalMapOptions {
-            kernel: self.kernel,
-            scale: self.scale,
-            wrap: self.wrap,
-            y_convention: self.y_convention,
-            encoding: self.encoding,
-        }
-    }
-}
+rows!(
+    /// How heights become normals and what else is made: the library's [`MAPS`] table.
+    Maps: MapOptions = MAPS
+);
+rows!(
+    /// Which channel holds the heights: the library's [`CHANNEL`] table.
+    Channels: Channel = CHANNEL
+);
+rows!(
+    /// A texture file's texel format: the library's [`FORMAT`] table.
+    Formats: TextureFormat = FORMAT
+);
 
 #[derive(Args, Debug)]
-#[command(after_help = "Examples:\n  \
+#[command(
+    mut_arg("format", |a| a.ignore_case(true)),
+    mut_arg("roughness", |a| a.requires("roughness_out")),
+    mut_arg("roughness-layout", |a| a.requires("roughness_out")),
+    after_help = "Examples:\n  \
 bumpmap normalmap heights.png -o normals.png --mips        # normals.png, normals.mip1.png, …\n  \
 bumpmap normalmap bricks@512 -o bricks.ktx2 --mips         # a preset, all levels in one file\n  \
 bumpmap normalmap textures/ -o normals/ --scale 8          # every image in a folder, in parallel\n  \
@@ -61,7 +39,8 @@ bumpmap normalmap bricks -o n.png --mips --height-out h.png --bits 16   # + heig
 bumpmap normalmap bricks -o n.png --horizon-out hz.png --ao-out ao.png --bent-normals-out bent.png   # shadows, AO\n\n\
 IN is an image file (PNG, TGA, BMP, JPEG, TIFF, PNM at 8 or 16 bits; OpenEXR in float), a folder of them, or a \
 preset: bricks, pinwheel, dimples, noise:SEED, each optionally @SIZE (default 256). Green points \
-up the image as displayed (glTF, Blender, Unity) unless --y-convention directx.")]
+up the image as displayed (glTF, Blender, Unity) unless --y-convention directx."
+)]
 /// `bumpmap normalmap`.
 pub struct NormalmapArgs {
     /// Height field: image file, folder, or preset (bricks, pinwheel, dimples, noise:SEED[@SIZE])
@@ -72,27 +51,18 @@ pub struct NormalmapArgs {
     /// Also make every smaller level down to 1×1
     #[arg(long)]
     pub mips: bool,
-    /// What the smaller levels store
-    #[arg(long = "mip-mode", value_parser = choice::<MipMode>(), default_value = "length-in-alpha")]
-    pub mip_mode: MipMode,
-    /// Texel format of .dds and .ktx2 outputs: rgba8 (uncompressed), bc5 (red and green, Z rebuilt in the shader; drops the length factor in alpha), bc7 (all four channels). texconv's names work too (BC5_UNORM, …); a folder run with bc5/bc7 writes .dds files
-    #[arg(long, value_parser = choice::<TextureFormat>(), default_value = "rgba8", ignore_case = true)]
-    pub format: TextureFormat,
-    /// Bits per channel of uncompressed outputs: 8, or 16 (16-bit PNG, R16G16B16A16_UNORM in .dds and .ktx2)
-    #[arg(long, default_value_t = 8, value_parser = parse_bits)]
-    pub bits: u8,
-    /// How heights become normals.
+    /// Texel format of .dds and .ktx2 outputs (the library's [`FORMAT`] table).
     #[command(flatten)]
-    pub map: NormalMapOpts,
+    pub format: Table<Formats>,
+    /// How heights become normals, the chain, the bits and the roughness (the library's [`MAPS`]).
+    #[command(flatten)]
+    pub maps: Table<Maps>,
+    /// Which channel holds the heights (the library's [`CHANNEL`] table).
+    #[command(flatten)]
+    pub channel: Table<Channels>,
     /// Also write a roughness map with a level for each normal-map level (.png: R.png, R.mip1.png, …; .dds or .ktx2: all levels, RGBA8): each texel the --roughness of the surface made rougher by the spread of the normals it averages (Filament's prefilter: α′ = √(α² + 2/κ), κ from the mean normal's length), what GGX shaders in engines read in place of the length factor
     #[arg(long = "roughness-out", requires = "mips")]
     pub roughness_out: Option<PathBuf>,
-    /// The surface's own perceptual roughness (glTF's roughnessFactor), in [0, 1]: level 0's value wherever its normal is one
-    #[arg(long, default_value_t = 0.5, value_parser = parse_unit, requires = "roughness_out")]
-    pub roughness: f32,
-    /// Channels of --roughness-out: gray (roughness in RGB), gloss (1 − roughness in RGB), gltf (glTF's metallicRoughness and Unreal's ORM: G roughness, B metallic 0, R 1, or with --ao-out the occlusion, every level its mean), unity (Unity's metallic-smoothness: R metallic 0, A smoothness)
-    #[arg(long = "roughness-layout", value_parser = choice::<RoughnessLayout>(), default_value = "gray", requires = "roughness_out")]
-    pub roughness_layout: RoughnessLayout,
     /// Also write LEAN mapping's moments (Olano & Baker 2010) for every level, as 32-bit floats in .ktx2 or .dds: L.ktx2 holds (Bx, By, Mxx, Myy), L.mxy-j.ktx2 holds (Mxy, J, 0, 0), with B = (Nx/Nz, Ny/Nz), M = (Bx², BxBy, By²), J = 1/Nz³, each level the mean over the level-0 texels it covers of the 8-bit normal map's; what `--specular-filter lean` renders from
     #[arg(long = "lean-out", requires = "mips")]
     pub lean_out: Option<PathBuf>,
@@ -108,12 +78,6 @@ pub struct NormalmapArgs {
     /// Also write bent normals from the horizons at --scale: the mean direction of the open sky, as a tangent-space normal map in the same conventions as the normal map (--y-convention, --encoding, --bits), level 0 (.png, .ktx2, .dds); for the ambient term in engines that read them (Godot, Unreal)
     #[arg(long = "bent-normals-out", value_name = "B")]
     pub bent_normals_out: Option<PathBuf>,
-}
-
-/// A number in [0, 1].
-fn parse_unit(s: &str) -> Result<f32, String> {
-    let v = parse_f32(s)?;
-    if (0.0..=1.0).contains(&v) { Ok(v) } else { Err(format!("'{s}' is not in [0, 1]")) }
 }
 
 pub(super) fn parse_bits(s: &str) -> Result<u8, String> {

@@ -6,9 +6,16 @@ use clap::Args;
 
 use bumpmap_io::ObjTexcoords;
 
-use bumpmap_math::tangent::TangentMode;
+use bumpmap::option_table::TANGENTS;
+use bumpmap_math::tangent::TangentOptions;
 
-use crate::args::{choice, parse_f32};
+use crate::args::choice;
+use crate::args::table::{Table, rows};
+
+rows!(
+    /// How tangent frames are made: the library's [`TANGENTS`] table.
+    Tangents: TangentOptions = TANGENTS
+);
 
 /// `bumpmap tangents`.
 #[derive(Args, Debug)]
@@ -30,12 +37,9 @@ pub struct TangentsArgs {
     /// Output: .gltf (with a .bin beside it) or .glb
     #[arg(short, long)]
     pub output: PathBuf,
-    /// Which algorithm makes the tangents
-    #[arg(long, value_parser = choice::<TangentMode>(), default_value = "ours")]
-    pub mode: TangentMode,
-    /// Ours: tangents further apart than this many degrees split a vertex
-    #[arg(value_parser = parse_f32, long = "split-angle", default_value_t = 60.0)]
-    pub split_angle: f32,
+    /// How the frames are made: the library's [`TANGENTS`] table.
+    #[command(flatten)]
+    pub tangents: Table<Tangents>,
     /// glTF only: let buffer URIs lead outside the glTF's folder (absolute paths, ..); off by default, so a downloaded glTF cannot make bumpmap read other files
     #[arg(long = "allow-outside-paths")]
     pub allow_outside_paths: bool,

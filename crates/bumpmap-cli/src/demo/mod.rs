@@ -373,17 +373,8 @@ fn write_demo(out: &Path, args: &DemoArgs) -> Result<(), CliError> {
     index += &orbit(&mut cpu, out)?;
     bar.finish_and_clear();
     index += &gpu_renders(out, args.gpu)?;
-    let compare = crate::args::CompareArgs {
-        scene: "torus".into(),
-        height_field: "bricks".into(),
-        bump_scale: 4.0,
-        size: 256,
-        spp: 64,
-        backend: BackendChoice::Cpu,
-        techniques: Vec::new(),
-        studies: vec![crate::args::StudyArg::All],
-        output: out.join("compare"),
-    };
+    // compare's defaults: the torus, bricks, 256², 64 samples, on the CPU, every study.
+    let compare = crate::args::CompareArgs { options: Default::default(), output: out.join("compare") };
     let (results, _) = crate::compare::measure(&compare, &crate::report::Progress::Bar)?;
     crate::compare::write(&compare.output, &results, &[], &|| false)?;
     index += "\n`compare/report.html`: every technique on the torus measured against the reference renderer \

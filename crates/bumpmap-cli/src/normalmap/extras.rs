@@ -32,9 +32,9 @@ mod per_texel {
 /// rest (the moments as written, the encoders' copies) from aborting.
 pub(super) fn ensure_room(args: &crate::args::NormalmapArgs, width: usize, height: usize) -> Result<(), CliError> {
     use per_texel::*;
-    let mut per = if args.bits == 16 { NORMAL_MAP_16 } else { NORMAL_MAP_8 };
+    let mut per = if args.maps.0.bits == 16 { NORMAL_MAP_16 } else { NORMAL_MAP_8 };
     if args.lean_out.is_some() {
-        per += LEAN + if args.bits == 16 { NORMAL_MAP_8 } else { 0 };
+        per += LEAN + if args.maps.0.bits == 16 { NORMAL_MAP_8 } else { 0 };
     }
     if args.roughness_out.is_some() {
         per += ROUGHNESS;

@@ -26,6 +26,9 @@ use std::path::{Path, PathBuf};
 
 pub use keys::Action;
 
+use bumpmap::options::SceneChoice;
+use bumpmap_io::HeightSource;
+
 use crate::args::{KeyList, SceneSetup, ViewArgs};
 use crate::error::CliError;
 
@@ -34,8 +37,8 @@ pub fn run(args: &ViewArgs) -> Result<(), CliError> {
     let setup = with_file(args)?;
     // The flags made into options once: the viewer keeps these and changes them as keys and
     // dropped files ask.
-    let options = crate::setup::scene_options(&setup)?;
-    let backend = setup.backend.backend;
+    let options = crate::setup::scene_options(&setup);
+    let backend = setup.0.backend;
     let named = options.named_inputs();
     let inputs: Vec<&Path> = named.iter().map(PathBuf::as_path).collect();
     for (flag, out, what) in
@@ -81,9 +84,9 @@ fn with_file(args: &ViewArgs) -> Result<SceneSetup, CliError> {
     let mut setup = args.setup.clone();
     let Some(file) = &args.file else { return Ok(setup) };
     let kind = files::classify(file).map_err(|reason| CliError::Path { path: file.clone(), reason })?;
-    let scene = &mut setup.scene;
+    let scene = &mut setup.0.options;
     let clash = match kind {
-        files::Kind::Mesh => (scene.scene != "torus").then_some("--scene"),
+        files::Kind::Mesh => (scene.scene != SceneChoice::default()).then_some("--scene"),
         _ => {
             scene.height_field.as_ref().map(|_| "--height-field").or(scene.normal_map.as_ref().map(|_| "--normal-map"))
         }
@@ -98,8 +101,8 @@ fn with_file(args: &ViewArgs) -> Result<SceneSetup, CliError> {
     };
     eprintln!("{}: opened as {taken}", file.display());
     match kind {
-        files::Kind::Mesh => scene.scene = format!("mesh:{}", file.display()),
-        files::Kind::HeightField => scene.height_field = Some(file.display().to_string()),
+        files::Kind::Mesh => scene.scene = SceneChoice::Mesh(file.clone()),
+        files::Kind::HeightField => scene.height_field = Some(HeightSource::File(file.clone())),
         files::Kind::NormalMap => scene.normal_map = Some(file.clone()),
     }
     Ok(setup)

@@ -147,6 +147,16 @@ impl SceneChoice {
     }
 }
 
+/// What [`SceneChoice::parse`] reads back: `torus`, or `mesh:FILE`.
+impl std::fmt::Display for SceneChoice {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            SceneChoice::BuiltIn(kind) => write!(f, "{}", kind.name()),
+            SceneChoice::Mesh(path) => write!(f, "mesh:{}", path.display()),
+        }
+    }
+}
+
 /// The decal asked for.
 #[derive(Clone, Debug, PartialEq)]
 pub enum DecalChoice {
@@ -154,6 +164,26 @@ pub enum DecalChoice {
     None,
     /// An image file (or the name of a [`Given::decal`]).
     File(PathBuf),
+}
+
+impl DecalChoice {
+    /// `none`, or an image file.
+    pub fn parse(text: &str) -> Self {
+        match text {
+            "none" => DecalChoice::None,
+            path => DecalChoice::File(PathBuf::from(path)),
+        }
+    }
+}
+
+/// What [`DecalChoice::parse`] reads back.
+impl std::fmt::Display for DecalChoice {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            DecalChoice::None => write!(f, "none"),
+            DecalChoice::File(path) => write!(f, "{}", path.display()),
+        }
+    }
 }
 
 /// Where the camera is.
@@ -252,6 +282,30 @@ pub enum GlossChoice {
     Bricks,
     /// An image file's red channel, the decal's size.
     File(PathBuf),
+}
+
+impl GlossChoice {
+    /// `none`, `decal-alpha`, `bricks`, or an image file.
+    pub fn parse(text: &str) -> Self {
+        match text {
+            "none" => GlossChoice::None,
+            "decal-alpha" => GlossChoice::DecalAlpha,
+            "bricks" => GlossChoice::Bricks,
+            path => GlossChoice::File(PathBuf::from(path)),
+        }
+    }
+}
+
+/// What [`GlossChoice::parse`] reads back.
+impl std::fmt::Display for GlossChoice {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            GlossChoice::None => write!(f, "none"),
+            GlossChoice::DecalAlpha => write!(f, "decal-alpha"),
+            GlossChoice::Bricks => write!(f, "bricks"),
+            GlossChoice::File(path) => write!(f, "{}", path.display()),
+        }
+    }
 }
 
 /// Texture filtering of the normal map and decal.

@@ -13,7 +13,7 @@ fn viewer(extra: &[&str]) -> Viewer {
     let crate::args::Command::View(args) = crate::args::Cli::try_parse_from(words).unwrap().command else {
         unreachable!("parsed as view")
     };
-    Viewer::new(crate::setup::scene_options(&args.setup).unwrap()).unwrap()
+    Viewer::new(crate::setup::scene_options(&args.setup)).unwrap()
 }
 
 fn normal_texels(v: &Viewer) -> Vec<[u8; 4]> {
