@@ -4,6 +4,7 @@
 //! converted from another dtype: a float64 height field is refused, not rounded silently.
 
 use bumpmap::maps::Chain;
+use bumpmap_math::levels::LevelSizeError;
 use bumpmap_math::{HeightField, HeightSamples, Image, MipChain};
 use numpy::ndarray::{Array2, Array3};
 use numpy::{
@@ -179,25 +180,30 @@ pub fn to_chain(value: &Bound<'_, PyAny>) -> PyResult<Chain> {
         [h, w, 4] => (*h, *w),
         other => return Err(PyValueError::new_err(format!("level 0 must be {EXPECTED}, got shape {other:?}"))),
     };
-    // A chain ends at 1×1: a DDS or KTX2 file cannot hold more levels (their readers refuse it).
-    let most = bumpmap_math::mip::level_count(w0.max(1), h0.max(1));
-    if arrays.len() > most {
-        return Err(PyValueError::new_err(format!(
-            "{} levels for a {h0}x{w0} level 0: its chain ends at 1x1 after {most} levels",
-            arrays.len()
-        )));
+    // A chain ends at 1×1 (a DDS or KTX2 file cannot hold more levels) and each level is half
+    // the one before: the library's one check of a chain's sizes, worded as arrays' shapes.
+    let sizes = arrays.iter().map(|a| match a.shape() {
+        [h, w, 4] => (*w, *h),
+        _ => (0, 0),
+    });
+    match bumpmap_math::levels::check_chain(sizes) {
+        Ok(()) => {}
+        Err(LevelSizeError::TooMany { levels, most, .. }) => {
+            return Err(PyValueError::new_err(format!(
+                "{levels} levels for a {h0}x{w0} level 0: its chain ends at 1x1 after {most} levels"
+            )));
+        }
+        Err(LevelSizeError::Size { level, want, .. }) => {
+            return Err(PyValueError::new_err(format!(
+                "level {level} must have shape ({}, {}, 4) (half of the level before, rounded down), got {:?}",
+                want.1,
+                want.0,
+                arrays[level].shape()
+            )));
+        }
+        Err(LevelSizeError::Empty) => return Err(PyValueError::new_err("levels is empty: give at least level 0")),
     }
     for (k, a) in arrays.iter().enumerate() {
-        let expected = ((h0 >> k).max(1), (w0 >> k).max(1));
-        match a.shape() {
-            [h, w, 4] if (*h, *w) == expected => {}
-            other => {
-                return Err(PyValueError::new_err(format!(
-                    "level {k} must have shape ({}, {}, 4) (half of the level before, rounded down), got {other:?}",
-                    expected.0, expected.1
-                )));
-            }
-        }
         if !(is::<u8>(a) || is::<u16>(a)) || is::<u16>(a) != sixteen {
             return Err(PyTypeError::new_err(format!(
                 "level {k} is {}: every level must be uint8, or every level uint16 (level 0 is {})",

@@ -44,7 +44,6 @@ pub mod parallax;
 mod plots;
 mod report;
 pub mod shadows;
-mod shadows_report;
 pub mod studies;
 
 use std::path::{Path, PathBuf};

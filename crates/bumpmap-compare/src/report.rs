@@ -1,6 +1,8 @@
 //! What `compare` writes besides images and plots: `results.json`, and `report.html`, which
 //! links only files in its own folder so the folder can be copied and opened anywhere.
 
+mod shadows;
+
 use serde_json::{Value, json};
 
 use super::{PEERCY, Results, default_techniques};
@@ -80,7 +82,7 @@ pub fn json(r: &Results) -> String {
         studies.insert("parallax".into(), parallax_json(p));
     }
     if let Some(s) = &r.shadows {
-        studies.insert("shadows".into(), super::shadows_report::json(s));
+        studies.insert("shadows".into(), shadows::json(s));
     }
     serde_json::to_string_pretty(&value).expect("a JSON value serializes") + "\n"
 }
@@ -326,7 +328,7 @@ figcaption {{ font-size: 0.85em; max-width: {size}px; }}
         page += &parallax_section(p);
     }
     if let Some(s) = &r.shadows {
-        page += &super::shadows_report::section(s);
+        page += &shadows::section(s);
     }
     page += &format!(
         r#"<h2>Techniques</h2>

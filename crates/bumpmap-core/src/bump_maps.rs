@@ -17,49 +17,8 @@ use bumpmap_math::{Encoding, HeightField, MipChain, MipMode, NormalMapOptions, R
 
 use crate::error::CoreError;
 use crate::scene::{Material, NormalSpace, NormalTexels};
-use crate::scenes::SceneParams;
-
-/// What a material's bump texture holds and how the surface reads it. The techniques the papers
-/// compare differ here; the lighting is the same for all.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
-pub enum BumpMap {
-    /// The tangent-space normal map of the height field, usable on any surface (Kilgard;
-    /// Peercy's surface-independent map, Eq. 8–11).
-    #[default]
-    Tangent,
-    /// That map's normals rotated by the surface's frame at each texel (Peercy §2.1): object
-    /// space, lit with object-space L and H. Made for one surface.
-    ObjectSpace,
-    /// Peercy's surface-dependent map (Eq. 3–6, Figure 6): per texel, Blinn's perturbed normal
-    /// from the surface's exact ∂P/∂u, ∂P/∂v in that texel's tangent frame, lit with tangent-space
-    /// L and H exactly as [`BumpMap::Tangent`] is. Made for one surface.
-    SurfaceDependent,
-    /// An offset map (Kilgard §2.2, Eq. 6–7): the filtered offset added to the unperturbed
-    /// normal and renormalized per pixel.
-    Offset,
-    /// Peercy Figure 2's hardware: the offset map read as the height derivatives, and Blinn's
-    /// normal made per pixel from them and the interpolated ∂P/∂u, ∂P/∂v. Needs a surface.
-    Derivatives,
-}
-
-impl BumpMap {
-    /// Whether the map is made from, or read with, a surface's exact derivatives, so that a
-    /// mesh cannot have it.
-    pub fn needs_surface(self) -> bool {
-        matches!(self, BumpMap::ObjectSpace | BumpMap::SurfaceDependent | BumpMap::Derivatives)
-    }
-
-    /// The map in words, for messages.
-    pub fn describe(self) -> &'static str {
-        match self {
-            BumpMap::Tangent => "a tangent-space normal map",
-            BumpMap::ObjectSpace => "an object-space normal map",
-            BumpMap::SurfaceDependent => "a surface-dependent normal map",
-            BumpMap::Offset => "an offset map",
-            BumpMap::Derivatives => "a height-derivative map",
-        }
-    }
-}
+pub use crate::spec::BumpMap;
+use crate::spec::SceneParams;
 
 /// The material `base` (whose normal map is the tangent-space map of `params`' height field,
 /// its texels encoded as `encoding` says) with the bump texture `params.bump_map` for `surface` covered `repeat` times. The
@@ -88,7 +47,7 @@ pub fn surface_material(
         (BumpMap::SurfaceDependent, _) => {
             // The same field and options already made `chain`, so they cannot fail here; `build`
             // refuses this map for a normal map given without heights.
-            let crate::scenes::BumpSource::Heights(field) = &params.bumps else {
+            let crate::spec::BumpSource::Heights(field) = &params.bumps else {
                 unreachable!("a surface-dependent map is made from heights")
             };
             let options = &params.normal_map;

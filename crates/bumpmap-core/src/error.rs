@@ -119,7 +119,7 @@ pub enum CoreError {
     /// Object-space, surface-dependent and derivative maps are made from, or read with, an
     /// analytic surface.
     #[error("{} is made for the built-in surfaces, not for meshes", .0.describe())]
-    MapNeedsSurface(crate::bump_maps::BumpMap),
+    MapNeedsSurface(crate::spec::BumpMap),
     /// A register-combiner setup broke a rule of the specification.
     #[error("invalid register-combiner setup: {0}")]
     Combiner(#[from] CombinerError),
@@ -164,7 +164,7 @@ pub enum CoreError {
     /// Offset, derivative and surface-dependent maps are made from heights, which a normal map
     /// given as it is does not have.
     #[error("{} is made from a height field, not from a normal map", .0.describe())]
-    MapNeedsHeights(crate::bump_maps::BumpMap),
+    MapNeedsHeights(crate::spec::BumpMap),
     /// A model's part names a material the model does not have.
     #[error("part {part} draws with material {material}, but the model has {materials}")]
     PartMaterial {
@@ -184,13 +184,15 @@ pub enum CoreError {
         /// The technique's catalogue name.
         technique: &'static str,
         /// What the scene lacks.
-        requirement: crate::catalogue::Requirement,
+        requirement: crate::requirement::Requirement,
     },
     /// A name the catalogue does not know.
-    #[error("unknown technique '{name}': use one of {}", crate::catalogue::TechniqueName::names())]
+    #[error("unknown technique '{name}': use one of {known}")]
     UnknownTechnique {
         /// The name as given.
         name: String,
+        /// Every name the catalogue knows, comma-separated.
+        known: String,
     },
     /// The eye at the point looked at: the camera has no direction to look in.
     #[error("the eye {eye} is at the point looked at: the camera needs a direction to look in")]

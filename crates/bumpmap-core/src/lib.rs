@@ -8,8 +8,9 @@
 //!
 //! - [`cache`]: what a backend makes of shared scene data, kept per `Arc` while it is used;
 //! - [`catalogue`]: every technique by name — what it is, what it needs, its maps and passes;
-//! - [`scene`], [`scenes`]: scene descriptions and the built-in scenes; [`parts`]: a loaded
-//!   model's parts, each with its own material;
+//! - [`spec`]: a scene before a technique makes its maps (the geometry, where the bumps come
+//!   from, everything adjustable; [`spec::parts`]: a loaded model's parts, each with its own
+//!   material); [`scene`], [`scenes`]: scene descriptions and the built-in scenes;
 //! - [`bump_maps`]: the bump textures the compared techniques read (object-space,
 //!   surface-dependent, offset and derivative maps);
 //! - [`vertex`]: the vertex stage every technique shares (Kilgard §5.1, Appendix C);
@@ -32,19 +33,20 @@ pub mod combiners;
 pub mod error;
 pub mod lane_math;
 pub mod parallax;
-pub mod parts;
+mod requirement;
 pub mod scene;
 pub mod scenes;
 pub mod setups;
 pub mod shading;
+pub mod spec;
 pub mod state;
 pub mod technique;
 pub mod vertex;
 
-pub use bump_maps::BumpMap;
 pub use catalogue::{Requirement, TechniqueName, TechniqueOptions};
 pub use error::{CoreError, Feature};
-pub use parts::{MeshPart, MeshParts, PartMaterial};
 pub use scene::Scene;
-pub use scenes::{BumpSource, SceneKind, SceneParams, SceneSpec};
+pub use spec::BumpMap;
+pub use spec::{BumpSource, SceneKind, SceneParams, SceneSpec};
+pub use spec::{MeshPart, MeshParts, PartMaterial};
 pub use technique::{Pass, Program, Technique};

@@ -10,6 +10,23 @@
 //! - `single_pass`: the lighting model of `bumpmap_core::shading` as a fragment shader;
 //! - `renderer`: a technique's passes executed in order ([`CpuRenderer`]).
 //!
+//! ```
+//! use bumpmap_core::{SceneKind, SceneSpec, TechniqueName, TechniqueOptions};
+//! use bumpmap_cpu::{CpuRenderer, Framebuffer};
+//!
+//! // The paper's three passes on the brick torus, at 64×64.
+//! let (scene, technique) =
+//!     TechniqueName::Kilgard.prepare(&SceneSpec::new(SceneKind::Torus), &TechniqueOptions::default())?;
+//! let mut fb = Framebuffer::new(64, 64)?;
+//! let mut passes = Vec::new();
+//! CpuRenderer::new().render(&scene, &technique, &mut fb, |name, _| passes.push(name.to_string()))?;
+//! assert_eq!(passes, ["decal", "diffuse", "specular"], "Kilgard Figure 12's snapshots");
+//! let lit = fb.to_rgba8().iter().filter(|t| t[0] > 40).count();
+//! assert!(lit > 64 * 64 / 10, "the torus is lit ({lit} pixels)");
+//! assert_eq!(fb.pixel(0, 0), [0, 0, 0, 0], "the corner shows the cleared framebuffer");
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
+//!
 //! What is drawn and with which state is not decided here: scenes, GL state, combiner setups
 //! and techniques are `bumpmap_core`'s. Most users reach this backend through the `bumpmap`
 //! crate's renderer, which picks it or the GPU's.

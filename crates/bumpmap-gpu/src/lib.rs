@@ -14,6 +14,20 @@
 //! - `present`: a frame shown on a window's surface with an overlay over it
 //!   ([`WindowSurface`]).
 //!
+//! ```
+//! use bumpmap_core::{SceneKind, SceneSpec, TechniqueName, TechniqueOptions};
+//! use bumpmap_gpu::GpuRenderer;
+//!
+//! // The single pass on the brick torus, read back, where an adapter exists (Mesa's lavapipe
+//! // will do; without one, `new` says why).
+//! let (scene, technique) =
+//!     TechniqueName::SinglePass.prepare(&SceneSpec::new(SceneKind::Torus), &TechniqueOptions::default())?;
+//! let Ok(mut gpu) = GpuRenderer::new() else { return Ok(()) };
+//! let image = gpu.render(&scene, &technique, 64, 64, |_, _| {})?;
+//! assert!(image.texels.iter().any(|t| t[0] > 40), "lit on {}", gpu.adapter_name());
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
+//!
 //! Not here: making a window (the viewer's), and any CPU rasterization — this crate depends
 //! on the core and math crates only. Most users reach it through the `bumpmap` crate's
 //! renderer, which picks this backend or the CPU's.

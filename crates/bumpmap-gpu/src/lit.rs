@@ -310,37 +310,102 @@ pub(crate) enum Override {
     Float(f32),
 }
 
-/// `lit.wgsl`'s `Lit` uniform block for `p`.
-pub fn uniforms(p: &LitProgram) -> Vec<u8> {
-    let LitTerms { ambient, diffuse, specular, .. } = p.terms;
-    let attenuation = match p.light.attenuation {
-        Attenuation::None => [0.0; 4],
-        Attenuation::Polynomial { constant, linear, quadratic } => [constant, linear, quadratic, 0.0],
-        Attenuation::Exponential { density } | Attenuation::ExponentialSquared { density } => [density, 0.0, 0.0, 0.0],
-    };
-    let spot = match &p.light.spot {
-        Some(s) => [s.cutoff_degrees.to_radians().cos(), s.exponent, 0.0, 0.0],
-        None => [0.0; 4],
-    };
-    let scale = p.normal_space.texcoord_scale().to_array();
-    let texels = match p.normal_texels {
-        NormalTexels::UnitVector => [0.0; 4],
-        NormalTexels::Offset { range } => [range, 0.0, 0.0, 0.0],
-        NormalTexels::Derivatives { range, scale } => [range, scale.x, scale.y, 0.0],
-    };
-    let parallax = match &p.parallax {
-        Some(x) => [x.parallax.options.layers as f32, x.depth, x.depth_range, 0.0],
-        None => [0.0; 4],
-    };
-    let block: [[f32; 4]; 8] = [
-        ambient.extend(0.0).to_array(),
-        diffuse.extend(0.0).to_array(),
-        specular.extend(0.0).to_array(),
-        attenuation,
-        spot,
-        [scale[0], scale[1], 0.0, 0.0],
-        texels,
-        parallax,
+/// A member of `lit.wgsl`'s `Lit` uniform block, each a `vec4<f32>`: the one list the WGSL
+/// struct is generated from (`crate::prelude::lit_block`) and [`uniforms`] packs by, so the two
+/// cannot disagree on the order.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum LitMember {
+    Ambient,
+    Diffuse,
+    Specular,
+    Attenuation,
+    Spot,
+    NormalScale,
+    Texels,
+    Parallax,
+}
+
+impl LitMember {
+    /// Every member, in the block's order.
+    pub(crate) const ALL: [LitMember; 8] = [
+        LitMember::Ambient,
+        LitMember::Diffuse,
+        LitMember::Specular,
+        LitMember::Attenuation,
+        LitMember::Spot,
+        LitMember::NormalScale,
+        LitMember::Texels,
+        LitMember::Parallax,
     ];
-    block.iter().flatten().flat_map(|x| x.to_le_bytes()).collect()
+
+    /// Its name in WGSL.
+    pub(crate) fn name(self) -> &'static str {
+        match self {
+            LitMember::Ambient => "ambient",
+            LitMember::Diffuse => "diffuse",
+            LitMember::Specular => "specular",
+            LitMember::Attenuation => "attenuation",
+            LitMember::Spot => "spot",
+            LitMember::NormalScale => "normal_scale",
+            LitMember::Texels => "texels",
+            LitMember::Parallax => "parallax",
+        }
+    }
+
+    /// What its components hold (the WGSL struct's comment).
+    pub(crate) fn holds(self) -> &'static str {
+        match self {
+            LitMember::Ambient => "xyz: k_ambient · the ambient light.",
+            LitMember::Diffuse => "xyz: k_diffuse · the light's colour.",
+            LitMember::Specular => "xyz: k_specular · the light's colour.",
+            LitMember::Attenuation => "Polynomial: constant, linear, quadratic; exponential: density in x.",
+            LitMember::Spot => "x: cos(cutoff); y: exponent.",
+            LitMember::NormalScale => {
+                "xy: the texture-coordinate scale of a map made for the surface (1, 1 for one that repeats with the texture)."
+            }
+            LitMember::Texels => "x: an offset map's range; yz: the derivatives' scale (NormalTexels::Derivatives).",
+            LitMember::Parallax => {
+                "Heights as geometry: x the layers, y the depth (object units per unit of height), z far / (far - near)."
+            }
+        }
+    }
+
+    /// Its value for `p`.
+    fn value(self, p: &LitProgram) -> [f32; 4] {
+        let LitTerms { ambient, diffuse, specular, .. } = p.terms;
+        match self {
+            LitMember::Ambient => ambient.extend(0.0).to_array(),
+            LitMember::Diffuse => diffuse.extend(0.0).to_array(),
+            LitMember::Specular => specular.extend(0.0).to_array(),
+            LitMember::Attenuation => match p.light.attenuation {
+                Attenuation::None => [0.0; 4],
+                Attenuation::Polynomial { constant, linear, quadratic } => [constant, linear, quadratic, 0.0],
+                Attenuation::Exponential { density } | Attenuation::ExponentialSquared { density } => {
+                    [density, 0.0, 0.0, 0.0]
+                }
+            },
+            LitMember::Spot => match &p.light.spot {
+                Some(s) => [s.cutoff_degrees.to_radians().cos(), s.exponent, 0.0, 0.0],
+                None => [0.0; 4],
+            },
+            LitMember::NormalScale => {
+                let scale = p.normal_space.texcoord_scale().to_array();
+                [scale[0], scale[1], 0.0, 0.0]
+            }
+            LitMember::Texels => match p.normal_texels {
+                NormalTexels::UnitVector => [0.0; 4],
+                NormalTexels::Offset { range } => [range, 0.0, 0.0, 0.0],
+                NormalTexels::Derivatives { range, scale } => [range, scale.x, scale.y, 0.0],
+            },
+            LitMember::Parallax => match &p.parallax {
+                Some(x) => [x.parallax.options.layers as f32, x.depth, x.depth_range, 0.0],
+                None => [0.0; 4],
+            },
+        }
+    }
+}
+
+/// `lit.wgsl`'s `Lit` uniform block for `p`: each [`LitMember`] in order, 16 bytes each.
+pub fn uniforms(p: &LitProgram) -> Vec<u8> {
+    LitMember::ALL.iter().flat_map(|m| m.value(p)).flat_map(f32::to_le_bytes).collect()
 }

@@ -5,24 +5,8 @@
 // LEAN's two moment textures, the roughness map, the heights and their min-max bounds, the
 // horizon map, the occlusion map.
 
-struct Lit {
-    ambient: vec4<f32>,
-    diffuse: vec4<f32>,
-    // xyz: k_specular · light colour.
-    specular: vec4<f32>,
-    // Polynomial: constant, linear, quadratic; exponential: density in x.
-    attenuation: vec4<f32>,
-    // x: cos(cutoff); y: exponent.
-    spot: vec4<f32>,
-    // xy: the texture-coordinate scale of a map made for the surface (NormalSpace::texcoord_scale;
-    // 1, 1 for a map that repeats with the texture).
-    normal_scale: vec4<f32>,
-    // x: an offset map's range; yz: the derivatives' scale (NormalTexels::Derivatives).
-    texels: vec4<f32>,
-    // Heights as geometry: x the layers, y the depth (object units per unit of height),
-    // z the camera's far / (far - near).
-    parallax: vec4<f32>,
-};
+// The uniform block `Lit` (the material's numbers, `u` below) is generated from Rust with the
+// prelude (src/prelude.rs lit_block, from src/lit.rs LitMember), in the order Rust packs it.
 
 // The model's switches are override constants, one pipeline per combination, declared with
 // their named values by the generated prelude (src/prelude.rs, from src/lit.rs), as are the

@@ -23,18 +23,7 @@ pub const DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
 pub const VERTEX_FLOATS: usize = 4 + MAX_VARYINGS;
 /// Texture units of a combiner program.
 pub const UNITS: usize = 4;
-/// The override constant both kinds of fragment program discard below: a pass's alpha test
-/// cutoff, or −1 (none). Declared by the prelude's vertex stage.
-pub(crate) const ALPHA_CUTOFF: &str = "ALPHA_CUTOFF";
-
-/// The lit program's fragment stage, after the prelude and the model.
-pub(crate) const LIT_WGSL: &str = include_str!("lit.wgsl");
-/// `bumpmap_core::shading::shade` in WGSL (with its `Terms` and `Fragment`); it reads the
-/// prelude's switch constants (`crate::prelude::shading_wgsl`).
-pub(crate) const SHADING_WGSL: &str = include_str!("shading.wgsl");
-/// `bumpmap_core::parallax` in WGSL; it reads the prelude's switches and constants, and the
-/// includer's height functions (`crate::prelude::parallax_wgsl`).
-pub(crate) const PARALLAX_WGSL: &str = include_str!("parallax.wgsl");
+pub(crate) use crate::prelude::ALPHA_CUTOFF;
 
 /// Which fragment program a pipeline runs.
 #[derive(Clone, Debug, PartialEq, Eq, Hash)]

@@ -18,6 +18,19 @@ use bumpmap_core::vertex::{MAX_VARYINGS, var};
 
 use crate::lit::{self, LitVariant, Override};
 
+/// The lit program's fragment stage, after the prelude and the model.
+pub(crate) const LIT_WGSL: &str = include_str!("lit.wgsl");
+/// `bumpmap_core::shading::shade` in WGSL (with its `Terms` and `Fragment`); it reads the
+/// prelude's switch constants ([`shading_wgsl`]).
+pub(crate) const SHADING_WGSL: &str = include_str!("shading.wgsl");
+/// `bumpmap_core::parallax` in WGSL; it reads the prelude's switches and constants, and the
+/// includer's height functions ([`parallax_wgsl`]).
+pub(crate) const PARALLAX_WGSL: &str = include_str!("parallax.wgsl");
+
+/// The override constant both kinds of fragment program discard below: a pass's alpha test
+/// cutoff, or −1 (none). Declared by the vertex stage.
+pub(crate) const ALPHA_CUTOFF: &str = "ALPHA_CUTOFF";
+
 /// The varying slots by the names WGSL uses.
 pub(crate) const SLOTS: [(&str, usize); 18] = [
     ("VAR_S", var::S),
@@ -95,7 +108,7 @@ pub(crate) fn vertex_stage() -> String {
     let _ = writeln!(
         s,
         "// The pass's alpha test (glAlphaFunc(GL_GEQUAL, cutoff)), or -1: none.\noverride {}: f32 = -1.0;",
-        crate::pipelines::ALPHA_CUTOFF
+        ALPHA_CUTOFF
     );
     s
 }
@@ -126,24 +139,32 @@ pub(crate) fn switches() -> String {
 /// `bumpmap_core::parallax`'s marches in WGSL with the constants they read; the includer
 /// defines how heights are read (`parallax.wgsl`'s head says which functions).
 pub fn parallax_wgsl() -> String {
-    format!("{}\n{}", switches(), crate::pipelines::PARALLAX_WGSL)
+    format!("{}\n{}", switches(), PARALLAX_WGSL)
 }
 
 /// `bumpmap_core::shading::shade` in WGSL with the constants it reads: what the lit program
 /// includes, and what a test runs against the Rust definition.
 pub fn shading_wgsl() -> String {
-    format!("{}\n{}", switches(), crate::pipelines::SHADING_WGSL)
+    format!("{}\n{}", switches(), SHADING_WGSL)
 }
 
-/// The whole lit program: the vertex stage, the switches, the model, the marches and `lit.wgsl`.
+/// `lit.wgsl`'s uniform block `Lit`, a `vec4<f32>` per member of [`lit::LitMember::ALL`] in
+/// that order, with what each holds: the order [`lit::uniforms`] packs the bytes in.
+pub(crate) fn lit_block() -> String {
+    let mut s = String::from(
+        "// Generated from bumpmap-gpu src/lit.rs (LitMember): the lit program's uniform block.\nstruct Lit {\n",
+    );
+    for m in lit::LitMember::ALL {
+        let _ = writeln!(s, "    // {}\n    {}: vec4<f32>,", m.holds(), m.name());
+    }
+    s += "};\n";
+    s
+}
+
+/// The whole lit program: the vertex stage, the switches, the model, the marches, the uniform
+/// block and `lit.wgsl`.
 pub(crate) fn lit_program() -> String {
-    format!(
-        "{}\n{}\n{}\n{}",
-        vertex_stage(),
-        shading_wgsl(),
-        crate::pipelines::PARALLAX_WGSL,
-        crate::pipelines::LIT_WGSL
-    )
+    format!("{}\n{}\n{}\n{}\n{}", vertex_stage(), shading_wgsl(), PARALLAX_WGSL, lit_block(), LIT_WGSL)
 }
 
 #[cfg(test)]
@@ -151,7 +172,6 @@ mod tests {
     use wgpu::naga;
 
     use super::*;
-    use crate::pipelines::{LIT_WGSL, PARALLAX_WGSL, SHADING_WGSL};
 
     /// The value of the `u32` constant `name` in `module`.
     fn constant(module: &naga::Module, name: &str) -> u32 {
@@ -189,8 +209,26 @@ mod tests {
         for (name, _) in LitVariant::default().constants() {
             assert!(overrides.contains(&name), "the pipeline sets {name}, which the program does not declare");
         }
-        assert!(overrides.contains(&crate::pipelines::ALPHA_CUTOFF));
+        assert!(overrides.contains(&ALPHA_CUTOFF));
         assert_eq!(overrides.len(), LitVariant::default().constants().len() + 1, "{overrides:?}");
+    }
+
+    /// The uniform block the compiled program reads is `LitMember::ALL` in order, a vec4 of
+    /// 16 bytes each, as `uniforms` packs it: no member moved, missing or extra.
+    #[test]
+    fn the_uniform_block_is_what_rust_packs() {
+        let module = naga::front::wgsl::parse_str(&lit_program()).expect("the lit program parses");
+        let lit = module.types.iter().find(|(_, t)| t.name.as_deref() == Some("Lit")).expect("a struct Lit");
+        let naga::TypeInner::Struct { members, span } = &lit.1.inner else { panic!("Lit is a struct") };
+        let names: Vec<&str> = members.iter().filter_map(|m| m.name.as_deref()).collect();
+        let expected: Vec<&str> = lit::LitMember::ALL.iter().map(|m| m.name()).collect();
+        assert_eq!(names, expected);
+        for (k, m) in members.iter().enumerate() {
+            assert_eq!(m.offset as usize, 16 * k, "{:?}", m.name);
+        }
+        // `uniforms` packs one [f32; 4] a member.
+        assert_eq!(*span as usize, 16 * lit::LitMember::ALL.len());
+        assert!(!LIT_WGSL.contains("struct Lit {"), "lit.wgsl declares no block of its own");
     }
 
     #[test]

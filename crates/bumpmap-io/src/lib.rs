@@ -19,16 +19,12 @@
 
 pub mod atomic;
 pub mod error;
-mod gltf_material;
-mod gltf_mesh;
 mod gltf_read;
-mod gltf_write;
 pub mod gray_file;
 pub mod height_file;
 pub mod horizon_file;
 pub mod image_file;
 pub mod mesh_file;
-mod obj_read;
 pub mod siblings;
 pub mod texture_file;
 pub mod texture_read;

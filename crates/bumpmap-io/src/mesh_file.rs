@@ -14,6 +14,11 @@
 //! loads, but tangent generation then refuses it. Counts are checked against `MAX_ELEMENTS`
 //! before any data is read.
 
+mod gltf_material;
+mod gltf_mesh;
+mod gltf_write;
+mod obj_read;
+
 use std::path::{Path, PathBuf};
 
 use bumpmap_math::mesh::{AlphaMode, Mesh};
@@ -21,7 +26,7 @@ use bumpmap_math::mesh::{AlphaMode, Mesh};
 use crate::error::IoError;
 use crate::texture_read::StoredTexture;
 
-pub use crate::gltf_write::{GltfRepairs, gltf_normals_and_tangents, save_gltf, save_gltf_into};
+pub use gltf_write::{GltfRepairs, gltf_normals_and_tangents, save_gltf, save_gltf_into};
 
 /// A loaded mesh and what the file itself supplied.
 #[derive(Clone, Debug, Default)]
@@ -238,10 +243,10 @@ pub fn load_mesh_with(path: &Path, options: &MeshOptions) -> Result<LoadedMesh, 
     let loaded = match format {
         MeshFormat::Obj => {
             let bytes = crate::gltf_read::read_file(path, path, crate::gltf_read::MAX_FILE_BYTES)?;
-            crate::obj_read::parse_obj(path, &bytes, options.obj_texcoords)?
+            obj_read::parse_obj(path, &bytes, options.obj_texcoords)?
         }
         MeshFormat::Gltf => {
-            crate::gltf_mesh::from_gltf(path, crate::gltf_read::read(path, options.allow_outside_paths)?, options)?
+            gltf_mesh::from_gltf(path, crate::gltf_read::read(path, options.allow_outside_paths)?, options)?
         }
     };
     finish(path, loaded)
@@ -254,8 +259,8 @@ pub fn load_mesh_with(path: &Path, options: &MeshOptions) -> Result<LoadedMesh, 
 pub fn read_mesh(bytes: &[u8], name: &Path, format: MeshFormat) -> Result<LoadedMesh, IoError> {
     let options = MeshOptions { read_normal_texture: true, read_base_color_texture: true, ..Default::default() };
     let loaded = match format {
-        MeshFormat::Obj => crate::obj_read::parse_obj(name, bytes, ObjTexcoords::FlipV)?,
-        MeshFormat::Gltf => crate::gltf_mesh::from_gltf(
+        MeshFormat::Obj => obj_read::parse_obj(name, bytes, ObjTexcoords::FlipV)?,
+        MeshFormat::Gltf => gltf_mesh::from_gltf(
             name,
             crate::gltf_read::parse(name, bytes, crate::gltf_read::BufferFiles::None)?,
             &options,

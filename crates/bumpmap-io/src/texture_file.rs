@@ -308,23 +308,7 @@ pub fn encode(path: &Path, tex: &TextureLayout, format: TextureFormat) -> Result
     // 1), ending at 1×1 at the latest.
     let refuse = |reason: String| IoError::Write { path: path.to_path_buf(), source: std::io::Error::other(reason) };
     for face in &tex.faces {
-        let Some(first) = face.first() else { return Err(refuse("a face without levels".into())) };
-        let (w0, h0) = first.size();
-        let most = bumpmap_math::mip::level_count(w0, h0);
-        if face.len() > most {
-            return Err(refuse(format!(
-                "{} levels for a {w0}x{h0} level 0: its chain ends at 1x1 after {most}",
-                face.len()
-            )));
-        }
-        let (mut w, mut h) = (w0, h0);
-        for (k, level) in face.iter().enumerate().skip(1) {
-            (w, h) = (bumpmap_math::mip::next_size(w), bumpmap_math::mip::next_size(h));
-            if level.size() != (w, h) {
-                let (lw, lh) = level.size();
-                return Err(refuse(format!("level {k} is {lw}x{lh}, but a {w0}x{h0} level 0 makes it {w}x{h}")));
-            }
-        }
+        bumpmap_math::levels::check_chain(face.iter().map(|l| l.size())).map_err(|e| refuse(e.to_string()))?;
     }
     tex.faces.iter().map(|face| face.par_iter().map(|&l| encode_level(path, l, format)).collect()).collect()
 }

@@ -124,6 +124,13 @@ pub fn ensure_available(bytes: u64, what: &'static str) -> Result<(), OutOfMemor
 /// counts: 16 MiB, a few times what a frame's per-thread setup and a PNG encoder's rows take.
 pub const HEADROOM: u64 = 16 << 20;
 
+/// An empty vector with room for `n`, or the error naming `what`.
+pub(crate) fn try_vec<T>(n: usize, what: &'static str) -> Result<Vec<T>, OutOfMemory> {
+    let mut v = Vec::new();
+    v.try_reserve_exact(n).map_err(|_| OutOfMemory::of::<T>(what, n))?;
+    Ok(v)
+}
+
 #[cfg(test)]
 mod tests {
     #[test]

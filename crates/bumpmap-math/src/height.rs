@@ -385,12 +385,9 @@ impl ValueNoise {
     }
 }
 
-/// SplitMix64 of `x` mixed with `seed`: a deterministic hash, identical on every platform.
+/// SplitMix64 of `x` mixed with `seed` ([`crate::hash::splitmix64`]).
 fn hash(x: u64, seed: u64) -> u64 {
-    let mut z = x.wrapping_add(seed.wrapping_mul(0x9e37_79b9_7f4a_7c15)).wrapping_add(0x9e37_79b9_7f4a_7c15);
-    z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-    z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-    z ^ (z >> 31)
+    crate::hash::splitmix64(x.wrapping_add(seed.wrapping_mul(0x9e37_79b9_7f4a_7c15)))
 }
 
 #[cfg(test)]

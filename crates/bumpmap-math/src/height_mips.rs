@@ -19,11 +19,14 @@
 //! choose a level from a footprint (the renderers' sampler rules), or read files.
 
 use crate::buffer::OutOfMemory;
+use crate::buffer::try_vec;
 use crate::height::HeightField;
 use crate::horizon::{HorizonError, HorizonMap};
+use crate::interpolant::linear_repeat;
 use crate::interpolant::{HeightGrid, cell_bounds, cell_texels};
 use crate::kernel::Wrap;
-use crate::mip::{footprint, next_size};
+pub use crate::levels::chain_sizes;
+use crate::levels::{footprint, next_size};
 
 /// One level of heights, row-major, row 0 = t = 0.
 #[derive(Clone, Debug, PartialEq)]
@@ -47,20 +50,6 @@ impl HeightGrid for HeightLevel {
     fn at(&self, x: usize, y: usize) -> f32 {
         self.texels[y * self.width + x]
     }
-}
-
-/// The texel index below `u` (texel units, centres at half-integers) and the weight of the next
-/// one, for GL's LINEAR under REPEAT: `u = frac(s)·n − ½` (GL 1.2 §3.8.8).
-#[inline(always)]
-pub(crate) fn linear_repeat(s: f32, n: usize) -> (usize, usize, f32) {
-    let nf = n as f32;
-    let u = (s - s.floor()) * nf - 0.5;
-    let f = u.floor();
-    let a = u - f;
-    // u ∈ [−½, n − ½): floor(u) ∈ [−1, n − 1].
-    let i = f as i64;
-    let i0 = if i < 0 { n - 1 } else { (i as usize).min(n - 1) };
-    (i0, if i0 + 1 == n { 0 } else { i0 + 1 }, a)
 }
 
 impl HeightLevel {
@@ -196,23 +185,6 @@ impl HeightMipsError {
             HeightMipsError::OutOfMemory(_) | HeightMipsError::NotAHeight { .. } => None,
         }
     }
-}
-
-/// The sizes of a whole chain from `width`×`height` down to 1×1.
-pub fn chain_sizes(width: usize, height: usize) -> Vec<(usize, usize)> {
-    let mut sizes = vec![(width, height)];
-    while sizes.last() != Some(&(1, 1)) {
-        let (w, h) = *sizes.last().expect("one size at least");
-        sizes.push((next_size(w), next_size(h)));
-    }
-    sizes
-}
-
-/// An empty vector with room for `n`, or the error naming `what`.
-pub(crate) fn try_vec<T>(n: usize, what: &'static str) -> Result<Vec<T>, OutOfMemory> {
-    let mut v = Vec::new();
-    v.try_reserve_exact(n).map_err(|_| OutOfMemory::of::<T>(what, n))?;
-    Ok(v)
 }
 
 /// Heights with their mip levels and, where made or given, their min–max levels.

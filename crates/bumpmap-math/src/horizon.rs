@@ -22,12 +22,12 @@ use glam::{Vec2, Vec3};
 use rayon::prelude::*;
 
 use crate::buffer::OutOfMemory;
+use crate::buffer::try_vec;
 use crate::encoding::{Encoding, Texel};
-use crate::height_mips::try_vec;
 use crate::image::Image;
 use crate::interpolant::{HeightGrid, sample_texels, wrap_index};
 use crate::kernel::Wrap;
-use crate::mip::{footprint, next_size};
+use crate::levels::{chain_sizes, footprint, next_size};
 use crate::normalmap::{YConvention, encode_unit};
 
 /// Directions per texel: 8, as Sloan & Cohen store them in two RGBA textures.
@@ -87,8 +87,8 @@ impl HorizonLevel {
     /// `crate::height_mips::HeightLevel::bilinear` reads heights.
     #[inline]
     pub fn bilinear(&self, s: f32, t: f32) -> Horizons {
-        let (i0, i1, a) = crate::height_mips::linear_repeat(s, self.width);
-        let (j0, j1, b) = crate::height_mips::linear_repeat(t, self.height);
+        let (i0, i1, a) = crate::interpolant::linear_repeat(s, self.width);
+        let (j0, j1, b) = crate::interpolant::linear_repeat(t, self.height);
         let (r0, r1) = (j0 * self.width, j1 * self.width);
         let (ca, cb) = (1.0 - a, 1.0 - b);
         let [p00, p10, p01, p11] = [r0 + i0, r0 + i1, r1 + i0, r1 + i1].map(|i| &self.texels[i]);
@@ -181,7 +181,7 @@ impl HorizonMap {
     pub fn from_levels(mut levels: Vec<HorizonLevel>) -> Result<Self, HorizonError> {
         let first = levels.first().ok_or(HorizonError::Empty)?;
         let (w0, h0) = (first.width, first.height);
-        let sizes = crate::height_mips::chain_sizes(w0, h0);
+        let sizes = chain_sizes(w0, h0);
         for (level, (l, &(ww, wh))) in levels.iter().zip(&sizes).enumerate() {
             if (l.width, l.height) != (ww, wh) || l.texels.len() != ww * wh {
                 return Err(HorizonError::LevelSize {
@@ -277,7 +277,7 @@ impl HorizonMap {
 
     /// The bytes a horizon map of level 0 `width`×`height` takes with its levels (for estimates).
     pub fn bytes_for(width: usize, height: usize) -> u64 {
-        let texels: u64 = crate::height_mips::chain_sizes(width, height).iter().map(|&(w, h)| (w * h) as u64).sum();
+        let texels: u64 = chain_sizes(width, height).iter().map(|&(w, h)| (w * h) as u64).sum();
         texels * std::mem::size_of::<Horizons>() as u64
     }
 }

@@ -10,7 +10,7 @@
 use glam::Vec3;
 
 use crate::Encoding;
-use crate::mip::{footprint, next_size};
+use crate::levels::{footprint, next_size};
 
 /// `width`×`height` texels of type `T`, row-major, row 0 (t = 0) first.
 #[derive(Clone, Debug, PartialEq, Eq)]

@@ -12,7 +12,8 @@ use rayon::prelude::*;
 
 use crate::encoding::{Encoding, Texel};
 use crate::image::Image;
-use crate::mip::{MipChain, MipMode, next_size};
+use crate::levels::next_size;
+use crate::mip::{MipChain, MipMode};
 use crate::normalmap::{YConvention, encode_unit};
 
 /// How far a stored vector's length may be from 1 before it counts as not a unit vector: well

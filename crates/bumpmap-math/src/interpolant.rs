@@ -159,6 +159,20 @@ pub fn cell_bounds(p: &[[f32; 4]; 4]) -> (f32, f32) {
     (lo, hi)
 }
 
+/// The texel index below `u` (texel units, centres at half-integers) and the weight of the next
+/// one, for GL's LINEAR under REPEAT: `u = frac(s)·n − ½` (GL 1.2 §3.8.8).
+#[inline(always)]
+pub(crate) fn linear_repeat(s: f32, n: usize) -> (usize, usize, f32) {
+    let nf = n as f32;
+    let u = (s - s.floor()) * nf - 0.5;
+    let f = u.floor();
+    let a = u - f;
+    // u ∈ [−½, n − ½): floor(u) ∈ [−1, n − 1].
+    let i = f as i64;
+    let i0 = if i < 0 { n - 1 } else { (i as usize).min(n - 1) };
+    (i0, if i0 + 1 == n { 0 } else { i0 + 1 }, a)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

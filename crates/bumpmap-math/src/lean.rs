@@ -42,7 +42,7 @@ use glam::{Vec2, Vec3};
 use crate::buffer::OutOfMemory;
 use crate::encoding::Encoding;
 use crate::image::{Image, Rgba8Image, Rgba8Mips};
-use crate::mip::{footprint, next_size};
+use crate::levels::{footprint, next_size};
 
 /// The smallest Nz a slope is taken from: steeper normals are read as slope 10, so the second
 /// moments (up to 200) stay well inside a half float's range on the GPU, and a normal lying in

@@ -6,6 +6,9 @@
 //! tangent frames (Cg Tutorial §8.2–8.4, Peercy §2) and computes the per-vertex tangent-space
 //! light and half-angle vectors (Kilgard §5.1, Appendix C).
 //!
+//! Every chain's level sizes and footprints, and the one check of a chain handed over, are
+//! [`levels`]'s; every deterministic integer hash (noise, the reference's jitter) is [`hash`]'s.
+//!
 //! Conventions (pinned by tests):
 //! - texture coordinate `t` grows with the row index of texel memory (row 0 is t = 0);
 //! - normals follow Kilgard Eq. 25, `n ∝ (-∂F/∂u, -∂F/∂v, 1)`;
@@ -18,6 +21,7 @@ pub mod buffer;
 pub mod cubemap;
 pub mod encoding;
 mod fourier;
+pub mod hash;
 pub mod height;
 pub mod height_mips;
 pub mod height_trace;
@@ -29,6 +33,7 @@ pub mod integration;
 pub mod interpolant;
 pub mod kernel;
 pub mod lean;
+pub mod levels;
 pub mod lighting;
 pub mod mesh;
 pub mod mip;

@@ -45,31 +45,7 @@ pub struct MipChain<T = [u8; 4]> {
     pub encoding: Encoding,
 }
 
-/// The size of the level after one of `n` texels: half, rounded down, at least 1.
-#[inline]
-pub fn next_size(n: usize) -> usize {
-    (n / 2).max(1)
-}
-
-/// How many levels a full chain from a `width`×`height` level 0 has, down to 1×1:
-/// `1 + floor(log2(max(width, height)))` (0 for an empty level 0).
-///
-/// ```
-/// use bumpmap_math::mip::level_count;
-/// assert_eq!((level_count(1, 1), level_count(256, 64), level_count(5, 3)), (1, 9, 3));
-/// ```
-pub fn level_count(width: usize, height: usize) -> usize {
-    width.max(height).checked_ilog2().map_or(0, |l| l as usize + 1)
-}
-
-/// The range of texels of a level of size `n` that texel `i` of the next level covers.
-#[inline]
-pub fn footprint(i: usize, n: usize) -> std::ops::Range<usize> {
-    let m = next_size(n);
-    debug_assert!(i < m);
-    let end = if i + 1 == m { n } else { 2 * i + 2 };
-    2 * i..end
-}
+pub use crate::levels::{footprint, level_count, next_size};
 
 /// One row of sums in structure-of-arrays form, so adding and encoding run as SIMD lanes.
 #[derive(Default)]

@@ -9,7 +9,7 @@
 //!   the `height-exact` technique takes too).
 //! - A curved surface (torus, sphere, patch) is micro-tessellated: a vertex at every texel
 //!   corner on the carved surface, two triangles per texel, and a quadtree of boxes over them
-//!   (`crate::tessellated`).
+//!   (its `tessellated` module).
 //!
 //! Either way a hit is shaded on the smooth carved surface at its (u, v) ([`displaced_normal`]).
 //! The heights repeat over the plane beyond a flat surface's edges (a ray entering near an edge
@@ -25,7 +25,9 @@ use bumpmap_math::surface::{Surface, SurfacePoint};
 use bumpmap_math::{HeightMips, Wrap};
 
 use crate::error::ReferenceError;
-use crate::tessellated::{self, Tessellation};
+mod tessellated;
+
+use tessellated::Tessellation;
 
 /// Where a ray met a carved surface.
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -22,6 +22,19 @@
 //! - [`render`](render()): the whole image, in parallel over tiles, with a progress callback;
 //! - [`error`]: what the reference refuses.
 //!
+//! ```
+//! use bumpmap_core::technique::ReferenceOptions;
+//! use bumpmap_core::{SceneKind, SceneSpec};
+//!
+//! // The ground truth of the brick wall, 4 samples a pixel: the wall fills the middle.
+//! let scene = SceneSpec::new(SceneKind::Wall).build()?;
+//! let options = ReferenceOptions { samples_per_pixel: 4, ..Default::default() };
+//! let image = bumpmap_reference::render(&scene, 32, 32, &options, &|_, _| {})?;
+//! let centre = image.pixels[16 * 32 + 16];
+//! assert!(centre.x > 0.05, "lit: {centre}");
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
+//!
 //! What this crate does not do: it depends on no backend (it is an oracle for them); it
 //! rasterizes no mip level and quantizes nothing to 8 bits; on the base surface it finds
 //! visibility on the same tessellation the techniques draw, so silhouettes agree and the
@@ -34,10 +47,8 @@ pub mod displaced;
 pub mod error;
 pub mod occlusion;
 mod render;
-mod render_displaced;
-mod tessellated;
 pub mod visibility;
 
 pub use error::ReferenceError;
+pub use render::{DisplacedScene, SceneHit, camera_ray};
 pub use render::{LinearImage, MAX_SAMPLES_PER_PIXEL, MAX_SIDE, ReferenceOptions, render};
-pub use render_displaced::{DisplacedScene, SceneHit, camera_ray};

@@ -65,15 +65,6 @@ pub fn occlusion_map(heights: &HeightMips, depth: f32, side: usize, stride: usiz
 
 /// A number in [0, 1) from a texel, a cell and a channel: the same rays every run.
 fn hash01(x: usize, y: usize, i: usize, j: usize, c: u32) -> f32 {
-    let mut v = (x as u32).wrapping_mul(0x9e37_79b1)
-        ^ (y as u32).wrapping_mul(0x85eb_ca77)
-        ^ (i as u32).wrapping_mul(0xc2b2_ae3d)
-        ^ (j as u32).wrapping_mul(0x27d4_eb2f)
-        ^ c.wrapping_mul(0x1656_67b1);
-    v ^= v >> 15;
-    v = v.wrapping_mul(0x2c1b_3c6d);
-    v ^= v >> 12;
-    v = v.wrapping_mul(0x297a_2d39);
-    v ^= v >> 15;
-    (v >> 8) as f32 / (1u32 << 24) as f32
+    use bumpmap_math::hash::{hash32, unit};
+    unit(hash32(&[x as u32, y as u32, i as u32, j as u32, c]))
 }

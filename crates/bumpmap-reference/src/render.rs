@@ -1,6 +1,10 @@
 //! The reference image: visibility per sample, the exact surface and Blinn's normal at each
 //! visible sample, the one lighting model, and the mean of the samples of each pixel.
 
+mod displaced;
+
+pub use displaced::{DisplacedScene, SceneHit, camera_ray};
+
 use std::sync::atomic::{AtomicUsize, Ordering};
 
 use glam::{Vec2, Vec3, Vec4};
@@ -69,7 +73,7 @@ pub fn render(
         return Err(ReferenceError::SpotPattern { light });
     }
     if options.displaced {
-        return crate::render_displaced::render(scene, width, height, options, progress);
+        return displaced::render(scene, width, height, options, progress);
     }
     let prepared: Vec<Prepared> = scene
         .objects

@@ -31,14 +31,9 @@ pub fn sample_offset(k: usize, spp: usize, x: usize, y: usize) -> Vec2 {
     Vec2::new(fx as f32, fy as f32)
 }
 
-/// A 32-bit integer hash of a pixel (lowbias32 of its packed coordinates).
+/// A 32-bit integer hash of a pixel.
 fn hash(x: u32, y: u32) -> u32 {
-    let mut h = x.wrapping_mul(0x9E37_79B1) ^ y.wrapping_mul(0x85EB_CA77);
-    h ^= h >> 16;
-    h = h.wrapping_mul(0x7FEB_352D);
-    h ^= h >> 15;
-    h = h.wrapping_mul(0x846C_A68B);
-    h ^ (h >> 16)
+    bumpmap_math::hash::hash32(&[x, y])
 }
 
 /// One triangle in screen space: pixel coordinates with row 0 at the top, `z/w`, `1/w`.

@@ -39,13 +39,7 @@ fn bilinear(map: &HorizonMap, x: f32, y: f32) -> Horizons {
 
 /// A number in [0, 1) from an index and a channel.
 fn rand(i: u32, c: u32) -> f32 {
-    let mut v = i.wrapping_mul(0x9e37_79b1) ^ c.wrapping_mul(0x85eb_ca77);
-    v ^= v >> 15;
-    v = v.wrapping_mul(0x2c1b_3c6d);
-    v ^= v >> 12;
-    v = v.wrapping_mul(0x297a_2d39);
-    v ^= v >> 15;
-    (v >> 8) as f32 / (1u32 << 24) as f32
+    bumpmap_math::hash::unit(bumpmap_math::hash::hash32(&[i, c]))
 }
 
 /// Of points at random on the surface, with the light at a random azimuth `zenith_deg` from the

@@ -96,6 +96,26 @@ pub fn assert_psnr(name: &str, expected: &Rgba8Image, actual: &Rgba8Image, min_p
     db
 }
 
+/// Reads a PNG as RGBA8 (RGB gets alpha 255).
+pub fn read_png(path: &Path) -> Rgba8Image {
+    let img = image::open(path).unwrap_or_else(|e| panic!("{}: {e}", path.display())).to_rgba8();
+    let (w, h) = img.dimensions();
+    Rgba8Image::new(w as usize, h as usize, img.pixels().map(|p| p.0).collect())
+}
+
+/// An example's image held against its screenshot (`screenshot`, a PNG in the repository) at
+/// `min_psnr` dB, `reason` saying why that threshold, as the wgpu examples are tested: alpha is
+/// left out. `BUMPMAP_BLESS=1` (re)writes the screenshot from `actual` instead; a failure
+/// writes the expected, actual and difference images ([`assert_psnr`]). Returns the PSNR.
+pub fn assert_screenshot(name: &str, screenshot: &Path, actual: &Rgba8Image, min_psnr: f64, reason: &str) -> f64 {
+    if std::env::var_os("BUMPMAP_BLESS").is_some() {
+        write_png(screenshot, actual);
+        println!("{name}: wrote the screenshot {}", screenshot.display());
+    }
+    let expected = read_png(screenshot);
+    assert_psnr(name, &expected, actual, min_psnr, reason)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -39,7 +39,7 @@ pub fn compare_err(e: CompareError, bumps: Option<&str>, output: Option<&Path>) 
         CompareError::Interrupted => Error::Interrupted,
         CompareError::Reference(e) => Error::Render(crate::frame::reference_err(e)),
         CompareError::Io(e) => Error::Io(e),
-        CompareError::Library(e) => crate::frame::lib_err(e),
+        CompareError::Library(e) => crate::library::lib_err(e),
         e @ (CompareError::Study { .. } | CompareError::NormalMap { .. }) => Error::Render(e.to_string()),
     }
 }

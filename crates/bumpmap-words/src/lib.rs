@@ -21,6 +21,7 @@ pub mod compare;
 mod error;
 pub mod frame;
 mod keywords;
+mod library;
 pub mod maps;
 pub mod report;
 pub mod setup;

@@ -5,7 +5,7 @@ use bumpmap::options::{SceneOption, SetupError, SetupNote};
 use bumpmap::{Named, SpecularFilter};
 
 use crate::Error;
-use crate::frame::lib_err;
+use crate::library::lib_err;
 
 /// The flag that sets `option`.
 pub fn flag(option: SceneOption) -> String {

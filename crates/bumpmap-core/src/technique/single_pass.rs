@@ -186,7 +186,7 @@ pub fn validate_parallax(scene: &Scene, p: &Parallax) -> Result<(), CoreError> {
             return Err(CoreError::Unsupported { technique: NAME, feature: Feature::Parallax });
         }
         let Some(heights) = &m.heights else {
-            return Err(CoreError::Needs { technique: NAME, requirement: crate::catalogue::Requirement::Heights });
+            return Err(CoreError::Needs { technique: NAME, requirement: crate::Requirement::Heights });
         };
         if p.method == ParallaxMethod::Exact && heights.minmax().is_none() {
             return Err(CoreError::NoMinMax { technique: "height-exact" });

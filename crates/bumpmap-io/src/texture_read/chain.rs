@@ -26,7 +26,7 @@ pub fn load_texture_chain(path: &Path) -> Result<StoredTexture, IoError> {
         let Some(file) = crate::siblings::beside(path, &crate::image_file::level_path(path, k))? else {
             break;
         };
-        size = (bumpmap_math::mip::next_size(size.0), bumpmap_math::mip::next_size(size.1));
+        size = (bumpmap_math::levels::next_size(size.0), bumpmap_math::levels::next_size(size.1));
         let level = load_texture(&file)?.levels;
         let wrong = |reason: String| Err(bad(&file, reason));
         if level.size() != size {

@@ -75,19 +75,15 @@ fn level_sizes(path: &Path, width: u32, height: u32, levels: u32) -> Result<Vec<
             max: MAX_DIMENSION,
         });
     }
-    let most = bumpmap_math::mip::level_count(width as usize, height as usize) as u32;
+    let most = bumpmap_math::levels::level_count(width as usize, height as usize) as u32;
     if levels > most {
         return Err(bad(
             path,
             format!("declares {levels} mip levels, but a {width}x{height} texture has at most {most}"),
         ));
     }
-    let (mut w, mut h) = (width as usize, height as usize);
-    let mut sizes = Vec::with_capacity(levels as usize);
-    for _ in 0..levels.max(1) {
-        sizes.push((w, h));
-        (w, h) = (bumpmap_math::mip::next_size(w), bumpmap_math::mip::next_size(h));
-    }
+    let mut sizes = bumpmap_math::levels::chain_sizes(width as usize, height as usize);
+    sizes.truncate(levels.max(1) as usize);
     Ok(sizes)
 }
 

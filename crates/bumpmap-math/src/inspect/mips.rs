@@ -20,7 +20,7 @@
 use glam::{Vec3, Vec4, Vec4Swizzles};
 
 use crate::image::Image;
-use crate::mip::footprint;
+use crate::levels::footprint;
 
 /// How the smaller levels were made.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -200,7 +200,7 @@ pub fn classify(levels: &[Image<Vec4>]) -> Option<MipReport> {
 }
 
 fn footprint_size(n: usize) -> usize {
-    crate::mip::next_size(n)
+    crate::levels::next_size(n)
 }
 
 /// The next level of a box chain: 2×2 means (3 wide at an odd edge), unnormalized.

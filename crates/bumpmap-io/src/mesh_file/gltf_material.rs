@@ -9,8 +9,8 @@ use std::path::Path;
 use bumpmap_math::mesh::AlphaMode;
 use glam::Vec2;
 
+use super::{MaterialTexture, MeshMaterial, MeshOptions, TextureSampler, TextureTransform, mesh_err};
 use crate::error::IoError;
-use crate::mesh_file::{MaterialTexture, MeshMaterial, MeshOptions, TextureSampler, TextureTransform, mesh_err};
 
 impl TextureTransform {
     /// `KHR_texture_transform`'s `uv' = T·R·S·uv`, with `R = [[cos r, sin r], [−sin r, cos r]]`

@@ -8,8 +8,8 @@ use std::path::Path;
 use bumpmap_math::mesh::{MAX_ELEMENTS, Mesh, MeshError};
 use glam::{Vec2, Vec3};
 
+use super::{LoadedMesh, ObjTexcoords, mesh_err};
 use crate::error::IoError;
-use crate::mesh_file::{LoadedMesh, ObjTexcoords, mesh_err};
 
 /// What `tobj` would pass over in silence: faces of one or two vertices, faces without texture
 /// coordinates in a file whose other faces have them, and indices that name no element (tobj

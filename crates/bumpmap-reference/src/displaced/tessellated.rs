@@ -15,7 +15,7 @@ use bumpmap_math::interpolant::sample;
 use bumpmap_math::surface::Surface;
 use bumpmap_math::{HeightMips, Wrap};
 
-use crate::displaced::DisplacedHit;
+use super::DisplacedHit;
 
 /// Texels a tessellation may have (about 48 bytes each): beyond it the reference is refused
 /// with the memory it would need.

@@ -1,5 +1,5 @@
 //! A loaded model as parts, each drawn with its own material: a glTF's primitives, placed and
-//! split by `bumpmap::assets`. [`crate::scenes::build`] makes one [`crate::scene::SceneObject`]
+//! split by `bumpmap::assets`. `crate::scenes::build` makes one [`crate::scene::SceneObject`]
 //! per part, its normal map and decal the part material's; the lighting coefficients, the
 //! camera and the lights stay the scene's.
 //!
@@ -12,7 +12,7 @@ use std::sync::Arc;
 use bumpmap_math::Rgba8Mips;
 use bumpmap_math::mesh::Mesh;
 
-use crate::scenes::BumpSource;
+use super::BumpSource;
 
 /// A model's parts and the materials they draw with.
 #[derive(Clone, Debug, Default)]

@@ -12,9 +12,9 @@ use bumpmap_core::Scene;
 use bumpmap_core::technique::reference::ReferenceOptions;
 use bumpmap_math::lighting::{Light, ObjectLighting, TangentFrame};
 
+use super::{LinearImage, Surfel, assemble, bilinear_repeat, light, render_tiles};
 use crate::displaced::{Displaced, DisplacedHit};
 use crate::error::ReferenceError;
-use crate::render::{LinearImage, Surfel, assemble, bilinear_repeat, light, render_tiles};
 use crate::visibility::sample_offset;
 
 /// The world-space ray from the eye through the image point (`x`, `y`) (pixels, row 0 at the

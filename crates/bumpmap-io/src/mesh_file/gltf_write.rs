@@ -9,9 +9,9 @@ use std::path::Path;
 use bumpmap_math::mesh::Mesh;
 use glam::{Vec3, Vec4};
 
+use super::gltf_handedness;
 use crate::atomic::FileSet;
 use crate::error::IoError;
-use crate::mesh_file::gltf_handedness;
 
 /// What [`save_gltf`] had to repair so the file is valid glTF (NORMAL and TANGENT.xyz must be
 /// unit vectors, TANGENT.w ±1): vectors that were zero, not finite or far from unit length.

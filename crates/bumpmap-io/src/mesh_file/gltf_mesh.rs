@@ -13,9 +13,9 @@ use std::path::Path;
 use bumpmap_math::mesh::{MAX_ELEMENTS, Mesh, MeshError};
 use glam::{Vec2, Vec3, Vec4};
 
+use super::gltf_material::{self, MaterialReads, TextureRead};
+use super::{LoadedMesh, MeshOptions, MeshPart, gltf_handedness, mesh_err};
 use crate::error::IoError;
-use crate::gltf_material::{self, MaterialReads, TextureRead};
-use crate::mesh_file::{LoadedMesh, MeshOptions, MeshPart, gltf_handedness, mesh_err};
 
 /// The meshes to read and the world transform of each: the default scene's nodes (or the
 /// first scene's; or, with no scene, every node that is no other's child), each mesh once per

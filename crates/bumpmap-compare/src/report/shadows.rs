@@ -3,7 +3,7 @@
 
 use serde_json::{Value, json};
 
-use super::shadows::{FIELDS, LIGHTS, OCCLUSION_RAYS, ShadowMethod, ShadowStudy};
+use crate::shadows::{FIELDS, LIGHTS, OCCLUSION_RAYS, ShadowMethod, ShadowStudy};
 
 /// The study as JSON: every row, and occlusion per field.
 pub fn json(s: &ShadowStudy) -> Value {
@@ -30,7 +30,7 @@ pub fn section(s: &ShadowStudy) -> String {
                 if let Some(row) = s.row(field, light, m) {
                     table += &format!(
                         "<tr><td>{field}</td><td>{light}°</td><td><b>{}</b></td><td>{:.1} %</td><td>{:.4}</td></tr>\n",
-                        super::report::escape(m.name()),
+                        super::escape(m.name()),
                         100.0 * row.agreement,
                         row.flip
                     );
