@@ -7,47 +7,18 @@
 //! `crate::args`), check a value, load a file or build a scene (all
 //! `bumpmap::options`'s), or draw (`bumpmap::Renderer`).
 
-use std::path::PathBuf;
-
 use bumpmap::options::SceneOptions;
-use bumpmap::{SceneSpec, TechniqueOptions};
 
 use crate::args::SceneSetup;
 use crate::error::CliError;
-use bumpmap_words::setup::{note_line, setup_err};
 
 pub use bumpmap::options::Given;
-
-/// What the options describe.
-pub struct Setup {
-    /// The scene, with the user's assets in it.
-    pub spec: SceneSpec,
-    /// The options of `--technique`'s family (and every other family's, at the values the
-    /// options give).
-    pub options: TechniqueOptions,
-    /// Every file read: no output may replace one.
-    pub inputs: Vec<PathBuf>,
-    /// What the assets brought and what they left out, a line each for stderr (a warning's
-    /// line starts `warning: `).
-    pub notes: Vec<String>,
-}
+pub use bumpmap_view::{Setup, set_up_options};
 
 /// Reads the options: checks their ranges, loads the files they name and builds the scene
 /// description, the technique and its options.
 pub fn setup(s: &SceneSetup) -> Result<Setup, CliError> {
     set_up_options(&s.0.options, &Given::default())
-}
-
-/// Sets `options` up, with the inputs `given` in memory in place of their files; what the
-/// library refuses, in the flags' words.
-pub fn set_up_options(options: &SceneOptions, given: &Given) -> Result<Setup, CliError> {
-    let set_up = options.set_up_given(given).map_err(setup_err)?;
-    Ok(Setup {
-        spec: set_up.spec,
-        options: set_up.options,
-        inputs: set_up.inputs,
-        notes: set_up.notes.iter().map(note_line).collect(),
-    })
 }
 
 /// The library's options as the flags give them (the table read them: `crate::args::SceneSetup`).
@@ -120,7 +91,7 @@ mod tests {
             "--filter",
             "nearest",
         ]));
-        assert_eq!(o.scene, SceneChoice::Mesh(PathBuf::from("m.obj")));
+        assert_eq!(o.scene, SceneChoice::Mesh(std::path::PathBuf::from("m.obj")));
         assert_eq!(o.decal, Some(DecalChoice::None));
         assert_eq!(o.material.gloss, GlossChoice::Bricks);
         assert_eq!(o.technique.self_shadow, SelfShadow::Off);

@@ -394,7 +394,7 @@ fn orbit(renderer: &mut Renderer, out: &Path) -> Result<String, CliError> {
     const FRAMES: usize = 30;
     let spec = SceneSpec::new(SceneKind::Torus);
     let mut prepared = Prepared::new(&spec, TechniqueName::Kilgard, &TechniqueOptions::default()).map_err(lib_err)?;
-    let frames = crate::view::record::orbit(renderer, &mut prepared, SIDE, SIDE, FRAMES, || {})?;
+    let frames = bumpmap_view::record::orbit(renderer, &mut prepared, SIDE, SIDE, FRAMES, || {})?;
     let mut set = bumpmap_io::atomic::FileSet::new(&[]);
     bumpmap_io::image_file::save_apng_into(&mut set, &out.join("orbit.png"), SIDE, SIDE, &frames, 100)?;
     set.commit()?;

@@ -2,18 +2,23 @@
 
 use std::sync::Arc;
 
-use clap::Parser;
+use bumpmap::frame::FrameRequest;
+use bumpmap::option_table::{SCENE, find};
 use glam::Vec3;
 
 use super::*;
 
+/// The viewer on the scene options `--flag value` pairs give (through `render`'s option table,
+/// as `bumpmap view` reads them), a coarse torus by default.
 fn viewer(extra: &[&str]) -> Viewer {
-    let mut words = vec!["bumpmap", "view", "--backend", "cpu", "--tessellation", "16,8"];
+    let mut words = vec!["--tessellation", "16,8"];
     words.extend_from_slice(extra);
-    let crate::args::Command::View(args) = crate::args::Cli::try_parse_from(words).unwrap().command else {
-        unreachable!("parsed as view")
-    };
-    Viewer::new(crate::setup::scene_options(&args.setup)).unwrap()
+    let mut request = FrameRequest::default();
+    for pair in words.chunks(2) {
+        let row = find(SCENE, pair[0].trim_start_matches("--")).expect("an option of the scene");
+        row.set(&mut request, row.parse_text(pair[1]).expect("a value")).expect("sets");
+    }
+    Viewer::new(request.options).unwrap()
 }
 
 fn normal_texels(v: &Viewer) -> Vec<[u8; 4]> {

@@ -25,9 +25,9 @@ use winit::window::{Window, WindowId};
 use super::keys::Action;
 use super::overlay::{self, Corner};
 use super::state::{Effect, Viewer};
-use crate::args::ViewArgs;
-use crate::error::CliError;
+use crate::Run;
 use bumpmap::options::SceneOptions;
+use bumpmap_words::Error;
 use bumpmap_words::frame::lib_err;
 
 /// The seconds of the light's orbit each scripted frame advances: the same pictures on every
@@ -35,31 +35,31 @@ use bumpmap_words::frame::lib_err;
 const SCRIPTED_FRAME_SECONDS: f32 = 1.0 / 30.0;
 
 /// Opens the window and runs until it is closed (or the script ends).
-pub fn run(args: &ViewArgs, options: SceneOptions, backend: BackendChoice, inputs: &[&Path]) -> Result<(), CliError> {
+pub fn run(run: &Run, options: SceneOptions, backend: BackendChoice, inputs: &[&Path]) -> Result<(), Error> {
     ensure_display()?;
     let viewer = Viewer::new(options)?;
     let reference_only = viewer.technique().is_reference();
     let renderer = if reference_only && backend == bumpmap::BackendChoice::Auto {
         Renderer::new(BackendChoice::Cpu).map_err(lib_err)?
     } else {
-        crate::render::renderer(backend)?
+        crate::renderer(backend)?
     };
     let event_loop = EventLoop::new().map_err(|e| no_display(&e.to_string()))?;
-    let keys = super::scripted_keys(args);
-    let frames = args
+    let keys = run.scripted_keys();
+    let frames = run
         .frames
         .map(|f| f as usize)
-        .or_else(|| (args.keys.is_some() || args.screenshot.is_some()).then_some(keys.len() + 1));
+        .or_else(|| (run.keys.is_some() || run.screenshot.is_some()).then_some(keys.len() + 1));
     let mut app = App {
         viewer,
         renderer,
-        size: args.frame_size(),
+        size: run.size,
         window: None,
         presenter: None,
         last: None,
         drawn: None,
         frame: 0,
-        script: Script { frames, keys, screenshot: args.screenshot.clone() },
+        script: Script { frames, keys, screenshot: run.screenshot.clone() },
         inputs: inputs.iter().map(|p| p.to_path_buf()).collect(),
         fps: Fps::default(),
         cursor: None,
@@ -67,12 +67,12 @@ pub fn run(args: &ViewArgs, options: SceneOptions, backend: BackendChoice, input
         timing: Timing::default(),
         result: Ok(()),
     };
-    event_loop.run_app(&mut app).map_err(|e| CliError::Render(format!("the window's event loop failed: {e}")))?;
+    event_loop.run_app(&mut app).map_err(|e| Error::Render(format!("the window's event loop failed: {e}")))?;
     app.result
 }
 
 /// Refuses to start without a display, saying what to do instead.
-fn ensure_display() -> Result<(), CliError> {
+fn ensure_display() -> Result<(), Error> {
     let set = |v: &str| std::env::var_os(v).is_some_and(|s| !s.is_empty());
     if set("DISPLAY") || set("WAYLAND_DISPLAY") {
         return Ok(());
@@ -80,8 +80,8 @@ fn ensure_display() -> Result<(), CliError> {
     Err(no_display("neither DISPLAY nor WAYLAND_DISPLAY is set"))
 }
 
-fn no_display(why: &str) -> CliError {
-    CliError::NoDevice(format!(
+fn no_display(why: &str) -> Error {
+    Error::NoDevice(format!(
         "no display to open a window on ({why}). Run it in a desktop session; on a server, under \
          xvfb-run (Debian: apt-get install xvfb xauth); or write an animated PNG without a window: \
          bumpmap view --record orbit.png"
@@ -135,7 +135,7 @@ enum Presenter {
 
 /// A presenter for `renderer` on `window`: the GPU's surface where it has one, else
 /// softbuffer, with the reason the GPU's could not be had.
-fn presenter(renderer: &Renderer, window: &Arc<Window>) -> Result<(Presenter, Option<String>), CliError> {
+fn presenter(renderer: &Renderer, window: &Arc<Window>) -> Result<(Presenter, Option<String>), Error> {
     let size = window.inner_size();
     let (w, h) = (size.width.max(1) as usize, size.height.max(1) as usize);
     let mut note = None;
@@ -170,7 +170,7 @@ struct App {
     /// A scripted run's timings: when the first frame was shown, and the key pressed last with
     /// when, until the frame after it is shown.
     timing: Timing,
-    result: Result<(), CliError>,
+    result: Result<(), Error>,
 }
 
 /// What a scripted run measures, printed on stderr: the frame rate after the first frame
@@ -183,7 +183,7 @@ struct Timing {
 }
 
 impl App {
-    fn fail(&mut self, event_loop: &ActiveEventLoop, e: CliError) {
+    fn fail(&mut self, event_loop: &ActiveEventLoop, e: Error) {
         self.result = Err(e);
         event_loop.exit();
     }
@@ -236,7 +236,7 @@ impl App {
             }
         }
         if let Some(m) = &self.viewer.message {
-            eprintln!("{}", m);
+            say!("{}", m);
         }
         self.redraw();
     }
@@ -249,9 +249,9 @@ impl App {
 
     /// Writes the last frame shown to `path`, or to the first free `bumpmap-view-NNN.png` here
     /// (a frame shown on the GPU's surface is drawn again and read back for it).
-    fn screenshot(&mut self, path: Option<&Path>) -> Result<PathBuf, CliError> {
+    fn screenshot(&mut self, path: Option<&Path>) -> Result<PathBuf, Error> {
         let Some(shown) = self.drawn.take() else {
-            return Err(CliError::Render("no frame has been drawn yet".into()));
+            return Err(Error::Render("no frame has been drawn yet".into()));
         };
         let image = match shown {
             Shown::Image(image) => image,
@@ -266,17 +266,17 @@ impl App {
         written
     }
 
-    fn write_png(&self, path: Option<&Path>, image: &Rgba8Image) -> Result<PathBuf, CliError> {
+    fn write_png(&self, path: Option<&Path>, image: &Rgba8Image) -> Result<PathBuf, Error> {
         let path = match path {
             Some(p) => p.to_path_buf(),
             None => (1..10_000)
                 .map(|n| PathBuf::from(format!("bumpmap-view-{n:03}.png")))
                 .find(|p| !p.exists())
-                .ok_or_else(|| CliError::Render("bumpmap-view-001..9999.png all exist here".into()))?,
+                .ok_or_else(|| Error::Render("bumpmap-view-001..9999.png all exist here".into()))?,
         };
         let inputs: Vec<&Path> = self.inputs.iter().chain(self.viewer.inputs()).map(PathBuf::as_path).collect();
         let mut set = FileSet::new(&inputs);
-        let rgb = crate::render::rgb(image);
+        let rgb = crate::rgb(image);
         save_png_into(&mut set, &path, image.width, image.height, PngLayout::Rgb8, &rgb)?;
         set.commit()?;
         Ok(path)
@@ -310,7 +310,7 @@ impl App {
                 Ok(()) => self.drawn = Some(Shown::Overlay(layer)),
                 // The device or the window failed: nothing more can be shown.
                 Err(e @ bumpmap::Error::Gpu(_)) => {
-                    return self.fail(event_loop, CliError::Render(format!("showing a frame in the window: {e}")));
+                    return self.fail(event_loop, Error::Render(format!("showing a frame in the window: {e}")));
                 }
                 // The scene: say so and keep the window.
                 Err(e) => self.viewer.message = Some(lib_err(e).to_string()),
@@ -332,7 +332,7 @@ impl App {
             };
             image.overlay(&layer);
             if let Err(e) = self.present_soft(w, h, &image) {
-                return self.fail(event_loop, CliError::Render(format!("showing a frame in the window: {e}")));
+                return self.fail(event_loop, Error::Render(format!("showing a frame in the window: {e}")));
             }
             self.drawn = Some(Shown::Image(image));
         }
@@ -388,7 +388,7 @@ impl App {
         let Some(frames) = self.script.frames else { return };
         let now = Instant::now();
         if let Some((key, at)) = self.timing.key.take() {
-            eprintln!("{}: the next frame after {:.1} ms", key.name(), now.duration_since(at).as_secs_f64() * 1e3);
+            say!("{}: the next frame after {:.1} ms", key.name(), now.duration_since(at).as_secs_f64() * 1e3);
         }
         let first = *self.timing.first.get_or_insert(now);
         if self.frame >= frames {
@@ -398,7 +398,7 @@ impl App {
                     Some(Shown::Image(i) | Shown::Overlay(i)) => (i.width, i.height),
                     None => (0, 0),
                 };
-                eprintln!(
+                say!(
                     "{} frames of {w}x{h} in {seconds:.2} s after the first: {:.1} frames/s ({} on {})",
                     frames - 1,
                     (frames - 1) as f64 / seconds,
@@ -408,7 +408,7 @@ impl App {
             }
             if let Some(path) = self.script.screenshot.clone() {
                 match self.screenshot(Some(&path)) {
-                    Ok(p) => eprintln!("wrote {}", p.display()),
+                    Ok(p) => say!("wrote {}", p.display()),
                     Err(e) => return self.fail(event_loop, e),
                 }
             }
@@ -437,7 +437,7 @@ impl ApplicationHandler for App {
         match presenter(&self.renderer, &window) {
             Ok((p, note)) => {
                 if let Some(note) = note {
-                    eprintln!("{note}");
+                    say!("{note}");
                     self.viewer.message = Some(note);
                 }
                 self.presenter = Some(p);
@@ -491,9 +491,9 @@ impl ApplicationHandler for App {
             }
             WindowEvent::DroppedFile(path) => {
                 match self.viewer.load(&path) {
-                    Ok(note) => eprintln!("{note}"),
+                    Ok(note) => say!("{note}"),
                     Err(e) => {
-                        eprintln!("{e}");
+                        say!("{e}");
                         self.viewer.message = Some(e);
                     }
                 }

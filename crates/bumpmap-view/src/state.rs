@@ -1,7 +1,7 @@
 //! The viewer's model, with no window: what the user has chosen (technique, scene, the passes
 //! and options toggled, bump scale, shininess, where the camera and light are), how each
-//! [`Action`] changes it, and the [`Prepared`] scene it makes. The window (`super::window`)
-//! and `--record` (`super::record`) only draw what this holds, so every key can be tested here
+//! [`Action`] changes it, and the [`Prepared`] scene it makes. The window (`window`)
+//! and `--record` (`crate::record`) only draw what this holds, so every key can be tested here
 //! without a display.
 //!
 //! A change that cannot be drawn (a technique that cannot draw the scene, a file that cannot be
@@ -11,9 +11,9 @@
 //! them where a key or a dropped file asks; `state/prepare.rs` makes the scene and technique a
 //! set of [`Choices`] describes.
 
-// Built without the window (the `viewer` feature off: the Python module), only `--record` uses
+// Built without the window (the `window` feature off), only the recording uses
 // the model, and what only the window reads goes unused.
-#![cfg_attr(not(feature = "viewer"), allow(dead_code))]
+#![cfg_attr(not(feature = "window"), allow(dead_code))]
 
 use std::path::{Path, PathBuf};
 
@@ -28,8 +28,8 @@ use bumpmap_io::HeightSource;
 
 use super::keys::Action;
 
-use crate::error::CliError;
 use crate::setup::{Setup, set_up_options};
+use bumpmap_words::Error;
 
 mod choices;
 mod prepare;
@@ -80,10 +80,10 @@ fn scenes_with(kind: &SceneKind) -> Vec<SceneKind> {
 
 impl Viewer {
     /// The viewer on what `options` describe (files loaded, technique prepared).
-    pub fn new(options: SceneOptions) -> Result<Self, CliError> {
+    pub fn new(options: SceneOptions) -> Result<Self, Error> {
         let base = set_up_options(&options, &Given::default())?;
         for note in &base.notes {
-            eprintln!("{note}");
+            say!("{note}");
         }
         let name = options.technique.technique;
         let choices = Choices {

@@ -1,30 +1,11 @@
-//! `bumpmap view`: a window on a scene with the light orbiting, keys that switch technique,
-//! passes and options, the mouse moving camera and light, files dropped on it loaded in place;
-//! and, with no window at all, `--record`: an animated PNG of one orbit.
-//!
-//! - `keys`: every key, its `--keys` name and its help line, in one table;
-//! - `state`: the viewer's model (what is chosen, where things are, the prepared scene), with no
-//!   window, so every key is tested without a display;
-//! - `files`: what a file given or dropped is taken for;
-//! - `overlay`: text and wireframe drawn over a frame;
-//! - `record`: `--record`;
-//! - `window`: winit and softbuffer.
-//!
-//! What this module does not do: draw (the front door's renderer does, on either backend), or
-//! know a technique (the catalogue does; `t` walks it).
-
-mod files;
-mod keys;
-#[cfg(feature = "viewer")]
-mod overlay;
-pub(crate) mod record;
-mod state;
-#[cfg(feature = "viewer")]
-mod window;
+//! `bumpmap view`: its flags made into the viewer's [`bumpmap_view::Run`] and the scene's
+//! options (a FILE put where it belongs), the outputs checked, then the window or the
+//! recording, both `bumpmap_view`'s.
 
 use std::path::{Path, PathBuf};
 
-pub use keys::Action;
+pub use bumpmap_view::Action;
+use bumpmap_view::{Run, files, keys};
 
 use bumpmap::options::SceneChoice;
 use bumpmap_io::HeightSource;
@@ -67,10 +48,17 @@ pub fn run(args: &ViewArgs) -> Result<(), CliError> {
             keys.0.len()
         )));
     }
+    let run = Run {
+        size: args.frame_size(),
+        frames: args.frames,
+        keys: args.keys.as_ref().map(|k| k.0.clone()),
+        screenshot: args.screenshot.clone(),
+        frame_ms: args.frame_ms,
+    };
     match &args.record {
-        Some(out) => record::run(args, options, backend, out, &inputs),
+        Some(out) => bumpmap_view::record::record(&run, options, backend, out, &inputs, &RecordBar::default()),
         #[cfg(feature = "viewer")]
-        None => window::run(args, options, backend, &inputs),
+        None => bumpmap_view::window::run(&run, options, backend, &inputs),
         #[cfg(not(feature = "viewer"))]
         None => Err(CliError::Usage(
             "this build of bumpmap has no window (built without the `viewer` feature); --record still works".into(),
@@ -140,7 +128,30 @@ run the window under xvfb-run (Debian: xvfb, xauth).",
     )
 }
 
-/// The keys `--keys` gives, none when it is not given.
-fn scripted_keys(args: &ViewArgs) -> Vec<Action> {
-    args.keys.as_ref().map(|k| k.0.clone()).unwrap_or_default()
+/// A recording's frames on a bar on stderr.
+#[derive(Default)]
+struct RecordBar(std::cell::OnceCell<indicatif::ProgressBar>);
+
+impl bumpmap_view::record::Progress for RecordBar {
+    fn start(&self, frames: usize, what: &str) {
+        let bar = indicatif::ProgressBar::new(frames as u64).with_style(
+            indicatif::ProgressStyle::with_template("{msg} [{bar:30}] {pos}/{len} frames, {eta} left")
+                .expect("a valid template")
+                .progress_chars("=> "),
+        );
+        bar.set_message(what.to_string());
+        let _ = self.0.set(bar);
+    }
+
+    fn frame(&self) {
+        if let Some(bar) = self.0.get() {
+            bar.inc(1);
+        }
+    }
+
+    fn finish(&self) {
+        if let Some(bar) = self.0.get() {
+            bar.finish_and_clear();
+        }
+    }
 }
