@@ -104,6 +104,7 @@ def test_wrong_values_name_the_keyword():
         (ValueError, r"render\(\): attenuation: 'fast' is not a number", dict(attenuation="fast")),
         (ValueError, r"y_convention is given only with normal_map", dict(y_convention="directx")),
         (ValueError, r"height_field and normal_map cannot both be given", dict(height_field="bricks", normal_map="n.png")),
+        (ValueError, r"render\(\): no_self_shadow and self_shadow cannot both be given", dict(no_self_shadow=True, self_shadow="step")),
         (ValueError, r"render\(\): size and width cannot both be given", dict(size=8, width=8, height=8)),
         (ValueError, r"render\(\): width is given only with height", dict(width=8)),
         (ValueError, r"render\(\): size: '0' is not a size in 1\.\.=16384 pixels", dict(size=0)),

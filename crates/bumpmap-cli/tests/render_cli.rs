@@ -93,6 +93,8 @@ fn bad_options_are_refused_with_clear_messages() {
         "cannot read",
     );
     refused(&["--scene", "teapot"], "unknown scene");
+    // Two options the library's table declares contradictory.
+    refused(&["--no-self-shadow", "--self-shadow", "step"], "cannot be used with");
     refused(&["--scene", "mesh:/no/such/file.obj"], "cannot read");
     refused(&["--eye", "1,1,1", "--target", "1,1,1"], "is at the point looked at");
     refused(&["--scene", "wall", "--eye", "0,0,0"], "is at the point looked at");

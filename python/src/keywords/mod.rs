@@ -272,8 +272,8 @@ impl Reader<'_> {
             Kind::Number => Value::Number(self.number(key, value)?),
             Kind::Whole { .. } => Value::Whole(self.count(key, value)?),
             Kind::Numbers(2) => Value::Numbers(self.numbers::<2>(key, value)?.to_vec()),
-            Kind::Numbers(3) => Value::Numbers(self.numbers::<3>(key, value)?.to_vec()),
-            Kind::Numbers(n) => unreachable!("no option takes {n} numbers"),
+            // Every other count the tables use is three (a vector).
+            Kind::Numbers(_) => Value::Numbers(self.numbers::<3>(key, value)?.to_vec()),
             Kind::Word(choices) => {
                 let word: String =
                     value.cast::<PyString>().map_err(|_| self.type_error(key, "a string", value))?.extract()?;

@@ -91,19 +91,6 @@ pub fn parse_side(s: &str) -> Result<usize, String> {
         .ok_or_else(|| format!("'{s}' is not a size in 1..={MAX_SIDE} pixels"))
 }
 
-/// A value of `T`, or `None` where the option says `auto`. (An alias, so that clap's derive takes
-/// the whole `Option` as the option's value rather than make the option optional.)
-pub type OrAuto<T> = Option<T>;
-
-/// [`choice`] with `auto` (`None`: the tool decides, as `auto_help` says) listed first.
-pub fn choice_or_auto<T: Named>(auto_help: &'static str) -> impl TypedValueParser<Value = OrAuto<T>> {
-    let auto = PossibleValue::new(bumpmap_math::named::AUTO).help(auto_help);
-    let values = std::iter::once(auto)
-        .chain(T::ALL.iter().map(|v| PossibleValue::new(v.name()).help(v.help()).aliases(v.aliases().iter().copied())));
-    PossibleValuesParser::new(values)
-        .map(|word| bumpmap_math::named::parse_or_auto::<T>(&word).expect("clap accepts only auto and the set's names"))
-}
-
 /// The value parser of a closed set the library names ([`Named`]): its names, aliases and
 /// descriptions are what `--help` lists and what the option takes.
 pub fn choice<T: Named>() -> impl TypedValueParser<Value = T> {
