@@ -272,6 +272,17 @@ fn option_table(function: &str) -> PyResult<Vec<options::OptionRow>> {
         .ok_or_else(|| PyValueError::new_err(format!("no function {function} takes options")))
 }
 
+/// Each option `function` takes with its kind (`flag`, `number`, `whole`, `numbers:N`, `word`,
+/// `text`, `path`, `lights`, `attenuation`, `list`): what the stubs' types are made from.
+#[pyfunction]
+fn option_kinds(function: &str) -> PyResult<Vec<(String, String)>> {
+    options::FUNCTIONS
+        .contains(&function)
+        .then(|| options::kinds(function))
+        .flatten()
+        .ok_or_else(|| PyValueError::new_err(format!("no function {function} takes options")))
+}
+
 /// Every keyword `function` reads.
 #[pyfunction(name = "keywords")]
 fn keyword_names(function: &str) -> PyResult<Vec<String>> {
@@ -322,6 +333,7 @@ fn _bumpmap(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(render, m)?)?;
     m.add_function(wrap_pyfunction!(compare::compare, m)?)?;
     m.add_function(wrap_pyfunction!(option_table, m)?)?;
+    m.add_function(wrap_pyfunction!(option_kinds, m)?)?;
     m.add_function(wrap_pyfunction!(techniques, m)?)?;
     m.add_function(wrap_pyfunction!(keyword_names, m)?)?;
     m.add_function(wrap_pyfunction!(inspect, m)?)?;

@@ -32,20 +32,48 @@ pub const FUNCTIONS: [&str; 12] = [
 /// Each option `function` takes, in the order its table lists them; `None` for a function that
 /// takes none.
 pub fn describe(function: &str) -> Option<Vec<OptionRow>> {
-    fn rows<R: Default>(table: &[Opt<R>]) -> Vec<OptionRow> {
-        table.iter().map(row_of).collect()
+    Some(rows(function)?.into_iter().map(|(row, _)| row).collect())
+}
+
+/// Each option `function` takes with its kind as the stub generator reads it
+/// (`scripts/python_stub_literals.py`): `flag`, `number`, `whole`, `numbers:N`, `word`, `text`,
+/// `path`, `lights`, `attenuation` or `list`.
+pub fn kinds(function: &str) -> Option<Vec<(String, String)>> {
+    Some(rows(function)?.into_iter().map(|(row, kind)| (row.0, kind_name(&kind))).collect())
+}
+
+/// [`describe`]'s rows with each option's kind.
+fn rows(function: &str) -> Option<Vec<(OptionRow, Kind)>> {
+    fn of<R: Default>(table: &[Opt<R>]) -> Vec<(OptionRow, Kind)> {
+        table.iter().map(|o| (row_of(o), o.kind())).collect()
     }
     let taken = crate::keywords::names(function)?;
     let all = match function {
-        "render" => option_table::render().map(row_of).collect(),
-        "compare" => rows(bumpmap_compare::option_table::COMPARE),
-        "tangents" => rows(option_table::TANGENTS),
-        "height_from_normals" => rows(option_table::HEIGHTS),
-        "read_height_field" => rows(option_table::CHANNEL),
-        "write_texture" => rows(option_table::FORMAT),
-        _ => rows(option_table::MAPS),
+        "render" => option_table::render().map(|o| (row_of(o), o.kind())).collect(),
+        "compare" => of(bumpmap_compare::option_table::COMPARE),
+        "tangents" => of(option_table::TANGENTS),
+        "height_from_normals" => of(option_table::HEIGHTS),
+        "read_height_field" => of(option_table::CHANNEL),
+        "write_texture" => of(option_table::FORMAT),
+        _ => of(option_table::MAPS),
     };
-    Some(all.into_iter().filter(|row| taken.contains(&row.0)).collect())
+    Some(all.into_iter().filter(|(row, _)| taken.contains(&row.0)).collect())
+}
+
+/// A kind as one word for the stub generator.
+fn kind_name(kind: &Kind) -> String {
+    match kind {
+        Kind::Flag => "flag".into(),
+        Kind::Number => "number".into(),
+        Kind::Whole { .. } => "whole".into(),
+        Kind::Numbers(n) => format!("numbers:{n}"),
+        Kind::Word(_) => "word".into(),
+        Kind::Text => "text".into(),
+        Kind::Path => "path".into(),
+        Kind::Lights => "lights".into(),
+        Kind::Attenuation => "attenuation".into(),
+        Kind::List(_) => "list".into(),
+    }
 }
 
 /// A row of the library's option table as the docstrings show it: the help in keywords, each

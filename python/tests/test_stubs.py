@@ -59,23 +59,40 @@ def test_stub_defaults_are_the_cli_defaults():
 REPO = Path(__file__).resolve().parents[2]
 
 
-def literals_script():
-    spec = importlib.util.spec_from_file_location("python_stub_literals", REPO / "scripts" / "python_stub_literals.py")
+def stubs_script():
+    spec = importlib.util.spec_from_file_location("python_stubs", REPO / "scripts" / "python_stubs.py")
     module = importlib.util.module_from_spec(spec)
     spec.loader.exec_module(module)
     return module
 
 
-def test_the_closed_sets_are_the_native_modules():
-    script = literals_script()
+def test_the_generated_parts_are_the_native_modules():
+    script = stubs_script()
     made = script.block()
     assert "_Technique = Literal[" in made and '"height-exact"' in made
-    assert script.current(STUB.read_text()) == made, "run scripts/python_stub_literals.py --write"
+    text = STUB.read_text()
+    assert script.current(text) == made, "run scripts/python_stubs.py --write"
+    # Every function's options are generated, none written by hand.
+    for name in FUNCTIONS:
+        assert f"# BEGIN options of {name}\n" in text, f"{name}: its options are not generated"
+    assert script.made(text) == text, "run scripts/python_stubs.py --write"
+
+
+def test_a_new_option_reaches_the_stub_through_the_generator(monkeypatch):
+    # The generator writes what the native module reports: an option it reports is in the stub.
+    script = stubs_script()
+    real_options, real_kinds = _bumpmap.options, _bumpmap.option_kinds
+    extra = ("exposure", "1.5", "A brand-new option.", [], False)
+    monkeypatch.setattr(script._bumpmap, "options", lambda f: real_options(f) + ([extra] if f == "render" else []))
+    monkeypatch.setattr(script._bumpmap, "option_kinds",
+                        lambda f: real_kinds(f) + ([("exposure", "number")] if f == "render" else []))
+    made = script.made(STUB.read_text())
+    assert "    exposure: float = 1.5,\n    # END options of render" in made
 
 
 def test_every_option_with_a_closed_set_is_typed_by_it():
     functions = stub_functions()
-    for (function, option), (alias, _choices) in literals_script().aliases().items():
+    for (function, option), (alias, _choices) in stubs_script().aliases().items():
         arg = next(a for a in functions[function].args.kwonlyargs if a.arg == option)
         assert alias in ast.unparse(arg.annotation), f"{function}({option}=): {ast.unparse(arg.annotation)}, not {alias}"
 

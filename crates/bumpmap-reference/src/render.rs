@@ -121,7 +121,7 @@ pub fn render(
     }
 
     let tiles = render_tiles(width, height, progress, |index, (x0, y0, tw, th)| {
-        let hits = resolve_tile(&triangles, &bins[index], (x0, y0, tw, th), spp, (width, height));
+        let hits = resolve_tile(&triangles, &bins[index], (x0, y0, tw, th), (spp, options.seed), (width, height));
         hits.chunks(spp)
             .map(|samples| {
                 let sum: Vec3 =

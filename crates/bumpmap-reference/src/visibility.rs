@@ -15,25 +15,27 @@ use glam::{Mat4, Vec2, Vec3};
 pub const TILE: usize = 16;
 
 /// Offset in [0, 1)² of sample `k` of `spp` of pixel (x, y): the pixel's centre for a single
-/// sample (where a rasterizer samples), else the sequence below.
+/// sample (where a rasterizer samples), else the sequence below, rotated per pixel by a hash of
+/// the pixel and `seed` (seed 0 is the pattern the reference has always used).
 #[inline]
-pub fn sample_offset(k: usize, spp: usize, x: usize, y: usize) -> Vec2 {
+pub fn sample_offset(k: usize, spp: usize, x: usize, y: usize, seed: u32) -> Vec2 {
     if spp == 1 {
         return Vec2::splat(0.5);
     }
     // R2: the plastic number's powers; a 2D sequence with good stratification for any K.
     const A1: f64 = 0.754_877_666_246_692_8;
     const A2: f64 = 0.569_840_290_998_053_3;
-    let h = hash(x as u32, y as u32);
+    let h = hash(x as u32, y as u32, seed);
     let (r1, r2) = ((h & 0xffff) as f64 / 65536.0, (h >> 16) as f64 / 65536.0);
     let fx = (0.5 + A1 * k as f64 + r1).fract();
     let fy = (0.5 + A2 * k as f64 + r2).fract();
     Vec2::new(fx as f32, fy as f32)
 }
 
-/// A 32-bit integer hash of a pixel.
-fn hash(x: u32, y: u32) -> u32 {
-    bumpmap_math::hash::hash32(&[x, y])
+/// A 32-bit integer hash of a pixel and a seed.
+fn hash(x: u32, y: u32, seed: u32) -> u32 {
+    use bumpmap_math::hash::hash32;
+    if seed == 0 { hash32(&[x, y]) } else { hash32(&[x, y, seed]) }
 }
 
 /// One triangle in screen space: pixel coordinates with row 0 at the top, `z/w`, `1/w`.
@@ -123,12 +125,13 @@ pub struct Hit {
 }
 
 /// The nearest hit of every sample of the tile at pixel (`x0`, `y0`) (`tw`×`th` pixels, `spp`
-/// samples each, pixel-major), among the `candidates` triangles of `triangles`.
+/// samples each of the pattern `seed` picks, pixel-major), among the `candidates` triangles of
+/// `triangles`.
 pub fn resolve_tile(
     triangles: &[ScreenTriangle],
     candidates: &[u32],
     (x0, y0, tw, th): (usize, usize, usize, usize),
-    spp: usize,
+    (spp, seed): (usize, u32),
     (width, height): (usize, usize),
 ) -> Vec<Option<Hit>> {
     let mut depth = vec![f32::INFINITY; tw * th * spp];
@@ -140,7 +143,7 @@ pub fn resolve_tile(
             for x in bx0.max(x0)..bx1.min(x0 + tw) {
                 let base = ((y - y0) * tw + (x - x0)) * spp;
                 for k in 0..spp {
-                    let q = Vec2::new(x as f32, y as f32) + sample_offset(k, spp, x, y);
+                    let q = Vec2::new(x as f32, y as f32) + sample_offset(k, spp, x, y, seed);
                     if let Some((z, weights)) = tri.hit(q)
                         && z < depth[base + k]
                     {
@@ -161,17 +164,18 @@ mod tests {
     #[test]
     fn samples_fill_the_pixel_evenly() {
         // 64 samples: every 4×4 stratum of the pixel gets between 2 and 6 of them.
-        for (x, y) in [(0, 0), (17, 3), (400, 311)] {
+        for (x, y, seed) in [(0, 0, 0), (17, 3, 0), (400, 311, 0), (17, 3, 9)] {
             let mut strata = [0; 16];
             for k in 0..64 {
-                let o = sample_offset(k, 64, x, y);
+                let o = sample_offset(k, 64, x, y, seed);
                 assert!((0.0..1.0).contains(&o.x) && (0.0..1.0).contains(&o.y));
                 strata[(o.y * 4.0) as usize * 4 + (o.x * 4.0) as usize] += 1;
             }
             assert!(strata.iter().all(|&n| (2..=6).contains(&n)), "{strata:?}");
         }
-        assert_ne!(sample_offset(0, 4, 1, 0), sample_offset(0, 4, 0, 1), "rotated per pixel");
-        assert_eq!(sample_offset(0, 1, 7, 9), Vec2::splat(0.5), "one sample: the centre");
+        assert_ne!(sample_offset(0, 4, 1, 0, 0), sample_offset(0, 4, 0, 1, 0), "rotated per pixel");
+        assert_ne!(sample_offset(0, 4, 1, 0, 0), sample_offset(0, 4, 1, 0, 1), "rotated per seed");
+        assert_eq!(sample_offset(0, 1, 7, 9, 3), Vec2::splat(0.5), "one sample: the centre, whatever the seed");
     }
 
     #[test]
@@ -182,7 +186,7 @@ mod tests {
         let near = ScreenTriangle::project(&clip, tri(1.0), (32, 32), 1, [0, 1, 2]).unwrap();
         let tris = [far, near];
         for order in [[0u32, 1], [1, 0]] {
-            let hits = resolve_tile(&tris, &order, (8, 8, 16, 16), 4, (32, 32));
+            let hits = resolve_tile(&tris, &order, (8, 8, 16, 16), (4, 0), (32, 32));
             let centre = hits[((16 - 8) * 16 + (16 - 8)) * 4].expect("the centre is covered");
             assert_eq!(centre.triangle, 1, "order {order:?}");
             assert!((centre.weights.iter().sum::<f32>() - 1.0).abs() < 1e-5);

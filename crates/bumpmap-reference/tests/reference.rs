@@ -27,6 +27,27 @@ fn the_error_between_k_and_4k_samples_falls_as_k_grows() {
 }
 
 #[test]
+fn another_seed_is_an_independent_estimate_of_the_same_image() {
+    let scene = build(&SceneKind::Torus, &SceneParams::default()).unwrap();
+    let at = |spp, seed| {
+        let options = ReferenceOptions { samples_per_pixel: spp, seed, ..Default::default() };
+        render(&scene, 48, 48, &options, &|_, _| {}).unwrap()
+    };
+    let (zero, one, two) = (at(4, 0), at(4, 1), at(4, 2));
+    assert_eq!(zero, at(4, 0), "a seed is the same image every run");
+    assert_ne!(zero, one, "another seed, other samples");
+    // Both estimate the same image: each as near the 256-sample one as seed 0's is, within a
+    // third (the silhouette pixels are the noisy ones and differ from seed to seed).
+    let truth = at(256, 7);
+    let (e0, e1, e2) = (rmse(&zero, &truth), rmse(&one, &truth), rmse(&two, &truth));
+    assert!(e1 < 1.33 * e0 && e2 < 1.33 * e0 && e0 < 1.33 * e1, "{e0} {e1} {e2}");
+    // Independent: two seeds differ by about as much as each differs from the truth (√2 as much
+    // for independent errors), not by next to nothing.
+    let between = rmse(&one, &two);
+    assert!(between > 0.8 * e1, "{between} against {e1}");
+}
+
+#[test]
 fn progress_reaches_every_tile_once() {
     let scene = build(&SceneKind::Wall, &SceneParams::default()).unwrap();
     let calls = std::sync::Mutex::new(Vec::new());

@@ -16,6 +16,9 @@ pub const MAX_SAMPLES_PER_PIXEL: usize = 4096;
 pub struct ReferenceOptions {
     /// Samples per pixel, in 1..=[`MAX_SAMPLES_PER_PIXEL`].
     pub samples_per_pixel: usize,
+    /// Which sample pattern (each pixel's rotation of the sequence): another seed gives an
+    /// independent estimate of the same image; 0 is the default pattern.
+    pub seed: u32,
     /// The self-shadowing factor of Eq. 11.
     pub self_shadow: SelfShadow,
     /// The specular term's gating.
@@ -33,6 +36,7 @@ impl Default for ReferenceOptions {
     fn default() -> Self {
         Self {
             samples_per_pixel: 64,
+            seed: 0,
             self_shadow: SelfShadow::Ramp,
             specular_shadow: SpecularShadow::Kilgard,
             displaced: false,

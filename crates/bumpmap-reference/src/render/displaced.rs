@@ -125,7 +125,7 @@ pub fn render(
             for x in x0..x0 + tw {
                 let mut sum = Vec3::ZERO;
                 for k in 0..spp {
-                    let q = Vec2::new(x as f32, y as f32) + sample_offset(k, spp, x, y);
+                    let q = Vec2::new(x as f32, y as f32) + sample_offset(k, spp, x, y, options.seed);
                     let (origin, dir) = camera_ray(&clip_from_world, scene.camera.eye, (width, height), q.x, q.y);
                     if let Some(hit) = displaced.trace(origin, dir) {
                         sum += displaced.shade(&hit, options);

@@ -105,6 +105,7 @@ pub static SCENE: &[Opt<FrameRequest>] = &[
     Row::word("roughness-layout", MATERIAL, "Channels --roughness-map holds its roughness in, as `normalmap --roughness-layout` writes them", |r| &mut r.options.material.roughness_layout).requires(&["roughness-map"]),
     Row::word("technique", TECHNIQUE, "Any technique of the catalogue (below); one that cannot draw the scene says why", |r| &mut r.options.technique.technique),
     Row::new("spp", TECHNIQUE, "reference: samples per pixel (stratified); the image converges as it grows", |r| &mut r.options.technique.samples_per_pixel).range(1, MAX_SAMPLES_PER_PIXEL as u64),
+    Row::new("seed", TECHNIQUE, "reference: which sample pattern (each pixel's rotation of the stratified sequence; 0 is the usual one): another seed gives an independent image of the same scene, and two seeds' difference shows the noise left", |r| &mut r.options.technique.seed),
     Row::word("filter", TECHNIQUE, "Texture filtering of the normal map and decal", |r| &mut r.options.technique.filter),
     Row::with("no-self-shadow", TECHNIQUE, "Leave out Eq. 12's self-shadowing term (Figure 14, left)", Access::Custom {
         kind: || Kind::Flag,

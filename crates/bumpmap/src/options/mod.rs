@@ -344,6 +344,8 @@ pub struct TechniqueChoice {
     pub technique: TechniqueName,
     /// The reference's samples per pixel, 1 to 4096.
     pub samples_per_pixel: u32,
+    /// The reference's sample pattern (0 is the default one).
+    pub seed: u32,
     /// Texture filtering.
     pub filter: Filter,
     /// The self-shadowing factor (kilgard: the ramp or off).
@@ -370,6 +372,7 @@ impl Default for TechniqueChoice {
         TechniqueChoice {
             technique: TechniqueName::Kilgard,
             samples_per_pixel: 64,
+            seed: 0,
             filter: Filter::Trilinear,
             self_shadow: SelfShadow::Ramp,
             precision: Precision::Float,

@@ -249,6 +249,7 @@ pub(super) fn technique_options(o: &SceneOptions, notes: &mut Vec<SetupNote>) ->
         emboss: EmbossOptions { sampler, cube_size, ..Default::default() },
         reference: ReferenceOptions {
             samples_per_pixel: t.samples_per_pixel as usize,
+            seed: t.seed,
             self_shadow: t.self_shadow,
             specular_shadow: t.specular_shadow,
             ..Default::default()
