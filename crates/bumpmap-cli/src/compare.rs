@@ -46,7 +46,7 @@ pub fn measure_options(
     output: Option<&Path>,
     progress: &Progress,
 ) -> Result<(Results, Vec<PathBuf>), CliError> {
-    let shown = Shown { progress, steps: RefCell::new(None) };
+    let shown = Shown::new(progress);
     let bumps = options.height_field.to_string();
     bumpmap_compare::measure(options, &shown).map_err(|e| compare_err(e, Some(&bumps), output))
 }
@@ -66,10 +66,17 @@ pub fn compare_options(args: &CompareArgs) -> Result<CompareOptions, CliError> {
     Ok(args.options.0.clone())
 }
 
-/// `compare`'s steps on a bar (or told to a function), its notes on stderr.
-struct Shown<'a> {
+/// A library's steps (`compare`'s, the demo's) on a bar or hidden, its notes on stderr.
+pub struct Shown<'a> {
     progress: &'a Progress,
     steps: RefCell<Option<Steps>>,
+}
+
+impl<'a> Shown<'a> {
+    /// Steps shown as `progress` says.
+    pub fn new(progress: &'a Progress) -> Self {
+        Self { progress, steps: RefCell::new(None) }
+    }
 }
 
 impl bumpmap_compare::Progress for Shown<'_> {

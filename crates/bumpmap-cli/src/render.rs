@@ -9,9 +9,8 @@
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
-use bumpmap::{BackendChoice, Renderer, Rgba8Image};
-use bumpmap_io::atomic::{FileSet, ensure_not_input};
-use bumpmap_io::image_file::{PngLayout, save_png_into};
+use bumpmap::{BackendChoice, Renderer};
+use bumpmap_io::atomic::ensure_not_input;
 use bumpmap_words::frame::{frame_err, lib_err, note_fallback, say_frame_notes};
 
 use crate::args::RenderArgs;
@@ -108,22 +107,7 @@ pub fn renderer(arg: BackendChoice) -> Result<Renderer, CliError> {
     Ok(renderer)
 }
 
-/// Writes `out` and, for each pass image of the frame, `OUT.NAME.png` beside it, all or none,
-/// none of them replacing one of `inputs`; returns the paths written. The colour buffer's alpha
-/// (s_self, not coverage) is left out.
+/// Writes the frame and its pass images (`bumpmap::frame::write_frame`), all or none.
 pub fn write_frame(frame: &Frame, out: &Path, inputs: &[&Path]) -> Result<Vec<PathBuf>, CliError> {
-    // The set makes a missing folder, and takes it away again if anything fails.
-    let mut set = FileSet::new(inputs);
-    for (name, image) in &frame.snapshots {
-        let stem = out.file_stem().unwrap_or_default().to_string_lossy();
-        let path = out.with_file_name(format!("{stem}.{name}.png"));
-        save_png_into(&mut set, &path, image.width, image.height, PngLayout::Rgb8, &rgb(image))?;
-    }
-    save_png_into(&mut set, out, frame.image.width, frame.image.height, PngLayout::Rgb8, &rgb(&frame.image))?;
-    Ok(set.commit()?)
-}
-
-/// An image's RGB bytes without alpha.
-pub fn rgb(image: &Rgba8Image) -> Vec<u8> {
-    image.texels.iter().flat_map(|&[r, g, b, _]| [r, g, b]).collect()
+    Ok(bumpmap::frame::write_frame(frame, out, inputs)?)
 }

@@ -1,7 +1,8 @@
 //! What making maps from heights refused ([`MapError`]), a chain that could not be written
-//! ([`SaveError`]) and tangents that could not be made ([`MeshError`]), named by the flags that caused them.
+//! ([`SaveError`]), a set of maps that could not be written ([`OutputsError`]) and tangents that
+//! could not be made ([`MeshError`]), named by the flags that caused them.
 
-use bumpmap::maps::{MapError, SaveError};
+use bumpmap::maps::{MapError, Output, OutputsError, SaveError};
 use bumpmap_math::mesh::MeshError;
 use bumpmap_math::normalmap::{MAX_SCALE, NormalMapError};
 use bumpmap_math::{HeightMipsError, HorizonError};
@@ -30,6 +31,51 @@ pub fn map_error(e: MapError, name: &str) -> Error {
         | MapError::Horizons(HorizonError::OutOfMemory(e))
         | MapError::OutOfMemory(e) => Error::OutOfMemory(e),
         other => Error::Path { path: name.into(), reason: other.to_string() },
+    }
+}
+
+/// The flag that names `output`.
+pub fn output_flag(output: Output) -> &'static str {
+    match output {
+        Output::NormalMap => "-o",
+        Output::Roughness => "--roughness-out",
+        Output::Lean => "--lean-out",
+        Output::Heights => "--height-out",
+        Output::Horizons => "--horizon-out",
+        Output::AmbientOcclusion => "--ao-out",
+        Output::BentNormals => "--bent-normals-out",
+    }
+}
+
+/// A set of maps of `name`'s heights that could not be written, in the command line's words:
+/// two outputs on one file and a file that holds no floats are the flags' fault (exit status 2).
+pub fn outputs_error(e: OutputsError, name: &str) -> Error {
+    use Output::*;
+    match e {
+        OutputsError::Clash { output: Roughness, other: NormalMap, path } => {
+            Error::Usage(format!("--roughness-out {} is the normal map's own file", path.display()))
+        }
+        OutputsError::Clash { output: output @ (Lean | Heights), other: NormalMap | Roughness, path } => {
+            Error::Usage(format!("{}: {} is another output's file", output_flag(output), path.display()))
+        }
+        OutputsError::Clash { output: Lean, other: Heights, path } => {
+            Error::Usage(format!("--lean-out: {} is --height-out's file", path.display()))
+        }
+        OutputsError::Clash { output, other, path } => {
+            Error::Usage(format!("{}: {} is also {}'s file", output_flag(output), path.display(), output_flag(other)))
+        }
+        OutputsError::LeanNeedsFloats { path, extension } => Error::Usage(format!(
+            "--lean-out {}: the moments are floats, which .ktx2 or .dds hold (not .{extension})",
+            path.display()
+        )),
+        OutputsError::TooBig { width, height, source } => Error::Render(format!(
+            "{name}: {source} from its {width}x{height} heights, more than this process may use. Fewer outputs at \
+             once (--lean-out, --roughness-out, --height-out, --horizon-out, --ao-out, --bent-normals-out) \
+             or a smaller field need less"
+        )),
+        OutputsError::Map(e) => map_error(e, name),
+        OutputsError::Save(e) => save_error(e),
+        OutputsError::Io(e) => Error::Io(e),
     }
 }
 

@@ -15,9 +15,15 @@
 //! assert!(prepared.depth_notes.is_empty(), "no depth was asked for");
 //! ```
 //!
+//! [`write_frame`] writes a frame as `render -o` does (its own module, `files`).
+//!
 //! What this module does not do: open a device (the caller chooses the renderer and keeps it
-//! between frames), write files, or say anything: what a command would print comes back as
+//! between frames) or say anything: what a command would print comes back as
 //! data ([`DepthNote`], the set-up's notes, [`FrameError`]) for the command or a script to word.
+
+mod files;
+
+pub use files::{rgb, write_frame};
 
 use bumpmap_core::CoreError;
 use bumpmap_cpu::CpuError;

@@ -15,16 +15,25 @@
 //! assert!(heights.clamped.is_none(), "the preset's heights are in [0, 1]");
 //! ```
 //!
-//! [`write_chain`] writes a chain as `normalmap -o` does (PNG files, or one DDS or KTX2 file).
+//! [`write_chain`] writes a chain as `normalmap -o` does (PNG files, or one DDS or KTX2 file);
+//! [`write_cube_map`] a normalization cube map as `cubemap -o` does.
 //!
-//! What this module does not do: read files (`bumpmap_io`), write any but a chain, print (what a caller may
-//! want to say comes back as data: [`Clamped`]), or refuse a field too big for every output at
-//! once before any is made (each buffer is asked for fallibly; a command that makes several
-//! maps adds up their cost itself).
+//! [`MapOutputs`] is the whole set `normalmap` writes from one field — the files planned and
+//! checked against each other, the memory of every map together refused up front, glTF's ORM
+//! packing, all files or none — and [`FolderBatch`] a folder of fields into normal maps.
+//!
+//! What this module does not do: read height fields (`bumpmap_io`), or print (what a caller may
+//! want to say comes back as data: [`Clamped`], [`Written`], [`FolderBatch::skipped`]).
 
+mod cube;
 mod files;
+mod folder;
+mod outputs;
 
+pub use cube::write_cube_map;
 pub use files::{SaveError, check_container, write_chain, write_chain_into};
+pub use folder::{FolderBatch, FolderError};
+pub use outputs::{MapOutputs, Output, OutputsError, Written, lean_files};
 
 use bumpmap_math::buffer::OutOfMemory;
 use bumpmap_math::normalmap::{NormalMapError, normal_map_level0_texels};
@@ -110,6 +119,23 @@ pub enum Chain {
     Rgba8(MipChain),
     /// 16 bits a channel.
     Rgba16(MipChain<[u16; 4]>),
+}
+
+/// The normal map of `field` at the depth `format` stores (16 bits a channel for
+/// [`TextureFormat::Rgba16`](bumpmap_io::texture_file::TextureFormat), else 8): level 0, or
+/// every level down to 1×1 with `mips`, the smaller levels as `options.mip_mode` says.
+pub fn normal_map_as(
+    options: &MapOptions,
+    mips: bool,
+    format: bumpmap_io::texture_file::TextureFormat,
+    field: &HeightField,
+) -> Result<Chain, MapError> {
+    let (normals, mode) = (&options.normals, options.mip_mode);
+    Ok(if format == bumpmap_io::texture_file::TextureFormat::Rgba16 {
+        Chain::Rgba16(normal_chain(field, normals, mips, mode)?)
+    } else {
+        Chain::Rgba8(normal_chain(field, normals, mips, mode)?)
+    })
 }
 
 /// The normal map of `field`: level 0, or every level down to 1×1 with `mips`, at

@@ -2,7 +2,10 @@
 
 use std::path::PathBuf;
 
-use clap::{Args, ValueEnum};
+use bumpmap_demo::GpuImages;
+use clap::Args;
+
+use crate::args::choice;
 
 /// `bumpmap demo`.
 #[derive(Args, Debug)]
@@ -12,17 +15,6 @@ pub struct DemoArgs {
     pub output: PathBuf,
     /// Also render the figures on the GPU (wgpu); `auto` does when an adapter exists and says so
     /// when none does
-    #[arg(long, value_enum, default_value = "auto")]
-    pub gpu: DemoGpuArg,
-}
-
-/// Whether the demo draws on the GPU too.
-#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
-pub enum DemoGpuArg {
-    /// GPU images when an adapter exists
-    Auto,
-    /// GPU images, and an error when no adapter exists
-    Always,
-    /// CPU images only
-    Never,
+    #[arg(long, value_parser = choice::<GpuImages>(), default_value = "auto")]
+    pub gpu: GpuImages,
 }

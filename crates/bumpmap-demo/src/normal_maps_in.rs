@@ -9,7 +9,7 @@ use bumpmap::inspect::{inspect_map, read_file, read_map};
 use bumpmap_io::image_file::{PngLayout, save_png};
 use bumpmap_math::NormalMapOptions;
 
-use crate::error::CliError;
+use bumpmap_words::Error;
 
 /// The round-trip figure (the README shows it).
 pub const ROUND_TRIP_FIGURE: &str = "height_round_trip.png";
@@ -25,7 +25,7 @@ const ERROR_GAIN: f32 = 20.0;
 /// heights, the normal map, the heights `bumpmap height --scale 4` gets back (their mean moved
 /// onto the original's), and their difference ×20, all on the original's 0..1 mapping. Returns
 /// the index's lines.
-pub fn write(out: &Path, maps: &[&str], heights: &str, normals: &str) -> Result<String, CliError> {
+pub fn write(out: &Path, maps: &[&str], heights: &str, normals: &str) -> Result<String, Error> {
     let mut text = String::new();
     for name in maps {
         let path = out.join(name);
@@ -35,7 +35,7 @@ pub fn write(out: &Path, maps: &[&str], heights: &str, normals: &str) -> Result<
             text.push('\n');
         }
     }
-    crate::normalmap::write_text(&out.join(INSPECT_TEXT), &text)?;
+    crate::write_text(&out.join(INSPECT_TEXT), &text)?;
 
     let field = bumpmap_io::load_height_field(&out.join(heights), bumpmap_io::Channel::Luminance)?;
     let map = read_file(&out.join(normals)).map_err(bumpmap_words::frame::lib_err)?;
@@ -45,7 +45,7 @@ pub fn write(out: &Path, maps: &[&str], heights: &str, normals: &str) -> Result<
     // units they were made in, and both panels share the original's 0..1 mapping.
     let options = HeightOptions { scale: NormalMapOptions::default().scale, ..Default::default() };
     let back = heights_from_inspection(level0, &report.inspection, &options)
-        .map_err(|e| CliError::Render(format!("{normals}: {e}")))?;
+        .map_err(|e| Error::Render(format!("{normals}: {e}")))?;
     let original = field.to_f32();
     let (lo, hi) = original.iter().fold((f32::MAX, f32::MIN), |(l, h), &x| (l.min(x), h.max(x)));
     let mean = |v: &[f32]| v.iter().sum::<f32>() / v.len() as f32;
