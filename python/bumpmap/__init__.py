@@ -87,6 +87,7 @@ __all__ = [
     "write_texture",
     "read_texture",
     "tangents",
+    "bake",
     "render",
     "compare",
     "techniques",
@@ -337,6 +338,27 @@ def inspect(source):
     return _bumpmap.inspect(source)
 
 
+def bake(high, low, **options):
+    """A high-poly mesh's detail baked into a normal map over a low-poly mesh's UV layout, as
+    ``bumpmap bake HIGH LOW`` bakes it: each texel's rays start in front of LOW (``extrude``,
+    the cage) and go inward as far as ``max_distance`` behind it, along LOW's averaged normals
+    (``ray="explicit"``: its own); the first hit from the cage inward wins, and HIGH's normal
+    there is stored in LOW's tangent frame, inverted exactly for ``decode``.
+
+    high, low: mesh files (.obj, .gltf, .glb); LOW needs texture coordinates. LOW's file's
+    tangents are used where it has them, else ones made in ``tangents``' mode.
+
+    Returns a dict: ``levels`` (the normal map, level 0 first, as ``mip_chain`` returns a
+    chain), ``object_space`` ((H, W, 3) float32 unit normals), ``displacement`` ((H, W)
+    float32, the signed distance from LOW to HIGH along the ray), ``hit`` and ``covered``
+    ((H, W) bool: texels whose rays met HIGH, and texels of LOW's layout). Most rays meeting
+    nothing raises, never a flat map.
+
+    ``progress``: a function called ``progress(done, total)`` as rows of texels are baked.
+    """
+    return _bumpmap.bake(high, low, options)
+
+
 def height_from_normals(normals, **options):
     """Heights from a normal map, as ``bumpmap normalmap``'s inverse: the least-squares surface
     whose slopes the map holds, as ``bumpmap height`` makes it.
@@ -525,7 +547,7 @@ def _default(text):
 
 
 # Keywords of the package's own beside the command line's options.
-_OWN_KEYWORDS = {"render": ["progress"], "compare": ["progress"]}
+_OWN_KEYWORDS = {"render": ["progress"], "compare": ["progress"], "bake": ["progress"]}
 
 
 def _signature(function, leading):
@@ -545,7 +567,8 @@ def _signature(function, leading):
 
 for _f, _leading in ((normal_map, 1), (mip_chain, 1), (height_mips, 1), (horizon_maps, 1),
                      (roughness_map, 1), (lean_moments, 1), (read_height_field, 1),
-                     (write_texture, 2), (tangents, 4), (render, 0), (compare, 1), (height_from_normals, 1)):
+                     (write_texture, 2), (tangents, 4), (render, 0), (compare, 1), (height_from_normals, 1),
+                     (bake, 2)):
     _f.__doc__ = _inspect.cleandoc(_f.__doc__ or "") + _options_doc(_f.__name__)
     _f.__signature__ = _signature(_f, _leading)
 del _f, _leading

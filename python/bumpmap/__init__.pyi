@@ -44,6 +44,9 @@ _Studies = Literal["all", "none", "golf-ball", "specular", "emboss", "peercy", "
 _Method = Literal["auto", "fft", "dct", "kernel"]
 _HeightFromNormalsKernel = Literal["auto", "spectral", "forward", "central", "sobel3", "sobel5", "prewitt3", "scharr3", "gaussian7"]
 _HeightFromNormalsYConvention = Literal["auto", "opengl", "directx"]
+_Ray = Literal["averaged", "explicit"]
+_Decode = Literal["mikktspace", "per-vertex"]
+_Tangents = Literal["ours", "mikktspace"]
 # END closed sets
 _Vec3 = Sequence[float]
 _Vec2 = Sequence[float]
@@ -244,6 +247,32 @@ def tangents(
     split_angle: float = 60.0,
     # END options of tangents
 ) -> TangentMesh: ...
+class BakeResult(TypedDict):
+    levels: list[_Levels]
+    object_space: npt.NDArray[np.float32]
+    displacement: npt.NDArray[np.float32]
+    hit: npt.NDArray[np.bool_]
+    covered: npt.NDArray[np.bool_]
+
+def bake(
+    high: _Path,
+    low: _Path,
+    *,
+    # BEGIN options of bake
+    size: int = 1024,
+    spp: int = 4,
+    ray: _Ray = "averaged",
+    extrude: Optional[float] = None,
+    max_distance: Optional[float] = None,
+    padding: int = 16,
+    decode: _Decode = "mikktspace",
+    tangents: _Tangents = "mikktspace",
+    y_convention: _YConvention = "opengl",
+    bits: int = 8,
+    mips: bool = False,
+    # END options of bake
+    progress: Optional[_Progress] = None,
+) -> BakeResult: ...
 def render(
     *,
     # BEGIN options of render

@@ -17,11 +17,13 @@
 //! - `pool`: the threads the work runs on, one pool per process (so a forked child works);
 //! - `renderer`: `Renderer` and `Scene`, kept between frames, and a `Mesh` given as the scene;
 //! - `maps`: heights → the normal map, its chain and the maps written beside it;
-//! - `compare`: every technique measured against the reference.
+//! - `compare`: every technique measured against the reference;
+//! - `bake`: a high-poly mesh baked onto a low-poly one's UV layout.
 //!
 //! What it does not do: any image, mesh or rendering work of its own.
 
 mod arrays;
+mod bake;
 mod compare;
 mod errors;
 mod interrupt;
@@ -332,6 +334,7 @@ fn _bumpmap(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(tangents, m)?)?;
     m.add_function(wrap_pyfunction!(render, m)?)?;
     m.add_function(wrap_pyfunction!(compare::compare, m)?)?;
+    m.add_function(wrap_pyfunction!(bake::bake, m)?)?;
     m.add_function(wrap_pyfunction!(option_table, m)?)?;
     m.add_function(wrap_pyfunction!(option_kinds, m)?)?;
     m.add_function(wrap_pyfunction!(techniques, m)?)?;

@@ -14,7 +14,7 @@ use bumpmap_words::as_keywords;
 pub type OptionRow = (String, Option<String>, String, Vec<String>, bool);
 
 /// Every function that takes options, by Python name.
-pub const FUNCTIONS: [&str; 12] = [
+pub const FUNCTIONS: [&str; 13] = [
     "normal_map",
     "mip_chain",
     "height_mips",
@@ -27,6 +27,7 @@ pub const FUNCTIONS: [&str; 12] = [
     "render",
     "compare",
     "height_from_normals",
+    "bake",
 ];
 
 /// Each option `function` takes, in the order its table lists them; `None` for a function that
@@ -52,6 +53,7 @@ fn rows(function: &str) -> Option<Vec<(OptionRow, Kind)>> {
         "render" => option_table::render().map(|o| (row_of(o), o.kind())).collect(),
         "compare" => of(bumpmap_compare::option_table::COMPARE),
         "tangents" => of(option_table::TANGENTS),
+        "bake" => of(option_table::BAKE),
         "height_from_normals" => of(option_table::HEIGHTS),
         "read_height_field" => of(option_table::CHANNEL),
         "write_texture" => of(option_table::FORMAT),

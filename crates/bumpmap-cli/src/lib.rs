@@ -7,7 +7,7 @@
 //!   as tables (`bumpmap::option_table`) become arguments through [`args::table`];
 //! - `setup`, `compare`: the flags made into the libraries' options (`bumpmap::options`,
 //!   `bumpmap_compare`);
-//! - `normalmap`, `cubemap`, `mesh` (tangents), `render`, `bench`, `demo`, `view`, `inspect`
+//! - `normalmap`, `cubemap`, `mesh` (tangents), `bake`, `render`, `bench`, `demo`, `view`, `inspect`
 //!   (inspect and height): the subcommands, drawing through the `bumpmap` crate's renderer;
 //! - [`error`]: every layer's errors as one type (`bumpmap_words::Error`), with exit statuses;
 //! - `report`: progress as a bar on stderr (warnings and notes are `bumpmap_words::report`'s).
@@ -18,6 +18,7 @@
 #![warn(missing_docs)]
 
 pub mod args;
+mod bake;
 mod bench;
 mod compare;
 mod cubemap;
@@ -38,6 +39,7 @@ pub fn run(cli: Cli) -> Result<(), error::CliError> {
     match cli.command {
         Command::Normalmap(a) => normalmap::run(&a),
         Command::Cubemap(a) => cubemap::run(&a),
+        Command::Bake(a) => bake::run(&a),
         Command::Bench(a) => bench::run(&a),
         Command::Render(a) => render::run(&a),
         Command::Tangents(a) => mesh::run(&a),

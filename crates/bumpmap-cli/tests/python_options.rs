@@ -52,6 +52,7 @@ fn every_command_python_exposes_lists_its_tables_options() {
         (vec!["compare"], rows(bumpmap_compare::option_table::COMPARE)),
         (vec!["tangents"], rows(option_table::TANGENTS)),
         (vec!["height"], rows(option_table::HEIGHTS)),
+        (vec!["bake"], rows(option_table::BAKE)),
         (
             vec!["normalmap"],
             [rows(option_table::MAPS), rows(option_table::CHANNEL), rows(option_table::FORMAT)].concat(),

@@ -31,6 +31,7 @@ use glam::Vec3;
 
 pub use bumpmap_compare::Progress;
 
+mod bake;
 mod figures;
 mod normal_maps_in;
 
@@ -210,6 +211,8 @@ fn write_demo(out: &Path, gpu: GpuImages, progress: &dyn Progress) -> Result<(),
     index += "- `fig11_torus.decal.png`, `.diffuse.png`, `.specular.png`: Kilgard Figure 12, the framebuffer after each pass\n";
     progress.step("your own assets: a normal map file, a glTF with its material");
     index += &own_assets(&mut cpu, out)?;
+    progress.step("a bake: a rounded cube onto a plain one");
+    index += &bake::write(out, &mut cpu)?;
     progress.step("the light orbiting the torus (an animated PNG)");
     index += &orbit(&mut cpu, out)?;
     progress.finish();

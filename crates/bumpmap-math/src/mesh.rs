@@ -270,6 +270,48 @@ pub fn wavy_grid(nx: usize, ny: usize) -> Mesh {
     m
 }
 
+/// A cube of half-size 1 whose edges and corners are rounded to `radius` (0: the plain cube
+/// with hard edges), each face an `n`×`n`-quad grid with its own vertices and its own island of
+/// texture coordinates (a 3×2 atlas, a margin of 4 % of a cell around each), exact normals and
+/// no tangents: the baking demo's and tests' pair (a rounded HIGH, a hard-edged LOW with split
+/// UVs). Faces run so that `s × t` points out (t runs down the image, as the renderer has it).
+pub fn rounded_cube(n: usize, radius: f32) -> Mesh {
+    let faces = [
+        (Vec3::X, Vec3::NEG_Y, Vec3::NEG_Z),
+        (Vec3::NEG_X, Vec3::Y, Vec3::NEG_Z),
+        (Vec3::Y, Vec3::X, Vec3::NEG_Z),
+        (Vec3::NEG_Y, Vec3::NEG_X, Vec3::NEG_Z),
+        (Vec3::Z, Vec3::X, Vec3::Y),
+        (Vec3::NEG_Z, Vec3::X, Vec3::NEG_Y),
+    ];
+    let n = n.max(1);
+    let inner = Vec3::splat(1.0 - radius.clamp(0.0, 1.0));
+    let mut mesh = Mesh::default();
+    for (face, (axis, u, v)) in faces.into_iter().enumerate() {
+        let base = mesh.positions.len() as u32;
+        let cell = Vec2::new((face % 3) as f32 / 3.0, (face / 3) as f32 / 2.0);
+        for j in 0..=n {
+            for i in 0..=n {
+                let st = Vec2::new(i as f32 / n as f32, j as f32 / n as f32);
+                let q = axis + u * (2.0 * st.x - 1.0) + v * (2.0 * st.y - 1.0);
+                let c = q.clamp(-inner, inner);
+                let normal = (q - c).normalize_or(axis);
+                mesh.positions.push(c + normal * radius);
+                mesh.normals.push(normal);
+                mesh.texcoords.push(cell + (Vec2::splat(0.04) + st * 0.92) * Vec2::new(1.0 / 3.0, 0.5));
+            }
+        }
+        let at = |i: usize, j: usize| base + (j * (n + 1) + i) as u32;
+        for j in 0..n {
+            for i in 0..n {
+                mesh.indices.push([at(i, j), at(i + 1, j), at(i + 1, j + 1)]);
+                mesh.indices.push([at(i, j), at(i + 1, j + 1), at(i, j + 1)]);
+            }
+        }
+    }
+    mesh
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -17,6 +17,7 @@
 
 #![warn(missing_docs)]
 
+pub mod bake;
 pub mod compare;
 mod error;
 pub mod frame;

@@ -34,7 +34,9 @@
 //! - [`assets`]: your own normal map files and meshes with their glTF materials;
 //! - [`inspect`]: what a normal map made elsewhere is (DirectX or OpenGL, a normal map at all,
 //!   its mips, its seam); [`heights`]: its heights back;
-//! - [`bench`]: the hot paths timed, as `bumpmap bench` reports them;
+//! - [`bake`]: normal maps baked from a high-poly mesh onto a low-poly one's UV layout, in the
+//!   tangent frame the renderer decodes with;
+//! - [`bench`](mod@bench): the hot paths timed, as `bumpmap bench` reports them;
 //! - [`cpu`]: the x86-64 level this build needs, and whether the processor has it;
 //! - [`Error`]: everything that can go wrong, naming the value or the file.
 //!
@@ -46,6 +48,7 @@
 #![warn(missing_docs)]
 
 pub mod assets;
+pub mod bake;
 pub mod bench;
 pub mod cpu;
 mod error;

@@ -37,6 +37,11 @@ pub fn tangent_options(function: &str, kwargs: Option<&Bound<'_, PyDict>>) -> Py
     read(function, option_table::TANGENTS, kwargs)
 }
 
+/// `bake`'s keywords as the library's request.
+pub fn bake_request(function: &str, kwargs: Option<&Bound<'_, PyDict>>) -> PyResult<bumpmap::bake::BakeRequest> {
+    read(function, option_table::BAKE, kwargs)
+}
+
 /// `compare`'s keywords as the library's options.
 pub fn compare_options(function: &str, kwargs: Option<&Bound<'_, PyDict>>) -> PyResult<CompareOptions> {
     read(function, bumpmap_compare::option_table::COMPARE, kwargs)

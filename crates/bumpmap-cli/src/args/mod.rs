@@ -2,6 +2,7 @@
 //! command reads live here. The help texts are the user manual: they say what each option
 //! means in the papers' terms and what the default is.
 
+mod bake;
 mod bench;
 mod compare;
 mod cubemap;
@@ -13,6 +14,7 @@ pub mod table;
 mod tangents;
 mod view;
 
+pub use bake::*;
 pub use bench::*;
 pub use compare::*;
 pub use cubemap::*;
@@ -57,6 +59,8 @@ pub enum Command {
     Normalmap(NormalmapArgs),
     /// Write a normalization cube map, or measure the accuracy of its lookup
     Cubemap(CubemapArgs),
+    /// High-poly mesh → normal map over a low-poly mesh's UV layout, synced to its tangent frame
+    Bake(Box<BakeArgs>),
     /// Measure speed (median of several runs); --json prints one machine-readable line
     Bench(BenchArgs),
     /// Render a bump-mapped scene

@@ -55,6 +55,22 @@ pub fn save_png_into(
     })
 }
 
+/// An 8-bit PNG's bytes in memory (a texture carried inside a glTF's buffer, say): `bytes`
+/// holds `width·height` pixels, row 0 first.
+pub fn png_bytes(width: usize, height: usize, layout: PngLayout, bytes: &[u8]) -> Result<Vec<u8>, IoError> {
+    use image::ImageEncoder;
+    let color = match layout {
+        PngLayout::Gray8 => image::ExtendedColorType::L8,
+        PngLayout::Rgb8 => image::ExtendedColorType::Rgb8,
+        PngLayout::Rgba8 => image::ExtendedColorType::Rgba8,
+    };
+    let mut out = Vec::new();
+    image::codecs::png::PngEncoder::new(&mut out)
+        .write_image(bytes, width as u32, height as u32, color)
+        .map_err(|e| IoError::Texture { path: "a PNG in memory".into(), reason: e.to_string() })?;
+    Ok(out)
+}
+
 /// Stages an animated PNG (APNG) into `set`: `frames`, each `width`×`height` 8-bit RGB (row 0
 /// first), shown `delay_ms` milliseconds each and looped forever. The first frame is also the
 /// still image a reader without APNG support shows.

@@ -106,3 +106,30 @@ fn options_given_together_are_checked() {
         Err(Together::Excludes { option: "size", other: "width" })
     );
 }
+
+#[test]
+fn bakes_defaults_read_back_and_its_values_reach_their_fields() {
+    use crate::bake::{BakeRequest, RayMode};
+    let mut request = BakeRequest::default();
+    for row in BAKE {
+        if let Some(text) = row.default_text() {
+            let value = row.parse_text(&text).unwrap_or_else(|e| panic!("--{} {text}: {e}", row.name));
+            row.set(&mut request, value).expect("a default sets");
+        }
+    }
+    assert_eq!(request, BakeRequest::default());
+    let set = |request: &mut BakeRequest, name: &str, text: &str| {
+        let row = find(BAKE, name).expect("a row");
+        let value = row.parse_text(text)?;
+        row.set(request, value)
+    };
+    set(&mut request, "size", "256").unwrap();
+    set(&mut request, "ray", "explicit").unwrap();
+    set(&mut request, "extrude", "0.25").unwrap();
+    assert_eq!((request.options.width, request.options.height), (256, 256));
+    assert_eq!(request.options.rays, RayMode::Explicit);
+    assert_eq!(request.options.front, Some(0.25));
+    assert!(set(&mut request, "bits", "12").is_err());
+    assert!(set(&mut request, "extrude", "-1").is_err());
+    assert!(set(&mut request, "size", "0").is_err());
+}

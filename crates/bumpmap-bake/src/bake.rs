@@ -1,0 +1,361 @@
+//! The bake itself: options, what comes out, and the rays cast from every texel of LOW's UV
+//! layout into HIGH (the crate's page says how a texel is baked).
+
+use std::collections::HashMap;
+use std::sync::atomic::{AtomicUsize, Ordering};
+
+use bumpmap_math::buffer::OutOfMemory;
+use bumpmap_math::mesh::{Mesh, MeshError};
+use glam::{Vec2, Vec3};
+use rayon::prelude::*;
+
+use crate::encode::encode_in_frame;
+use crate::high::{BYTES_PER_TRIANGLE, HighPoly};
+use crate::pad::pad;
+use crate::texels::{Covered, Layout, sample_offset};
+
+/// The most texels a side.
+pub const MAX_SIDE: usize = 16384;
+
+/// The most samples a texel.
+pub const MAX_SAMPLES: u32 = 64;
+
+/// Which way a texel's ray goes.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum RayMode {
+    /// Along LOW's averaged normal: the normals of every vertex at one position averaged, so
+    /// the two sides of a hard edge cast the same rays and no gap or overlap opens there (a
+    /// smooth cage, xNormal's and Marmoset's default).
+    #[default]
+    Averaged,
+    /// Along LOW's own vertex normals, split at hard edges: a seam opens along every hard edge.
+    Explicit,
+}
+
+bumpmap_math::named!(RayMode {
+    Averaged => "averaged": "Along LOW's averaged normals: a smooth cage, no seam at hard edges (xNormal's and Marmoset's default)",
+    Explicit => "explicit": "Along LOW's own normals, split at hard edges: each face projects straight, and a seam opens along each hard edge",
+});
+
+/// How the renderer forms the object-space normal from a tangent-space one, which the bake
+/// inverts exactly: both from LOW's interpolated, unnormalized vertex tangent T and normal N.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum TangentDecode {
+    /// MikkTSpace's per-pixel decode: B = sign · cross(N, T) of the interpolated vectors.
+    #[default]
+    MikkTSpace,
+    /// This renderer's vertex stage: each vertex's B = w · cross(N, T), interpolated as T and
+    /// N are (what `bumpmap render` decodes with).
+    PerVertex,
+}
+
+bumpmap_math::named!(TangentDecode {
+    MikkTSpace => "mikktspace": "MikkTSpace's per-pixel decode, B = sign·cross(N, T) of the interpolated vectors (Blender, Unity, Unreal, glTF viewers)",
+    PerVertex => "per-vertex": "Each vertex's B = w·cross(N, T) interpolated with T and N: what bumpmap render decodes with",
+});
+
+/// How a bake is made.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct BakeOptions {
+    /// Texels across.
+    pub width: usize,
+    /// Texels down.
+    pub height: usize,
+    /// Samples a texel, stratified (1: the texel's centre).
+    pub samples: u32,
+    /// Which way the rays go.
+    pub rays: RayMode,
+    /// How far in front of LOW the rays start (the cage's distance); `None`: 5 % of LOW's
+    /// bounding box diagonal.
+    pub front: Option<f32>,
+    /// How far behind LOW they still look; `None`: as far as [`Self::front`].
+    pub back: Option<f32>,
+    /// Texels filled beyond each UV island's edge.
+    pub padding: u32,
+    /// The decode the tangent-space normals are made for.
+    pub decode: TangentDecode,
+}
+
+impl Default for BakeOptions {
+    /// 1024², 4 samples a texel, averaged rays, 5 % of the diagonal in front and behind,
+    /// 16 texels of padding, MikkTSpace's decode.
+    fn default() -> Self {
+        BakeOptions {
+            width: 1024,
+            height: 1024,
+            samples: 4,
+            rays: RayMode::Averaged,
+            front: None,
+            back: None,
+            padding: 16,
+            decode: TangentDecode::MikkTSpace,
+        }
+    }
+}
+
+/// Why nothing was baked.
+#[derive(Debug, thiserror::Error)]
+pub enum BakeError {
+    /// LOW has no texture coordinates to bake into.
+    #[error("the low-poly mesh has no texture coordinates: there is no layout to bake into")]
+    NoTexcoords,
+    /// LOW has no tangents (make them in the mode the renderer will use first).
+    #[error("the low-poly mesh has no tangents")]
+    NoTangents,
+    /// A mesh that cannot be used.
+    #[error("the {which} mesh: {source}")]
+    Mesh {
+        /// `high-poly` or `low-poly`.
+        which: &'static str,
+        /// Why.
+        source: MeshError,
+    },
+    /// A size out of range.
+    #[error("a bake of {width}x{height} texels: each side must be 1 to {MAX_SIDE}")]
+    Size {
+        /// Asked width.
+        width: usize,
+        /// Asked height.
+        height: usize,
+    },
+    /// Samples out of range.
+    #[error("{0} samples a texel: 1 to {MAX_SAMPLES}")]
+    Samples(u32),
+    /// A ray distance that is negative or not finite.
+    #[error("ray distances must be finite and not negative, got {front} in front and {back} behind")]
+    Distance {
+        /// In front.
+        front: f32,
+        /// Behind.
+        back: f32,
+    },
+    /// No texel of the layout lies in a triangle (UVs all outside [0, 1], or degenerate).
+    #[error("no texel of the {width}x{height} bake lies inside the low-poly mesh's UV layout")]
+    NothingCovered {
+        /// The bake's width.
+        width: usize,
+        /// The bake's height.
+        height: usize,
+    },
+    /// Most rays met nothing: the meshes do not overlap, or the distances are too short.
+    #[error(
+        "{missed} of {covered} texels' rays met the high-poly mesh nowhere within {front} in front and {back} behind: the meshes do not overlap there, or the distances are too short"
+    )]
+    MostMissed {
+        /// Texels whose rays all missed.
+        missed: usize,
+        /// Texels of the layout.
+        covered: usize,
+        /// The distance in front used.
+        front: f32,
+        /// The distance behind used.
+        back: f32,
+    },
+    /// The bake would not fit in memory.
+    #[error(transparent)]
+    OutOfMemory(#[from] OutOfMemory),
+}
+
+/// What a bake gives, texel by texel (row-major, row 0 at `t = 0`).
+#[derive(Clone, Debug)]
+pub struct Baked {
+    /// Texels across.
+    pub width: usize,
+    /// Texels down.
+    pub height: usize,
+    /// Unit normals in LOW's tangent frame, `y` along B (the renderer's texture space: toward
+    /// increasing `t`); `(0, 0, 1)` where nothing was hit and nothing padded.
+    pub tangent: Vec<Vec3>,
+    /// Unit normals in LOW's object space (`(0, 0, 0)` where nothing was hit or padded).
+    pub object: Vec<Vec3>,
+    /// Signed distance from LOW to HIGH along the ray, outward positive.
+    pub displacement: Vec<f32>,
+    /// Texels of LOW's layout whose rays met HIGH.
+    pub hit: Vec<bool>,
+    /// Texels of LOW's layout (some sample inside a triangle).
+    pub covered: Vec<bool>,
+    /// Texels that hold a value: hit, or padded from their neighbours.
+    pub filled: Vec<bool>,
+    /// The ray distances used, in front and behind.
+    pub distances: (f32, f32),
+}
+
+/// Bakes `high` onto `low`'s UV layout (`low` carrying the normals and tangents the renderer
+/// will draw it with), telling `progress(rows done, rows)` as rows finish (from any thread).
+pub fn bake(
+    high: &Mesh,
+    low: &Mesh,
+    options: &BakeOptions,
+    progress: &(dyn Fn(usize, usize) + Sync),
+) -> Result<Baked, BakeError> {
+    let (width, height) = (options.width, options.height);
+    if !(1..=MAX_SIDE).contains(&width) || !(1..=MAX_SIDE).contains(&height) {
+        return Err(BakeError::Size { width, height });
+    }
+    if !(1..=MAX_SAMPLES).contains(&options.samples) {
+        return Err(BakeError::Samples(options.samples));
+    }
+    low.validate().map_err(|source| BakeError::Mesh { which: "low-poly", source })?;
+    high.validate().map_err(|source| BakeError::Mesh { which: "high-poly", source })?;
+    if low.texcoords.len() != low.positions.len() {
+        return Err(BakeError::NoTexcoords);
+    }
+    if low.tangents.len() != low.positions.len() {
+        return Err(BakeError::NoTangents);
+    }
+    let (front, back) = distances(low, options)?;
+    // Texel outputs (normals twice, the distance, three flags) and HIGH's BVH, before any of it.
+    let texels = (width * height) as u64;
+    let bytes = texels * 31 + high.indices.len() as u64 * BYTES_PER_TRIANGLE;
+    bumpmap_math::buffer::ensure_available(bytes, "the bake")?;
+
+    let high_normals;
+    let high = if high.normals.len() == high.positions.len() {
+        high
+    } else {
+        let mut with = high.clone();
+        with.compute_normals();
+        high_normals = with;
+        &high_normals
+    };
+    let rays = match options.rays {
+        RayMode::Averaged => averaged_normals(low),
+        RayMode::Explicit => low.normals.clone(),
+    };
+    let layout = Layout::new(low, width, height);
+    let target = HighPoly::new(high);
+
+    let mut baked = Baked {
+        width,
+        height,
+        tangent: vec![Vec3::Z; width * height],
+        object: vec![Vec3::ZERO; width * height],
+        displacement: vec![0.0; width * height],
+        hit: vec![false; width * height],
+        covered: vec![false; width * height],
+        filled: Vec::new(),
+        distances: (front, back),
+    };
+    let done = AtomicUsize::new(0);
+    let samples = options.samples as usize;
+    baked
+        .tangent
+        .par_chunks_mut(width)
+        .zip(baked.object.par_chunks_mut(width))
+        .zip(baked.displacement.par_chunks_mut(width))
+        .zip(baked.hit.par_chunks_mut(width))
+        .zip(baked.covered.par_chunks_mut(width))
+        .enumerate()
+        .for_each(|(y, ((((tangent, object), displacement), hit), covered))| {
+            for x in 0..width {
+                let (mut sum_t, mut sum_o, mut sum_d, mut hits, mut inside) = (Vec3::ZERO, Vec3::ZERO, 0.0, 0, false);
+                for k in 0..samples {
+                    let p = Vec2::new(x as f32, y as f32) + sample_offset(k, samples);
+                    let Some(at) = layout.at(y, p) else { continue };
+                    inside = true;
+                    let frame = Frame::at(low, &rays, at);
+                    let Some(found) = target.first_hit(frame.p + frame.d * front, -frame.d, front + back) else {
+                        continue;
+                    };
+                    let encoded = frame.encode(found.normal, options.decode);
+                    sum_t += encoded;
+                    sum_o += found.normal;
+                    sum_d += front - found.t;
+                    hits += 1;
+                }
+                covered[x] = inside;
+                if hits > 0 {
+                    tangent[x] = sum_t.normalize_or(Vec3::Z);
+                    object[x] = sum_o.normalize_or(Vec3::Z);
+                    displacement[x] = sum_d / hits as f32;
+                    hit[x] = true;
+                }
+            }
+            progress(done.fetch_add(1, Ordering::Relaxed) + 1, height);
+        });
+
+    let covered = baked.covered.iter().filter(|c| **c).count();
+    if covered == 0 {
+        return Err(BakeError::NothingCovered { width, height });
+    }
+    let missed = baked.covered.iter().zip(&baked.hit).filter(|(c, h)| **c && !**h).count();
+    if missed * 2 > covered {
+        return Err(BakeError::MostMissed { missed, covered, front, back });
+    }
+    let unit_mean = |v: &[Vec3]| v.iter().sum::<Vec3>().normalize_or(Vec3::Z);
+    let rings = options.padding;
+    pad(&mut baked.tangent, &baked.hit, width, height, rings, unit_mean);
+    pad(&mut baked.object, &baked.hit, width, height, rings, unit_mean);
+    let mean = |v: &[f32]| v.iter().sum::<f32>() / v.len() as f32;
+    baked.filled = pad(&mut baked.displacement, &baked.hit, width, height, rings, mean);
+    Ok(baked)
+}
+
+/// The ray distances in front and behind: as given, or 5 % of LOW's bounding box diagonal.
+fn distances(low: &Mesh, options: &BakeOptions) -> Result<(f32, f32), BakeError> {
+    let (lo, hi) = low.positions.iter().fold((Vec3::INFINITY, Vec3::NEG_INFINITY), |(l, h), p| (l.min(*p), h.max(*p)));
+    let auto = 0.05 * (hi - lo).length();
+    let front = options.front.unwrap_or(auto);
+    let back = options.back.unwrap_or(front);
+    if !(front.is_finite() && back.is_finite() && front >= 0.0 && back >= 0.0) || front + back == 0.0 {
+        return Err(BakeError::Distance { front, back });
+    }
+    Ok((front, back))
+}
+
+/// Each vertex's averaged normal: the area-weighted normals of every triangle touching any
+/// vertex at its position (vertices split for hard edges or UV seams share one).
+fn averaged_normals(mesh: &Mesh) -> Vec<Vec3> {
+    let key = |p: Vec3| p.to_array().map(f32::to_bits);
+    let mut sums: HashMap<[u32; 3], Vec3> = HashMap::new();
+    for t in &mesh.indices {
+        let [a, b, c] = t.map(|i| mesh.positions[i as usize]);
+        let n = (b - a).cross(c - a);
+        for p in [a, b, c] {
+            *sums.entry(key(p)).or_default() += n;
+        }
+    }
+    mesh.positions
+        .iter()
+        .zip(&mesh.normals)
+        .map(|(p, own)| sums.get(&key(*p)).and_then(|n| n.try_normalize()).unwrap_or(*own))
+        .collect()
+}
+
+/// LOW at one sample: the point, the ray's direction and the tangent frame as interpolated.
+struct Frame {
+    p: Vec3,
+    d: Vec3,
+    t: Vec3,
+    n: Vec3,
+    /// B as each vertex has it (`w · N × T`), interpolated.
+    b_per_vertex: Vec3,
+    /// The handedness, interpolated (its sign is MikkTSpace's per-triangle sign).
+    w: f32,
+}
+
+impl Frame {
+    fn at(low: &Mesh, rays: &[Vec3], at: Covered) -> Frame {
+        let ids = low.indices[at.triangle as usize].map(|i| i as usize);
+        let mix3 = |f: &dyn Fn(usize) -> Vec3| ids.iter().zip(at.weights).map(|(&i, w)| f(i) * w).sum::<Vec3>();
+        let w = ids.iter().zip(at.weights).map(|(&i, w)| low.tangents[i].w * w).sum::<f32>();
+        let n = mix3(&|i| low.normals[i]);
+        Frame {
+            p: mix3(&|i| low.positions[i]),
+            d: mix3(&|i| rays[i]).normalize_or(n.normalize_or(Vec3::Z)),
+            t: mix3(&|i| low.tangents[i].truncate()),
+            n,
+            b_per_vertex: mix3(&|i| low.bitangent(i)),
+            w,
+        }
+    }
+
+    /// `normal` in this frame, as `decode` will read it back.
+    fn encode(&self, normal: Vec3, decode: TangentDecode) -> Vec3 {
+        let b = match decode {
+            TangentDecode::MikkTSpace => self.w.signum() * self.n.cross(self.t),
+            TangentDecode::PerVertex => self.b_per_vertex,
+        };
+        encode_in_frame(normal, self.t, b, self.n).unwrap_or(Vec3::Z)
+    }
+}

@@ -1,0 +1,177 @@
+//! The bake against a closed form: HIGH is a plane subdivided to four vertices a texel and
+//! displaced along its normal by a height field, LOW the plane itself; the bake must be
+//! `normalmap`'s normal map of the same heights at the matching scale (depth × texels per unit).
+
+use bumpmap_bake::{BakeError, BakeOptions, RayMode, bake};
+use bumpmap_math::mesh::Mesh;
+use bumpmap_math::normalmap::normal_map_level0_texels;
+use bumpmap_math::{Encoding, HeightField, Kernel, NormalMapOptions, Wrap, YConvention};
+use glam::{Vec2, Vec3, Vec4};
+
+/// Texels a side.
+const N: usize = 64;
+/// How far the heights displace HIGH, in the plane's units (the plane is 1 across).
+const DEPTH: f32 = 0.05;
+
+/// Heights in [0, 1] over the unit square, periodic across it (so `normalmap --wrap repeat`
+/// reads them as the plane has them).
+fn heights(x: f32, y: f32) -> f32 {
+    use std::f32::consts::TAU;
+    0.5 + 0.25 * (TAU * 2.0 * x).sin() * (TAU * 3.0 * y).cos() + 0.1 * (TAU * (x + y)).sin()
+}
+
+/// The unit square in z = 0, texture coordinates (x, y): t grows with y, so B = N × T = +y.
+fn low() -> Mesh {
+    let corners = [Vec2::new(0.0, 0.0), Vec2::new(1.0, 0.0), Vec2::new(1.0, 1.0), Vec2::new(0.0, 1.0)];
+    Mesh {
+        positions: corners.iter().map(|c| c.extend(0.0)).collect(),
+        normals: vec![Vec3::Z; 4],
+        texcoords: corners.to_vec(),
+        tangents: vec![Vec4::new(1.0, 0.0, 0.0, 1.0); 4],
+        indices: vec![[0, 1, 2], [0, 2, 3]],
+        ..Default::default()
+    }
+}
+
+/// The square subdivided `per_texel` times a texel side and displaced by DEPTH × heights, its
+/// normals from its faces (as a sculpt exported without normals has them).
+fn high(per_texel: usize) -> Mesh {
+    let n = N * per_texel;
+    let mut mesh = Mesh::default();
+    for j in 0..=n {
+        for i in 0..=n {
+            let (x, y) = (i as f32 / n as f32, j as f32 / n as f32);
+            mesh.positions.push(Vec3::new(x, y, DEPTH * heights(x, y)));
+        }
+    }
+    let at = |i: usize, j: usize| (j * (n + 1) + i) as u32;
+    for j in 0..n {
+        for i in 0..n {
+            mesh.indices.push([at(i, j), at(i + 1, j), at(i + 1, j + 1)]);
+            mesh.indices.push([at(i, j), at(i + 1, j + 1), at(i, j + 1)]);
+        }
+    }
+    mesh.compute_normals();
+    mesh
+}
+
+/// `normalmap` of the heights at texel centres, central differences, at DEPTH × N texels per
+/// unit of height, in texture space (y toward increasing t), decoded from 16 bits.
+fn normal_map() -> Vec<Vec3> {
+    let texels: Vec<f32> =
+        (0..N * N).map(|k| heights(((k % N) as f32 + 0.5) / N as f32, ((k / N) as f32 + 0.5) / N as f32)).collect();
+    let field = HeightField::new(N, N, texels).unwrap();
+    let options = NormalMapOptions {
+        kernel: Kernel::Central,
+        wrap: Wrap::Repeat,
+        scale: DEPTH * N as f32,
+        y_convention: YConvention::TEXTURE_SPACE,
+        ..Default::default()
+    };
+    let map = normal_map_level0_texels::<[u16; 4]>(&field, &options).unwrap();
+    let d = |v: u16| Encoding::Unorm.decode16(v);
+    map.texels.iter().map(|t| Vec3::new(d(t[0]), d(t[1]), d(t[2])).normalize()).collect()
+}
+
+/// Mean and 99th percentile of the angles between two sets of unit vectors, in degrees.
+fn angles(a: &[Vec3], b: &[Vec3]) -> (f32, f32) {
+    let mut degrees: Vec<f32> = a.iter().zip(b).map(|(p, q)| p.dot(*q).clamp(-1.0, 1.0).acos().to_degrees()).collect();
+    degrees.sort_by(f32::total_cmp);
+    (degrees.iter().sum::<f32>() / degrees.len() as f32, degrees[degrees.len() * 99 / 100])
+}
+
+#[test]
+fn a_displaced_plane_bakes_to_the_normal_map_of_its_heights() {
+    let options = BakeOptions {
+        width: N,
+        height: N,
+        samples: 1,
+        front: Some(2.0 * DEPTH),
+        back: Some(2.0 * DEPTH),
+        ..Default::default()
+    };
+    let baked = bake(&high(2), &low(), &options, &|_, _| {}).unwrap();
+    assert!(baked.hit.iter().all(|h| *h), "every texel of the plane meets the displaced plane");
+    let (mean, p99) = angles(&baked.tangent, &normal_map());
+    eprintln!("plane, 4 vertices a texel: mean {mean:.3}°, 99th percentile {p99:.3}°");
+    assert!(mean <= 0.5 && p99 <= 2.0, "mean {mean}°, 99th percentile {p99}°");
+    // Not flat: the heights tilt the normals by several degrees.
+    let tilt = baked.tangent.iter().map(|n| n.z.acos().to_degrees()).fold(0.0, f32::max);
+    assert!(tilt > 5.0, "{tilt}°");
+    // The displacement is the heights' own, DEPTH × F, at each texel centre.
+    let worst = (0..N * N)
+        .map(|k| {
+            let f = heights(((k % N) as f32 + 0.5) / N as f32, ((k / N) as f32 + 0.5) / N as f32);
+            (baked.displacement[k] - DEPTH * f).abs()
+        })
+        .fold(0.0, f32::max);
+    assert!(worst < 0.02 * DEPTH, "{worst}");
+}
+
+#[test]
+fn rays_that_meet_nothing_are_an_error_not_a_flat_map() {
+    let mut far = high(1);
+    far.positions.iter_mut().for_each(|p| p.z += 1.0);
+    let options = BakeOptions { width: 16, height: 16, front: Some(0.1), back: Some(0.1), ..Default::default() };
+    match bake(&far, &low(), &options, &|_, _| {}) {
+        Err(BakeError::MostMissed { missed, covered, .. }) => assert_eq!((missed, covered), (256, 256)),
+        other => panic!("{other:?}"),
+    }
+    let mut no_uvs = low();
+    no_uvs.texcoords.clear();
+    assert!(matches!(bake(&high(1), &no_uvs, &options, &|_, _| {}), Err(BakeError::NoTexcoords)));
+    let mut nan = high(1);
+    nan.positions[5].x = f32::NAN;
+    assert!(matches!(bake(&nan, &low(), &options, &|_, _| {}), Err(BakeError::Mesh { which: "high-poly", .. })));
+    let empty = Mesh::default();
+    assert!(matches!(bake(&empty, &low(), &options, &|_, _| {}), Err(BakeError::Mesh { which: "high-poly", .. })));
+    let wide = BakeOptions { width: 0, ..options };
+    assert!(matches!(bake(&high(1), &low(), &wide, &|_, _| {}), Err(BakeError::Size { .. })));
+}
+
+#[test]
+fn explicit_rays_follow_the_split_normals_and_averaged_rays_do_not() {
+    // A hard edge: two faces of a roof meeting at 90°, each with its own normals.
+    let roof = {
+        let p =
+            [Vec3::new(-1.0, 0.0, 0.0), Vec3::new(0.0, 0.0, 1.0), Vec3::new(0.0, 1.0, 1.0), Vec3::new(-1.0, 1.0, 0.0)];
+        let q =
+            [Vec3::new(0.0, 0.0, 1.0), Vec3::new(1.0, 0.0, 0.0), Vec3::new(1.0, 1.0, 0.0), Vec3::new(0.0, 1.0, 1.0)];
+        let (nl, nr) = (Vec3::new(-1.0, 0.0, 1.0).normalize(), Vec3::new(1.0, 0.0, 1.0).normalize());
+        let uv = |k: f32| [Vec2::new(k, 0.0), Vec2::new(k + 0.5, 0.0), Vec2::new(k + 0.5, 1.0), Vec2::new(k, 1.0)];
+        Mesh {
+            positions: p.iter().chain(&q).copied().collect(),
+            normals: [nl; 4].into_iter().chain([nr; 4]).collect(),
+            texcoords: uv(0.0).into_iter().chain(uv(0.5)).collect(),
+            tangents: [nr.cross(Vec3::Y).extend(1.0); 4]
+                .into_iter()
+                .chain([Vec3::Y.cross(nl).extend(-1.0); 4])
+                .collect(),
+            indices: vec![[0, 1, 2], [0, 2, 3], [4, 5, 6], [4, 6, 7]],
+            ..Default::default()
+        }
+    };
+    let bake_with = |rays| {
+        let options = BakeOptions {
+            width: 32,
+            height: 8,
+            samples: 1,
+            rays,
+            front: Some(0.3),
+            back: Some(0.3),
+            padding: 0,
+            ..Default::default()
+        };
+        bake(&roof, &roof, &options, &|_, _| {}).unwrap()
+    };
+    let (averaged, explicit) = (bake_with(RayMode::Averaged), bake_with(RayMode::Explicit));
+    // Baked onto itself, each face's normal is flat in its own frame either way.
+    for baked in [&averaged, &explicit] {
+        let flat = baked.tangent.iter().zip(&baked.hit).filter(|(_, h)| **h).all(|(n, _)| n.z > 0.999);
+        assert!(flat, "{:?}", baked.tangent.iter().map(|n| n.z).fold(1.0, f32::min));
+    }
+    // Averaged rays leave the ridge at an angle: they reach HIGH at other distances than the
+    // explicit ones, which go straight down each face.
+    let spread = |b: &bumpmap_bake::Baked| b.displacement.iter().map(|d| d.abs()).fold(0.0, f32::max);
+    assert!(spread(&explicit) < 1e-4, "{}", spread(&explicit));
+}

@@ -1,0 +1,117 @@
+//! `bumpmap bake` end to end: a displaced plane baked onto a flat one, its files read back by
+//! independent readers (`image`, `gltf`), and bad input refused with nothing written.
+
+mod common;
+
+use std::path::Path;
+
+use common::*;
+
+/// Writes an OBJ of the unit square (`z = height(x, y)`), `n` quads a side, with `vt` (v up, as
+/// OBJ has it) and no normals.
+fn square_obj(path: &Path, n: usize, height: impl Fn(f32, f32) -> f32, uvs: bool) {
+    let mut text = String::new();
+    for j in 0..=n {
+        for i in 0..=n {
+            let (x, y) = (i as f32 / n as f32, j as f32 / n as f32);
+            text += &format!("v {x} {y} {}\n", height(x, y));
+            if uvs {
+                text += &format!("vt {x} {}\n", 1.0 - y);
+            }
+        }
+    }
+    for j in 0..n {
+        for i in 0..n {
+            let a = j * (n + 1) + i + 1;
+            let (b, c, d) = (a + 1, a + n + 2, a + n + 1);
+            if uvs {
+                text += &format!("f {a}/{a} {b}/{b} {c}/{c}\nf {a}/{a} {c}/{c} {d}/{d}\n");
+            } else {
+                text += &format!("f {a} {b} {c}\nf {a} {c} {d}\n");
+            }
+        }
+    }
+    std::fs::write(path, text).unwrap();
+}
+
+fn waves(x: f32, y: f32) -> f32 {
+    use std::f32::consts::TAU;
+    0.03 * (TAU * 2.0 * x).sin() * (TAU * 3.0 * y).cos()
+}
+
+#[test]
+fn a_bake_writes_its_map_mask_and_low_poly_glb() {
+    let dir = scratch("bake_files");
+    let (high, low) = (dir.join("high.obj"), dir.join("low.obj"));
+    square_obj(&high, 96, waves, false);
+    square_obj(&low, 1, |_, _| 0.0, true);
+    let path = |name: &str| dir.join(name).to_str().unwrap().to_string();
+    let o = bumpmap(&[
+        "bake",
+        high.to_str().unwrap(),
+        low.to_str().unwrap(),
+        "-o",
+        &path("n.png"),
+        "--size",
+        "64",
+        "--mask-out",
+        &path("mask.png"),
+        "--low-out",
+        &path("low.glb"),
+        "--object-out",
+        &path("object.png"),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(stderr(&o).contains("4096 of 4096 texels"), "{}", stderr(&o));
+    // The map, read by the image crate: a tangent-space normal map tilted by the waves, green up.
+    let map = image::open(dir.join("n.png")).unwrap().to_rgba8();
+    assert_eq!(map.dimensions(), (64, 64));
+    let blue_min = map.pixels().map(|p| p[2]).min().unwrap();
+    let red: Vec<u8> = map.pixels().map(|p| p[0]).collect();
+    assert!(blue_min > 200, "mostly facing out: blue {blue_min}");
+    assert!(red.iter().max().unwrap() - red.iter().min().unwrap() > 20, "the waves tilt it");
+    let mask = image::open(dir.join("mask.png")).unwrap().to_luma8();
+    assert!(mask.pixels().all(|p| p[0] == 255), "every ray hit");
+    // LOW as baked for, read by the gltf crate: its tangents and the map as its normalTexture.
+    let (doc, buffers, images) = gltf::import(dir.join("low.glb")).unwrap();
+    let prim = doc.meshes().next().unwrap().primitives().next().unwrap();
+    let reader = prim.reader(|b| Some(&buffers[b.index()].0[..]));
+    assert_eq!(reader.read_tangents().expect("TANGENT").count(), 4);
+    assert!(prim.material().normal_texture().is_some());
+    assert_eq!((images[0].width, images[0].height), (64, 64));
+    assert_eq!(listing(&dir), ["high.obj", "low.glb", "low.obj", "mask.png", "n.png", "object.png"]);
+}
+
+#[test]
+fn what_cannot_be_baked_is_refused_with_nothing_written() {
+    let dir = scratch("bake_refused");
+    let (high, low, bare, far) = (dir.join("high.obj"), dir.join("low.obj"), dir.join("bare.obj"), dir.join("far.obj"));
+    square_obj(&high, 16, waves, false);
+    square_obj(&low, 1, |_, _| 0.0, true);
+    square_obj(&bare, 1, |_, _| 0.0, false);
+    square_obj(&far, 16, |_, _| 5.0, false);
+    let out = dir.join("n.png");
+    let run = |h: &Path, l: &Path, extra: &[&str]| {
+        let mut args =
+            vec!["bake", h.to_str().unwrap(), l.to_str().unwrap(), "-o", out.to_str().unwrap(), "--size", "16"];
+        args.extend_from_slice(extra);
+        bumpmap(&args)
+    };
+    for (o, status, says) in [
+        (run(&high, &bare, &[]), 1, "bare.obj: has no texture coordinates"),
+        (run(&far, &low, &[]), 1, "met the high-poly mesh nowhere"),
+        (run(&high, &low, &["--spp", "0"]), 2, "--spp"),
+        (run(&high, &low, &["--extrude", "-1"]), 2, "--extrude"),
+        (
+            run(&high, &low, &["--low-out", dir.join("l.glb").to_str().unwrap(), "--y-convention", "directx"]),
+            2,
+            "--low-out",
+        ),
+        (run(&dir.join("missing.obj"), &low, &[]), 1, "missing.obj"),
+    ] {
+        assert_eq!(o.status.code(), Some(status), "{says}: {}", stderr(&o));
+        assert!(stderr(&o).contains(says), "wanted '{says}' in: {}", stderr(&o));
+        assert!(!stderr(&o).contains("panicked"));
+    }
+    assert_eq!(listing(&dir), ["bare.obj", "far.obj", "high.obj", "low.obj"], "nothing written");
+}

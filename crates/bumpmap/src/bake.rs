@@ -1,0 +1,243 @@
+//! Baking from files, as `bumpmap bake HIGH LOW -o OUT` does it: both meshes read (OBJ, glTF
+//! or GLB, every node with its transform), LOW made ready as the renderer will draw it, the
+//! bake (`bumpmap_bake`), and its maps written as one set of files — the tangent-space normal
+//! map (8 or 16 bits, green up or down, with its mip chain where asked), and where asked the
+//! object-space normals, a mask of the texels whose rays met HIGH, and LOW itself as a GLB with
+//! the tangents the map was baked for and the map as its `normalTexture`.
+//!
+//! LOW is baked as drawn: its file's tangents where it has them (what a renderer reading the
+//! file uses), else tangents made in [`BakeRequest::tangents`]' mode; either way the normals and
+//! tangents as a glTF file stores them (unit length, tangents perpendicular to the normals), so
+//! the GLB written beside the map decodes it exactly.
+//!
+//! What this module does not do: cast the rays (`bumpmap_bake`), or say anything (progress goes
+//! to a function, notes come back as data).
+
+use std::path::{Path, PathBuf};
+
+use bumpmap_io::atomic::FileSet;
+use bumpmap_io::image_file::{PngLayout, save_png_into};
+use bumpmap_io::texture_file::TextureFormat;
+use bumpmap_io::{IoError, LoadedMesh};
+use bumpmap_math::mesh::{Mesh, MeshError};
+use bumpmap_math::normalmap::encode_unit;
+use bumpmap_math::tangent::{TangentMode, TangentOptions, generate_tangents};
+use bumpmap_math::{Encoding, MipChain, MipMode, Texel, YConvention};
+use glam::Vec3;
+
+pub use bumpmap_bake::{
+    BakeError, BakeOptions, Baked, MAX_SAMPLES, MAX_SIDE, RayMode, TangentDecode, bake, encode_in_frame,
+};
+
+use crate::maps::{Chain, SaveError};
+
+/// What a bake from files is asked for, besides its files.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct BakeRequest {
+    /// The bake itself: size, samples, rays, distances, padding, decode.
+    pub options: BakeOptions,
+    /// How LOW's tangents are made when its file has none.
+    pub tangents: TangentMode,
+    /// Which way green points in the normal map's file.
+    pub y_convention: YConvention,
+    /// Bits a channel of the normal map: 8 or 16.
+    pub bits: u8,
+    /// Write the normal map's whole mip chain (the length of the averaged normal in alpha).
+    pub mips: bool,
+}
+
+impl Default for BakeRequest {
+    /// The bake's defaults; MikkTSpace tangents; green up (glTF, Blender); 8 bits; level 0.
+    fn default() -> Self {
+        BakeRequest {
+            options: BakeOptions::default(),
+            tangents: TangentMode::MikkTSpace,
+            y_convention: YConvention::YUp,
+            bits: 8,
+            mips: false,
+        }
+    }
+}
+
+/// Where a bake's maps go; all but the normal map optional.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct BakeOutputs {
+    /// The tangent-space normal map: PNG (`.mipN.png` beside it with mips), `.dds` or `.ktx2`.
+    pub normal_map: PathBuf,
+    /// The object-space normal map (8-bit RGB PNG, `(x, y, z)` range-compressed).
+    pub object_space: Option<PathBuf>,
+    /// The texels whose rays met HIGH (8-bit gray PNG: 255 hit, 0 missed or outside LOW's UVs).
+    pub mask: Option<PathBuf>,
+    /// LOW as baked for: a `.glb` or `.gltf` with its tangents and the map as its normalTexture.
+    pub low: Option<PathBuf>,
+}
+
+/// Why a bake from files made nothing (nothing was written).
+#[derive(Debug, thiserror::Error)]
+pub enum BakeFileError {
+    /// A mesh file could not be read, or an output written.
+    #[error(transparent)]
+    Io(#[from] IoError),
+    /// LOW's tangents could not be made.
+    #[error("{}: its tangents: {source}", path.display())]
+    Tangents {
+        /// LOW's file.
+        path: PathBuf,
+        /// Why.
+        source: MeshError,
+    },
+    /// The bake refused.
+    #[error(transparent)]
+    Bake(#[from] BakeError),
+    /// The normal map could not be written.
+    #[error(transparent)]
+    Save(#[from] SaveError),
+    /// Bits other than 8 or 16.
+    #[error("bits must be 8 or 16, got {0}")]
+    Bits(u8),
+    /// The GLB's normalTexture must be a PNG, green up as glTF has it.
+    #[error("{}: LOW's glTF carries its normal map as a green-up PNG: write the map as .png with y-convention opengl", path.display())]
+    LowNeedsPng {
+        /// The GLB asked for.
+        path: PathBuf,
+    },
+    /// An output that is also an input or another output.
+    #[error("{}: {what}", path.display())]
+    Clash {
+        /// The file.
+        path: PathBuf,
+        /// Which files it would be.
+        what: &'static str,
+    },
+}
+
+/// LOW as the renderer will draw it from `loaded` (read from `path`): normals computed where the
+/// file has none, the file's tangents or ones made in `mode`, both as glTF stores them.
+pub fn low_as_drawn(loaded: LoadedMesh, path: &Path, mode: TangentMode) -> Result<Mesh, BakeFileError> {
+    let mut mesh = loaded.mesh;
+    if mesh.texcoords.len() != mesh.positions.len() {
+        return Err(BakeError::NoTexcoords.into());
+    }
+    if !loaded.had_tangents {
+        let options = TangentOptions { mode, ..Default::default() };
+        mesh = generate_tangents(&mesh, &options)
+            .map_err(|source| BakeFileError::Tangents { path: path.to_path_buf(), source })?
+            .0;
+    }
+    let (normals, tangents, _) = bumpmap_io::mesh_file::gltf_normals_and_tangents(&mesh);
+    mesh.normals = normals;
+    mesh.tangents = tangents;
+    Ok(mesh)
+}
+
+/// What [`bake_files`] did.
+#[derive(Debug)]
+pub struct BakedFiles {
+    /// Every file written.
+    pub files: Vec<PathBuf>,
+    /// The bake, texel by texel.
+    pub baked: Baked,
+    /// LOW's texels covered and hit, and LOW's triangles and HIGH's, for a summary.
+    pub counts: BakeCounts,
+}
+
+/// How much a bake covered.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct BakeCounts {
+    /// Texels of LOW's UV layout.
+    pub covered: usize,
+    /// Of those, the texels whose rays met HIGH.
+    pub hit: usize,
+    /// HIGH's triangles.
+    pub high_triangles: usize,
+    /// LOW's triangles.
+    pub low_triangles: usize,
+}
+
+/// Reads `high` and `low`, bakes as `request` says, and writes `outputs` all or none, telling
+/// `progress(rows done, rows)`.
+pub fn bake_files(
+    high: &Path,
+    low: &Path,
+    request: &BakeRequest,
+    outputs: &BakeOutputs,
+    progress: &(dyn Fn(usize, usize) + Sync),
+) -> Result<BakedFiles, BakeFileError> {
+    if !matches!(request.bits, 8 | 16) {
+        return Err(BakeFileError::Bits(request.bits));
+    }
+    let format = if request.bits == 16 { TextureFormat::Rgba16 } else { TextureFormat::Rgba8 };
+    crate::maps::check_container(&outputs.normal_map, format)?;
+    let png = outputs.normal_map.extension().is_some_and(|e| e.eq_ignore_ascii_case("png"));
+    if let Some(glb) = &outputs.low
+        && (!png || request.y_convention != YConvention::YUp)
+    {
+        return Err(BakeFileError::LowNeedsPng { path: glb.clone() });
+    }
+    let high_mesh = bumpmap_io::load_mesh(high)?;
+    let low_loaded = bumpmap_io::load_mesh(low)?;
+    let mut inputs: Vec<PathBuf> = high_mesh.sources.clone();
+    inputs.extend(low_loaded.sources.iter().cloned());
+    let named: Vec<(&Path, &'static str)> = std::iter::once((outputs.normal_map.as_path(), "the normal map"))
+        .chain(outputs.object_space.as_deref().map(|p| (p, "the object-space map")))
+        .chain(outputs.mask.as_deref().map(|p| (p, "the mask")))
+        .chain(outputs.low.as_deref().map(|p| (p, "LOW's glTF")))
+        .collect();
+    for (k, (path, _)) in named.iter().enumerate() {
+        if named[..k].iter().any(|(other, _)| other == path) {
+            return Err(BakeFileError::Clash { path: path.to_path_buf(), what: "two outputs of the bake" });
+        }
+    }
+    let low_mesh = low_as_drawn(low_loaded, low, request.tangents)?;
+    let baked = bake(&high_mesh.mesh, &low_mesh, &request.options, progress)?;
+    let counts = BakeCounts {
+        covered: baked.covered.iter().filter(|c| **c).count(),
+        hit: baked.hit.iter().filter(|h| **h).count(),
+        high_triangles: high_mesh.mesh.triangle_count(),
+        low_triangles: low_mesh.triangle_count(),
+    };
+    let inputs: Vec<&Path> = inputs.iter().map(PathBuf::as_path).collect();
+    let mut set = FileSet::new(&inputs);
+    let chain = tangent_chain(&baked, request)?;
+    crate::maps::write_chain_into(&mut set, &outputs.normal_map, &chain, format)?;
+    let (w, h) = (baked.width, baked.height);
+    if let Some(path) = &outputs.object_space {
+        let rgb: Vec<u8> =
+            baked.object.iter().flat_map(|n| [n.x, n.y, n.z].map(|c| Encoding::Unorm.encode(c))).collect();
+        save_png_into(&mut set, path, w, h, PngLayout::Rgb8, &rgb)?;
+    }
+    if let Some(path) = &outputs.mask {
+        let gray: Vec<u8> = baked.hit.iter().map(|&h| if h { 255 } else { 0 }).collect();
+        save_png_into(&mut set, path, w, h, PngLayout::Gray8, &gray)?;
+    }
+    if let Some(path) = &outputs.low {
+        // The map's level 0 as the PNG the GLB carries: 8 bits, green up as glTF has it.
+        let texels: Vec<[u8; 4]> =
+            baked.tangent.iter().map(|n| encode_unit(Vec3::new(n.x, -n.y, n.z), Encoding::Unorm)).collect();
+        let png = bumpmap_io::image_file::png_bytes(w, h, PngLayout::Rgba8, texels.as_flattened())?;
+        bumpmap_io::mesh_file::save_gltf_into(&mut set, path, &low_mesh, Some(&png))?;
+    }
+    let files = set.commit()?;
+    Ok(BakedFiles { files, baked, counts })
+}
+
+/// The tangent-space normals as the normal map's chain: level 0, or every level, at the bits
+/// and Y convention asked for.
+pub fn tangent_chain(baked: &Baked, request: &BakeRequest) -> Result<Chain, BakeFileError> {
+    let flip = if request.y_convention == YConvention::TEXTURE_SPACE { 1.0 } else { -1.0 };
+    let normals: Vec<Vec3> = baked.tangent.iter().map(|n| Vec3::new(n.x, flip * n.y, n.z)).collect();
+    fn chain<T: Texel>(normals: &[Vec3], w: usize, h: usize, mips: bool) -> Result<MipChain<T>, BakeError> {
+        Ok(if mips {
+            MipChain::try_from_normals(w, h, normals, Encoding::Unorm, MipMode::LengthInAlpha)?
+        } else {
+            let texels = normals.iter().map(|&n| encode_unit::<T>(n, Encoding::Unorm)).collect();
+            MipChain { levels: vec![bumpmap_math::Image::new(w, h, texels)], encoding: Encoding::Unorm }
+        })
+    }
+    let (w, h) = (baked.width, baked.height);
+    Ok(match request.bits {
+        16 => Chain::Rgba16(chain(&normals, w, h, request.mips)?),
+        8 => Chain::Rgba8(chain(&normals, w, h, request.mips)?),
+        other => return Err(BakeFileError::Bits(other)),
+    })
+}

@@ -1,0 +1,62 @@
+//! `bake()`: a high-poly mesh's normals baked onto a low-poly mesh's UV layout, as `bumpmap
+//! bake` bakes them (`bumpmap::bake`), returned as arrays; its rows told to a `progress=`
+//! function.
+//!
+//! What it does not do: bake or write anything itself.
+
+use std::path::PathBuf;
+
+use bumpmap::bake::{BakeRequest, low_as_drawn, tangent_chain};
+use bumpmap_words::Error;
+use pyo3::prelude::*;
+use pyo3::types::{PyDict, PyList};
+
+use crate::errors::to_py;
+use crate::{arrays, interrupt, keywords, take_progress};
+
+/// Bakes `high` onto `low` (mesh files); returns the normal map's levels, the object-space
+/// normals, the displacement and which texels were hit.
+#[pyfunction]
+#[pyo3(signature = (high, low, options = None))]
+pub fn bake<'py>(
+    py: Python<'py>,
+    high: PathBuf,
+    low: PathBuf,
+    options: Option<&Bound<'py, PyDict>>,
+) -> PyResult<Bound<'py, PyDict>> {
+    let (options, progress) = take_progress("bake", options)?;
+    let request: BakeRequest = keywords::bake_request("bake", options.as_ref())?;
+    let (baked, chain) = interrupt::run_reporting(
+        py,
+        move |_, report| {
+            let err = |e| bumpmap_words::bake::bake_error(e, &high, &low);
+            let high_mesh = bumpmap_io::load_mesh(&high).map_err(Error::from)?;
+            let low_loaded = bumpmap_io::load_mesh(&low).map_err(Error::from)?;
+            let low_mesh = low_as_drawn(low_loaded, &low, request.tangents).map_err(err)?;
+            let rows = |done: usize, total: usize| {
+                if let Some(f) = &report {
+                    f(done as u64, total as u64);
+                }
+            };
+            let baked =
+                bumpmap::bake::bake(&high_mesh.mesh, &low_mesh, &request.options, &rows).map_err(|e| err(e.into()))?;
+            let chain = tangent_chain(&baked, &request).map_err(err)?;
+            Ok::<_, Error>((baked, chain))
+        },
+        progress.as_ref(),
+    )?
+    .map_err(|e| to_py("bake", e))?;
+    let (w, h) = (baked.width, baked.height);
+    let out = PyDict::new(py);
+    out.set_item("levels", PyList::new(py, arrays::from_chain(py, chain)?)?)?;
+    let object: Vec<[f32; 3]> = baked.object.iter().map(|n| n.to_array()).collect();
+    out.set_item("object_space", arrays::from_rows(py, object)?.call_method1("reshape", (h, w, 3))?)?;
+    out.set_item("displacement", arrays::from_plane(py, h, w, &baked.displacement)?)?;
+    let flags = |v: &[bool]| -> PyResult<Bound<'py, PyAny>> {
+        let ones: Vec<f32> = v.iter().map(|&b| b as u8 as f32).collect();
+        arrays::from_plane(py, h, w, &ones)?.call_method1("astype", ("bool",))
+    };
+    out.set_item("hit", flags(&baked.hit)?)?;
+    out.set_item("covered", flags(&baked.covered)?)?;
+    Ok(out)
+}
