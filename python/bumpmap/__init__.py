@@ -350,7 +350,8 @@ def bake(high, low, **options):
 
     Returns a dict: ``levels`` (the normal map, level 0 first, as ``mip_chain`` returns a
     chain), ``object_space`` ((H, W, 3) float32 unit normals), ``displacement`` ((H, W)
-    float32, the signed distance from LOW to HIGH along the ray), ``hit`` and ``covered``
+    float32, the signed distance from LOW to HIGH along the ray), with ``ao_rays`` above 0
+    ``occlusion`` ((H, W) float32, HIGH's ambient occlusion, 1 unoccluded), ``hit`` and ``covered``
     ((H, W) bool: texels whose rays met HIGH, and texels of LOW's layout). Most rays meeting
     nothing raises, never a flat map.
 

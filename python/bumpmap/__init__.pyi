@@ -247,10 +247,11 @@ def tangents(
     split_angle: float = 60.0,
     # END options of tangents
 ) -> TangentMesh: ...
-class BakeResult(TypedDict):
+class BakeResult(TypedDict, total=False):
     levels: list[_Levels]
     object_space: npt.NDArray[np.float32]
     displacement: npt.NDArray[np.float32]
+    occlusion: npt.NDArray[np.float32]
     hit: npt.NDArray[np.bool_]
     covered: npt.NDArray[np.bool_]
 
@@ -265,6 +266,7 @@ def bake(
     extrude: Optional[float] = None,
     max_distance: Optional[float] = None,
     padding: int = 16,
+    ao_rays: int = 0,
     decode: _Decode = "mikktspace",
     tangents: _Tangents = "mikktspace",
     y_convention: _YConvention = "opengl",

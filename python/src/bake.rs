@@ -52,6 +52,9 @@ pub fn bake<'py>(
     let object: Vec<[f32; 3]> = baked.object.iter().map(|n| n.to_array()).collect();
     out.set_item("object_space", arrays::from_rows(py, object)?.call_method1("reshape", (h, w, 3))?)?;
     out.set_item("displacement", arrays::from_plane(py, h, w, &baked.displacement)?)?;
+    if !baked.occlusion.is_empty() {
+        out.set_item("occlusion", arrays::from_plane(py, h, w, &baked.occlusion)?)?;
+    }
     let flags = |v: &[bool]| -> PyResult<Bound<'py, PyAny>> {
         let ones: Vec<f32> = v.iter().map(|&b| b as u8 as f32).collect();
         arrays::from_plane(py, h, w, &ones)?.call_method1("astype", ("bool",))

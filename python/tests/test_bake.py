@@ -46,6 +46,10 @@ def test_bake_equals_the_cli(tmp_path, cli):
     assert seen and seen[-1] == (48, 48)
     # The waves tilt the normals: not a flat map.
     assert np.ptp(level0[..., 0].astype(int)) > 20
+    assert "occlusion" not in ours, "no occlusion unless asked for"
+    shaded = bumpmap.bake(tmp_path / "high.obj", tmp_path / "low.obj", size=16, spp=1, ao_rays=16)
+    assert shaded["occlusion"].shape == (16, 16) and shaded["occlusion"].dtype == np.float32
+    assert 0.5 < shaded["occlusion"].min() <= shaded["occlusion"].max() <= 1.0
 
 
 def test_what_cannot_be_baked_raises(tmp_path):

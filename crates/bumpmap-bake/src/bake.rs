@@ -20,6 +20,9 @@ pub const MAX_SIDE: usize = 16384;
 /// The most samples a texel.
 pub const MAX_SAMPLES: u32 = 64;
 
+/// The most occlusion rays a sample.
+pub const MAX_OCCLUSION_RAYS: u32 = 4096;
+
 /// Which way a texel's ray goes.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
 pub enum RayMode {
@@ -74,6 +77,8 @@ pub struct BakeOptions {
     pub padding: u32,
     /// The decode the tangent-space normals are made for.
     pub decode: TangentDecode,
+    /// Rays a sample casts for ambient occlusion (0: none is baked).
+    pub occlusion_rays: u32,
 }
 
 impl Default for BakeOptions {
@@ -89,6 +94,7 @@ impl Default for BakeOptions {
             back: None,
             padding: 16,
             decode: TangentDecode::MikkTSpace,
+            occlusion_rays: 0,
         }
     }
 }
@@ -121,6 +127,9 @@ pub enum BakeError {
     /// Samples out of range.
     #[error("{0} samples a texel: 1 to {MAX_SAMPLES}")]
     Samples(u32),
+    /// Occlusion rays out of range.
+    #[error("{0} occlusion rays a sample: 0 to {MAX_OCCLUSION_RAYS}")]
+    OcclusionRays(u32),
     /// A ray distance that is negative or not finite.
     #[error("ray distances must be finite and not negative, got {front} in front and {back} behind")]
     Distance {
@@ -170,6 +179,9 @@ pub struct Baked {
     pub object: Vec<Vec3>,
     /// Signed distance from LOW to HIGH along the ray, outward positive.
     pub displacement: Vec<f32>,
+    /// HIGH's ambient occlusion at the hit: the cosine-weighted share of the hemisphere over
+    /// LOW (around the ray) that HIGH leaves open, 1 unoccluded (empty unless asked for).
+    pub occlusion: Vec<f32>,
     /// Texels of LOW's layout whose rays met HIGH.
     pub hit: Vec<bool>,
     /// Texels of LOW's layout (some sample inside a triangle).
@@ -195,6 +207,9 @@ pub fn bake(
     if !(1..=MAX_SAMPLES).contains(&options.samples) {
         return Err(BakeError::Samples(options.samples));
     }
+    if options.occlusion_rays > MAX_OCCLUSION_RAYS {
+        return Err(BakeError::OcclusionRays(options.occlusion_rays));
+    }
     low.validate().map_err(|source| BakeError::Mesh { which: "low-poly", source })?;
     high.validate().map_err(|source| BakeError::Mesh { which: "high-poly", source })?;
     if low.texcoords.len() != low.positions.len() {
@@ -206,7 +221,8 @@ pub fn bake(
     let (front, back) = distances(low, options)?;
     // Texel outputs (normals twice, the distance, three flags) and HIGH's BVH, before any of it.
     let texels = (width * height) as u64;
-    let bytes = texels * 31 + high.indices.len() as u64 * BYTES_PER_TRIANGLE;
+    let occlusion_bytes = if options.occlusion_rays > 0 { 4 } else { 0 };
+    let bytes = texels * (31 + occlusion_bytes) + high.indices.len() as u64 * BYTES_PER_TRIANGLE;
     bumpmap_math::buffer::ensure_available(bytes, "the bake")?;
 
     let high_normals;
@@ -231,6 +247,7 @@ pub fn bake(
         tangent: vec![Vec3::Z; width * height],
         object: vec![Vec3::ZERO; width * height],
         displacement: vec![0.0; width * height],
+        occlusion: if options.occlusion_rays > 0 { vec![1.0; width * height] } else { Vec::new() },
         hit: vec![false; width * height],
         covered: vec![false; width * height],
         filled: Vec::new(),
@@ -238,6 +255,13 @@ pub fn bake(
     };
     let done = AtomicUsize::new(0);
     let samples = options.samples as usize;
+    let reach_out = 2.0 * (front + back) + bounds_diagonal(high);
+    // Without occlusion each row gets an empty slice of it.
+    let mut occlusion_rows: Vec<&mut [f32]> = if baked.occlusion.is_empty() {
+        (0..height).map(|_| <&mut [f32]>::default()).collect()
+    } else {
+        baked.occlusion.chunks_mut(width).collect()
+    };
     baked
         .tangent
         .par_chunks_mut(width)
@@ -245,10 +269,12 @@ pub fn bake(
         .zip(baked.displacement.par_chunks_mut(width))
         .zip(baked.hit.par_chunks_mut(width))
         .zip(baked.covered.par_chunks_mut(width))
+        .zip(occlusion_rows.par_iter_mut())
         .enumerate()
-        .for_each(|(y, ((((tangent, object), displacement), hit), covered))| {
+        .for_each(|(y, (((((tangent, object), displacement), hit), covered), occlusion))| {
             for x in 0..width {
                 let (mut sum_t, mut sum_o, mut sum_d, mut hits, mut inside) = (Vec3::ZERO, Vec3::ZERO, 0.0, 0, false);
+                let mut open = 0.0;
                 for k in 0..samples {
                     let p = Vec2::new(x as f32, y as f32) + sample_offset(k, samples);
                     let Some(at) = layout.at(y, p) else { continue };
@@ -258,6 +284,11 @@ pub fn bake(
                         continue;
                     };
                     let encoded = frame.encode(found.normal, options.decode);
+                    if options.occlusion_rays > 0 {
+                        let at = frame.p + frame.d * (front - found.t);
+                        let seed = [x as u32, y as u32, k as u32];
+                        open += open_share(&target, at, frame.d, options.occlusion_rays, reach_out, seed);
+                    }
                     sum_t += encoded;
                     sum_o += found.normal;
                     sum_d += front - found.t;
@@ -268,6 +299,9 @@ pub fn bake(
                     tangent[x] = sum_t.normalize_or(Vec3::Z);
                     object[x] = sum_o.normalize_or(Vec3::Z);
                     displacement[x] = sum_d / hits as f32;
+                    if let Some(o) = occlusion.get_mut(x) {
+                        *o = open / hits as f32;
+                    }
                     hit[x] = true;
                 }
             }
@@ -288,7 +322,38 @@ pub fn bake(
     pad(&mut baked.object, &baked.hit, width, height, rings, unit_mean);
     let mean = |v: &[f32]| v.iter().sum::<f32>() / v.len() as f32;
     baked.filled = pad(&mut baked.displacement, &baked.hit, width, height, rings, mean);
+    if !baked.occlusion.is_empty() {
+        pad(&mut baked.occlusion, &baked.hit, width, height, rings, mean);
+    }
     Ok(baked)
+}
+
+/// The diagonal of `mesh`'s bounding box.
+fn bounds_diagonal(mesh: &Mesh) -> f32 {
+    let (lo, hi) = mesh.positions.iter().fold((Vec3::INFINITY, Vec3::NEG_INFINITY), |(l, h), p| (l.min(*p), h.max(*p)));
+    (hi - lo).length()
+}
+
+/// The cosine-weighted share of the hemisphere around `up` that HIGH leaves open from `at`:
+/// `rays` directions of a stratified sequence (Roberts' R2, rotated per texel and sample by a
+/// hash of `seed`) mapped onto the hemisphere by Malley's method, each tested out to `reach`.
+fn open_share(high: &HighPoly, at: Vec3, up: Vec3, rays: u32, reach: f32, seed: [u32; 3]) -> f32 {
+    use bumpmap_math::hash::{hash32, unit};
+    const A1: f32 = 0.754_877_7;
+    const A2: f32 = 0.569_840_3;
+    let (r1, r2) = (unit(hash32(&[seed[0], seed[1], seed[2], 1])), unit(hash32(&[seed[0], seed[1], seed[2], 2])));
+    let (tx, ty) = up.any_orthonormal_pair();
+    // Off the surface by a hair of the reach, so a ray does not meet the triangle it leaves.
+    let near = reach * 1e-5;
+    let open = (0..rays)
+        .filter(|&k| {
+            let (u, v) = ((0.5 + A1 * k as f32 + r1).fract(), (0.5 + A2 * k as f32 + r2).fract());
+            let (r, phi) = (u.sqrt(), std::f32::consts::TAU * v);
+            let dir = tx * (r * phi.cos()) + ty * (r * phi.sin()) + up * (1.0 - u).max(0.0).sqrt();
+            !high.blocked(at, dir, near, reach)
+        })
+        .count();
+    open as f32 / rays as f32
 }
 
 /// The ray distances in front and behind: as given, or 5 % of LOW's bounding box diagonal.

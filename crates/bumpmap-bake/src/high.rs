@@ -67,6 +67,15 @@ impl<'a> HighPoly<'a> {
         Some(Hit { t: hit.t, normal: self.normal_at(index, origin + direction * hit.t) })
     }
 
+    /// Whether the ray `origin + t·direction`, `t` in `[near, far]`, meets HIGH anywhere.
+    pub fn blocked(&self, origin: Vec3, direction: Vec3, near: f32, far: f32) -> bool {
+        let direction = direction + Vec3::ZERO;
+        let ray = Ray::new(origin.into(), direction.into(), near, far);
+        !self
+            .bvh
+            .ray_traverse_miss(ray, |ray, id| self.triangles[self.bvh.primitive_indices[id] as usize].intersect(ray))
+    }
+
     /// HIGH's normal on triangle `index` at `p`: its vertex normals interpolated.
     fn normal_at(&self, index: usize, p: Vec3) -> Vec3 {
         let [i0, i1, i2] = self.mesh.indices[index].map(|i| i as usize);

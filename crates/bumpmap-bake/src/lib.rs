@@ -39,5 +39,7 @@ mod high;
 mod pad;
 mod texels;
 
-pub use bake::{BakeError, BakeOptions, Baked, MAX_SAMPLES, MAX_SIDE, RayMode, TangentDecode, bake};
+pub use bake::{
+    BakeError, BakeOptions, Baked, MAX_OCCLUSION_RAYS, MAX_SAMPLES, MAX_SIDE, RayMode, TangentDecode, bake,
+};
 pub use encode::encode_in_frame;

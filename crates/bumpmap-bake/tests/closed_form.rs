@@ -175,3 +175,37 @@ fn explicit_rays_follow_the_split_normals_and_averaged_rays_do_not() {
     let spread = |b: &bumpmap_bake::Baked| b.displacement.iter().map(|d| d.abs()).fold(0.0, f32::max);
     assert!(spread(&explicit) < 1e-4, "{}", spread(&explicit));
 }
+
+#[test]
+fn a_displaced_planes_occlusion_is_its_horizon_maps() {
+    // Deeper waves than the normals' test, so the valleys are occluded by a few per cent.
+    let deep = |x: f32, y: f32| 4.0 * DEPTH * heights(x, y);
+    let mut high = high(2);
+    for p in &mut high.positions {
+        p.z = deep(p.x, p.y);
+    }
+    high.compute_normals();
+    let options = BakeOptions {
+        width: N,
+        height: N,
+        samples: 1,
+        front: Some(1.0),
+        back: Some(1.0),
+        occlusion_rays: 256,
+        ..Default::default()
+    };
+    let baked = bake(&high, &low(), &options, &|_, _| {}).unwrap();
+    let texels: Vec<f32> =
+        (0..N * N).map(|k| heights(((k % N) as f32 + 0.5) / N as f32, ((k / N) as f32 + 0.5) / N as f32)).collect();
+    let field = HeightField::new(N, N, texels).unwrap();
+    let horizons = bumpmap_math::HorizonMap::from_heights(&field, Wrap::Repeat).unwrap();
+    let ao = horizons.ambient_occlusion(4.0 * DEPTH * N as f32);
+    // Away from the plane's edges, where HIGH ends and its rays see past it (the map tiles).
+    let inner: Vec<usize> =
+        (0..N * N).filter(|k| (8..N - 8).contains(&(k % N)) && (8..N - 8).contains(&(k / N))).collect();
+    let mean_diff = inner.iter().map(|&k| (baked.occlusion[k] - ao[k]).abs()).sum::<f32>() / inner.len() as f32;
+    let darkest = inner.iter().map(|&k| ao[k]).fold(1.0, f32::min);
+    eprintln!("plane's occlusion against the horizon map's: mean |difference| {mean_diff:.4}, darkest {darkest:.3}");
+    assert!(darkest < 0.97, "the valleys are occluded: {darkest}");
+    assert!(mean_diff <= 0.03, "{mean_diff}");
+}

@@ -14,6 +14,7 @@ pub fn run(args: &BakeArgs) -> Result<(), CliError> {
         normal_map: args.output.clone(),
         object_space: args.object_out.clone(),
         mask: args.mask_out.clone(),
+        occlusion: args.ao_out.clone(),
         low: args.low_out.clone(),
     };
     let bar = ProgressBar::new(request.options.height as u64)

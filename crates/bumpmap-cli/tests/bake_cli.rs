@@ -60,6 +60,10 @@ fn a_bake_writes_its_map_mask_and_low_poly_glb() {
         &path("low.glb"),
         "--object-out",
         &path("object.png"),
+        "--ao-out",
+        &path("ao.png"),
+        "--ao-rays",
+        "32",
     ]);
     assert!(o.status.success(), "{}", stderr(&o));
     assert!(stderr(&o).contains("4096 of 4096 texels"), "{}", stderr(&o));
@@ -72,6 +76,10 @@ fn a_bake_writes_its_map_mask_and_low_poly_glb() {
     assert!(red.iter().max().unwrap() - red.iter().min().unwrap() > 20, "the waves tilt it");
     let mask = image::open(dir.join("mask.png")).unwrap().to_luma8();
     assert!(mask.pixels().all(|p| p[0] == 255), "every ray hit");
+    // The occlusion: open sky mostly, the valleys between the waves a little darker.
+    let ao = image::open(dir.join("ao.png")).unwrap().to_luma8();
+    let (lo, hi) = ao.pixels().fold((255, 0), |(l, h), p| (p[0].min(l), p[0].max(h)));
+    assert!(hi >= 250 && lo < hi, "occlusion from {lo} to {hi}");
     // LOW as baked for, read by the gltf crate: its tangents and the map as its normalTexture.
     let (doc, buffers, images) = gltf::import(dir.join("low.glb")).unwrap();
     let prim = doc.meshes().next().unwrap().primitives().next().unwrap();
@@ -79,7 +87,7 @@ fn a_bake_writes_its_map_mask_and_low_poly_glb() {
     assert_eq!(reader.read_tangents().expect("TANGENT").count(), 4);
     assert!(prim.material().normal_texture().is_some());
     assert_eq!((images[0].width, images[0].height), (64, 64));
-    assert_eq!(listing(&dir), ["high.obj", "low.glb", "low.obj", "mask.png", "n.png", "object.png"]);
+    assert_eq!(listing(&dir), ["ao.png", "high.obj", "low.glb", "low.obj", "mask.png", "n.png", "object.png"]);
 }
 
 #[test]
@@ -102,6 +110,7 @@ fn what_cannot_be_baked_is_refused_with_nothing_written() {
         (run(&far, &low, &[]), 1, "met the high-poly mesh nowhere"),
         (run(&high, &low, &["--spp", "0"]), 2, "--spp"),
         (run(&high, &low, &["--extrude", "-1"]), 2, "--extrude"),
+        (run(&high, &low, &["--ao-rays", "5000"]), 2, "--ao-rays"),
         (
             run(&high, &low, &["--low-out", dir.join("l.glb").to_str().unwrap(), "--y-convention", "directx"]),
             2,

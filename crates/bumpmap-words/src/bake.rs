@@ -27,6 +27,9 @@ pub fn bake_error(e: BakeFileError, high: &Path, low: &Path) -> Error {
             BakeError::Size { width, height } => {
                 Error::Usage(format!("--size must be 1 to {}, got {width}x{height}", bumpmap::bake::MAX_SIDE))
             }
+            BakeError::OcclusionRays(n) => {
+                Error::Usage(format!("--ao-rays must be 0 to {}, got {n}", bumpmap::bake::MAX_OCCLUSION_RAYS))
+            }
             BakeError::Samples(n) => {
                 Error::Usage(format!("--spp must be 1 to {}, got {n}", bumpmap::bake::MAX_SAMPLES))
             }

@@ -2,8 +2,9 @@
 //! or GLB, every node with its transform), LOW made ready as the renderer will draw it, the
 //! bake (`bumpmap_bake`), and its maps written as one set of files — the tangent-space normal
 //! map (8 or 16 bits, green up or down, with its mip chain where asked), and where asked the
-//! object-space normals, a mask of the texels whose rays met HIGH, and LOW itself as a GLB with
-//! the tangents the map was baked for and the map as its `normalTexture`.
+//! object-space normals, HIGH's ambient occlusion, a mask of the texels whose rays met HIGH,
+//! and LOW itself as a GLB with the tangents the map was baked for and the map as its
+//! `normalTexture`.
 //!
 //! LOW is baked as drawn: its file's tangents where it has them (what a renderer reading the
 //! file uses), else tangents made in [`BakeRequest::tangents`]' mode; either way the normals and
@@ -16,6 +17,7 @@
 use std::path::{Path, PathBuf};
 
 use bumpmap_io::atomic::FileSet;
+use bumpmap_io::height_file::HeightBits;
 use bumpmap_io::image_file::{PngLayout, save_png_into};
 use bumpmap_io::texture_file::TextureFormat;
 use bumpmap_io::{IoError, LoadedMesh};
@@ -26,10 +28,14 @@ use bumpmap_math::{Encoding, MipChain, MipMode, Texel, YConvention};
 use glam::Vec3;
 
 pub use bumpmap_bake::{
-    BakeError, BakeOptions, Baked, MAX_SAMPLES, MAX_SIDE, RayMode, TangentDecode, bake, encode_in_frame,
+    BakeError, BakeOptions, Baked, MAX_OCCLUSION_RAYS, MAX_SAMPLES, MAX_SIDE, RayMode, TangentDecode, bake,
+    encode_in_frame,
 };
 
 use crate::maps::{Chain, SaveError};
+
+/// Occlusion rays a sample casts for an occlusion map when the request names none.
+pub const DEFAULT_OCCLUSION_RAYS: u32 = 64;
 
 /// What a bake from files is asked for, besides its files.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -68,6 +74,9 @@ pub struct BakeOutputs {
     pub object_space: Option<PathBuf>,
     /// The texels whose rays met HIGH (8-bit gray PNG: 255 hit, 0 missed or outside LOW's UVs).
     pub mask: Option<PathBuf>,
+    /// HIGH's ambient occlusion (8-bit gray PNG, or 16-bit with 16 bits: 1 unoccluded), with
+    /// the request's occlusion rays ([`DEFAULT_OCCLUSION_RAYS`] where it asks for none).
+    pub occlusion: Option<PathBuf>,
     /// LOW as baked for: a `.glb` or `.gltf` with its tangents and the map as its normalTexture.
     pub low: Option<PathBuf>,
 }
@@ -181,6 +190,7 @@ pub fn bake_files(
     let named: Vec<(&Path, &'static str)> = std::iter::once((outputs.normal_map.as_path(), "the normal map"))
         .chain(outputs.object_space.as_deref().map(|p| (p, "the object-space map")))
         .chain(outputs.mask.as_deref().map(|p| (p, "the mask")))
+        .chain(outputs.occlusion.as_deref().map(|p| (p, "the occlusion")))
         .chain(outputs.low.as_deref().map(|p| (p, "LOW's glTF")))
         .collect();
     for (k, (path, _)) in named.iter().enumerate() {
@@ -189,7 +199,13 @@ pub fn bake_files(
         }
     }
     let low_mesh = low_as_drawn(low_loaded, low, request.tangents)?;
-    let baked = bake(&high_mesh.mesh, &low_mesh, &request.options, progress)?;
+    let mut options = request.options;
+    options.occlusion_rays = match (&outputs.occlusion, options.occlusion_rays) {
+        (None, _) => 0,
+        (Some(_), 0) => DEFAULT_OCCLUSION_RAYS,
+        (Some(_), n) => n,
+    };
+    let baked = bake(&high_mesh.mesh, &low_mesh, &options, progress)?;
     let counts = BakeCounts {
         covered: baked.covered.iter().filter(|c| **c).count(),
         hit: baked.hit.iter().filter(|h| **h).count(),
@@ -209,6 +225,10 @@ pub fn bake_files(
     if let Some(path) = &outputs.mask {
         let gray: Vec<u8> = baked.hit.iter().map(|&h| if h { 255 } else { 0 }).collect();
         save_png_into(&mut set, path, w, h, PngLayout::Gray8, &gray)?;
+    }
+    if let Some(path) = &outputs.occlusion {
+        let bits = if request.bits == 16 { HeightBits::Sixteen } else { HeightBits::Eight };
+        bumpmap_io::horizon_file::write_gray_into(&mut set, path, (w, h), &baked.occlusion, bits)?;
     }
     if let Some(path) = &outputs.low {
         // The map's level 0 as the PNG the GLB carries: 8 bits, green up as glTF has it.

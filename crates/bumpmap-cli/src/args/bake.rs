@@ -41,6 +41,9 @@ pub struct BakeArgs {
     /// Also write the object-space normals (8-bit RGB PNG)
     #[arg(long = "object-out")]
     pub object_out: Option<PathBuf>,
+    /// Also write HIGH's ambient occlusion (gray PNG, 8 or 16 bits as --bits: 1 unoccluded), --ao-rays rays a sample
+    #[arg(long = "ao-out")]
+    pub ao_out: Option<PathBuf>,
     /// Also write which texels' rays met HIGH (8-bit gray PNG: 255 hit, 0 missed or outside the UVs)
     #[arg(long = "mask-out")]
     pub mask_out: Option<PathBuf>,

@@ -2,7 +2,7 @@
 //! they look, its padding, the decode its tangent-space normals are made for, and how its
 //! normal map is stored.
 
-use bumpmap_bake::{MAX_SAMPLES, MAX_SIDE};
+use bumpmap_bake::{MAX_OCCLUSION_RAYS, MAX_SAMPLES, MAX_SIDE};
 
 use super::{Access, Kind, Opt, Value};
 use crate::bake::BakeRequest;
@@ -51,6 +51,7 @@ pub static BAKE: &[Row] = &[
     Row::new("extrude", COMMAND, "How far in front of LOW the rays start, in the meshes' units: the cage's distance; the first hit from there inward wins [default: 5% of LOW's bounding box diagonal]", |r| &mut r.options.front).check(distance),
     Row::new("max-distance", COMMAND, "How far behind LOW the rays still look, in the meshes' units [default: --extrude's distance]", |r| &mut r.options.back).check(distance),
     Row::new("padding", COMMAND, "Texels filled beyond each UV island's edge from the island's own, so filtering and mips do not read the background", |r| &mut r.options.padding).range(0, 4096),
+    Row::new("ao-rays", COMMAND, "Rays each sample casts for HIGH's ambient occlusion, cosine-weighted over the hemisphere around LOW's normal (0: no occlusion; --ao-out bakes it with 64 when this is 0)", |r| &mut r.options.occlusion_rays).range(0, MAX_OCCLUSION_RAYS as u64),
     Row::word("decode", COMMAND, "The tangent-space decode the map is made for, inverted exactly (interpolated, unnormalized T and N)", |r| &mut r.options.decode),
     Row::word("tangents", COMMAND, "How LOW's tangents are made when its file has none (a glTF's own TANGENT is used as it is)", |r| &mut r.tangents),
     Row::word("y-convention", COMMAND, "Which way green points in the normal map's file: opengl (alias y-up: glTF, Blender, Unity) or directx (alias y-down: Unreal)", |r| &mut r.y_convention),
