@@ -265,6 +265,7 @@ def bake(
     ray: _Ray = "averaged",
     extrude: Optional[float] = None,
     max_distance: Optional[float] = None,
+    cage: Optional[_Path] = None,
     padding: int = 16,
     ao_rays: int = 0,
     decode: _Decode = "mikktspace",

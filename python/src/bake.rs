@@ -6,7 +6,7 @@
 
 use std::path::PathBuf;
 
-use bumpmap::bake::{BakeRequest, low_as_drawn, tangent_chain};
+use bumpmap::bake::{BakeRequest, bake_from_files, tangent_chain};
 use bumpmap_words::Error;
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
@@ -30,18 +30,14 @@ pub fn bake<'py>(
         py,
         move |_, report| {
             let err = |e| bumpmap_words::bake::bake_error(e, &high, &low);
-            let high_mesh = bumpmap_io::load_mesh(&high).map_err(Error::from)?;
-            let low_loaded = bumpmap_io::load_mesh(&low).map_err(Error::from)?;
-            let low_mesh = low_as_drawn(low_loaded, &low, request.tangents).map_err(err)?;
             let rows = |done: usize, total: usize| {
                 if let Some(f) = &report {
                     f(done as u64, total as u64);
                 }
             };
-            let baked =
-                bumpmap::bake::bake(&high_mesh.mesh, &low_mesh, &request.options, &rows).map_err(|e| err(e.into()))?;
-            let chain = tangent_chain(&baked, &request).map_err(err)?;
-            Ok::<_, Error>((baked, chain))
+            let done = bake_from_files(&high, &low, &request, &rows).map_err(err)?;
+            let chain = tangent_chain(&done.baked, &request).map_err(err)?;
+            Ok::<_, Error>((done.baked, chain))
         },
         progress.as_ref(),
     )?

@@ -52,6 +52,16 @@ def test_bake_equals_the_cli(tmp_path, cli):
     assert 0.5 < shaded["occlusion"].min() <= shaded["occlusion"].max() <= 1.0
 
 
+def test_a_cage_file_starts_the_rays(tmp_path):
+    square_obj(tmp_path / "high.obj", 32, waves, uvs=False)
+    square_obj(tmp_path / "low.obj", 1, lambda x, y: 0.0)
+    square_obj(tmp_path / "cage.obj", 1, lambda x, y: 0.1)
+    caged = bumpmap.bake(tmp_path / "high.obj", tmp_path / "low.obj", size=16, spp=1, cage=tmp_path / "cage.obj")
+    extruded = bumpmap.bake(tmp_path / "high.obj", tmp_path / "low.obj", size=16, spp=1, extrude=0.1)
+    difference = np.abs(caged["levels"][0].astype(int) - extruded["levels"][0].astype(int)).max()
+    assert difference <= 1, "a cage 0.1 out is extrude=0.1"
+
+
 def test_what_cannot_be_baked_raises(tmp_path):
     square_obj(tmp_path / "high.obj", 8, waves, uvs=False)
     square_obj(tmp_path / "low.obj", 1, lambda x, y: 0.0)

@@ -1,7 +1,6 @@
 //! The bake itself: options, what comes out, and the rays cast from every texel of LOW's UV
 //! layout into HIGH (the crate's page says how a texel is baked).
 
-use std::collections::HashMap;
 use std::sync::atomic::{AtomicUsize, Ordering};
 
 use bumpmap_math::buffer::OutOfMemory;
@@ -9,10 +8,11 @@ use bumpmap_math::mesh::{Mesh, MeshError};
 use glam::{Vec2, Vec3};
 use rayon::prelude::*;
 
-use crate::encode::encode_in_frame;
+use crate::encode::TangentDecode;
+use crate::frame::{Frame, averaged_normals, cage_ray};
 use crate::high::{BYTES_PER_TRIANGLE, HighPoly};
 use crate::pad::pad;
-use crate::texels::{Covered, Layout, sample_offset};
+use crate::texels::{Layout, sample_offset};
 
 /// The most texels a side.
 pub const MAX_SIDE: usize = 16384;
@@ -38,23 +38,6 @@ pub enum RayMode {
 bumpmap_math::named!(RayMode {
     Averaged => "averaged": "Along LOW's averaged normals: a smooth cage, no seam at hard edges (xNormal's and Marmoset's default)",
     Explicit => "explicit": "Along LOW's own normals, split at hard edges: each face projects straight, and a seam opens along each hard edge",
-});
-
-/// How the renderer forms the object-space normal from a tangent-space one, which the bake
-/// inverts exactly: both from LOW's interpolated, unnormalized vertex tangent T and normal N.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
-pub enum TangentDecode {
-    /// MikkTSpace's per-pixel decode: B = sign · cross(N, T) of the interpolated vectors.
-    #[default]
-    MikkTSpace,
-    /// This renderer's vertex stage: each vertex's B = w · cross(N, T), interpolated as T and
-    /// N are (what `bumpmap render` decodes with).
-    PerVertex,
-}
-
-bumpmap_math::named!(TangentDecode {
-    MikkTSpace => "mikktspace": "MikkTSpace's per-pixel decode, B = sign·cross(N, T) of the interpolated vectors (Blender, Unity, Unreal, glTF viewers)",
-    PerVertex => "per-vertex": "Each vertex's B = w·cross(N, T) interpolated with T and N: what bumpmap render decodes with",
 });
 
 /// How a bake is made.
@@ -127,6 +110,17 @@ pub enum BakeError {
     /// Samples out of range.
     #[error("{0} samples a texel: 1 to {MAX_SAMPLES}")]
     Samples(u32),
+    /// A cage with another number of points than LOW has vertices.
+    #[error("the cage has {cage} points for the low-poly mesh's {low} vertices: a cage is LOW with its vertices moved")]
+    CageSize {
+        /// The cage's points.
+        cage: usize,
+        /// LOW's vertices.
+        low: usize,
+    },
+    /// A cage point that is NaN or infinite.
+    #[error("the cage's point {0} is not finite")]
+    CageNotFinite(usize),
     /// Occlusion rays out of range.
     #[error("{0} occlusion rays a sample: 0 to {MAX_OCCLUSION_RAYS}")]
     OcclusionRays(u32),
@@ -197,6 +191,36 @@ pub struct Baked {
 pub fn bake(
     high: &Mesh,
     low: &Mesh,
+    options: &BakeOptions,
+    progress: &(dyn Fn(usize, usize) + Sync),
+) -> Result<Baked, BakeError> {
+    bake_from(high, low, None, options, progress)
+}
+
+/// [`bake`] with each ray starting on a cage: `cage` holds, for each of LOW's vertices, where
+/// the cage has it (LOW's own point pushed outward, usually; where the two are one point the ray
+/// starts on LOW along the averaged or explicit direction). A ray goes from the cage's point
+/// through LOW's, as far as [`BakeOptions::back`] beyond it; [`BakeOptions::front`] is not used.
+pub fn bake_with_cage(
+    high: &Mesh,
+    low: &Mesh,
+    cage: &[Vec3],
+    options: &BakeOptions,
+    progress: &(dyn Fn(usize, usize) + Sync),
+) -> Result<Baked, BakeError> {
+    if cage.len() != low.positions.len() {
+        return Err(BakeError::CageSize { cage: cage.len(), low: low.positions.len() });
+    }
+    if let Some(i) = cage.iter().position(|p| !p.is_finite()) {
+        return Err(BakeError::CageNotFinite(i));
+    }
+    bake_from(high, low, Some(cage), options, progress)
+}
+
+fn bake_from(
+    high: &Mesh,
+    low: &Mesh,
+    cage: Option<&[Vec3]>,
     options: &BakeOptions,
     progress: &(dyn Fn(usize, usize) + Sync),
 ) -> Result<Baked, BakeError> {
@@ -279,7 +303,15 @@ pub fn bake(
                     let p = Vec2::new(x as f32, y as f32) + sample_offset(k, samples);
                     let Some(at) = layout.at(y, p) else { continue };
                     inside = true;
-                    let frame = Frame::at(low, &rays, at);
+                    let mut frame = Frame::at(low, &rays, at);
+                    // From the cage's point where there is one, else `front` along the frame's.
+                    let front = match cage.and_then(|cage| cage_ray(cage, low, at, frame.p)) {
+                        Some((out, distance)) => {
+                            frame.d = out;
+                            distance
+                        }
+                        None => front,
+                    };
                     let Some(found) = target.first_hit(frame.p + frame.d * front, -frame.d, front + back) else {
                         continue;
                     };
@@ -366,61 +398,4 @@ fn distances(low: &Mesh, options: &BakeOptions) -> Result<(f32, f32), BakeError>
         return Err(BakeError::Distance { front, back });
     }
     Ok((front, back))
-}
-
-/// Each vertex's averaged normal: the area-weighted normals of every triangle touching any
-/// vertex at its position (vertices split for hard edges or UV seams share one).
-fn averaged_normals(mesh: &Mesh) -> Vec<Vec3> {
-    let key = |p: Vec3| p.to_array().map(f32::to_bits);
-    let mut sums: HashMap<[u32; 3], Vec3> = HashMap::new();
-    for t in &mesh.indices {
-        let [a, b, c] = t.map(|i| mesh.positions[i as usize]);
-        let n = (b - a).cross(c - a);
-        for p in [a, b, c] {
-            *sums.entry(key(p)).or_default() += n;
-        }
-    }
-    mesh.positions
-        .iter()
-        .zip(&mesh.normals)
-        .map(|(p, own)| sums.get(&key(*p)).and_then(|n| n.try_normalize()).unwrap_or(*own))
-        .collect()
-}
-
-/// LOW at one sample: the point, the ray's direction and the tangent frame as interpolated.
-struct Frame {
-    p: Vec3,
-    d: Vec3,
-    t: Vec3,
-    n: Vec3,
-    /// B as each vertex has it (`w · N × T`), interpolated.
-    b_per_vertex: Vec3,
-    /// The handedness, interpolated (its sign is MikkTSpace's per-triangle sign).
-    w: f32,
-}
-
-impl Frame {
-    fn at(low: &Mesh, rays: &[Vec3], at: Covered) -> Frame {
-        let ids = low.indices[at.triangle as usize].map(|i| i as usize);
-        let mix3 = |f: &dyn Fn(usize) -> Vec3| ids.iter().zip(at.weights).map(|(&i, w)| f(i) * w).sum::<Vec3>();
-        let w = ids.iter().zip(at.weights).map(|(&i, w)| low.tangents[i].w * w).sum::<f32>();
-        let n = mix3(&|i| low.normals[i]);
-        Frame {
-            p: mix3(&|i| low.positions[i]),
-            d: mix3(&|i| rays[i]).normalize_or(n.normalize_or(Vec3::Z)),
-            t: mix3(&|i| low.tangents[i].truncate()),
-            n,
-            b_per_vertex: mix3(&|i| low.bitangent(i)),
-            w,
-        }
-    }
-
-    /// `normal` in this frame, as `decode` will read it back.
-    fn encode(&self, normal: Vec3, decode: TangentDecode) -> Vec3 {
-        let b = match decode {
-            TangentDecode::MikkTSpace => self.w.signum() * self.n.cross(self.t),
-            TangentDecode::PerVertex => self.b_per_vertex,
-        };
-        encode_in_frame(normal, self.t, b, self.n).unwrap_or(Vec3::Z)
-    }
 }

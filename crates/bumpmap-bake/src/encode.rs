@@ -4,10 +4,26 @@
 //! with dot products) is inverted by `[T B N]⁻¹ · n`, normalized — not by dot products with an
 //! orthonormalized frame, which is what leaves seams and waviness where the frame is skewed.
 //!
-//! What this module does not do: choose B (the caller's [`TangentDecode`](crate::TangentDecode)
-//! does).
+//! [`TangentDecode`] names the two decodes a bake is made for (each picks its B).
 
 use glam::{Mat3, Vec3};
+
+/// How the renderer forms the object-space normal from a tangent-space one, which the bake
+/// inverts exactly: both from LOW's interpolated, unnormalized vertex tangent T and normal N.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum TangentDecode {
+    /// MikkTSpace's per-pixel decode: B = sign · cross(N, T) of the interpolated vectors.
+    #[default]
+    MikkTSpace,
+    /// This renderer's vertex stage: each vertex's B = w · cross(N, T), interpolated as T and
+    /// N are (what `bumpmap render` decodes with).
+    PerVertex,
+}
+
+bumpmap_math::named!(TangentDecode {
+    MikkTSpace => "mikktspace": "MikkTSpace's per-pixel decode, B = sign·cross(N, T) of the interpolated vectors (Blender, Unity, Unreal, glTF viewers)",
+    PerVertex => "per-vertex": "Each vertex's B = w·cross(N, T) interpolated with T and N: what bumpmap render decodes with",
+});
 
 /// The unit tangent-space normal `v` with `normalize(v.x·t + v.y·b + v.z·n) = normal` for the
 /// frame `t`, `b`, `n` (unnormalized, not orthogonal), or `None` where the frame is degenerate

@@ -35,11 +35,12 @@
 
 mod bake;
 mod encode;
+mod frame;
 mod high;
 mod pad;
 mod texels;
 
 pub use bake::{
-    BakeError, BakeOptions, Baked, MAX_OCCLUSION_RAYS, MAX_SAMPLES, MAX_SIDE, RayMode, TangentDecode, bake,
+    BakeError, BakeOptions, Baked, MAX_OCCLUSION_RAYS, MAX_SAMPLES, MAX_SIDE, RayMode, bake, bake_with_cage,
 };
-pub use encode::encode_in_frame;
+pub use encode::{TangentDecode, encode_in_frame};

@@ -209,3 +209,29 @@ fn a_displaced_planes_occlusion_is_its_horizon_maps() {
     assert!(darkest < 0.97, "the valleys are occluded: {darkest}");
     assert!(mean_diff <= 0.03, "{mean_diff}");
 }
+
+#[test]
+fn a_cage_is_where_the_rays_start() {
+    use bumpmap_bake::bake_with_cage;
+    let options =
+        BakeOptions { width: 32, height: 32, samples: 1, front: Some(0.1), back: Some(0.1), ..Default::default() };
+    let high = high(2);
+    let plain = bake(&high, &low(), &options, &|_, _| {}).unwrap();
+    // LOW pushed 0.1 out: the same rays as --extrude 0.1.
+    let cage: Vec<Vec3> = low().positions.iter().map(|p| *p + Vec3::Z * 0.1).collect();
+    let caged = bake_with_cage(&high, &low(), &cage, &options, &|_, _| {}).unwrap();
+    let (mean, worst) = angles(&plain.tangent, &caged.tangent);
+    assert!(mean < 1e-3 && worst < 0.05, "{mean}° {worst}° (float rounding of two ways to one ray)");
+    // A cage too close in front misses the waves' crests: rays start below them.
+    let low_cage: Vec<Vec3> = low().positions.iter().map(|p| *p + Vec3::Z * 0.01).collect();
+    let short = bake_with_cage(&high, &low(), &low_cage, &BakeOptions { back: Some(0.0), ..options }, &|_, _| {});
+    assert!(matches!(short, Err(BakeError::MostMissed { .. })) || short.unwrap().hit.iter().any(|h| !h));
+    // A cage of another topology, or with NaN, is refused.
+    assert!(matches!(
+        bake_with_cage(&high, &low(), &cage[..3], &options, &|_, _| {}),
+        Err(BakeError::CageSize { cage: 3, low: 4 })
+    ));
+    let mut nan = cage.clone();
+    nan[2].y = f32::NAN;
+    assert!(matches!(bake_with_cage(&high, &low(), &nan, &options, &|_, _| {}), Err(BakeError::CageNotFinite(2))));
+}

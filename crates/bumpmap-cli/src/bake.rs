@@ -9,7 +9,7 @@ use crate::error::CliError;
 
 /// Runs `bumpmap bake`.
 pub fn run(args: &BakeArgs) -> Result<(), CliError> {
-    let request = args.bake.0;
+    let request = &args.bake.0;
     let outputs = BakeOutputs {
         normal_map: args.output.clone(),
         object_space: args.object_out.clone(),
@@ -19,7 +19,7 @@ pub fn run(args: &BakeArgs) -> Result<(), CliError> {
     };
     let bar = ProgressBar::new(request.options.height as u64)
         .with_style(ProgressStyle::with_template("{bar:40} {pos}/{len} rows {elapsed}").expect("a valid template"));
-    let done = bake_files(&args.high, &args.low, &request, &outputs, &|rows, _| bar.set_position(rows as u64));
+    let done = bake_files(&args.high, &args.low, request, &outputs, &|rows, _| bar.set_position(rows as u64));
     bar.finish_and_clear();
     let done = done.map_err(|e| bumpmap_words::bake::bake_error(e, &args.high, &args.low))?;
     let c = done.counts;

@@ -91,6 +91,56 @@ fn a_bake_writes_its_map_mask_and_low_poly_glb() {
 }
 
 #[test]
+fn a_cage_file_is_where_the_rays_start() {
+    let dir = scratch("bake_cage");
+    let (high, low, cage, other) =
+        (dir.join("high.obj"), dir.join("low.obj"), dir.join("cage.obj"), dir.join("other.obj"));
+    square_obj(&high, 32, waves, false);
+    square_obj(&low, 1, |_, _| 0.0, true);
+    square_obj(&cage, 1, |_, _| 0.1, true);
+    square_obj(&other, 2, |_, _| 0.1, true);
+    let path = |name: &str| dir.join(name).to_str().unwrap().to_string();
+    let run = |cage: &Path, out: &str| {
+        bumpmap(&[
+            "bake",
+            &path("high.obj"),
+            &path("low.obj"),
+            "-o",
+            &path(out),
+            "--size",
+            "32",
+            "--cage",
+            cage.to_str().unwrap(),
+        ])
+    };
+    let o = run(&cage, "caged.png");
+    assert!(o.status.success(), "{}", stderr(&o));
+    let o = bumpmap(&[
+        "bake",
+        &path("high.obj"),
+        &path("low.obj"),
+        "-o",
+        &path("extruded.png"),
+        "--size",
+        "32",
+        "--extrude",
+        "0.1",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let (a, b) = (
+        image::open(dir.join("caged.png")).unwrap().to_rgba8(),
+        image::open(dir.join("extruded.png")).unwrap().to_rgba8(),
+    );
+    let worst =
+        a.pixels().zip(b.pixels()).map(|(p, q)| (0..3).map(|c| p[c].abs_diff(q[c])).max().unwrap()).max().unwrap();
+    assert!(worst <= 1, "a cage 0.1 out is --extrude 0.1: {worst}");
+    let o = run(&other, "refused.png");
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    assert!(stderr(&o).contains("other.obj: --cage: 9 vertices and 8 triangles"), "{}", stderr(&o));
+    assert!(!dir.join("refused.png").exists());
+}
+
+#[test]
 fn what_cannot_be_baked_is_refused_with_nothing_written() {
     let dir = scratch("bake_refused");
     let (high, low, bare, far) = (dir.join("high.obj"), dir.join("low.obj"), dir.join("bare.obj"), dir.join("far.obj"));

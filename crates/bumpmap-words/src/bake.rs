@@ -19,10 +19,15 @@ pub fn bake_error(e: BakeFileError, high: &Path, low: &Path) -> Error {
             path.display()
         )),
         BakeFileError::Clash { path, what } => Error::Usage(format!("{}: {what}", path.display())),
+        BakeFileError::Cage { path, reason } => at(&path, format!("--cage: {reason}")),
         BakeFileError::Tangents { path, source } => at(&path, format!("its tangents: {source}")),
         BakeFileError::Bake(e) => match e {
             BakeError::NoTexcoords => at(low, "has no texture coordinates: LOW needs a UV layout to bake into".into()),
             BakeError::NoTangents => at(low, "has no tangents".into()),
+            BakeError::CageSize { cage, low: vertices } => {
+                Error::Usage(format!("--cage has {cage} points for the low-poly mesh's {vertices} vertices"))
+            }
+            BakeError::CageNotFinite(i) => Error::Usage(format!("--cage: its point {i} is not finite")),
             BakeError::Mesh { which, source } => at(if which == "high-poly" { high } else { low }, source.to_string()),
             BakeError::Size { width, height } => {
                 Error::Usage(format!("--size must be 1 to {}, got {width}x{height}", bumpmap::bake::MAX_SIDE))

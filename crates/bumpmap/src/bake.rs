@@ -14,6 +14,7 @@
 //! What this module does not do: cast the rays (`bumpmap_bake`), or say anything (progress goes
 //! to a function, notes come back as data).
 
+use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 
 use bumpmap_io::atomic::FileSet;
@@ -29,7 +30,7 @@ use glam::Vec3;
 
 pub use bumpmap_bake::{
     BakeError, BakeOptions, Baked, MAX_OCCLUSION_RAYS, MAX_SAMPLES, MAX_SIDE, RayMode, TangentDecode, bake,
-    encode_in_frame,
+    bake_with_cage, encode_in_frame,
 };
 
 use crate::maps::{Chain, SaveError};
@@ -38,7 +39,7 @@ use crate::maps::{Chain, SaveError};
 pub const DEFAULT_OCCLUSION_RAYS: u32 = 64;
 
 /// What a bake from files is asked for, besides its files.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq)]
 pub struct BakeRequest {
     /// The bake itself: size, samples, rays, distances, padding, decode.
     pub options: BakeOptions,
@@ -50,6 +51,8 @@ pub struct BakeRequest {
     pub bits: u8,
     /// Write the normal map's whole mip chain (the length of the averaged normal in alpha).
     pub mips: bool,
+    /// A cage: LOW's mesh with its vertices moved (outward, usually), where the rays start.
+    pub cage: Option<PathBuf>,
 }
 
 impl Default for BakeRequest {
@@ -61,6 +64,7 @@ impl Default for BakeRequest {
             y_convention: YConvention::YUp,
             bits: 8,
             mips: false,
+            cage: None,
         }
     }
 }
@@ -110,6 +114,14 @@ pub enum BakeFileError {
         /// The GLB asked for.
         path: PathBuf,
     },
+    /// A cage that is not LOW with its vertices moved.
+    #[error("{}: {reason}", path.display())]
+    Cage {
+        /// The cage's file.
+        path: PathBuf,
+        /// How it differs from LOW.
+        reason: String,
+    },
     /// An output that is also an input or another output.
     #[error("{}: {what}", path.display())]
     Clash {
@@ -137,6 +149,87 @@ pub fn low_as_drawn(loaded: LoadedMesh, path: &Path, mode: TangentMode) -> Resul
     mesh.normals = normals;
     mesh.tangents = tangents;
     Ok(mesh)
+}
+
+/// A cage's point for each of LOW's positions (LOW as its file has it, before tangents split
+/// any vertex).
+struct CagePoints(HashMap<[u32; 3], Vec3>);
+
+impl CagePoints {
+    /// The cage's point of each vertex of `drawn` (LOW with its vertices split, each a copy of
+    /// one of the file's).
+    fn points_for(&self, drawn: &Mesh) -> Vec<Vec3> {
+        drawn.positions.iter().map(|p| self.0.get(&key(*p)).copied().unwrap_or(*p)).collect()
+    }
+}
+
+fn key(p: Vec3) -> [u32; 3] {
+    p.to_array().map(f32::to_bits)
+}
+
+/// Checks that `cage` (read from `path`) is `low` with its vertices moved — as many, the same
+/// triangles — and pairs each of LOW's positions with the cage's.
+fn cage_positions(low: &Mesh, cage: &Mesh, path: &Path) -> Result<CagePoints, BakeFileError> {
+    let refuse = |reason: String| BakeFileError::Cage { path: path.to_path_buf(), reason };
+    if cage.positions.len() != low.positions.len() || cage.indices.len() != low.indices.len() {
+        return Err(refuse(format!(
+            "{} vertices and {} triangles, where the low-poly mesh has {} and {}: a cage is the low-poly mesh with its vertices moved",
+            cage.positions.len(),
+            cage.indices.len(),
+            low.positions.len(),
+            low.indices.len()
+        )));
+    }
+    if let Some(t) = cage.indices.iter().zip(&low.indices).position(|(a, b)| a != b) {
+        return Err(refuse(format!("its triangle {t} joins other vertices than the low-poly mesh's")));
+    }
+    Ok(CagePoints(low.positions.iter().zip(&cage.positions).map(|(p, c)| (key(*p), *c)).collect()))
+}
+
+/// A bake from files, before anything is written.
+#[derive(Debug)]
+pub struct FromFiles {
+    /// The bake, texel by texel.
+    pub baked: Baked,
+    /// LOW as drawn: the normals and tangents the map was made for.
+    pub low: Mesh,
+    /// How much the bake covered.
+    pub counts: BakeCounts,
+    /// Every file read (the meshes and their buffers).
+    pub sources: Vec<PathBuf>,
+}
+
+/// Reads `high`, `low` and the request's cage and bakes as `request` says (its occlusion rays
+/// as given: 0, none), telling `progress(rows done, rows)`; writes nothing.
+pub fn bake_from_files(
+    high: &Path,
+    low: &Path,
+    request: &BakeRequest,
+    progress: &(dyn Fn(usize, usize) + Sync),
+) -> Result<FromFiles, BakeFileError> {
+    let high_mesh = bumpmap_io::load_mesh(high)?;
+    let low_loaded = bumpmap_io::load_mesh(low)?;
+    let cage_loaded = request.cage.as_deref().map(bumpmap_io::load_mesh).transpose()?;
+    let mut sources: Vec<PathBuf> = high_mesh.sources.clone();
+    sources.extend(low_loaded.sources.iter().cloned());
+    sources.extend(cage_loaded.iter().flat_map(|c| c.sources.iter().cloned()));
+    let cage_of_low = match (&cage_loaded, &request.cage) {
+        (Some(cage), Some(path)) => Some(cage_positions(&low_loaded.mesh, &cage.mesh, path)?),
+        _ => None,
+    };
+    let low_mesh = low_as_drawn(low_loaded, low, request.tangents)?;
+    let options = &request.options;
+    let baked = match &cage_of_low {
+        Some(cage) => bake_with_cage(&high_mesh.mesh, &low_mesh, &cage.points_for(&low_mesh), options, progress)?,
+        None => bake(&high_mesh.mesh, &low_mesh, options, progress)?,
+    };
+    let counts = BakeCounts {
+        covered: baked.covered.iter().filter(|c| **c).count(),
+        hit: baked.hit.iter().filter(|h| **h).count(),
+        high_triangles: high_mesh.mesh.triangle_count(),
+        low_triangles: low_mesh.triangle_count(),
+    };
+    Ok(FromFiles { baked, low: low_mesh, counts, sources })
 }
 
 /// What [`bake_files`] did.
@@ -183,10 +276,6 @@ pub fn bake_files(
     {
         return Err(BakeFileError::LowNeedsPng { path: glb.clone() });
     }
-    let high_mesh = bumpmap_io::load_mesh(high)?;
-    let low_loaded = bumpmap_io::load_mesh(low)?;
-    let mut inputs: Vec<PathBuf> = high_mesh.sources.clone();
-    inputs.extend(low_loaded.sources.iter().cloned());
     let named: Vec<(&Path, &'static str)> = std::iter::once((outputs.normal_map.as_path(), "the normal map"))
         .chain(outputs.object_space.as_deref().map(|p| (p, "the object-space map")))
         .chain(outputs.mask.as_deref().map(|p| (p, "the mask")))
@@ -198,20 +287,14 @@ pub fn bake_files(
             return Err(BakeFileError::Clash { path: path.to_path_buf(), what: "two outputs of the bake" });
         }
     }
-    let low_mesh = low_as_drawn(low_loaded, low, request.tangents)?;
-    let mut options = request.options;
-    options.occlusion_rays = match (&outputs.occlusion, options.occlusion_rays) {
+    let mut request = request.clone();
+    request.options.occlusion_rays = match (&outputs.occlusion, request.options.occlusion_rays) {
         (None, _) => 0,
         (Some(_), 0) => DEFAULT_OCCLUSION_RAYS,
         (Some(_), n) => n,
     };
-    let baked = bake(&high_mesh.mesh, &low_mesh, &options, progress)?;
-    let counts = BakeCounts {
-        covered: baked.covered.iter().filter(|c| **c).count(),
-        hit: baked.hit.iter().filter(|h| **h).count(),
-        high_triangles: high_mesh.mesh.triangle_count(),
-        low_triangles: low_mesh.triangle_count(),
-    };
+    let request = &request;
+    let FromFiles { baked, low: low_mesh, counts, sources: inputs } = bake_from_files(high, low, request, progress)?;
     let inputs: Vec<&Path> = inputs.iter().map(PathBuf::as_path).collect();
     let mut set = FileSet::new(&inputs);
     let chain = tangent_chain(&baked, request)?;

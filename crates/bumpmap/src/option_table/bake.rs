@@ -50,6 +50,7 @@ pub static BAKE: &[Row] = &[
     Row::word("ray", COMMAND, "Which way each texel's ray goes", |r| &mut r.options.rays),
     Row::new("extrude", COMMAND, "How far in front of LOW the rays start, in the meshes' units: the cage's distance; the first hit from there inward wins [default: 5% of LOW's bounding box diagonal]", |r| &mut r.options.front).check(distance),
     Row::new("max-distance", COMMAND, "How far behind LOW the rays still look, in the meshes' units [default: --extrude's distance]", |r| &mut r.options.back).check(distance),
+    Row::new("cage", COMMAND, "A cage: LOW's mesh file with its vertices moved (outward, usually), the same vertices and triangles. Each ray starts on it and goes through LOW as far as --max-distance beyond (--extrude is not used)", |r| &mut r.cage).value_name("FILE"),
     Row::new("padding", COMMAND, "Texels filled beyond each UV island's edge from the island's own, so filtering and mips do not read the background", |r| &mut r.options.padding).range(0, 4096),
     Row::new("ao-rays", COMMAND, "Rays each sample casts for HIGH's ambient occlusion, cosine-weighted over the hemisphere around LOW's normal (0: no occlusion; --ao-out bakes it with 64 when this is 0)", |r| &mut r.options.occlusion_rays).range(0, MAX_OCCLUSION_RAYS as u64),
     Row::word("decode", COMMAND, "The tangent-space decode the map is made for, inverted exactly (interpolated, unnormalized T and N)", |r| &mut r.options.decode),

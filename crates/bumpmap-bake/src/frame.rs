@@ -1,0 +1,84 @@
+//! LOW at one sample: the point, the way its ray goes, and the tangent frame there, all
+//! interpolated from LOW's vertices by the sample's barycentric weights as the renderer
+//! interpolates them; and the averaged normals the default rays follow.
+//!
+//! What this module does not do: cast rays (the baker does).
+
+use std::collections::HashMap;
+
+use bumpmap_math::mesh::Mesh;
+use glam::Vec3;
+
+use crate::encode::{TangentDecode, encode_in_frame};
+use crate::texels::Covered;
+
+/// Each vertex's averaged normal: the area-weighted normals of every triangle touching any
+/// vertex at its position (vertices split for hard edges or UV seams share one).
+pub(crate) fn averaged_normals(mesh: &Mesh) -> Vec<Vec3> {
+    let key = |p: Vec3| p.to_array().map(f32::to_bits);
+    let mut sums: HashMap<[u32; 3], Vec3> = HashMap::new();
+    for t in &mesh.indices {
+        let [a, b, c] = t.map(|i| mesh.positions[i as usize]);
+        let n = (b - a).cross(c - a);
+        for p in [a, b, c] {
+            *sums.entry(key(p)).or_default() += n;
+        }
+    }
+    mesh.positions
+        .iter()
+        .zip(&mesh.normals)
+        .map(|(p, own)| sums.get(&key(*p)).and_then(|n| n.try_normalize()).unwrap_or(*own))
+        .collect()
+}
+
+/// LOW at one sample: the point, the ray's direction and the tangent frame as interpolated.
+pub(crate) struct Frame {
+    /// The point on LOW.
+    pub p: Vec3,
+    /// Outward: the ray goes the other way.
+    pub d: Vec3,
+    t: Vec3,
+    n: Vec3,
+    /// B as each vertex has it (`w · N × T`), interpolated.
+    b_per_vertex: Vec3,
+    /// The handedness, interpolated (its sign is MikkTSpace's per-triangle sign).
+    w: f32,
+}
+
+/// Where a sample's ray starts on a cage given point by point: the cage's point interpolated as
+/// LOW's is, the ray from there through LOW's point, and the distance between them (`None`
+/// where they meet: the ray then follows the frame's own direction from LOW's point).
+pub(crate) fn cage_ray(cage: &[Vec3], low: &Mesh, at: Covered, p: Vec3) -> Option<(Vec3, f32)> {
+    let ids = low.indices[at.triangle as usize].map(|i| i as usize);
+    let on_cage: Vec3 = ids.iter().zip(at.weights).map(|(&i, w)| cage[i] * w).sum();
+    let out = on_cage - p;
+    let distance = out.length();
+    (distance > 1e-9 * (1.0 + p.length())).then(|| (out / distance, distance))
+}
+
+impl Frame {
+    /// The frame at `at`, its rays along `rays` (one a vertex).
+    pub fn at(low: &Mesh, rays: &[Vec3], at: Covered) -> Frame {
+        let ids = low.indices[at.triangle as usize].map(|i| i as usize);
+        let mix3 = |f: &dyn Fn(usize) -> Vec3| ids.iter().zip(at.weights).map(|(&i, w)| f(i) * w).sum::<Vec3>();
+        let w = ids.iter().zip(at.weights).map(|(&i, w)| low.tangents[i].w * w).sum::<f32>();
+        let n = mix3(&|i| low.normals[i]);
+        Frame {
+            p: mix3(&|i| low.positions[i]),
+            d: mix3(&|i| rays[i]).normalize_or(n.normalize_or(Vec3::Z)),
+            t: mix3(&|i| low.tangents[i].truncate()),
+            n,
+            b_per_vertex: mix3(&|i| low.bitangent(i)),
+            w,
+        }
+    }
+
+    /// `normal` in this frame, as `decode` will read it back.
+    pub fn encode(&self, normal: Vec3, decode: TangentDecode) -> Vec3 {
+        let b = match decode {
+            TangentDecode::MikkTSpace => self.w.signum() * self.n.cross(self.t),
+            TangentDecode::PerVertex => self.b_per_vertex,
+        };
+        encode_in_frame(normal, self.t, b, self.n).unwrap_or(Vec3::Z)
+    }
+}
