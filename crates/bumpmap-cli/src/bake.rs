@@ -15,6 +15,7 @@ pub fn run(args: &BakeArgs) -> Result<(), CliError> {
         object_space: args.object_out.clone(),
         mask: args.mask_out.clone(),
         occlusion: args.ao_out.clone(),
+        displacement: args.height_out.clone(),
         low: args.low_out.clone(),
     };
     let bar = ProgressBar::new(request.options.height as u64)

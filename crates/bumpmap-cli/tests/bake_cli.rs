@@ -64,6 +64,8 @@ fn a_bake_writes_its_map_mask_and_low_poly_glb() {
         &path("ao.png"),
         "--ao-rays",
         "32",
+        "--height-out",
+        &path("height.png"),
     ]);
     assert!(o.status.success(), "{}", stderr(&o));
     assert!(stderr(&o).contains("4096 of 4096 texels"), "{}", stderr(&o));
@@ -80,6 +82,16 @@ fn a_bake_writes_its_map_mask_and_low_poly_glb() {
     let ao = image::open(dir.join("ao.png")).unwrap().to_luma8();
     let (lo, hi) = ao.pixels().fold((255, 0), |(l, h), p| (p[0].min(l), p[0].max(h)));
     assert!(hi >= 250 && lo < hi, "occlusion from {lo} to {hi}");
+    // The displacement, 16 bits over its range, the range beside it: the waves' ±0.03.
+    let height = image::open(dir.join("height.png")).unwrap();
+    assert!(matches!(height, image::DynamicImage::ImageLuma16(_)), "{:?}", height.color());
+    let range = std::fs::read_to_string(dir.join("height.range.json")).unwrap();
+    let number = |key: &str| -> f32 {
+        let rest = &range[range.find(key).unwrap() + key.len()..];
+        rest.trim_start_matches([':', ' ']).split([',', '}']).next().unwrap().trim().parse().unwrap()
+    };
+    let (lo, hi) = (number("\"min\""), number("\"max\""));
+    assert!((lo + 0.03).abs() < 0.003 && (hi - 0.03).abs() < 0.003, "{range}");
     // LOW as baked for, read by the gltf crate: its tangents and the map as its normalTexture.
     let (doc, buffers, images) = gltf::import(dir.join("low.glb")).unwrap();
     let prim = doc.meshes().next().unwrap().primitives().next().unwrap();
@@ -87,7 +99,20 @@ fn a_bake_writes_its_map_mask_and_low_poly_glb() {
     assert_eq!(reader.read_tangents().expect("TANGENT").count(), 4);
     assert!(prim.material().normal_texture().is_some());
     assert_eq!((images[0].width, images[0].height), (64, 64));
-    assert_eq!(listing(&dir), ["ao.png", "high.obj", "low.glb", "low.obj", "mask.png", "n.png", "object.png"]);
+    assert_eq!(
+        listing(&dir),
+        [
+            "ao.png",
+            "height.png",
+            "height.range.json",
+            "high.obj",
+            "low.glb",
+            "low.obj",
+            "mask.png",
+            "n.png",
+            "object.png"
+        ]
+    );
 }
 
 #[test]

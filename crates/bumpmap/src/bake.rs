@@ -81,6 +81,10 @@ pub struct BakeOutputs {
     /// HIGH's ambient occlusion (8-bit gray PNG, or 16-bit with 16 bits: 1 unoccluded), with
     /// the request's occlusion rays ([`DEFAULT_OCCLUSION_RAYS`] where it asks for none).
     pub occlusion: Option<PathBuf>,
+    /// The displacement: the signed distance from LOW to HIGH along each texel's ray, outward
+    /// positive, as a 16-bit gray image (PNG, DDS or KTX2) mapped from its range, which is
+    /// written beside it as `STEM.range.json` (`{"min": …, "max": …}` in the meshes' units).
+    pub displacement: Option<PathBuf>,
     /// LOW as baked for: a `.glb` or `.gltf` with its tangents and the map as its normalTexture.
     pub low: Option<PathBuf>,
 }
@@ -276,10 +280,13 @@ pub fn bake_files(
     {
         return Err(BakeFileError::LowNeedsPng { path: glb.clone() });
     }
+    let range = outputs.displacement.as_deref().map(range_file);
     let named: Vec<(&Path, &'static str)> = std::iter::once((outputs.normal_map.as_path(), "the normal map"))
+        .chain(range.as_deref().map(|p| (p, "the displacement's range")))
         .chain(outputs.object_space.as_deref().map(|p| (p, "the object-space map")))
         .chain(outputs.mask.as_deref().map(|p| (p, "the mask")))
         .chain(outputs.occlusion.as_deref().map(|p| (p, "the occlusion")))
+        .chain(outputs.displacement.as_deref().map(|p| (p, "the displacement")))
         .chain(outputs.low.as_deref().map(|p| (p, "LOW's glTF")))
         .collect();
     for (k, (path, _)) in named.iter().enumerate() {
@@ -313,6 +320,19 @@ pub fn bake_files(
         let bits = if request.bits == 16 { HeightBits::Sixteen } else { HeightBits::Eight };
         bumpmap_io::horizon_file::write_gray_into(&mut set, path, (w, h), &baked.occlusion, bits)?;
     }
+    if let Some(path) = &outputs.displacement {
+        let (lo, hi) = displacement_range(&baked);
+        let span = (hi - lo).max(f32::MIN_POSITIVE);
+        let unit: Vec<f32> = baked.displacement.iter().map(|d| (d - lo) / span).collect();
+        bumpmap_io::horizon_file::write_gray_into(&mut set, path, (w, h), &unit, HeightBits::Sixteen)?;
+        let json = format!(
+            "{{\"min\": {lo}, \"max\": {hi}, \"meaning\": \"signed distance from the low-poly surface to the high-poly one along each texel's ray, outward positive, in the meshes' units: 0 in the image is min, 65535 is max\"}}\n"
+        );
+        set.write(&range_file(path), |w| {
+            use std::io::Write;
+            w.write_all(json.as_bytes())
+        })?;
+    }
     if let Some(path) = &outputs.low {
         // The map's level 0 as the PNG the GLB carries: 8 bits, green up as glTF has it.
         let texels: Vec<[u8; 4]> =
@@ -322,6 +342,19 @@ pub fn bake_files(
     }
     let files = set.commit()?;
     Ok(BakedFiles { files, baked, counts })
+}
+
+/// Where the displacement's range goes beside `displacement`: `STEM.range.json`.
+pub fn range_file(displacement: &Path) -> PathBuf {
+    let stem = displacement.file_stem().unwrap_or_default().to_string_lossy();
+    displacement.with_file_name(format!("{stem}.range.json"))
+}
+
+/// The lowest and highest displacement of the texels a ray hit (0 and 0 where none did).
+pub fn displacement_range(baked: &Baked) -> (f32, f32) {
+    let hit = baked.displacement.iter().zip(&baked.hit).filter(|(_, h)| **h).map(|(d, _)| *d);
+    let (lo, hi) = hit.fold((f32::INFINITY, f32::NEG_INFINITY), |(l, h), d| (l.min(d), h.max(d)));
+    if lo <= hi { (lo, hi) } else { (0.0, 0.0) }
 }
 
 /// The tangent-space normals as the normal map's chain: level 0, or every level, at the bits
