@@ -174,6 +174,7 @@ fn what_cannot_be_baked_is_refused_with_nothing_written() {
     square_obj(&bare, 1, |_, _| 0.0, false);
     square_obj(&far, 16, |_, _| 5.0, false);
     let out = dir.join("n.png");
+    let high_before = std::fs::read(&high).unwrap();
     let run = |h: &Path, l: &Path, extra: &[&str]| {
         let mut args =
             vec!["bake", h.to_str().unwrap(), l.to_str().unwrap(), "-o", out.to_str().unwrap(), "--size", "16"];
@@ -186,6 +187,8 @@ fn what_cannot_be_baked_is_refused_with_nothing_written() {
         (run(&high, &low, &["--spp", "0"]), 2, "--spp"),
         (run(&high, &low, &["--extrude", "-1"]), 2, "--extrude"),
         (run(&high, &low, &["--ao-rays", "5000"]), 2, "--ao-rays"),
+        (run(&high, &low, &["--mask-out", out.to_str().unwrap()]), 2, "two outputs of the bake"),
+        (run(&high, &low, &["--mask-out", high.to_str().unwrap()]), 1, "high.obj"),
         (
             run(&high, &low, &["--low-out", dir.join("l.glb").to_str().unwrap(), "--y-convention", "directx"]),
             2,
@@ -198,4 +201,5 @@ fn what_cannot_be_baked_is_refused_with_nothing_written() {
         assert!(!stderr(&o).contains("panicked"));
     }
     assert_eq!(listing(&dir), ["bare.obj", "far.obj", "high.obj", "low.obj"], "nothing written");
+    assert_eq!(std::fs::read(&high).unwrap(), high_before, "an input is never replaced");
 }

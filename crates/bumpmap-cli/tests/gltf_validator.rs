@@ -1,7 +1,8 @@
 //! Every kind of glTF the tool writes, checked by the Khronos glTF validator (npm
 //! `gltf-validator`, installed by `.ci/run` into `scripts/gltf-validator/`): 0 errors each.
 //! Covers both tangent modes on every test mesh (degenerate and zero-normal ones included), .gltf
-//! and .glb, file names that need percent-encoding, and an OBJ → glTF round trip.
+//! and .glb, file names that need percent-encoding, an OBJ → glTF round trip, and the low-poly
+//! mesh `bake --low-out` writes with its baked map.
 //!
 //! Without Node or the validator the test says so and passes — except under CI (`CI` set),
 //! where that is a failure.
@@ -88,6 +89,30 @@ fn every_gltf_the_tool_writes_passes_the_khronos_validator() {
         let material = doc.meshes().next().unwrap().primitives().next().unwrap().material();
         assert_eq!(material.normal_texture().map(|t| t.texture().source().index()), Some(0));
         assert_eq!((images[0].width, images[0].height), (64, 64), "the packed image is the normal map");
+        files.push(out);
+    }
+    // LOW as a bake writes it (--low-out): its tangents and the baked map as its normalTexture.
+    let (high, low) = (dir.join("bake_high.obj"), dir.join("bake_low.obj"));
+    std::fs::write(&high, "v -1 -1 0.1\nv 1 -1 0.1\nv 1 1 0.2\nv -1 1 0.1\nf 1 2 3\nf 1 3 4\n").unwrap();
+    std::fs::write(&low, "v -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nf 1/1 2/2 3/3\nf 1/1 3/3 4/4\n")
+        .unwrap();
+    for ext in ["glb", "gltf"] {
+        let out = dir.join(format!("baked_low.{ext}"));
+        let map = dir.join(format!("baked_{ext}.png"));
+        let o = bumpmap(&[
+            "bake",
+            high.to_str().unwrap(),
+            low.to_str().unwrap(),
+            "-o",
+            map.to_str().unwrap(),
+            "--size",
+            "32",
+            "--extrude",
+            "0.5",
+            "--low-out",
+            out.to_str().unwrap(),
+        ]);
+        assert!(o.status.success(), "{}", stderr(&o));
         files.push(out);
     }
     let results = validate(&script, &files);
