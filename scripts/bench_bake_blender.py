@@ -152,7 +152,8 @@ def main():
     high, low = out / "high.obj", out / "low.obj"
     hp = sphere(nu, nu // 2, waves=True)
     write_obj(high, *hp)
-    write_obj(low, *sphere(32, 16, waves=False))
+    lp = sphere(32, 16, waves=False)
+    write_obj(low, *lp)
     extrusion = 0.1
 
     start = time.perf_counter()
@@ -170,7 +171,7 @@ def main():
     ours_angle, pixels = angle(target, shading_normals(out / "low_ours.glb", "single-pass", lights))
     blender_angle, _ = angle(target, shading_normals(out / "low_blender.glb", "single-pass", lights))
     result = {
-        "bench": "bake", "high_triangles": int(len(hp[2])), "low_triangles": 32 * 16 * 2 - 64, "size": args.size,
+        "bench": "bake", "high_triangles": int(len(hp[2])), "low_triangles": int(len(lp[2])), "size": args.size,
         "spp": args.spp, "threads": args.threads, "bumpmap_s": round(ours, 2), "blender_cycles_s": round(blender, 2),
         "speedup": round(blender / ours, 2), "bumpmap_mean_angle_deg": round(ours_angle, 3),
         "blender_mean_angle_deg": round(blender_angle, 3), "pixels": pixels,

@@ -390,8 +390,7 @@ fn open_share(high: &HighPoly, at: Vec3, up: Vec3, rays: u32, reach: f32, seed: 
 
 /// The ray distances in front and behind: as given, or 5 % of LOW's bounding box diagonal.
 fn distances(low: &Mesh, options: &BakeOptions) -> Result<(f32, f32), BakeError> {
-    let (lo, hi) = low.positions.iter().fold((Vec3::INFINITY, Vec3::NEG_INFINITY), |(l, h), p| (l.min(*p), h.max(*p)));
-    let auto = 0.05 * (hi - lo).length();
+    let auto = 0.05 * bounds_diagonal(low);
     let front = options.front.unwrap_or(auto);
     let back = options.back.unwrap_or(front);
     if !(front.is_finite() && back.is_finite() && front >= 0.0 && back >= 0.0) || front + back == 0.0 {

@@ -94,8 +94,11 @@ fn every_gltf_the_tool_writes_passes_the_khronos_validator() {
     // LOW as a bake writes it (--low-out): its tangents and the baked map as its normalTexture.
     let (high, low) = (dir.join("bake_high.obj"), dir.join("bake_low.obj"));
     std::fs::write(&high, "v -1 -1 0.1\nv 1 -1 0.1\nv 1 1 0.2\nv -1 1 0.1\nf 1 2 3\nf 1 3 4\n").unwrap();
-    std::fs::write(&low, "v -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nf 1/1 2/2 3/3\nf 1/1 3/3 4/4\n")
-        .unwrap();
+    std::fs::write(
+        &low,
+        "v -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nf 1/1 2/2 3/3\nf 1/1 3/3 4/4\n",
+    )
+    .unwrap();
     for ext in ["glb", "gltf"] {
         let out = dir.join(format!("baked_low.{ext}"));
         let map = dir.join(format!("baked_{ext}.png"));

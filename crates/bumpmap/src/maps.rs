@@ -141,11 +141,10 @@ pub fn normal_map_as(
 /// The normal map of `field`: level 0, or every level down to 1×1 with `mips`, at
 /// `options.bits`.
 pub fn normal_map(options: &MapOptions, mips: bool, field: &HeightField) -> Result<Chain, MapError> {
+    use bumpmap_io::texture_file::TextureFormat;
     options.check()?;
-    Ok(match options.bits {
-        16 => Chain::Rgba16(normal_chain(field, &options.normals, mips, options.mip_mode)?),
-        _ => Chain::Rgba8(normal_chain(field, &options.normals, mips, options.mip_mode)?),
-    })
+    let format = if options.bits == 16 { TextureFormat::Rgba16 } else { TextureFormat::Rgba8 };
+    normal_map_as(options, mips, format, field)
 }
 
 /// The normal map of `field` in texels `T`: level 0, or every level with `mips`, the smaller

@@ -4,6 +4,7 @@
 
 use bumpmap_bake::{MAX_OCCLUSION_RAYS, MAX_SAMPLES, MAX_SIDE};
 
+use super::maps::bits;
 use super::{Access, Kind, Opt, Value};
 use crate::bake::BakeRequest;
 
@@ -11,14 +12,6 @@ use crate::bake::BakeRequest;
 const COMMAND: &str = "";
 
 type Row = Opt<BakeRequest>;
-
-/// 8 or 16 bits a channel.
-fn bits(v: &Value) -> Result<(), String> {
-    match v {
-        Value::Whole(8 | 16) => Ok(()),
-        _ => Err(format!("'{v}' is not 8 or 16")),
-    }
-}
 
 /// A distance: finite and not negative.
 fn distance(v: &Value) -> Result<(), String> {

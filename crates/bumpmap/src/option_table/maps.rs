@@ -15,7 +15,7 @@ use crate::maps::MapOptions;
 const COMMAND: &str = "";
 
 /// 8 or 16 bits a channel.
-fn bits(v: &Value) -> Result<(), String> {
+pub(super) fn bits(v: &Value) -> Result<(), String> {
     match v {
         Value::Whole(8 | 16) => Ok(()),
         _ => Err(format!("'{v}' is not 8 or 16")),
