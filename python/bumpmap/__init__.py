@@ -345,12 +345,16 @@ def bake(high, low, **options):
     (``ray="explicit"``: its own); the first hit from the cage inward wins, and HIGH's normal
     there is stored in LOW's tangent frame, inverted exactly for ``decode``.
 
-    high, low: mesh files (.obj, .gltf, .glb); LOW needs texture coordinates. LOW's file's
-    tangents are used where it has them, else ones made in ``tangents``' mode.
+    high, low: mesh files (.obj, .gltf, .glb) or ``Mesh`` objects, in any mix; LOW needs
+    texture coordinates (HIGH's are not read: zeros will do for a ``Mesh``). LOW's own tangents
+    are used where it has them, else ones made in ``tangents``' mode; normals are made from
+    the faces where a mesh has none.
 
     Returns a dict: ``levels`` (the normal map, level 0 first, as ``mip_chain`` returns a
     chain), ``object_space`` ((H, W, 3) float32 unit normals), ``displacement`` ((H, W)
-    float32, the signed distance from LOW to HIGH along the ray), with ``ao_rays`` above 0
+    float32, the signed distance from LOW to HIGH along the ray), ``curvature`` ((H, W) float32,
+    HIGH's mean curvature at the hit in 1 / the meshes' units, positive where convex), with
+    ``ao_rays`` above 0
     ``occlusion`` ((H, W) float32, HIGH's ambient occlusion, 1 unoccluded), ``hit`` and ``covered``
     ((H, W) bool: texels whose rays met HIGH, and texels of LOW's layout). Most rays meeting
     nothing raises, never a flat map.

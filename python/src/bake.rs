@@ -6,7 +6,8 @@
 
 use std::path::PathBuf;
 
-use bumpmap::bake::{BakeRequest, bake_from_files, tangent_chain};
+use bumpmap::bake::{BakeFileError, BakeRequest, bake_from_meshes, tangent_chain};
+use bumpmap_io::LoadedMesh;
 use bumpmap_words::Error;
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
@@ -14,28 +15,41 @@ use pyo3::types::{PyDict, PyList};
 use crate::errors::to_py;
 use crate::{arrays, interrupt, keywords, take_progress};
 
-/// Bakes `high` onto `low` (mesh files); returns the normal map's levels, the object-space
-/// normals, the displacement and which texels were hit.
+/// Bakes `high` onto `low` (mesh files or `bumpmap.Mesh` objects); returns the normal map's levels, the object-space
+/// normals, the displacement, HIGH's curvature and which texels were hit.
 #[pyfunction]
 #[pyo3(signature = (high, low, options = None))]
 pub fn bake<'py>(
     py: Python<'py>,
-    high: PathBuf,
-    low: PathBuf,
+    high: &Bound<'py, PyAny>,
+    low: &Bound<'py, PyAny>,
     options: Option<&Bound<'py, PyDict>>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let (options, progress) = take_progress("bake", options)?;
     let request: BakeRequest = keywords::bake_request("bake", options.as_ref())?;
+    let (high, high_mesh) = mesh_or_file(high, "high", "<high Mesh>")?;
+    let (low, low_mesh) = mesh_or_file(low, "low", "<low Mesh>")?;
     let (baked, chain) = interrupt::run_reporting(
         py,
         move |_, report| {
-            let err = |e| bumpmap_words::bake::bake_error(e, &high, &low);
+            // A Mesh given as arrays is the caller's value, not a file: ValueError, not OSError.
+            let err = |e| match bumpmap_words::bake::bake_error(e, &high, &low) {
+                Error::Path { path, reason } if path.to_string_lossy().starts_with('<') => {
+                    Error::Render(format!("{}: {reason}", path.display()))
+                }
+                other => other,
+            };
             let rows = |done: usize, total: usize| {
                 if let Some(f) = &report {
                     f(done as u64, total as u64);
                 }
             };
-            let done = bake_from_files(&high, &low, &request, &rows).map_err(err)?;
+            let read = |path: &PathBuf, given: Option<LoadedMesh>| match given {
+                Some(mesh) => Ok(mesh),
+                None => bumpmap_io::load_mesh(path).map_err(BakeFileError::from),
+            };
+            let meshes = read(&high, high_mesh).and_then(|h| Ok((h, read(&low, low_mesh)?)));
+            let done = meshes.and_then(|(h, l)| bake_from_meshes(h, (l, &low), &request, &rows)).map_err(err)?;
             let chain = tangent_chain(&done.baked, &request).map_err(err)?;
             Ok::<_, Error>((done.baked, chain))
         },
@@ -48,6 +62,7 @@ pub fn bake<'py>(
     let object: Vec<[f32; 3]> = baked.object.iter().map(|n| n.to_array()).collect();
     out.set_item("object_space", arrays::from_rows(py, object)?.call_method1("reshape", (h, w, 3))?)?;
     out.set_item("displacement", arrays::from_plane(py, h, w, &baked.displacement)?)?;
+    out.set_item("curvature", arrays::from_plane(py, h, w, &baked.curvature)?)?;
     if !baked.occlusion.is_empty() {
         out.set_item("occlusion", arrays::from_plane(py, h, w, &baked.occlusion)?)?;
     }
@@ -58,4 +73,14 @@ pub fn bake<'py>(
     out.set_item("hit", flags(&baked.hit)?)?;
     out.set_item("covered", flags(&baked.covered)?)?;
     Ok(out)
+}
+
+/// `given` as a mesh file's path, or as the mesh a `bumpmap.Mesh` holds (named `stand_in` in
+/// messages).
+fn mesh_or_file(given: &Bound<'_, PyAny>, keyword: &str, stand_in: &str) -> PyResult<(PathBuf, Option<LoadedMesh>)> {
+    if given.is_instance_of::<pyo3::types::PyString>() || given.hasattr("__fspath__")? {
+        return Ok((given.extract()?, None));
+    }
+    let mesh = crate::renderer::mesh_object("bake", (keyword, "a mesh file's path"), given)?;
+    Ok((PathBuf::from(stand_in), Some(mesh)))
 }

@@ -53,14 +53,18 @@ pub fn draw(request: &FrameRequest, given: &Given, progress: Option<ReportFn>) -
         .map_err(|e| frame_err(e, &request.options, None))
 }
 
-/// A `bumpmap.Mesh` (anything with its attributes) given as the scene: the mesh `--scene
-/// mesh:FILE` would read, without a material.
-pub(crate) fn mesh_scene(function: &str, scene: &Bound<'_, PyAny>) -> PyResult<bumpmap_io::LoadedMesh> {
+/// A `bumpmap.Mesh` (anything with its attributes) given for `keyword`, which must be `what`
+/// otherwise: the mesh a file would give, without a material.
+pub(crate) fn mesh_object(
+    function: &str,
+    (keyword, what): (&str, &str),
+    scene: &Bound<'_, PyAny>,
+) -> PyResult<bumpmap_io::LoadedMesh> {
     let get = |name: &str| {
         scene.getattr(name).map_err(|_| {
             let kind = scene.get_type().name().map(|n| n.to_string()).unwrap_or_default();
             PyTypeError::new_err(format!(
-                "{function}(): scene must be a built-in scene's name, \"mesh:FILE\" or a bumpmap.Mesh, not {kind} (it has no {name})"
+                "{function}(): {keyword} must be {what} or a bumpmap.Mesh, not {kind} (it has no {name})"
             ))
         })
     };

@@ -43,6 +43,9 @@ def test_bake_equals_the_cli(tmp_path, cli):
     assert ours["hit"].all() and ours["covered"].all()
     assert ours["object_space"].shape == (48, 48, 3)
     assert abs(ours["displacement"]).max() == pytest.approx(0.03, abs=0.005)
+    # The waves' mean curvature, half the Laplacian of z: about 7.7 at its peaks, 0 on average.
+    curvature = ours["curvature"]
+    assert curvature.shape == (48, 48) and 5.0 < curvature.max() < 9.0 and abs(curvature.mean()) < 0.5
     assert seen and seen[-1] == (48, 48)
     # The waves tilt the normals: not a flat map.
     assert np.ptp(level0[..., 0].astype(int)) > 20
@@ -76,3 +79,34 @@ def test_what_cannot_be_baked_raises(tmp_path):
     with pytest.raises(TypeError):
         bumpmap.bake(tmp_path / "high.obj", tmp_path / "low.obj", no_such_option=1)
     assert sorted(p.name for p in tmp_path.iterdir()) == ["bare.obj", "far.obj", "high.obj", "low.obj"]
+
+
+def square_mesh(n, height):
+    """square_obj's square as a bumpmap.Mesh (uvs as glTF stores them: t grows with y here)."""
+    x, y = np.meshgrid(np.linspace(0, 1, n + 1), np.linspace(0, 1, n + 1))
+    positions = np.stack([x, y, height(x, y) + 0 * x], axis=-1).reshape(-1, 3).astype(np.float32)
+    uvs = np.stack([x, y], axis=-1).reshape(-1, 2).astype(np.float32)
+    a = (np.arange(n)[None, :] + (n + 1) * np.arange(n)[:, None]).ravel()
+    b, c, d = a + 1, a + n + 2, a + n + 1
+    indices = np.concatenate([np.stack([a, b, c], -1), np.stack([a, c, d], -1)]).astype(np.uint32)
+    return bumpmap.Mesh(positions, uvs, indices)
+
+
+def test_bake_from_mesh_objects_equals_from_files(tmp_path):
+    square_obj(tmp_path / "high.obj", 32, waves, uvs=False)
+    square_obj(tmp_path / "low.obj", 1, lambda x, y: 0.0)
+    from_files = bumpmap.bake(tmp_path / "high.obj", tmp_path / "low.obj", size=32, spp=1)
+    high, low = square_mesh(32, waves), square_mesh(1, lambda x, y: 0.0)
+    from_meshes = bumpmap.bake(high, low, size=32, spp=1)
+    assert np.ptp(from_meshes["levels"][0][..., 0].astype(int)) > 20, "not a flat map"
+    difference = np.abs(from_meshes["levels"][0].astype(int) - from_files["levels"][0].astype(int)).max()
+    assert difference <= 1, difference
+    # A file for one and a Mesh for the other.
+    mixed = bumpmap.bake(tmp_path / "high.obj", low, size=32, spp=1)
+    assert np.abs(mixed["levels"][0].astype(int) - from_files["levels"][0].astype(int)).max() <= 1
+    with pytest.raises(TypeError, match="high must be a mesh file's path or a bumpmap.Mesh"):
+        bumpmap.bake(42, low)
+    broken = bumpmap.Mesh(low.positions, low.uvs, np.array([[0, 1, 9]], dtype=np.uint32))
+    with pytest.raises(ValueError, match="<low Mesh>: triangle 0 uses vertex 9"):
+        bumpmap.bake(high, broken, size=16)
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["high.obj", "low.obj"]

@@ -173,8 +173,12 @@ pub struct Baked {
     pub object: Vec<Vec3>,
     /// Signed distance from LOW to HIGH along the ray, outward positive.
     pub displacement: Vec<f32>,
-    /// HIGH's ambient occlusion at the hit: the cosine-weighted share of the hemisphere over
-    /// LOW (around the ray) that HIGH leaves open, 1 unoccluded (empty unless asked for).
+    /// HIGH's mean curvature at the hit, in 1 / the meshes' units: positive where it is convex,
+    /// negative in creases, 0 where flat (and where nothing was hit or padded).
+    pub curvature: Vec<f32>,
+    /// HIGH's ambient occlusion at the hit: the cosine-weighted share of the hemisphere around
+    /// HIGH's normal there that HIGH leaves open, 1 unoccluded (empty unless asked for). Around
+    /// HIGH's own normal, so a convex HIGH reads 1 everywhere whichever way the rays came.
     pub occlusion: Vec<f32>,
     /// Texels of LOW's layout whose rays met HIGH.
     pub hit: Vec<bool>,
@@ -243,10 +247,11 @@ fn bake_from(
         return Err(BakeError::NoTangents);
     }
     let (front, back) = distances(low, options)?;
-    // Texel outputs (normals twice, the distance, three flags) and HIGH's BVH, before any of it.
+    // Texel outputs (normals twice, the distance, the curvature, three flags) and HIGH's BVH,
+    // before any of it.
     let texels = (width * height) as u64;
     let occlusion_bytes = if options.occlusion_rays > 0 { 4 } else { 0 };
-    let bytes = texels * (31 + occlusion_bytes) + high.indices.len() as u64 * BYTES_PER_TRIANGLE;
+    let bytes = texels * (35 + occlusion_bytes) + high.indices.len() as u64 * BYTES_PER_TRIANGLE;
     bumpmap_math::buffer::ensure_available(bytes, "the bake")?;
 
     let high_normals;
@@ -271,6 +276,7 @@ fn bake_from(
         tangent: vec![Vec3::Z; width * height],
         object: vec![Vec3::ZERO; width * height],
         displacement: vec![0.0; width * height],
+        curvature: vec![0.0; width * height],
         occlusion: if options.occlusion_rays > 0 { vec![1.0; width * height] } else { Vec::new() },
         hit: vec![false; width * height],
         covered: vec![false; width * height],
@@ -291,13 +297,15 @@ fn bake_from(
         .par_chunks_mut(width)
         .zip(baked.object.par_chunks_mut(width))
         .zip(baked.displacement.par_chunks_mut(width))
+        .zip(baked.curvature.par_chunks_mut(width))
         .zip(baked.hit.par_chunks_mut(width))
         .zip(baked.covered.par_chunks_mut(width))
         .zip(occlusion_rows.par_iter_mut())
         .enumerate()
-        .for_each(|(y, (((((tangent, object), displacement), hit), covered), occlusion))| {
+        .for_each(|(y, ((((((tangent, object), displacement), curvature), hit), covered), occlusion))| {
             for x in 0..width {
                 let (mut sum_t, mut sum_o, mut sum_d, mut hits, mut inside) = (Vec3::ZERO, Vec3::ZERO, 0.0, 0, false);
+                let mut sum_k = 0.0;
                 let mut open = 0.0;
                 for k in 0..samples {
                     let p = Vec2::new(x as f32, y as f32) + sample_offset(k, samples);
@@ -319,11 +327,12 @@ fn bake_from(
                     if options.occlusion_rays > 0 {
                         let at = frame.p + frame.d * (front - found.t);
                         let seed = [x as u32, y as u32, k as u32];
-                        open += open_share(&target, at, frame.d, options.occlusion_rays, reach_out, seed);
+                        open += open_share(&target, at, found.normal, options.occlusion_rays, reach_out, seed);
                     }
                     sum_t += encoded;
                     sum_o += found.normal;
                     sum_d += front - found.t;
+                    sum_k += found.curvature;
                     hits += 1;
                 }
                 covered[x] = inside;
@@ -331,6 +340,7 @@ fn bake_from(
                     tangent[x] = sum_t.normalize_or(Vec3::Z);
                     object[x] = sum_o.normalize_or(Vec3::Z);
                     displacement[x] = sum_d / hits as f32;
+                    curvature[x] = sum_k / hits as f32;
                     if let Some(o) = occlusion.get_mut(x) {
                         *o = open / hits as f32;
                     }
@@ -354,6 +364,7 @@ fn bake_from(
     pad(&mut baked.object, &baked.hit, width, height, rings, unit_mean);
     let mean = |v: &[f32]| v.iter().sum::<f32>() / v.len() as f32;
     baked.filled = pad(&mut baked.displacement, &baked.hit, width, height, rings, mean);
+    pad(&mut baked.curvature, &baked.hit, width, height, rings, mean);
     if !baked.occlusion.is_empty() {
         pad(&mut baked.occlusion, &baked.hit, width, height, rings, mean);
     }

@@ -1,6 +1,7 @@
 //! The high-poly mesh as rays see it: its triangles in a BVH (obvhs' eight-wide CWBVH, built by
 //! PLOC) and the normal at a hit, HIGH's vertex normals interpolated by the hit's barycentric
-//! weights (the face's own normal where a triangle has no usable vertex normals).
+//! weights (the face's own normal where a triangle has no usable vertex normals), and HIGH's
+//! mean curvature there, interpolated the same way.
 //!
 //! What this module does not do: decide where rays start or which hit counts (the baker does:
 //! the first from the cage inward, which is the closest to the ray's origin).
@@ -16,14 +17,17 @@ use obvhs::ray::{Ray, RayHit};
 use obvhs::triangle::Triangle;
 
 /// Bytes a triangle of HIGH costs while baking: the BVH's nodes and indices, its triangle copy
-/// and the build's temporary arrays (an upper bound of what obvhs allocates, rounded up).
-pub const BYTES_PER_TRIANGLE: u64 = 160;
+/// and the build's temporary arrays (an upper bound of what obvhs allocates, rounded up), and
+/// the curvature's per-vertex arrays (a mesh has about half as many vertices as triangles).
+pub const BYTES_PER_TRIANGLE: u64 = 176;
 
 /// HIGH, ready to be hit.
 pub struct HighPoly<'a> {
     mesh: &'a Mesh,
     triangles: Vec<Triangle>,
     bvh: CwBvh,
+    /// Each vertex's mean curvature.
+    curvature: Vec<f32>,
 }
 
 /// Where a ray met HIGH.
@@ -33,6 +37,8 @@ pub struct Hit {
     pub t: f32,
     /// HIGH's unit normal there.
     pub normal: Vec3,
+    /// HIGH's mean curvature there (1 / the mesh's units, positive where convex).
+    pub curvature: f32,
 }
 
 impl<'a> HighPoly<'a> {
@@ -47,7 +53,7 @@ impl<'a> HighPoly<'a> {
             })
             .collect();
         let bvh = build_cwbvh_from_tris(&triangles, BvhBuildParams::medium_build(), &mut Duration::default());
-        HighPoly { mesh, triangles, bvh }
+        HighPoly { mesh, triangles, bvh, curvature: crate::curvature::vertex_curvature(mesh) }
     }
 
     /// The first hit along `origin + t·direction` for `t` in `[0, reach]`.
@@ -64,7 +70,14 @@ impl<'a> HighPoly<'a> {
             return None;
         }
         let index = self.bvh.primitive_indices[hit.primitive_id as usize] as usize;
-        Some(Hit { t: hit.t, normal: self.normal_at(index, origin + direction * hit.t) })
+        let ids = self.mesh.indices[index].map(|i| i as usize);
+        let Some((w, face)) = self.weights(ids, origin + direction * hit.t) else {
+            return Some(Hit { t: hit.t, normal: Vec3::Z, curvature: 0.0 });
+        };
+        let n = &self.mesh.normals;
+        let smooth = n[ids[0]] * w[0] + n[ids[1]] * w[1] + n[ids[2]] * w[2];
+        let curvature = ids.iter().zip(w).map(|(&i, w)| self.curvature[i] * w).sum();
+        Some(Hit { t: hit.t, normal: smooth.try_normalize().unwrap_or(face), curvature })
     }
 
     /// Whether the ray `origin + t·direction`, `t` in `[near, far]`, meets HIGH anywhere.
@@ -76,21 +89,18 @@ impl<'a> HighPoly<'a> {
             .ray_traverse_miss(ray, |ray, id| self.triangles[self.bvh.primitive_indices[id] as usize].intersect(ray))
     }
 
-    /// HIGH's normal on triangle `index` at `p`: its vertex normals interpolated.
-    fn normal_at(&self, index: usize, p: Vec3) -> Vec3 {
-        let [i0, i1, i2] = self.mesh.indices[index].map(|i| i as usize);
-        let [a, b, c] = [i0, i1, i2].map(|i| self.mesh.positions[i]);
+    /// The barycentric weights of `p` on the triangle of vertices `ids`, and its unit face
+    /// normal (`None` for a triangle of no area).
+    fn weights(&self, ids: [usize; 3], p: Vec3) -> Option<([f32; 3], Vec3)> {
+        let [a, b, c] = ids.map(|i| self.mesh.positions[i]);
         let face = (b - a).cross(c - a);
         let area = face.length_squared();
         if area == 0.0 {
-            return Vec3::Z;
+            return None;
         }
-        // Barycentric weights from sub-triangle areas, measured along the face normal.
+        // From sub-triangle areas, measured along the face normal.
         let w1 = (p - a).cross(c - a).dot(face) / area;
         let w2 = (b - a).cross(p - a).dot(face) / area;
-        let w0 = 1.0 - w1 - w2;
-        let n = &self.mesh.normals;
-        let smooth = n[i0] * w0 + n[i1] * w1 + n[i2] * w2;
-        smooth.try_normalize().unwrap_or_else(|| face.normalize())
+        Some(([1.0 - w1 - w2, w1, w2], face.normalize()))
     }
 }

@@ -34,6 +34,7 @@
 #![warn(missing_docs)]
 
 mod bake;
+mod curvature;
 mod encode;
 mod frame;
 mod high;

@@ -16,6 +16,7 @@ pub fn run(args: &BakeArgs) -> Result<(), CliError> {
         mask: args.mask_out.clone(),
         occlusion: args.ao_out.clone(),
         displacement: args.height_out.clone(),
+        curvature: args.curvature_out.clone(),
         low: args.low_out.clone(),
     };
     let bar = ProgressBar::new(request.options.height as u64)

@@ -66,6 +66,8 @@ fn a_bake_writes_its_map_mask_and_low_poly_glb() {
         "32",
         "--height-out",
         &path("height.png"),
+        "--curvature-out",
+        &path("curvature.png"),
     ]);
     assert!(o.status.success(), "{}", stderr(&o));
     assert!(stderr(&o).contains("4096 of 4096 texels"), "{}", stderr(&o));
@@ -85,13 +87,27 @@ fn a_bake_writes_its_map_mask_and_low_poly_glb() {
     // The displacement, 16 bits over its range, the range beside it: the waves' ±0.03.
     let height = image::open(dir.join("height.png")).unwrap();
     assert!(matches!(height, image::DynamicImage::ImageLuma16(_)), "{:?}", height.color());
-    let range = std::fs::read_to_string(dir.join("height.range.json")).unwrap();
-    let number = |key: &str| -> f32 {
-        let rest = &range[range.find(key).unwrap() + key.len()..];
-        rest.trim_start_matches([':', ' ']).split([',', '}']).next().unwrap().trim().parse().unwrap()
+    let range_of = |file: &str| -> (f32, f32) {
+        let range = std::fs::read_to_string(dir.join(file)).unwrap();
+        let number = |key: &str| -> f32 {
+            let rest = &range[range.find(key).unwrap() + key.len()..];
+            rest.trim_start_matches([':', ' ']).split([',', '}']).next().unwrap().trim().parse().unwrap()
+        };
+        (number("\"min\""), number("\"max\""))
     };
-    let (lo, hi) = (number("\"min\""), number("\"max\""));
-    assert!((lo + 0.03).abs() < 0.003 && (hi - 0.03).abs() < 0.003, "{range}");
+    let (lo, hi) = range_of("height.range.json");
+    assert!((lo + 0.03).abs() < 0.003 && (hi - 0.03).abs() < 0.003, "{lo} {hi}");
+    // The curvature, 16 bits over a range symmetric about 0: the waves' mean curvature,
+    // −½∇²z, peaks at ½·0.03·((4π)² + (6π)²) ≈ 7.7 on the crests (convex: light) and the
+    // troughs (dark); flat on average.
+    let (lo, hi) = range_of("curvature.range.json");
+    assert!(lo == -hi && (4.0..9.0).contains(&hi), "{lo} {hi}");
+    let image::DynamicImage::ImageLuma16(curvature) = image::open(dir.join("curvature.png")).unwrap() else {
+        panic!("not 16-bit gray")
+    };
+    let mean = curvature.pixels().map(|p| p[0] as f64).sum::<f64>() / 4096.0;
+    let (darkest, lightest) = curvature.pixels().fold((u16::MAX, 0), |(l, h), p| (p[0].min(l), p[0].max(h)));
+    assert!((mean - 32767.5).abs() < 1500.0 && darkest < 8000 && lightest > 57000, "{mean} {darkest} {lightest}");
     // LOW as baked for, read by the gltf crate: its tangents and the map as its normalTexture.
     let (doc, buffers, images) = gltf::import(dir.join("low.glb")).unwrap();
     let prim = doc.meshes().next().unwrap().primitives().next().unwrap();
@@ -103,6 +119,8 @@ fn a_bake_writes_its_map_mask_and_low_poly_glb() {
         listing(&dir),
         [
             "ao.png",
+            "curvature.png",
+            "curvature.range.json",
             "height.png",
             "height.range.json",
             "high.obj",

@@ -45,6 +45,8 @@ pub fn write(out: &Path, renderer: &mut Renderer) -> Result<String, Error> {
         let outputs = BakeOutputs {
             normal_map: dir.join(format!("{name}_normal.png")),
             low: Some(dir.join(format!("low_{name}.glb"))),
+            curvature: (rays == RayMode::Averaged).then(|| dir.join("curvature.png")),
+            occlusion: (rays == RayMode::Averaged).then(|| dir.join("occlusion.png")),
             ..Default::default()
         };
         bake_files(&high, &low, &request, &outputs, &|_, _| {})
@@ -71,7 +73,9 @@ pub fn write(out: &Path, renderer: &mut Renderer) -> Result<String, Error> {
         "- `bake/high.glb`, `bake/low.glb`: a cube with rounded edges and the plain cube (hard edges, one UV island a face); \
 `bake/averaged_normal.png` and `bake/explicit_normal.png`: the first baked onto the second by averaged and by explicit rays \
 (`bumpmap bake bake/high.glb bake/low.glb -o … --decode per-vertex --extrude 0.3 --max-distance 0.3`), and `bake/low_averaged.glb`, \
-`bake/low_explicit.glb`, the plain cube with each as its normalTexture (`bumpmap view --scene mesh:bake/low_averaged.glb`)\n\
+`bake/low_explicit.glb`, the plain cube with each as its normalTexture (`bumpmap view --scene mesh:bake/low_averaged.glb`); \
+`bake/curvature.png` (with `bake/curvature.range.json`) and `bake/occlusion.png`: the rounded cube's curvature and ambient occlusion \
+baked with the averaged rays (`--curvature-out`, `--ao-out`)\n\
 - `{BAKE_FIGURE}`: from left to right, the rounded cube; the plain cube with the averaged bake; with the explicit bake (a seam \
 along every hard edge, where the two faces' rays part); the plain cube without\n"
     );

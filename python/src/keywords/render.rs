@@ -49,7 +49,11 @@ pub fn render_request(
     let mut special = |key: &str, v: &Bound<'_, PyAny>| -> PyResult<Option<Value>> {
         Ok(Some(match key {
             "scene" if !v.is_instance_of::<PyString>() && !v.hasattr("__fspath__")? => {
-                arrays.mesh = Some(crate::renderer::mesh_scene(function, v)?);
+                arrays.mesh = Some(crate::renderer::mesh_object(
+                    function,
+                    ("scene", "a built-in scene's name, \"mesh:FILE\""),
+                    v,
+                )?);
                 Value::Text("mesh:the scene's Mesh".into())
             }
             "height_field" if is_arrays(v)? => {

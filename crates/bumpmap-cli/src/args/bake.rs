@@ -47,6 +47,9 @@ pub struct BakeArgs {
     /// Also write the displacement: the signed distance from LOW to HIGH along each ray, 16-bit gray mapped from its range, which goes beside it as STEM.range.json
     #[arg(long = "height-out")]
     pub height_out: Option<PathBuf>,
+    /// Also write HIGH's mean curvature: 16-bit gray, mid-gray flat, lighter where convex, darker in creases, mapped from ±its 99th percentile, which goes beside it as STEM.range.json
+    #[arg(long = "curvature-out")]
+    pub curvature_out: Option<PathBuf>,
     /// Also write which texels' rays met HIGH (8-bit gray PNG: 255 hit, 0 missed or outside the UVs)
     #[arg(long = "mask-out")]
     pub mask_out: Option<PathBuf>,

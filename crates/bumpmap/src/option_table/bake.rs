@@ -45,7 +45,7 @@ pub static BAKE: &[Row] = &[
     Row::new("max-distance", COMMAND, "How far behind LOW the rays still look, in the meshes' units [default: --extrude's distance]", |r| &mut r.options.back).check(distance),
     Row::new("cage", COMMAND, "A cage: LOW's mesh file with its vertices moved (outward, usually), the same vertices and triangles. Each ray starts on it and goes through LOW as far as --max-distance beyond (--extrude is not used)", |r| &mut r.cage).value_name("FILE"),
     Row::new("padding", COMMAND, "Texels filled beyond each UV island's edge from the island's own, so filtering and mips do not read the background", |r| &mut r.options.padding).range(0, 4096),
-    Row::new("ao-rays", COMMAND, "Rays each sample casts for HIGH's ambient occlusion, cosine-weighted over the hemisphere around LOW's normal (0: no occlusion; --ao-out bakes it with 64 when this is 0)", |r| &mut r.options.occlusion_rays).range(0, MAX_OCCLUSION_RAYS as u64),
+    Row::new("ao-rays", COMMAND, "Rays each sample casts for HIGH's ambient occlusion, cosine-weighted over the hemisphere around HIGH's normal at the hit (0: no occlusion; --ao-out bakes it with 64 when this is 0)", |r| &mut r.options.occlusion_rays).range(0, MAX_OCCLUSION_RAYS as u64),
     Row::word("decode", COMMAND, "The tangent-space decode the map is made for, inverted exactly (interpolated, unnormalized T and N)", |r| &mut r.options.decode),
     Row::word("tangents", COMMAND, "How LOW's tangents are made when its file has none (a glTF's own TANGENT is used as it is)", |r| &mut r.tangents),
     Row::word("y-convention", COMMAND, "Which way green points in the normal map's file: opengl (alias y-up: glTF, Blender, Unity) or directx (alias y-down: Unreal)", |r| &mut r.y_convention),
