@@ -251,13 +251,14 @@ class BakeResult(TypedDict, total=False):
     levels: list[_Levels]
     object_space: npt.NDArray[np.float32]
     displacement: npt.NDArray[np.float32]
+    curvature: npt.NDArray[np.float32]
     occlusion: npt.NDArray[np.float32]
     hit: npt.NDArray[np.bool_]
     covered: npt.NDArray[np.bool_]
 
 def bake(
-    high: _Path,
-    low: _Path,
+    high: Union[_Path, Mesh],
+    low: Union[_Path, Mesh],
     *,
     # BEGIN options of bake
     size: int = 1024,
@@ -266,6 +267,7 @@ def bake(
     extrude: Optional[float] = None,
     max_distance: Optional[float] = None,
     cage: Optional[_Path] = None,
+    match_names: bool = False,
     padding: int = 16,
     ao_rays: int = 0,
     decode: _Decode = "mikktspace",

@@ -82,6 +82,17 @@ impl Default for BakeOptions {
     }
 }
 
+/// Which of HIGH's triangles each of LOW's rays may meet, for a bake of parts paired by name
+/// (an *exploded* bake without moving the parts apart): groups of HIGH's triangles, and each of
+/// LOW's triangles' group.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct Pairing {
+    /// Each group's triangles of HIGH (indices into its triangles; none empty).
+    pub high: Vec<Vec<u32>>,
+    /// Each of LOW's triangles' group (an index into [`Pairing::high`]).
+    pub low: Vec<u32>,
+}
+
 /// Why nothing was baked.
 #[derive(Debug, thiserror::Error)]
 pub enum BakeError {
@@ -154,6 +165,9 @@ pub enum BakeError {
         /// The distance behind used.
         back: f32,
     },
+    /// A pairing that does not fit the meshes.
+    #[error("a pairing of parts: {0}")]
+    Pairing(String),
     /// The bake would not fit in memory.
     #[error(transparent)]
     OutOfMemory(#[from] OutOfMemory),
@@ -198,7 +212,36 @@ pub fn bake(
     options: &BakeOptions,
     progress: &(dyn Fn(usize, usize) + Sync),
 ) -> Result<Baked, BakeError> {
-    bake_from(high, low, None, options, progress)
+    bake_from(high, low, None, None, options, progress)
+}
+
+/// [`bake`] (or [`bake_with_cage`], with `cage`) where each of LOW's triangles' rays meet only
+/// the triangles of HIGH that `pairing` gives it; the occlusion, too, sees only those.
+pub fn bake_paired(
+    high: &Mesh,
+    low: &Mesh,
+    cage: Option<&[Vec3]>,
+    pairing: &Pairing,
+    options: &BakeOptions,
+    progress: &(dyn Fn(usize, usize) + Sync),
+) -> Result<Baked, BakeError> {
+    if let Some(cage) = cage {
+        check_cage(cage, low)?;
+    }
+    let refuse = |why: String| Err(BakeError::Pairing(why));
+    if pairing.low.len() != low.indices.len() {
+        return refuse(format!("{} groups for the low-poly mesh's {} triangles", pairing.low.len(), low.indices.len()));
+    }
+    if let Some(g) = pairing.low.iter().find(|&&g| g as usize >= pairing.high.len()) {
+        return refuse(format!("group {g} of {}", pairing.high.len()));
+    }
+    if let Some(g) = pairing.high.iter().position(Vec::is_empty) {
+        return refuse(format!("group {g} has no triangle of the high-poly mesh"));
+    }
+    if let Some(t) = pairing.high.iter().flatten().find(|&&t| t as usize >= high.indices.len()) {
+        return refuse(format!("triangle {t} of the high-poly mesh's {}", high.indices.len()));
+    }
+    bake_from(high, low, cage, Some(pairing), options, progress)
 }
 
 /// [`bake`] with each ray starting on a cage: `cage` holds, for each of LOW's vertices, where
@@ -212,19 +255,26 @@ pub fn bake_with_cage(
     options: &BakeOptions,
     progress: &(dyn Fn(usize, usize) + Sync),
 ) -> Result<Baked, BakeError> {
+    check_cage(cage, low)?;
+    bake_from(high, low, Some(cage), None, options, progress)
+}
+
+/// A cage of LOW's vertices, all finite.
+fn check_cage(cage: &[Vec3], low: &Mesh) -> Result<(), BakeError> {
     if cage.len() != low.positions.len() {
         return Err(BakeError::CageSize { cage: cage.len(), low: low.positions.len() });
     }
     if let Some(i) = cage.iter().position(|p| !p.is_finite()) {
         return Err(BakeError::CageNotFinite(i));
     }
-    bake_from(high, low, Some(cage), options, progress)
+    Ok(())
 }
 
 fn bake_from(
     high: &Mesh,
     low: &Mesh,
     cage: Option<&[Vec3]>,
+    pairing: Option<&Pairing>,
     options: &BakeOptions,
     progress: &(dyn Fn(usize, usize) + Sync),
 ) -> Result<Baked, BakeError> {
@@ -268,7 +318,13 @@ fn bake_from(
         RayMode::Explicit => low.normals.clone(),
     };
     let layout = Layout::new(low, width, height);
-    let target = HighPoly::new(high);
+    let curvature = crate::curvature::vertex_curvature(high);
+    // One BVH over HIGH, or one a group of a pairing.
+    let targets: Vec<HighPoly> = match pairing {
+        None => vec![HighPoly::new(high, &curvature, None)],
+        Some(p) => p.high.iter().map(|only| HighPoly::new(high, &curvature, Some(only))).collect(),
+    };
+    let target_of = |triangle: u32| &targets[pairing.map_or(0, |p| p.low[triangle as usize] as usize)];
 
     let mut baked = Baked {
         width,
@@ -311,6 +367,7 @@ fn bake_from(
                     let p = Vec2::new(x as f32, y as f32) + sample_offset(k, samples);
                     let Some(at) = layout.at(y, p) else { continue };
                     inside = true;
+                    let target = target_of(at.triangle);
                     let mut frame = Frame::at(low, &rays, at);
                     // From the cage's point where there is one, else `front` along the frame's.
                     let front = match cage.and_then(|cage| cage_ray(cage, low, at, frame.p)) {
@@ -327,7 +384,7 @@ fn bake_from(
                     if options.occlusion_rays > 0 {
                         let at = frame.p + frame.d * (front - found.t);
                         let seed = [x as u32, y as u32, k as u32];
-                        open += open_share(&target, at, found.normal, options.occlusion_rays, reach_out, seed);
+                        open += open_share(target, at, found.normal, options.occlusion_rays, reach_out, seed);
                     }
                     sum_t += encoded;
                     sum_o += found.normal;

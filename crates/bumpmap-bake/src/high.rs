@@ -21,13 +21,15 @@ use obvhs::triangle::Triangle;
 /// the curvature's per-vertex arrays (a mesh has about half as many vertices as triangles).
 pub const BYTES_PER_TRIANGLE: u64 = 176;
 
-/// HIGH, ready to be hit.
+/// HIGH, or some of its triangles, ready to be hit.
 pub struct HighPoly<'a> {
     mesh: &'a Mesh,
+    /// The mesh's triangle each of the BVH's is (empty: all, in order).
+    ids: Vec<u32>,
     triangles: Vec<Triangle>,
     bvh: CwBvh,
     /// Each vertex's mean curvature.
-    curvature: Vec<f32>,
+    curvature: &'a [f32],
 }
 
 /// Where a ray met HIGH.
@@ -42,18 +44,19 @@ pub struct Hit {
 }
 
 impl<'a> HighPoly<'a> {
-    /// The BVH over `mesh`'s triangles (which must be valid and carry normals).
-    pub fn new(mesh: &'a Mesh) -> Self {
-        let triangles: Vec<Triangle> = mesh
-            .indices
-            .iter()
-            .map(|t| {
-                let [a, b, c] = t.map(|i| Vec3A::from(mesh.positions[i as usize]));
-                Triangle { v0: a, v1: b, v2: c }
-            })
-            .collect();
+    /// The BVH over `mesh`'s triangles (which must be valid and carry normals), or over those
+    /// of `only` (indices into [`Mesh::indices`], not empty); `curvature` holds each vertex's.
+    pub fn new(mesh: &'a Mesh, curvature: &'a [f32], only: Option<&[u32]>) -> Self {
+        let triangle = |t: &[u32; 3]| {
+            let [a, b, c] = t.map(|i| Vec3A::from(mesh.positions[i as usize]));
+            Triangle { v0: a, v1: b, v2: c }
+        };
+        let (ids, triangles): (Vec<u32>, Vec<Triangle>) = match only {
+            Some(ids) => (ids.to_vec(), ids.iter().map(|&k| triangle(&mesh.indices[k as usize])).collect()),
+            None => (Vec::new(), mesh.indices.iter().map(triangle).collect()),
+        };
         let bvh = build_cwbvh_from_tris(&triangles, BvhBuildParams::medium_build(), &mut Duration::default());
-        HighPoly { mesh, triangles, bvh, curvature: crate::curvature::vertex_curvature(mesh) }
+        HighPoly { mesh, ids, triangles, bvh, curvature }
     }
 
     /// The first hit along `origin + t·direction` for `t` in `[0, reach]`.
@@ -69,7 +72,8 @@ impl<'a> HighPoly<'a> {
         if !found {
             return None;
         }
-        let index = self.bvh.primitive_indices[hit.primitive_id as usize] as usize;
+        let local = self.bvh.primitive_indices[hit.primitive_id as usize] as usize;
+        let index = if self.ids.is_empty() { local } else { self.ids[local] as usize };
         let ids = self.mesh.indices[index].map(|i| i as usize);
         let Some((w, face)) = self.weights(ids, origin + direction * hit.t) else {
             return Some(Hit { t: hit.t, normal: Vec3::Z, curvature: 0.0 });

@@ -42,6 +42,7 @@ mod pad;
 mod texels;
 
 pub use bake::{
-    BakeError, BakeOptions, Baked, MAX_OCCLUSION_RAYS, MAX_SAMPLES, MAX_SIDE, RayMode, bake, bake_with_cage,
+    BakeError, BakeOptions, Baked, MAX_OCCLUSION_RAYS, MAX_SAMPLES, MAX_SIDE, Pairing, RayMode, bake, bake_paired,
+    bake_with_cage,
 };
 pub use encode::{TangentDecode, encode_in_frame};

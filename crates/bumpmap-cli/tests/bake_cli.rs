@@ -221,3 +221,82 @@ fn what_cannot_be_baked_is_refused_with_nothing_written() {
     assert_eq!(listing(&dir), ["bare.obj", "far.obj", "high.obj", "low.obj"], "nothing written");
     assert_eq!(std::fs::read(&high).unwrap(), high_before, "an input is never replaced");
 }
+
+/// A named square of [`parts_obj`]: its name, quads a side, and height.
+type Part<'a> = (&'a str, usize, &'a dyn Fn(f32, f32) -> f32);
+
+/// Writes an OBJ of named unit squares, each `o NAME`, `n` quads a side at `z = height(x, y)`;
+/// with UVs, each square's in its own column of the layout (`x / parts + column`).
+fn parts_obj(path: &Path, parts: &[Part], uvs: bool) {
+    let (mut text, mut first) = (String::new(), 1);
+    for (column, (name, n, height)) in parts.iter().enumerate() {
+        let n = *n;
+        text += &format!("o {name}\n");
+        for j in 0..=n {
+            for i in 0..=n {
+                let (x, y) = (i as f32 / n as f32, j as f32 / n as f32);
+                text += &format!("v {x} {y} {}\n", height(x, y));
+                if uvs {
+                    text += &format!("vt {} {}\n", (x + column as f32) / parts.len() as f32, 1.0 - y);
+                }
+            }
+        }
+        for j in 0..n {
+            for i in 0..n {
+                let a = first + j * (n + 1) + i;
+                let (b, c, d) = (a + 1, a + n + 2, a + n + 1);
+                text += &if uvs {
+                    format!("f {a}/{a} {b}/{b} {c}/{c}\nf {a}/{a} {c}/{c} {d}/{d}\n")
+                } else {
+                    format!("f {a} {b} {c}\nf {a} {c} {d}\n")
+                };
+            }
+        }
+        first += (n + 1) * (n + 1);
+    }
+    std::fs::write(path, text).unwrap();
+}
+
+#[test]
+fn parts_matched_by_name_meet_only_their_own() {
+    // A wavy part under a flat lid 0.05 above it, both baked from 0.1 in front: unpaired, the
+    // part's rays meet the lid first and its half of the map is flat; paired by name, they
+    // pass the lid and meet the waves.
+    let dir = scratch("bake_match_names");
+    let (high, low) = (dir.join("high.obj"), dir.join("low.obj"));
+    let lid = |_: f32, _: f32| 0.05;
+    let flat = |_: f32, _: f32| 0.0;
+    parts_obj(&high, &[("Part_high", 48, &waves), ("lid_HIGH", 1, &lid)], false);
+    parts_obj(&low, &[("part_low", 1, &flat), ("Lid_low", 1, &lid)], true);
+    let red_spread = |map: &str, extra: &[&str]| {
+        let out = dir.join(map);
+        let mut args = vec!["bake", high.to_str().unwrap(), low.to_str().unwrap(), "-o", out.to_str().unwrap()];
+        args.extend(["--size", "32", "--spp", "1", "--extrude", "0.1", "--max-distance", "0.1"]);
+        args.extend(extra);
+        let o = bumpmap(&args);
+        assert!(o.status.success(), "{}", stderr(&o));
+        let image = image::open(&out).unwrap().to_rgba8();
+        // The part's half of the layout, away from the padding at its edge.
+        let red: Vec<u8> =
+            image.enumerate_pixels().filter(|(x, _, _)| (2..14).contains(x)).map(|(_, _, p)| p[0]).collect();
+        red.iter().max().unwrap() - red.iter().min().unwrap()
+    };
+    let unpaired = red_spread("unpaired.png", &[]);
+    let paired = red_spread("paired.png", &["--match-names"]);
+    assert!(unpaired < 4 && paired > 20, "unpaired {unpaired}, paired {paired}");
+    // A LOW part without a HIGH part of its name: an error naming it and HIGH's parts.
+    parts_obj(&low, &[("part_low", 1, &flat), ("cap_low", 1, &lid)], true);
+    let o = bumpmap(&[
+        "bake",
+        high.to_str().unwrap(),
+        low.to_str().unwrap(),
+        "-o",
+        dir.join("n.png").to_str().unwrap(),
+        "--size",
+        "16",
+        "--match-names",
+    ]);
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    assert!(stderr(&o).contains("'cap_low'") && stderr(&o).contains("'Part_high', 'lid_HIGH'"), "{}", stderr(&o));
+    assert!(!dir.join("n.png").exists());
+}

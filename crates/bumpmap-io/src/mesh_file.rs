@@ -46,6 +46,10 @@ pub struct LoadedMesh {
     /// Which triangles of [`LoadedMesh::mesh`] each glTF primitive (of each node that holds it)
     /// is, in the order read, and its material. Empty for OBJ: one part, no material.
     pub parts: Vec<MeshPart>,
+    /// Each named object's triangles, in the order read: a glTF node that holds a mesh (the
+    /// node's name, else its mesh's, else `node N`), or an OBJ object or group (`o` or `g`: the
+    /// name tobj gives it). Empty for a mesh not read from a file.
+    pub objects: Vec<(String, std::ops::Range<usize>)>,
     /// What the reader left out, in words (an alpha mode, a line primitive, …).
     pub notes: Vec<String>,
 }

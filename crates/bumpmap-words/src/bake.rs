@@ -19,6 +19,8 @@ pub fn bake_error(e: BakeFileError, high: &Path, low: &Path) -> Error {
             path.display()
         )),
         BakeFileError::Clash { path, what } => Error::Usage(format!("{}: {what}", path.display())),
+        e @ BakeFileError::Unmatched { .. } => Error::Render(format!("--match-names: {e}")),
+        e @ BakeFileError::Unnamed { .. } => Error::Render(format!("--match-names: {e}")),
         BakeFileError::Cage { path, reason } => at(&path, format!("--cage: {reason}")),
         BakeFileError::Tangents { path, source } => at(&path, format!("its tangents: {source}")),
         BakeFileError::Bake(e) => match e {
@@ -52,6 +54,7 @@ pub fn bake_error(e: BakeFileError, high: &Path, low: &Path) -> Error {
                 high.display(),
                 low.display()
             )),
+            BakeError::Pairing(why) => Error::Render(format!("--match-names: {why}")),
             BakeError::OutOfMemory(e) => Error::OutOfMemory(e),
         },
     }

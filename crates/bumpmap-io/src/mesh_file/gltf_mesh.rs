@@ -19,11 +19,13 @@ use crate::error::IoError;
 
 /// The meshes to read and the world transform of each: the default scene's nodes (or the
 /// first scene's; or, with no scene, every node that is no other's child), each mesh once per
-/// node that holds it. A file with no nodes gives its meshes in local space.
-fn instances(path: &Path, doc: &gltf::Document) -> Result<Vec<(usize, glam::Mat4)>, IoError> {
+/// node that holds it, and the node's name (its mesh's where it has none, else `node N`). A
+/// file with no nodes gives its meshes in local space, each named as a mesh (`mesh N`).
+fn instances(path: &Path, doc: &gltf::Document) -> Result<Vec<(usize, glam::Mat4, String)>, IoError> {
     let nodes: Vec<gltf::Node> = doc.nodes().collect();
     if nodes.is_empty() {
-        return Ok(doc.meshes().map(|m| (m.index(), glam::Mat4::IDENTITY)).collect());
+        let name = |m: &gltf::Mesh| m.name().map_or_else(|| format!("mesh {}", m.index()), str::to_string);
+        return Ok(doc.meshes().map(|m| (m.index(), glam::Mat4::IDENTITY, name(&m))).collect());
     }
     let roots: Vec<usize> = match doc.default_scene().or_else(|| doc.scenes().next()) {
         Some(scene) => scene.nodes().map(|n| n.index()).collect(),
@@ -66,7 +68,8 @@ fn instances(path: &Path, doc: &gltf::Document) -> Result<Vec<(usize, glam::Mat4
         }
         let world = parent * local;
         if let Some(mesh) = node.mesh() {
-            out.push((mesh.index(), world));
+            let name = node.name().or(mesh.name()).map_or_else(|| format!("node {i}"), str::to_string);
+            out.push((mesh.index(), world, name));
         }
         for c in node.children().collect::<Vec<_>>().into_iter().rev() {
             stack.push((c.index(), world));
@@ -112,7 +115,10 @@ pub(crate) fn from_gltf(
     let mut turned = false;
     let mut left_out: Vec<(gltf::mesh::Mode, usize)> = Vec::new();
     let buffers = std::mem::take(&mut file.buffers);
-    for &(mesh_index, world_from_local) in &instances {
+    let mut objects = Vec::new();
+    for (mesh_index, world_from_local, name) in &instances {
+        let (mesh_index, world_from_local) = (*mesh_index, *world_from_local);
+        let first = mesh.indices.len();
         let gmesh = &meshes[mesh_index];
         // Normals by the inverse transpose; a mirroring transform (negative determinant)
         // turns the winding and the tangent frame's handedness around (glTF 2.0 §3.7.4).
@@ -234,6 +240,7 @@ pub(crate) fn from_gltf(
             }));
             parts.push(MeshPart { triangles: start..mesh.indices.len(), material, textured });
         }
+        objects.push((name.clone(), first..mesh.indices.len()));
     }
     for (mode, count) in &left_out {
         notes.push(format!("{count} {mode:?} primitive(s) left out: only triangles are drawn"));
@@ -293,7 +300,7 @@ pub(crate) fn from_gltf(
     }
     let mut sources = vec![path.to_path_buf()];
     sources.extend(file.files);
-    Ok(LoadedMesh { mesh, had_normals, had_tangents, sources, materials: read, parts, notes })
+    Ok(LoadedMesh { mesh, had_normals, had_tangents, sources, materials: read, parts, objects, notes })
 }
 
 /// A glTF triangle primitive's indices as a list of triangles (glTF 2.0 §3.7.2.1): a strip's
@@ -324,7 +331,7 @@ fn material_plans(
     path: &Path,
     doc: &gltf::Document,
     meshes: &[gltf::Mesh],
-    instances: &[(usize, glam::Mat4)],
+    instances: &[(usize, glam::Mat4, String)],
     options: &MeshOptions,
 ) -> Result<(Vec<MaterialPlan>, Vec<String>), IoError> {
     let materials: Vec<gltf::Material> = doc.materials().collect();
@@ -332,7 +339,7 @@ fn material_plans(
     let mut notes = Vec::new();
     // What is not drawn, each kind once, with every material that asked for it.
     let mut left_out: Vec<(&'static str, Vec<String>)> = Vec::new();
-    for &(m, _) in instances {
+    for &(m, _, _) in instances {
         for prim in meshes[m].primitives() {
             let Some(index) = prim.material().index() else { continue };
             if plans.iter().any(|p| p.index == index) {

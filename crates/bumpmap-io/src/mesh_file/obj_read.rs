@@ -100,6 +100,7 @@ pub(crate) fn parse_obj(path: &Path, bytes: &[u8], texcoords: ObjTexcoords) -> R
     let mut mesh = Mesh::default();
     let mut had_normals = true;
     let mut has_texcoords = true;
+    let mut objects = Vec::new();
     for model in &models {
         let m = &model.mesh;
         let base = mesh.positions.len() as u32;
@@ -122,7 +123,9 @@ pub(crate) fn parse_obj(path: &Path, bytes: &[u8], texcoords: ObjTexcoords) -> R
             ObjTexcoords::FlipV => Vec2::new(p[0], 1.0 - p[1]),
             ObjTexcoords::Keep => Vec2::new(p[0], p[1]),
         }));
+        let first = mesh.indices.len();
         mesh.indices.extend(m.indices.chunks_exact(3).map(|t| [base + t[0], base + t[1], base + t[2]]));
+        objects.push((model.name.clone(), first..mesh.indices.len()));
     }
     if !had_normals {
         mesh.normals.clear();
@@ -130,5 +133,12 @@ pub(crate) fn parse_obj(path: &Path, bytes: &[u8], texcoords: ObjTexcoords) -> R
     if !has_texcoords {
         mesh.texcoords.clear();
     }
-    Ok(LoadedMesh { mesh, had_normals, had_tangents: false, sources: vec![path.to_path_buf()], ..Default::default() })
+    Ok(LoadedMesh {
+        mesh,
+        had_normals,
+        had_tangents: false,
+        sources: vec![path.to_path_buf()],
+        objects,
+        ..Default::default()
+    })
 }

@@ -24,8 +24,8 @@ use bumpmap_math::tangent::{TangentMode, TangentOptions, generate_tangents};
 use glam::Vec3;
 
 pub use bumpmap_bake::{
-    BakeError, BakeOptions, Baked, MAX_OCCLUSION_RAYS, MAX_SAMPLES, MAX_SIDE, RayMode, TangentDecode, bake,
-    bake_with_cage, encode_in_frame,
+    BakeError, BakeOptions, Baked, MAX_OCCLUSION_RAYS, MAX_SAMPLES, MAX_SIDE, Pairing, RayMode, TangentDecode, bake,
+    bake_paired, bake_with_cage, encode_in_frame,
 };
 
 use crate::maps::SaveError;
@@ -52,6 +52,8 @@ pub struct BakeRequest {
     pub mips: bool,
     /// A cage: LOW's mesh with its vertices moved (outward, usually), where the rays start.
     pub cage: Option<PathBuf>,
+    /// Pair LOW's parts with HIGH's by name ([`part_key`]): each part's rays meet only its own.
+    pub match_names: bool,
 }
 
 impl Default for BakeRequest {
@@ -64,6 +66,7 @@ impl Default for BakeRequest {
             bits: 8,
             mips: false,
             cage: None,
+            match_names: false,
         }
     }
 }
@@ -104,6 +107,27 @@ pub enum BakeFileError {
         path: PathBuf,
         /// How it differs from LOW.
         reason: String,
+    },
+    /// Parts of LOW that no part of HIGH is named as, with `match_names`.
+    #[error(
+        "{}: its parts {} have no part of the same name in the high-poly mesh, whose parts are {} (names are compared without case and without a suffix _low, _high, _lo, _hi, _lp or _hp)",
+        low.display(),
+        quoted(unmatched),
+        quoted(high_parts)
+    )]
+    Unmatched {
+        /// LOW's file.
+        low: PathBuf,
+        /// Its parts without a match.
+        unmatched: Vec<String>,
+        /// HIGH's parts.
+        high_parts: Vec<String>,
+    },
+    /// A mesh without named parts, with `match_names`.
+    #[error("{}: pairing parts by name needs named parts (glTF nodes, OBJ objects or groups), and this mesh has none", path.display())]
+    Unnamed {
+        /// The mesh's file (or its stand-in).
+        path: PathBuf,
     },
     /// An output that is also an input or another output.
     #[error("{}: {what}", path.display())]
@@ -219,11 +243,17 @@ pub fn bake_from_meshes(
         (Some(cage), Some(path)) => Some(cage_positions(&low_loaded.mesh, &cage.mesh, path)?),
         _ => None,
     };
+    let pairing = match request.match_names {
+        true => Some(pair_by_name(&high_mesh, &low_loaded, low_name)?),
+        false => None,
+    };
     let low_mesh = low_as_drawn(low_loaded, low_name, request.tangents)?;
     let options = &request.options;
-    let baked = match &cage_of_low {
-        Some(cage) => bake_with_cage(&high_mesh.mesh, &low_mesh, &cage.points_for(&low_mesh), options, progress)?,
-        None => bake(&high_mesh.mesh, &low_mesh, options, progress)?,
+    let cage = cage_of_low.as_ref().map(|c| c.points_for(&low_mesh));
+    let baked = match (&pairing, &cage) {
+        (Some(pairing), cage) => bake_paired(&high_mesh.mesh, &low_mesh, cage.as_deref(), pairing, options, progress)?,
+        (None, Some(cage)) => bake_with_cage(&high_mesh.mesh, &low_mesh, cage, options, progress)?,
+        (None, None) => bake(&high_mesh.mesh, &low_mesh, options, progress)?,
     };
     let counts = BakeCounts {
         covered: baked.covered.iter().filter(|c| **c).count(),
@@ -232,6 +262,70 @@ pub fn bake_from_meshes(
         low_triangles: low_mesh.triangle_count(),
     };
     Ok(FromFiles { baked, low: low_mesh, counts, sources })
+}
+
+/// A part's name as pairing compares it: lower case, without a last suffix `_low`, `_high`,
+/// `_lo`, `_hi`, `_lp` or `_hp` (`.` or `-` before it as well as `_`), as Substance's and
+/// Marmoset's bakers pair `Bolt_low` with `bolt_high`.
+///
+/// ```
+/// use bumpmap::bake::part_key;
+/// assert_eq!(part_key("Bolt_low"), part_key("bolt_HIGH"));
+/// assert_eq!(part_key("wheel.hp"), "wheel");
+/// assert_ne!(part_key("Bolt_low"), part_key("Nut_high"));
+/// ```
+pub fn part_key(name: &str) -> String {
+    let lower = name.trim().to_lowercase();
+    for suffix in ["low", "high", "lo", "hi", "lp", "hp"] {
+        if let Some(stem) = lower.strip_suffix(suffix)
+            && let Some(stem) = stem.strip_suffix(['_', '.', '-'])
+            && !stem.is_empty()
+        {
+            return stem.to_string();
+        }
+    }
+    lower
+}
+
+/// HIGH's parts grouped by [`part_key`], and each of LOW's triangles' group; every LOW part
+/// must have one.
+fn pair_by_name(high: &LoadedMesh, low: &LoadedMesh, low_name: &Path) -> Result<Pairing, BakeFileError> {
+    for (mesh, path) in [(high, high.sources.first().map(PathBuf::as_path)), (low, Some(low_name))] {
+        if mesh.objects.is_empty() {
+            return Err(BakeFileError::Unnamed { path: path.unwrap_or(Path::new("<high Mesh>")).to_path_buf() });
+        }
+    }
+    let mut keys: Vec<String> = Vec::new();
+    let mut pairing = Pairing { high: Vec::new(), low: vec![0; low.mesh.indices.len()] };
+    for (name, triangles) in &high.objects {
+        let key = part_key(name);
+        let group = keys.iter().position(|k| *k == key).unwrap_or_else(|| {
+            keys.push(key);
+            pairing.high.push(Vec::new());
+            keys.len() - 1
+        });
+        pairing.high[group].extend(triangles.clone().map(|t| t as u32));
+    }
+    let mut unmatched = Vec::new();
+    for (name, triangles) in &low.objects {
+        match keys.iter().position(|k| *k == part_key(name)) {
+            Some(group) if !pairing.high[group].is_empty() => {
+                pairing.low[triangles.clone()].fill(group as u32);
+            }
+            _ if triangles.is_empty() => {}
+            _ => unmatched.push(name.clone()),
+        }
+    }
+    if !unmatched.is_empty() {
+        let high_parts = high.objects.iter().map(|(n, _)| n.clone()).collect();
+        return Err(BakeFileError::Unmatched { low: low_name.to_path_buf(), unmatched, high_parts });
+    }
+    Ok(pairing)
+}
+
+/// Names in quotes, joined by commas.
+fn quoted(names: &[String]) -> String {
+    names.iter().map(|n| format!("'{n}'")).collect::<Vec<_>>().join(", ")
 }
 
 /// How much a bake covered.
