@@ -26,7 +26,9 @@ pub fn bake<'py>(
     options: Option<&Bound<'py, PyDict>>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let (options, progress) = take_progress("bake", options)?;
-    let request: BakeRequest = keywords::bake_request("bake", options.as_ref())?;
+    let mut request: BakeRequest = keywords::bake_request("bake", options.as_ref())?;
+    // Python gets every map the bake makes.
+    request.options.curvature = true;
     let (high, high_mesh) = mesh_or_file(high, "high", "<high Mesh>")?;
     let (low, low_mesh) = mesh_or_file(low, "low", "<low Mesh>")?;
     let (baked, chain) = interrupt::run_reporting(

@@ -62,6 +62,8 @@ pub struct BakeOptions {
     pub decode: TangentDecode,
     /// Rays a sample casts for ambient occlusion (0: none is baked).
     pub occlusion_rays: u32,
+    /// Bake HIGH's curvature too (it costs a pass over HIGH before the rays).
+    pub curvature: bool,
 }
 
 impl Default for BakeOptions {
@@ -78,6 +80,7 @@ impl Default for BakeOptions {
             padding: 16,
             decode: TangentDecode::MikkTSpace,
             occlusion_rays: 0,
+            curvature: false,
         }
     }
 }
@@ -188,7 +191,8 @@ pub struct Baked {
     /// Signed distance from LOW to HIGH along the ray, outward positive.
     pub displacement: Vec<f32>,
     /// HIGH's mean curvature at the hit, in 1 / the meshes' units: positive where it is convex,
-    /// negative in creases, 0 where flat (and where nothing was hit or padded).
+    /// negative in creases, 0 where flat (and where nothing was hit or padded); empty unless
+    /// asked for.
     pub curvature: Vec<f32>,
     /// HIGH's ambient occlusion at the hit: the cosine-weighted share of the hemisphere around
     /// HIGH's normal there that HIGH leaves open, 1 unoccluded (empty unless asked for). Around
@@ -301,7 +305,8 @@ fn bake_from(
     // before any of it.
     let texels = (width * height) as u64;
     let occlusion_bytes = if options.occlusion_rays > 0 { 4 } else { 0 };
-    let bytes = texels * (35 + occlusion_bytes) + high.indices.len() as u64 * BYTES_PER_TRIANGLE;
+    let curvature_bytes = if options.curvature { 4 } else { 0 };
+    let bytes = texels * (31 + occlusion_bytes + curvature_bytes) + high.indices.len() as u64 * BYTES_PER_TRIANGLE;
     bumpmap_math::buffer::ensure_available(bytes, "the bake")?;
 
     let high_normals;
@@ -318,7 +323,7 @@ fn bake_from(
         RayMode::Explicit => low.normals.clone(),
     };
     let layout = Layout::new(low, width, height);
-    let curvature = crate::curvature::vertex_curvature(high);
+    let curvature = if options.curvature { crate::curvature::vertex_curvature(high) } else { Vec::new() };
     // One BVH over HIGH, or one a group of a pairing.
     let targets: Vec<HighPoly> = match pairing {
         None => vec![HighPoly::new(high, &curvature, None)],
@@ -332,7 +337,7 @@ fn bake_from(
         tangent: vec![Vec3::Z; width * height],
         object: vec![Vec3::ZERO; width * height],
         displacement: vec![0.0; width * height],
-        curvature: vec![0.0; width * height],
+        curvature: if options.curvature { vec![0.0; width * height] } else { Vec::new() },
         occlusion: if options.occlusion_rays > 0 { vec![1.0; width * height] } else { Vec::new() },
         hit: vec![false; width * height],
         covered: vec![false; width * height],
@@ -342,18 +347,15 @@ fn bake_from(
     let done = AtomicUsize::new(0);
     let samples = options.samples as usize;
     let reach_out = 2.0 * (front + back) + bounds_diagonal(high);
-    // Without occlusion each row gets an empty slice of it.
-    let mut occlusion_rows: Vec<&mut [f32]> = if baked.occlusion.is_empty() {
-        (0..height).map(|_| <&mut [f32]>::default()).collect()
-    } else {
-        baked.occlusion.chunks_mut(width).collect()
-    };
+    // Without occlusion or curvature each row gets an empty slice of it.
+    let (mut occlusion_rows, mut curvature_rows) =
+        (rows_of(&mut baked.occlusion, width, height), rows_of(&mut baked.curvature, width, height));
     baked
         .tangent
         .par_chunks_mut(width)
         .zip(baked.object.par_chunks_mut(width))
         .zip(baked.displacement.par_chunks_mut(width))
-        .zip(baked.curvature.par_chunks_mut(width))
+        .zip(curvature_rows.par_iter_mut())
         .zip(baked.hit.par_chunks_mut(width))
         .zip(baked.covered.par_chunks_mut(width))
         .zip(occlusion_rows.par_iter_mut())
@@ -397,7 +399,9 @@ fn bake_from(
                     tangent[x] = sum_t.normalize_or(Vec3::Z);
                     object[x] = sum_o.normalize_or(Vec3::Z);
                     displacement[x] = sum_d / hits as f32;
-                    curvature[x] = sum_k / hits as f32;
+                    if let Some(k) = curvature.get_mut(x) {
+                        *k = sum_k / hits as f32;
+                    }
                     if let Some(o) = occlusion.get_mut(x) {
                         *o = open / hits as f32;
                     }
@@ -421,11 +425,22 @@ fn bake_from(
     pad(&mut baked.object, &baked.hit, width, height, rings, unit_mean);
     let mean = |v: &[f32]| v.iter().sum::<f32>() / v.len() as f32;
     baked.filled = pad(&mut baked.displacement, &baked.hit, width, height, rings, mean);
-    pad(&mut baked.curvature, &baked.hit, width, height, rings, mean);
+    if !baked.curvature.is_empty() {
+        pad(&mut baked.curvature, &baked.hit, width, height, rings, mean);
+    }
     if !baked.occlusion.is_empty() {
         pad(&mut baked.occlusion, &baked.hit, width, height, rings, mean);
     }
     Ok(baked)
+}
+
+/// `plane`'s rows of `width`, or `height` empty rows where it is empty (a map not asked for).
+fn rows_of(plane: &mut [f32], width: usize, height: usize) -> Vec<&mut [f32]> {
+    if plane.is_empty() {
+        (0..height).map(|_| <&mut [f32]>::default()).collect()
+    } else {
+        plane.chunks_mut(width).collect()
+    }
 }
 
 /// The diagonal of `mesh`'s bounding box.

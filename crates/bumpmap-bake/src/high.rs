@@ -28,7 +28,7 @@ pub struct HighPoly<'a> {
     ids: Vec<u32>,
     triangles: Vec<Triangle>,
     bvh: CwBvh,
-    /// Each vertex's mean curvature.
+    /// Each vertex's mean curvature (empty: not asked for, 0 at every hit).
     curvature: &'a [f32],
 }
 
@@ -80,7 +80,10 @@ impl<'a> HighPoly<'a> {
         };
         let n = &self.mesh.normals;
         let smooth = n[ids[0]] * w[0] + n[ids[1]] * w[1] + n[ids[2]] * w[2];
-        let curvature = ids.iter().zip(w).map(|(&i, w)| self.curvature[i] * w).sum();
+        let curvature = match self.curvature.is_empty() {
+            true => 0.0,
+            false => ids.iter().zip(w).map(|(&i, w)| self.curvature[i] * w).sum(),
+        };
         Some(Hit { t: hit.t, normal: smooth.try_normalize().unwrap_or(face), curvature })
     }
 

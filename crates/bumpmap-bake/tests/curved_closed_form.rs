@@ -131,6 +131,7 @@ fn the_curvature_baked_is_the_surfaces() {
             samples: 1,
             front: Some(0.05),
             back: Some(0.05),
+            curvature: true,
             ..Default::default()
         };
         bake(&high, &low, &options, &|_, _| {}).unwrap()

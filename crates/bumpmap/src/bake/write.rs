@@ -99,6 +99,7 @@ pub fn bake_files(
         (Some(_), 0) => DEFAULT_OCCLUSION_RAYS,
         (Some(_), n) => n,
     };
+    request.options.curvature = outputs.curvature.is_some();
     let request = &request;
     let FromFiles { baked, low: low_mesh, counts, sources: inputs } = bake_from_files(high, low, request, progress)?;
     let inputs: Vec<&Path> = inputs.iter().map(PathBuf::as_path).collect();
