@@ -110,3 +110,10 @@ def test_bake_from_mesh_objects_equals_from_files(tmp_path):
     with pytest.raises(ValueError, match="<low Mesh>: triangle 0 uses vertex 9"):
         bumpmap.bake(high, broken, size=16)
     assert sorted(p.name for p in tmp_path.iterdir()) == ["high.obj", "low.obj"]
+
+
+def test_match_names_needs_named_parts(tmp_path):
+    square_obj(tmp_path / "high.obj", 8, waves, uvs=False)
+    low = square_mesh(1, lambda x, y: 0.0)
+    with pytest.raises(ValueError, match="match_names: <low Mesh>: pairing parts by name needs named parts"):
+        bumpmap.bake(tmp_path / "high.obj", low, size=8, match_names=True)

@@ -300,3 +300,43 @@ fn parts_matched_by_name_meet_only_their_own() {
     assert!(stderr(&o).contains("'cap_low'") && stderr(&o).contains("'Part_high', 'lid_HIGH'"), "{}", stderr(&o));
     assert!(!dir.join("n.png").exists());
 }
+
+#[test]
+fn the_displacement_and_curvature_as_exr_are_the_values_themselves() {
+    let dir = scratch("bake_exr");
+    let (high, low) = (dir.join("high.obj"), dir.join("low.obj"));
+    square_obj(&high, 64, waves, false);
+    square_obj(&low, 1, |_, _| 0.0, true);
+    let path = |name: &str| dir.join(name).to_str().unwrap().to_string();
+    let o = bumpmap(&[
+        "bake",
+        high.to_str().unwrap(),
+        low.to_str().unwrap(),
+        "-o",
+        &path("n.png"),
+        "--size",
+        "32",
+        "--spp",
+        "1",
+        "--height-out",
+        &path("height.exr"),
+        "--curvature-out",
+        &path("curvature.exr"),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    // Read by the OpenEXR crate (headers validated pedantically): one float channel, the
+    // values in the meshes' units, not 0..1.
+    let values = |name: &str| -> Vec<f32> {
+        let file = dir.join(name);
+        let meta = exr::meta::MetaData::read_from_file(&file, true).expect("a valid OpenEXR header");
+        assert_eq!(meta.headers[0].channels.list[0].sample_type, exr::meta::attribute::SampleType::F32);
+        let image = exr::prelude::read_first_flat_layer_from_file(&file).expect("OpenEXR reads it");
+        image.layer_data.channel_data.list[0].sample_data.values_as_f32().collect()
+    };
+    let height = values("height.exr");
+    let (lo, hi) = height.iter().fold((f32::MAX, f32::MIN), |(l, h), v| (l.min(*v), h.max(*v)));
+    assert!(height.len() == 32 * 32 && (lo + 0.03).abs() < 0.004 && (hi - 0.03).abs() < 0.004, "{lo} {hi}");
+    let peak = values("curvature.exr").iter().map(|v| v.abs()).fold(0.0, f32::max);
+    assert!((5.0..10.0).contains(&peak), "{peak}");
+    assert!(dir.join("height.range.json").exists() && dir.join("curvature.range.json").exists());
+}

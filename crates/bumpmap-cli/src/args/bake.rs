@@ -44,10 +44,10 @@ pub struct BakeArgs {
     /// Also write HIGH's ambient occlusion (gray PNG, 8 or 16 bits as --bits: 1 unoccluded), --ao-rays rays a sample
     #[arg(long = "ao-out")]
     pub ao_out: Option<PathBuf>,
-    /// Also write the displacement: the signed distance from LOW to HIGH along each ray, 16-bit gray mapped from its range, which goes beside it as STEM.range.json
+    /// Also write the displacement: the signed distance from LOW to HIGH along each ray, 16-bit gray mapped from its range (.exr: the distances themselves, 32-bit float), the range beside it as STEM.range.json
     #[arg(long = "height-out")]
     pub height_out: Option<PathBuf>,
-    /// Also write HIGH's mean curvature: 16-bit gray, mid-gray flat, lighter where convex, darker in creases, mapped from ±its 99th percentile, which goes beside it as STEM.range.json
+    /// Also write HIGH's mean curvature: 16-bit gray, mid-gray flat, lighter where convex, darker in creases, mapped from ±its 99th percentile (.exr: the values themselves, 32-bit float), the range beside it as STEM.range.json
     #[arg(long = "curvature-out")]
     pub curvature_out: Option<PathBuf>,
     /// Also write which texels' rays met HIGH (8-bit gray PNG: 255 hit, 0 missed or outside the UVs)

@@ -8,6 +8,7 @@ use std::path::{Path, PathBuf};
 
 use bumpmap_io::IoError;
 use bumpmap_io::atomic::FileSet;
+use bumpmap_io::gray_file::{GrayFormat, save_gray_into};
 use bumpmap_io::height_file::HeightBits;
 use bumpmap_io::image_file::{PngLayout, save_png_into};
 use bumpmap_io::texture_file::TextureFormat;
@@ -33,10 +34,12 @@ pub struct BakeOutputs {
     /// the request's occlusion rays ([`DEFAULT_OCCLUSION_RAYS`] where it asks for none).
     pub occlusion: Option<PathBuf>,
     /// The displacement: the signed distance from LOW to HIGH along each texel's ray, outward
-    /// positive, as a 16-bit gray image (PNG, DDS or KTX2) mapped from its range, which is
-    /// written beside it as `STEM.range.json` (`{"min": …, "max": …}` in the meshes' units).
+    /// positive, as a 16-bit gray image (PNG, DDS or KTX2) mapped from its range, or as the
+    /// distances themselves in a 32-bit float OpenEXR file (`.exr`); the range is written
+    /// beside it as `STEM.range.json` (`{"min": …, "max": …}` in the meshes' units).
     pub displacement: Option<PathBuf>,
-    /// HIGH's mean curvature as a 16-bit gray image (PNG, DDS or KTX2), mid-gray flat, lighter
+    /// HIGH's mean curvature as a 16-bit gray image (PNG, DDS or KTX2; `.exr`: the values
+    /// themselves, 32-bit float), mid-gray flat, lighter
     /// where convex and darker in creases, mapped from a range symmetric about 0 (the 99th
     /// percentile of the texels' |curvature|, beyond which it is clamped) written beside it as
     /// `STEM.range.json` (in 1 / the meshes' units).
@@ -121,11 +124,11 @@ pub fn bake_files(
         bumpmap_io::horizon_file::write_gray_into(&mut set, path, (w, h), &baked.occlusion, bits)?;
     }
     if let Some(path) = &outputs.displacement {
-        let meaning = "signed distance from the low-poly surface to the high-poly one along each texel's ray, outward positive, in the meshes' units: 0 in the image is min, 65535 is max";
+        let meaning = "signed distance from the low-poly surface to the high-poly one along each texel's ray, outward positive, in the meshes' units";
         write_ranged(&mut set, path, (w, h), &baked.displacement, displacement_range(&baked), meaning)?;
     }
     if let Some(path) = &outputs.curvature {
-        let meaning = "the high-poly mesh's mean curvature at each texel's hit, in 1 / the meshes' units, positive where convex: 0 in the image is min, 65535 is max, 32768 flat; beyond the range clamped";
+        let meaning = "the high-poly mesh's mean curvature at each texel's hit, in 1 / the meshes' units, positive where convex, 0 flat";
         write_ranged(&mut set, path, (w, h), &baked.curvature, curvature_range(&baked), meaning)?;
     }
     if let Some(path) = &outputs.low {
@@ -139,8 +142,9 @@ pub fn bake_files(
     Ok(BakedFiles { files, baked, counts })
 }
 
-/// `values` mapped from `(lo, hi)` to 16-bit gray in `path`, the range and its `meaning`
-/// beside it in `STEM.range.json`.
+/// `values` in `path` — as they are in an OpenEXR file (`.exr`, 32-bit float), else mapped from
+/// `(lo, hi)` to 16-bit gray — with the range and its `meaning` beside it in
+/// `STEM.range.json`.
 fn write_ranged(
     set: &mut FileSet,
     path: &Path,
@@ -149,9 +153,19 @@ fn write_ranged(
     (lo, hi): (f32, f32),
     meaning: &str,
 ) -> Result<(), IoError> {
-    let span = (hi - lo).max(f32::MIN_POSITIVE);
-    let unit: Vec<f32> = values.iter().map(|d| ((d - lo) / span).clamp(0.0, 1.0)).collect();
-    bumpmap_io::horizon_file::write_gray_into(set, path, size, &unit, HeightBits::Sixteen)?;
+    let exr = GrayFormat::for_path(path, 16) == GrayFormat::Exr;
+    let meaning = if exr {
+        format!("{meaning}; the OpenEXR file holds the values themselves, unclamped")
+    } else {
+        format!("{meaning}: 0 in the image is min, 65535 is max, beyond the range clamped")
+    };
+    if exr {
+        save_gray_into(set, path, size.0, size.1, values, GrayFormat::Exr)?;
+    } else {
+        let span = (hi - lo).max(f32::MIN_POSITIVE);
+        let unit: Vec<f32> = values.iter().map(|d| ((d - lo) / span).clamp(0.0, 1.0)).collect();
+        bumpmap_io::horizon_file::write_gray_into(set, path, size, &unit, HeightBits::Sixteen)?;
+    }
     let json = format!("{{\"min\": {lo}, \"max\": {hi}, \"meaning\": \"{meaning}\"}}\n");
     set.write(&range_file(path), |w| {
         use std::io::Write;
