@@ -88,6 +88,7 @@ __all__ = [
     "read_texture",
     "tangents",
     "bake",
+    "blend_normals",
     "render",
     "compare",
     "techniques",
@@ -378,6 +379,29 @@ def height_from_normals(normals, **options):
     return _bumpmap.height_from_normals(normals, options)
 
 
+def blend_normals(base, detail, **options):
+    """A detail normal map laid over a base one, as ``bumpmap blend BASE DETAIL`` lays it.
+
+    base, detail: (H, W, 3) or (H, W, 4) numpy arrays as ``inspect`` takes them (uint8, uint16
+    or float32), or ``NormalMap`` objects (their level 0 and Y convention). The detail repeats
+    ``detail_repeat`` times across the base (bilinear, wrapping), its slopes times
+    ``detail_strength``, laid over the base by ``method``: ``"rnm"`` is exact for a detail
+    draped over the base's bumps, ``"partial-derivative"`` for heights that add.
+
+    Returns the result's levels, level 0 first (every level with ``mips=True``), at the base's
+    size: uint8, or uint16 where either input is 16-bit or float (or as ``bits`` says). A detail
+    of the other Y convention (``detail_y_convention``) is flipped to the base's; each such
+    conversion is said as a ``BumpmapWarning``.
+    """
+    if isinstance(base, NormalMap):
+        options.setdefault("y_convention", base.y_convention)
+        base = base.levels[0]
+    if isinstance(detail, NormalMap):
+        options.setdefault("detail_y_convention", detail.y_convention)
+        detail = detail.levels[0]
+    return _bumpmap.blend_normals(base, detail, options)
+
+
 Scene = _bumpmap.Scene
 
 
@@ -573,7 +597,7 @@ def _signature(function, leading):
 for _f, _leading in ((normal_map, 1), (mip_chain, 1), (height_mips, 1), (horizon_maps, 1),
                      (roughness_map, 1), (lean_moments, 1), (read_height_field, 1),
                      (write_texture, 2), (tangents, 4), (render, 0), (compare, 1), (height_from_normals, 1),
-                     (bake, 2)):
+                     (bake, 2), (blend_normals, 2)):
     _f.__doc__ = _inspect.cleandoc(_f.__doc__ or "") + _options_doc(_f.__name__)
     _f.__signature__ = _signature(_f, _leading)
 del _f, _leading

@@ -47,6 +47,8 @@ _HeightFromNormalsYConvention = Literal["auto", "opengl", "directx"]
 _Ray = Literal["averaged", "explicit"]
 _Decode = Literal["mikktspace", "per-vertex"]
 _Tangents = Literal["ours", "mikktspace"]
+_BlendNormalsMethod = Literal["rnm", "partial-derivative", "whiteout", "udn", "linear", "overlay"]
+_DetailYConvention = Literal["opengl", "directx"]
 # END closed sets
 _Vec3 = Sequence[float]
 _Vec2 = Sequence[float]
@@ -381,6 +383,20 @@ def techniques() -> list[tuple[str, str, list[str]]]: ...
 _Normals = Union[npt.NDArray[np.uint8], npt.NDArray[np.uint16], npt.NDArray[np.float32]]
 
 def inspect(source: Union[_Path, _Normals]) -> dict[str, Any]: ...
+def blend_normals(
+    base: Union[_Normals, NormalMap],
+    detail: Union[_Normals, NormalMap],
+    *,
+    # BEGIN options of blend_normals
+    method: _BlendNormalsMethod = "rnm",
+    detail_strength: float = 1.0,
+    detail_repeat: int = 1,
+    y_convention: _YConvention = "opengl",
+    detail_y_convention: Optional[_DetailYConvention] = None,
+    bits: Optional[int] = None,
+    mips: bool = False,
+    # END options of blend_normals
+) -> list[_Levels]: ...
 def height_from_normals(
     normals: _Normals,
     *,

@@ -323,6 +323,7 @@ fn runs_x86_64_v3() -> bool {
 fn _bumpmap(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     m.add_function(wrap_pyfunction!(maps::normal_map, m)?)?;
+    m.add_function(wrap_pyfunction!(maps::blend_normals, m)?)?;
     m.add_function(wrap_pyfunction!(maps::mip_chain, m)?)?;
     m.add_function(wrap_pyfunction!(maps::height_mips, m)?)?;
     m.add_function(wrap_pyfunction!(maps::horizon_maps, m)?)?;

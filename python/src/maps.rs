@@ -154,3 +154,37 @@ pub fn lean_moments<'py>(
     });
     Ok((PyList::new(py, first?)?, PyList::new(py, second?)?))
 }
+
+/// A detail normal map laid over a base one, as `bumpmap blend` does (`bumpmap::maps::blend_maps`):
+/// both (H, W, 3|4) arrays of uint8, uint16 or float32; returns the result's levels (level 0
+/// at the base's size, every level with `mips`), uint8 or uint16. What was converted for mixed
+/// inputs is said as a `BumpmapWarning`.
+#[pyfunction]
+#[pyo3(signature = (base, detail, options = None))]
+pub fn blend_normals<'py>(
+    py: Python<'py>,
+    base: &Bound<'py, PyAny>,
+    detail: &Bound<'py, PyAny>,
+    options: Option<&Bound<'py, PyDict>>,
+) -> PyResult<Bound<'py, PyList>> {
+    let options = keywords::blend_options("blend_normals", options)?;
+    let prefixed = |name: &str, e: PyErr| {
+        let message = format!("blend_normals(): {name}: {}", e.value(py));
+        if e.is_instance_of::<pyo3::exceptions::PyTypeError>(py) {
+            pyo3::exceptions::PyTypeError::new_err(message)
+        } else {
+            pyo3::exceptions::PyValueError::new_err(message)
+        }
+    };
+    let base = arrays::normal_texels(base).map_err(|e| prefixed("base", e))?;
+    let detail = arrays::normal_texels(detail).map_err(|e| prefixed("detail", e))?;
+    let chain = interrupt::run(py, move |_| {
+        let blended = maps::blend_maps(&base, &detail, &options).map_err(bumpmap_words::maps::blend_error)?;
+        for note in &blended.notes {
+            bumpmap_words::report::warn(note.clone());
+        }
+        maps::blended_chain(&blended, options.mips).map_err(bumpmap_words::maps::blend_error)
+    })?
+    .map_err(|e| to_py("blend_normals", e))?;
+    PyList::new(py, arrays::from_chain(py, chain)?)
+}

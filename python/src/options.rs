@@ -14,7 +14,7 @@ use bumpmap_words::as_keywords;
 pub type OptionRow = (String, Option<String>, String, Vec<String>, bool);
 
 /// Every function that takes options, by Python name.
-pub const FUNCTIONS: [&str; 13] = [
+pub const FUNCTIONS: [&str; 14] = [
     "normal_map",
     "mip_chain",
     "height_mips",
@@ -28,6 +28,7 @@ pub const FUNCTIONS: [&str; 13] = [
     "compare",
     "height_from_normals",
     "bake",
+    "blend_normals",
 ];
 
 /// Each option `function` takes, in the order its table lists them; `None` for a function that
@@ -54,6 +55,7 @@ fn rows(function: &str) -> Option<Vec<(OptionRow, Kind)>> {
         "compare" => of(bumpmap_compare::option_table::COMPARE),
         "tangents" => of(option_table::TANGENTS),
         "bake" => of(option_table::BAKE),
+        "blend_normals" => of(option_table::BLEND),
         "height_from_normals" => of(option_table::HEIGHTS),
         "read_height_field" => of(option_table::CHANNEL),
         "write_texture" => of(option_table::FORMAT),

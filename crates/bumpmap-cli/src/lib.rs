@@ -20,6 +20,7 @@
 pub mod args;
 mod bake;
 mod bench;
+mod blend;
 mod compare;
 mod cubemap;
 mod demo;
@@ -40,6 +41,7 @@ pub fn run(cli: Cli) -> Result<(), error::CliError> {
         Command::Normalmap(a) => normalmap::run(&a),
         Command::Cubemap(a) => cubemap::run(&a),
         Command::Bake(a) => bake::run(&a),
+        Command::Blend(a) => blend::run(&a),
         Command::Bench(a) => bench::run(&a),
         Command::Render(a) => render::run(&a),
         Command::Tangents(a) => mesh::run(&a),

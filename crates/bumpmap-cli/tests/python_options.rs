@@ -53,6 +53,7 @@ fn every_command_python_exposes_lists_its_tables_options() {
         (vec!["tangents"], rows(option_table::TANGENTS)),
         (vec!["height"], rows(option_table::HEIGHTS)),
         (vec!["bake"], rows(option_table::BAKE)),
+        (vec!["blend"], rows(option_table::BLEND)),
         (
             vec!["normalmap"],
             [rows(option_table::MAPS), rows(option_table::CHANNEL), rows(option_table::FORMAT)].concat(),

@@ -19,6 +19,7 @@
 pub mod blinn;
 pub mod buffer;
 pub mod cubemap;
+pub mod detail;
 pub mod encoding;
 mod fourier;
 pub mod hash;

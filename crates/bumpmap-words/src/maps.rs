@@ -1,8 +1,9 @@
 //! What making maps from heights refused ([`MapError`]), a chain that could not be written
 //! ([`SaveError`]), a set of maps that could not be written ([`OutputsError`]) and tangents that
-//! could not be made ([`MeshError`]), named by the flags that caused them.
+//! could not be made ([`MeshError`]), a blend of two normal maps ([`BlendError`]), named by the
+//! flags that caused them.
 
-use bumpmap::maps::{MapError, Output, OutputsError, SaveError};
+use bumpmap::maps::{BlendError, MapError, Output, OutputsError, SaveError};
 use bumpmap_math::mesh::MeshError;
 use bumpmap_math::normalmap::{MAX_SCALE, NormalMapError};
 use bumpmap_math::{HeightMipsError, HorizonError};
@@ -89,6 +90,22 @@ pub fn save_error(e: SaveError) -> Error {
             format.dxgi_name()
         )),
         SaveError::Io(e) => Error::Io(e),
+    }
+}
+
+/// A blend that made nothing, in the command line's words: a value out of range is its flag's
+/// fault (exit status 2), an input that cannot be read its file's.
+pub fn blend_error(e: BlendError) -> Error {
+    match e {
+        BlendError::Strength(s) => Error::Usage(format!("--detail-strength must be finite and not negative, got {s}")),
+        BlendError::Repeat(n) => {
+            Error::Usage(format!("--detail-repeat must be 1 to {}, got {n}", bumpmap::maps::MAX_REPEAT))
+        }
+        BlendError::Bits(b) => Error::Usage(format!("--bits must be 8 or 16, got {b}")),
+        BlendError::Empty(which) => Error::Render(format!("the {which} map has no texels")),
+        BlendError::OutOfMemory(e) => Error::OutOfMemory(e),
+        BlendError::Read(e) => crate::library::lib_err(e),
+        BlendError::Save(e) => save_error(e),
     }
 }
 

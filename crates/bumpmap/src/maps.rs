@@ -25,11 +25,13 @@
 //! What this module does not do: read height fields (`bumpmap_io`), or print (what a caller may
 //! want to say comes back as data: [`Clamped`], [`Written`], [`FolderBatch::skipped`]).
 
+mod blend;
 mod cube;
 mod files;
 mod folder;
 mod outputs;
 
+pub use blend::{BlendError, BlendOptions, Blended, MAX_REPEAT, blend_files, blend_maps, blended_chain};
 pub use cube::write_cube_map;
 pub use files::{SaveError, check_container, write_chain, write_chain_into};
 pub use folder::{FolderBatch, FolderError};

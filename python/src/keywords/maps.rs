@@ -42,6 +42,11 @@ pub fn bake_request(function: &str, kwargs: Option<&Bound<'_, PyDict>>) -> PyRes
     read(function, option_table::BAKE, kwargs)
 }
 
+/// `blend_normals`' keywords as the library's options.
+pub fn blend_options(function: &str, kwargs: Option<&Bound<'_, PyDict>>) -> PyResult<bumpmap::maps::BlendOptions> {
+    read(function, option_table::BLEND, kwargs)
+}
+
 /// `compare`'s keywords as the library's options.
 pub fn compare_options(function: &str, kwargs: Option<&Bound<'_, PyDict>>) -> PyResult<CompareOptions> {
     read(function, bumpmap_compare::option_table::COMPARE, kwargs)

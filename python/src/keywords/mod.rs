@@ -17,7 +17,9 @@
 mod maps;
 mod render;
 
-pub use maps::{bake_request, compare_options, height_options, map_keywords, map_request, one_word, tangent_options};
+pub use maps::{
+    bake_request, blend_options, compare_options, height_options, map_keywords, map_request, one_word, tangent_options,
+};
 pub use render::render_request;
 
 use std::path::PathBuf;
@@ -40,6 +42,7 @@ pub fn names(function: &str) -> Option<Vec<String>> {
         "compare" => Some(of(bumpmap_compare::option_table::COMPARE)),
         "tangents" => Some(of(option_table::TANGENTS)),
         "bake" => Some(of(option_table::BAKE)),
+        "blend_normals" => Some(of(option_table::BLEND)),
         "height_from_normals" => Some(of(option_table::HEIGHTS)),
         "write_texture" => Some(of(option_table::FORMAT)),
         "read_height_field" => Some(of(option_table::CHANNEL)),

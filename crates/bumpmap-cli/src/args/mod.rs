@@ -4,6 +4,7 @@
 
 mod bake;
 mod bench;
+mod blend;
 mod compare;
 mod cubemap;
 mod demo;
@@ -16,6 +17,7 @@ mod view;
 
 pub use bake::*;
 pub use bench::*;
+pub use blend::*;
 pub use compare::*;
 pub use cubemap::*;
 pub use demo::*;
@@ -61,6 +63,8 @@ pub enum Command {
     Cubemap(CubemapArgs),
     /// High-poly mesh → normal map over a low-poly mesh's UV layout, synced to its tangent frame
     Bake(Box<BakeArgs>),
+    /// Lay a detail normal map over a base one (reoriented, partial derivatives, whiteout, …)
+    Blend(BlendArgs),
     /// Measure speed (median of several runs); --json prints one machine-readable line
     Bench(BenchArgs),
     /// Render a bump-mapped scene

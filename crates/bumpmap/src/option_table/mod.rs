@@ -33,11 +33,13 @@ use std::path::PathBuf;
 use bumpmap_core::scene::{Attenuation, SceneLight};
 
 mod bake;
+mod blend;
 mod fields;
 mod maps;
 mod render;
 
 pub use bake::BAKE;
+pub use blend::BLEND;
 pub use fields::{AutoWordField, Field, MaybeWordField, WordField};
 pub use maps::{CHANNEL, FORMAT, HEIGHTS, MAPS, TANGENTS};
 pub use render::{FRAME, SCENE, render};

@@ -133,3 +133,27 @@ fn bakes_defaults_read_back_and_its_values_reach_their_fields() {
     assert!(set(&mut request, "extrude", "-1").is_err());
     assert!(set(&mut request, "size", "0").is_err());
 }
+
+#[test]
+fn blends_defaults_read_back_and_its_values_reach_their_fields() {
+    use crate::maps::BlendOptions;
+    use bumpmap_math::YConvention;
+    use bumpmap_math::detail::BlendMethod;
+    let mut options = BlendOptions::default();
+    for row in BLEND {
+        if let Some(text) = row.default_text() {
+            let value = row.parse_text(&text).unwrap_or_else(|e| panic!("--{} {text}: {e}", row.name));
+            row.set(&mut options, value).expect("a default sets");
+        }
+    }
+    assert_eq!(options, BlendOptions::default());
+    for (name, text) in [("method", "pd"), ("detail-y-convention", "directx"), ("bits", "16"), ("detail-repeat", "8")] {
+        let row = find(BLEND, name).expect("a row");
+        row.set(&mut options, row.parse_text(text).unwrap()).unwrap();
+    }
+    assert_eq!(options.method, BlendMethod::PartialDerivative);
+    assert_eq!(options.detail_y_convention, Some(YConvention::YDown));
+    assert_eq!((options.bits, options.repeat), (Some(16), 8));
+    let bits = find(BLEND, "bits").unwrap();
+    assert!(bits.parse_text("12").and_then(|v| bits.set(&mut options, v)).is_err());
+}
