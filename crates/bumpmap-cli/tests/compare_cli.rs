@@ -438,3 +438,28 @@ fn horizon_shadows_and_occlusion_are_measured_against_rays() {
         assert!(svg.matches("<circle").count() >= 18, "{plot}: a point per method and light");
     }
 }
+
+#[test]
+fn the_detail_study_is_in_the_results_and_the_report() {
+    let dir = scratch("compare_detail");
+    let r = compare_at(&dir, "32", &["--techniques", "single-pass", "--studies", "detail"]);
+    let rows = r["detail"]["rows"].as_array().unwrap();
+    assert_eq!(rows.len(), 2 * 3 * 6, "2 bases × 3 strengths × 6 blends");
+    let get = |base: &str, method: &str, key: &str| -> f64 {
+        rows.iter()
+            .find(|row| row["base"] == base && row["strength"].as_f64() == Some(1.0) && row["method"] == method)
+            .and_then(|row| row[key].as_f64())
+            .unwrap_or_else(|| panic!("no {key} for {base} {method}"))
+    };
+    for base in ["bricks", "dimples"] {
+        assert!(get(base, "partial-derivative", "added_heights_mean_degrees") <= 0.1);
+        assert!(get(base, "rnm", "draped_detail_mean_degrees") <= 0.1);
+        assert!(get(base, "linear", "added_heights_mean_degrees") > 1.0);
+    }
+    let report = std::fs::read_to_string(dir.join("cmp").join("report.html")).unwrap();
+    assert!(report.contains("Detail normals: every blend against the exact compositions"));
+    for plot in ["detail_added.svg", "detail_draped.svg"] {
+        let svg = std::fs::read_to_string(dir.join("cmp").join(plot)).unwrap();
+        assert!(svg.contains("partial-derivative") && svg.contains("<polyline"), "{plot}");
+    }
+}

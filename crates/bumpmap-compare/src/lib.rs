@@ -25,6 +25,7 @@
 //!   seen at grazing angles;
 //! - [`shadows`]: bumps that shadow each other (horizon maps, marches, Eq. 12) against shadow
 //!   rays, and ambient occlusion and bent normals against occlusion rays;
+//! - [`detail`]: detail normals, every blend against added heights and draped detail;
 //! - `metrics`: RMSE, PSNR, bias, FLIP and SSIM against the reference;
 //! - `plots`: the report's plots (SVG);
 //! - `report`: `results.json` and `report.html`;
@@ -36,6 +37,7 @@
 
 #![warn(missing_docs)]
 
+pub mod detail;
 mod error;
 mod metrics;
 pub mod option_table;
@@ -132,6 +134,8 @@ pub struct Results {
     pub parallax: Option<parallax::ParallaxStudy>,
     /// Bumps that shadow each other, ambient occlusion and bent normals.
     pub shadows: Option<shadows::ShadowStudy>,
+    /// Detail normals: every blend against both exact compositions.
+    pub detail: Option<detail::DetailStudy>,
     /// Total milliseconds of the command.
     pub total_millis: f64,
 }
@@ -207,7 +211,7 @@ pub fn measure(args: &CompareOptions, progress: &dyn Progress) -> Result<(Result
         progress.note(&CompareNote::OnTheCpu { reason: reason.to_string() });
     }
     // The two references, each technique, convergence and the studies.
-    let steps = (wanted.len() + 9) as u64;
+    let steps = (wanted.len() + 10) as u64;
     let bar = options::Steps::new(progress, steps);
 
     bar.set_message(format!("reference, {spp} samples per pixel"));
@@ -286,6 +290,8 @@ pub fn measure(args: &CompareOptions, progress: &dyn Progress) -> Result<(Result
     let shadows = study(Study::Shadows, "bumps that shadow each other: horizon maps, marches, Eq. 12", &bar)
         .then(|| shadows::shadow_study(&mut backend))
         .transpose()?;
+    let detail = study(Study::Detail, "detail normals: every blend against both exact compositions", &bar)
+        .then(detail::detail_study);
     bar.finish();
 
     let results = Results {
@@ -304,6 +310,7 @@ pub fn measure(args: &CompareOptions, progress: &dyn Progress) -> Result<(Result
         peercy,
         parallax,
         shadows,
+        detail,
         total_millis: start.elapsed().as_secs_f64() * 1e3,
     };
     Ok((results, inputs))

@@ -66,12 +66,21 @@ pub enum Study {
     /// Bumps that shadow each other against shadow rays; ambient occlusion and bent normals
     /// against occlusion rays.
     Shadows,
+    /// Detail normals: every blend against added heights and draped detail.
+    Detail,
 }
 
 impl Study {
     /// Every study, in the report's order.
-    pub const ALL: [Study; 6] =
-        [Study::GolfBall, Study::Specular, Study::Emboss, Study::Peercy, Study::Parallax, Study::Shadows];
+    pub const ALL: [Study; 7] = [
+        Study::GolfBall,
+        Study::Specular,
+        Study::Emboss,
+        Study::Peercy,
+        Study::Parallax,
+        Study::Shadows,
+        Study::Detail,
+    ];
 
     /// Its name, as the command line and Python take it.
     pub const fn name(self) -> &'static str {
@@ -82,6 +91,7 @@ impl Study {
             Study::Peercy => "peercy",
             Study::Parallax => "parallax",
             Study::Shadows => "shadows",
+            Study::Detail => "detail",
         }
     }
 
@@ -97,6 +107,9 @@ impl Study {
             Study::Parallax => "heights as geometry: every march against the displaced reference on a wall at 30°–85°",
             Study::Shadows => {
                 "bumps that shadow each other (horizon map, POM's march, Eq. 12) against shadow rays, lights 45°–80°; ambient occlusion and bent normals against 256 rays a texel"
+            }
+            Study::Detail => {
+                "detail normals: every blend (RNM, partial derivatives, whiteout, UDN, linear, overlay) of noise over bricks and dimples against added heights and draped detail"
             }
         }
     }

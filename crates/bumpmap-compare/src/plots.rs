@@ -35,7 +35,45 @@ pub fn plots(r: &Results) -> Vec<(&'static str, String)> {
         plots.push(("shadows_bricks.svg", shadow_plot(s, "bricks")));
         plots.push(("shadows_dimples.svg", shadow_plot(s, "dimples")));
     }
+    if let Some(d) = &r.detail {
+        plots.push(("detail_added.svg", detail_plot(d, true)));
+        plots.push(("detail_draped.svg", detail_plot(d, false)));
+    }
     plots
+}
+
+/// Detail normals on the bricks: each blend's mean angle to added heights (`added`) or to
+/// draped detail by the detail's strength, log scale.
+fn detail_plot(d: &super::detail::DetailStudy, added: bool) -> String {
+    use bumpmap::Named;
+    use bumpmap_math::detail::BlendMethod;
+    let caption = if added { "bricks + noise: against added heights" } else { "bricks + noise: against draped detail" };
+    let labels = Labels {
+        caption,
+        x: "detail strength",
+        y: "mean angle (degrees)",
+        legend: Some(SeriesLabelPosition::UpperLeft),
+    };
+    let lines: Vec<(&str, Vec<(f64, f64)>)> = BlendMethod::ALL
+        .iter()
+        .map(|m| {
+            let points = d
+                .rows
+                .iter()
+                .filter(|r| r.base == "bricks" && r.method == *m)
+                .map(|r| (r.strength as f64, if added { r.added.0 } else { r.draped.0 }.max(1e-4)))
+                .collect();
+            (m.name(), points)
+        })
+        .collect();
+    // From the 16-bit rounding's thousandths of a degree to linear blending's tens, and room
+    // above for the legend.
+    svg_plot(labels, 0.4f64..2.1, (1e-3f64..1e4).log_scale(), |chart| {
+        let colors = [BLACK, RED, BLUE, GREEN, MAGENTA, RGBColor(230, 140, 0)];
+        for ((name, points), color) in lines.iter().zip(colors) {
+            labelled_line(chart, name, color, points.clone());
+        }
+    })
 }
 
 /// Heights as geometry on `field`: each technique's mean hit error (`hits`, texels, log scale)

@@ -1,6 +1,7 @@
 //! What `compare` writes besides images and plots: `results.json`, and `report.html`, which
 //! links only files in its own folder so the folder can be copied and opened anywhere.
 
+mod detail;
 mod shadows;
 
 use serde_json::{Value, json};
@@ -83,6 +84,9 @@ pub fn json(r: &Results) -> String {
     }
     if let Some(s) = &r.shadows {
         studies.insert("shadows".into(), shadows::json(s));
+    }
+    if let Some(d) = &r.detail {
+        studies.insert("detail".into(), detail::json(d));
     }
     serde_json::to_string_pretty(&value).expect("a JSON value serializes") + "\n"
 }
@@ -329,6 +333,9 @@ figcaption {{ font-size: 0.85em; max-width: {size}px; }}
     }
     if let Some(s) = &r.shadows {
         page += &shadows::section(s);
+    }
+    if let Some(d) = &r.detail {
+        page += &detail::section(d);
     }
     page += &format!(
         r#"<h2>Techniques</h2>

@@ -56,9 +56,9 @@ fn measures_the_techniques_asked_for_and_tells_each_step() {
         assert_eq!(r.image.width, 32);
     }
     assert!(results.outcomes[2].result.is_err(), "an unknown name is skipped");
-    // Three techniques, the two references, convergence and the six studies' places.
-    assert_eq!(*told.start.borrow(), Some(3 + 9));
-    assert_eq!(*told.advanced.borrow(), (1..=12).collect::<Vec<_>>());
+    // Three techniques, the two references, convergence and the seven studies' places.
+    assert_eq!(*told.start.borrow(), Some(3 + 10));
+    assert_eq!(*told.advanced.borrow(), (1..=13).collect::<Vec<_>>());
     assert!(told.steps.borrow().iter().any(|s| s.starts_with("reference, 4 samples")), "{:?}", told.steps.borrow());
     assert!(*told.finished.borrow());
     assert!(
