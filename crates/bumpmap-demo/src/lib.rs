@@ -32,6 +32,7 @@ use glam::Vec3;
 pub use bumpmap_compare::Progress;
 
 mod bake;
+mod blend;
 mod figures;
 mod normal_maps_in;
 
@@ -213,6 +214,8 @@ fn write_demo(out: &Path, gpu: GpuImages, progress: &dyn Progress) -> Result<(),
     index += &own_assets(&mut cpu, out)?;
     progress.step("a bake: a rounded cube onto a plain one");
     index += &bake::write(out, &mut cpu)?;
+    progress.step("detail normals: noise over the bricks by each blend");
+    index += &blend::write(out, &out.join("bricks_normal.png"), &mut cpu)?;
     progress.step("the light orbiting the torus (an animated PNG)");
     index += &orbit(&mut cpu, out)?;
     progress.finish();
