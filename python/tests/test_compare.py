@@ -68,9 +68,13 @@ def test_the_report_folder_is_the_cli_s(both):
 
 def test_without_output_nothing_is_written(tmp_path, monkeypatch):
     monkeypatch.chdir(tmp_path)
-    results = bumpmap.compare(size=16, spp=1, techniques=["single-pass", "nonsense"])
+    # A technique that cannot be measured is skipped with its reason; a name that is none is
+    # refused before the work.
+    results = bumpmap.compare(size=16, spp=1, techniques=["single-pass", "reference"])
     assert "single-pass" in results["techniques"]
-    assert "nonsense" in results["skipped"]
+    assert "reference" in results["skipped"]
+    with pytest.raises(ValueError, match="'nonsense' is not a technique"):
+        bumpmap.compare(size=16, spp=1, techniques=["single-pass", "nonsense"])
     assert list(tmp_path.iterdir()) == []
 
 

@@ -213,9 +213,9 @@ fn the_report_opens_in_a_real_browser_with_every_image_and_plot_loaded() {
     let loaded = &dom[start..start + dom[start..].find("</pre>").unwrap()];
     let widths: Vec<(&str, u32)> =
         loaded.lines().map(|l| l.rsplit_once(' ').map(|(src, w)| (src, w.parse().unwrap())).unwrap()).collect();
-    // The two references + 2 × (image + heat map) + 12 plots + Peercy's reference and three
+    // The two references + 2 × (image + heat map) + 14 plots + Peercy's reference and three
     // figures + the parallax study's reference and three techniques.
-    assert_eq!(widths.len(), 26, "{loaded}");
+    assert_eq!(widths.len(), 28, "{loaded}");
     for (src, w) in &widths {
         assert!(*w > 0, "{src} did not load");
     }
@@ -232,6 +232,8 @@ fn the_report_opens_in_a_real_browser_with_every_image_and_plot_loaded() {
         "parallax_flip_dimples.svg",
         "shadows_bricks.svg",
         "shadows_dimples.svg",
+        "detail_added.svg",
+        "detail_draped.svg",
     ] {
         assert!(widths.iter().any(|(s, _)| *s == plot), "{plot} is not on the page: {loaded}");
     }
@@ -462,4 +464,25 @@ fn the_detail_study_is_in_the_results_and_the_report() {
         let svg = std::fs::read_to_string(dir.join("cmp").join(plot)).unwrap();
         assert!(svg.contains("partial-derivative") && svg.contains("<polyline"), "{plot}");
     }
+}
+
+#[test]
+fn a_technique_name_that_is_none_is_refused_before_any_work() {
+    // It once was skipped with a note and the run exited 0.
+    let dir = scratch("compare_bogus");
+    let out = dir.join("cmp");
+    let o = bumpmap(&[
+        "compare",
+        "--size",
+        "32",
+        "--studies",
+        "none",
+        "--techniques",
+        "pom,bogus",
+        "-o",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(stderr(&o).contains("'bogus' is not a technique"), "{}", stderr(&o));
+    assert!(!out.exists(), "nothing written");
 }

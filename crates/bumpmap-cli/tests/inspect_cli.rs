@@ -302,3 +302,34 @@ fn a_level_beside_a_png_of_the_wrong_size_is_named_and_height_does_not_need_it()
     ok(&["height", s(&map), "-o", s(&out)]);
     assert_eq!(listing(&dir).len(), before.len() + 1);
 }
+
+#[test]
+fn a_map_of_nan_is_not_a_normal_map_and_strict_exits_1() {
+    // Every texel NaN, or infinite: no length is 1, so it is not a normal map (it once read as
+    // one, its NaN lengths never "far from 1").
+    let dir = scratch("inspect_nan");
+    for (name, value) in [("nan.exr", f32::NAN), ("inf.exr", f32::INFINITY)] {
+        let path = dir.join(name);
+        write_rgb_exr(&path, 16, 16, |_, _| [value, value, value]);
+        let o = bumpmap(&["inspect", "--strict", s(&path)]);
+        let out = String::from_utf8_lossy(&o.stdout);
+        assert_eq!(o.status.code(), Some(1), "{out}{}", stderr(&o));
+        assert!(out.contains("not a normal map"), "{out}");
+    }
+}
+
+#[test]
+fn a_scale_so_small_the_heights_overflow_is_refused() {
+    // `height --scale 1e-35` once wrote a flat image ("spanning -inf texels") and exited 0.
+    let dir = scratch("height_tiny_scale");
+    let (map, out) = (dir.join("n.png"), dir.join("h.png"));
+    ok(&["normalmap", "bricks@64", "-o", s(&map)]);
+    for scale in ["1e-35", "-1e-9", "1e7"] {
+        let flag = format!("--scale={scale}");
+        let o = bumpmap(&["height", s(&map), "-o", s(&out), &flag]);
+        assert_eq!(o.status.code(), Some(2), "--scale {scale}: {}", stderr(&o));
+        assert!(stderr(&o).contains("from 1e-6 to 1e6"), "{}", stderr(&o));
+        assert!(!out.exists());
+    }
+    ok(&["height", s(&map), "-o", s(&out), "--scale", "1e-6"]);
+}

@@ -31,6 +31,18 @@ fn study_words() -> Vec<Choice> {
         .collect()
 }
 
+/// Names the catalogue knows (a technique that cannot draw the scene is still skipped, with its
+/// reason, when the work runs; a name that is none is refused before it).
+fn technique_names(v: &Value) -> Result<(), String> {
+    let Value::Words(names) = v else { return Err(format!("{v} is not a list of techniques")) };
+    match names.iter().find(|n| bumpmap::TechniqueName::parse(n).is_err()) {
+        Some(unknown) => {
+            Err(format!("'{unknown}' is not a technique (`bumpmap render --help` lists them under --technique)"))
+        }
+        None => Ok(()),
+    }
+}
+
 fn text(v: Value) -> Result<String, String> {
     match v {
         Value::Text(t) => Ok(t),
@@ -97,11 +109,12 @@ pub static COMPARE: &[Opt<CompareOptions>] = &[
         COMMAND,
         "Comma-separated techniques to run (default: every technique of the catalogue, `bumpmap render --help` lists them, but the two references they are measured against)",
         |o| &mut o.techniques,
-    ),
+    )
+    .check(technique_names),
     Row::with(
         "studies",
         COMMAND,
-        "The studies the report makes besides the table, comma-separated: golf-ball (Kilgard §2.4.2), specular (§2.5.3's highlight at a distance), emboss (§3.1), peercy (Figures 5–7), parallax (heights as geometry on the wall at grazing angles), shadows (bumps that shadow each other, ambient occlusion and bent normals, against rays); all, or none for the table alone",
+        "The studies the report makes besides the table, comma-separated: golf-ball (Kilgard §2.4.2), specular (§2.5.3's highlight at a distance), emboss (§3.1), peercy (Figures 5–7), parallax (heights as geometry on the wall at grazing angles), shadows (bumps that shadow each other, ambient occlusion and bent normals, against rays), detail (detail normals: every blend against added heights and draped detail); all, or none for the table alone",
         Access::Custom {
             kind: || Kind::List(Some(study_words())),
             get: |o| {

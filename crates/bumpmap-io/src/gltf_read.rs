@@ -292,6 +292,17 @@ fn check_accessors(path: &Path, doc: &gltf::Document, buffers: &[Vec<u8>]) -> Re
                     Semantic::Normals => wanted.push(("NORMAL".into(), accessor, FLOAT, Dimensions::Vec3)),
                     Semantic::Tangents => wanted.push(("TANGENT".into(), accessor, FLOAT, Dimensions::Vec4)),
                     Semantic::TexCoords(n) => wanted.push((format!("TEXCOORD_{n}"), accessor, UV, Dimensions::Vec2)),
+                    // The same component types as texture coordinates, RGB or RGBA (glTF 2.0
+                    // §3.7.2.1); the only colour set the loader reads.
+                    Semantic::Colors(0) => {
+                        let rgb = accessor.dimensions() == Dimensions::Vec3;
+                        wanted.push((
+                            "COLOR_0".into(),
+                            accessor,
+                            UV,
+                            if rgb { Dimensions::Vec3 } else { Dimensions::Vec4 },
+                        ))
+                    }
                     _ => {}
                 }
             }

@@ -141,6 +141,36 @@ fn accessors_the_loader_cannot_read_are_refused_not_panicked_on() {
         std::fs::write(&path, json).unwrap();
         refused(&path, expect);
     }
+    // COLOR_0 of a shape or component type glTF does not allow (the gltf crate's reader would
+    // reach `unreachable!`): accessor 3 over the texture coordinates' bytes.
+    let with_color = |component: u32, normalized: bool, shape: &str| {
+        gltf_json("t.bin", 5123, 5126, false)
+            .replace(
+                r#"{"bufferView":2,"componentType":5123,"count":3,"type":"SCALAR"}]"#,
+                &format!(
+                    r#"{{"bufferView":2,"componentType":5123,"count":3,"type":"SCALAR"}},{{"bufferView":1,"componentType":{component},"normalized":{normalized},"count":1,"type":"{shape}"}}]"#
+                ),
+            )
+            .replace(r#""TEXCOORD_0":1}"#, r#""TEXCOORD_0":1,"COLOR_0":3}"#)
+    };
+    for (name, component, normalized, shape) in [
+        ("color_vec2", 5126, false, "VEC2"),
+        ("color_scalar", 5126, false, "SCALAR"),
+        ("color_mat4", 5126, false, "MAT4"),
+        ("color_uint", 5125, false, "VEC4"),
+        ("color_byte", 5120, true, "VEC4"),
+        ("color_unnormalized", 5121, false, "VEC3"),
+    ] {
+        let path = dir.join(format!("{name}.gltf"));
+        let json = with_color(component, normalized, shape);
+        assert!(json.contains("\"COLOR_0\":3"), "{json}");
+        std::fs::write(&path, json).unwrap();
+        refused(&path, "COLOR_0 accessor 3");
+    }
+    // An allowed one loads (one entry for three vertices is refused as such, not panicked on).
+    let path = dir.join("color_ok.gltf");
+    std::fs::write(&path, with_color(5126, false, "VEC4")).unwrap();
+    refused(&path, "COLOR_0 has 1 entries for 3 vertices");
     // Too many elements for the view, and a view past its buffer.
     let json = gltf_json("t.bin", 5123, 5126, false);
     let path = dir.join("count.gltf");

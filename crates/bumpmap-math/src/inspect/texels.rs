@@ -23,7 +23,8 @@ pub struct TexelStats {
     pub mean_length: f32,
     /// The root-mean-square of `|n| − 1`.
     pub length_rms_error: f32,
-    /// The fraction whose length is more than [`UNIT_TOLERANCE`] from 1.
+    /// The fraction whose length is more than [`UNIT_TOLERANCE`] from 1, or not a number at
+    /// all (NaN or infinite).
     pub off_unit: f32,
     /// The fraction with `z ≤ 0`: facing into the surface, which no height field makes.
     pub facing_away: f32,
@@ -93,7 +94,7 @@ impl TexelStats {
                     let l = v.length();
                     s.0 += l as f64;
                     s.1 += ((l - 1.0) as f64).powi(2);
-                    s.2 += usize::from((l - 1.0).abs() > UNIT_TOLERANCE);
+                    s.2 += usize::from(!l.is_finite() || (l - 1.0).abs() > UNIT_TOLERANCE);
                     s.3 += usize::from(v.z <= 0.0);
                     s.4 += usize::from((v.x - v.y).abs() <= step && (v.y - v.z).abs() <= step);
                     mean += v;

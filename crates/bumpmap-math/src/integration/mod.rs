@@ -152,9 +152,10 @@ pub enum IntegrationError {
         /// Its row.
         y: usize,
     },
-    /// A scale of zero, not finite, or beyond ±[`MAX_SCALE`](crate::normalmap::MAX_SCALE) (the
-    /// largest a normal map is made with).
-    #[error("the slope scale must be a number other than 0 within ±{max:e}, got {0}", max = crate::normalmap::MAX_SCALE)]
+    /// A scale not finite, beyond ±[`MAX_SCALE`](crate::normalmap::MAX_SCALE) (the largest a
+    /// normal map is made with), or closer to 0 than its inverse (the slopes divided by it would
+    /// overflow into infinite heights).
+    #[error("the slope scale must be from {min:e} to {max:e} in size (either sign), got {0}", min = 1.0 / crate::normalmap::MAX_SCALE, max = crate::normalmap::MAX_SCALE)]
     BadScale(f32),
     /// The transforms' buffers would not fit.
     #[error(transparent)]
@@ -227,7 +228,8 @@ impl Slopes {
 /// Refuses a slope scale of 0, one not finite, or one beyond ±[`MAX_SCALE`](crate::normalmap::MAX_SCALE)
 /// ([`check_normals`] does too): for a caller to refuse it before reading a map.
 pub fn check_scale(scale: f32) -> Result<(), IntegrationError> {
-    if !scale.is_finite() || scale == 0.0 || scale.abs() > crate::normalmap::MAX_SCALE {
+    let max = crate::normalmap::MAX_SCALE;
+    if !scale.is_finite() || !(1.0 / max..=max).contains(&scale.abs()) {
         return Err(IntegrationError::BadScale(scale));
     }
     Ok(())
