@@ -205,7 +205,7 @@ impl Scene {
                 bumpmap::motion::move_first_light(&mut prepared.scene, at);
             }
             if let Some(eye) = eye {
-                prepared.scene.camera.eye = eye;
+                bumpmap::motion::move_eye(&mut prepared.scene, eye).map_err(bumpmap::Error::Core)?;
             }
             let mut renderer = renderer.lock().unwrap_or_else(PoisonError::into_inner);
             // None: the renderer was closed.

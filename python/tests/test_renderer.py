@@ -61,6 +61,12 @@ def test_a_kept_scene_draws_what_render_draws_with_the_same_light_and_eye():
             assert np.array_equal(got, bumpmap.render(**options)), (light, eye)
         # The light stays where it was put.
         assert np.array_equal(scene.render(), got)
+        # An eye at the point looked at (or a rounding error from it) is refused, not a black
+        # frame, and the camera stays where it was.
+        for eye in [(0.0, 0.0, 0.0), (0.0, 0.0, 1e-30)]:
+            with pytest.raises(ValueError, match="is at the point looked at"):
+                scene.render(eye=eye)
+        assert np.array_equal(scene.render(), got)
     assert renderer.closed
 
 

@@ -87,6 +87,28 @@ pub fn move_first_light(scene: &mut Scene, at: Vec3) {
     };
 }
 
+/// The camera moved to `eye`, still looking at its target; refused where the eye is at the
+/// target or so close that no direction is left between them (the frame would be black).
+///
+/// ```
+/// use bumpmap::motion::move_eye;
+/// use bumpmap::{SceneKind, SceneSpec};
+///
+/// let mut scene = SceneSpec::new(SceneKind::Torus).build()?;
+/// move_eye(&mut scene, glam::Vec3::new(0.0, -6.0, 3.0))?;
+/// let target = scene.camera.target;
+/// assert!(move_eye(&mut scene, target).is_err(), "nowhere to look");
+/// assert_eq!(scene.camera.eye, glam::Vec3::new(0.0, -6.0, 3.0), "a refused move leaves the camera");
+/// # Ok::<(), bumpmap::CoreError>(())
+/// ```
+pub fn move_eye(scene: &mut Scene, eye: Vec3) -> Result<(), bumpmap_core::CoreError> {
+    if !eye.is_finite() || (eye - scene.camera.target).try_normalize().is_none() {
+        return Err(bumpmap_core::CoreError::EyeAtTarget { eye });
+    }
+    scene.camera.eye = eye;
+    Ok(())
+}
+
 /// `v` rotated by `tilt` radians toward `axis` within the plane they span, its elevation above
 /// the plane perpendicular to `axis` kept within ±[`MAX_TILT`]; `v` along `axis` is kept.
 fn tilted(v: Vec3, axis: Vec3, tilt: f32) -> Vec3 {
