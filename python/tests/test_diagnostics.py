@@ -60,7 +60,7 @@ def test_progress_of_a_technique_is_one_step_and_of_compare_every_step():
     assert seen == [(1, 1)]
     seen.clear()
     bumpmap.compare(size=24, spp=1, studies="none", techniques=["kilgard", "single-pass"], progress=lambda *a: seen.append(a))
-    assert seen[-1] == (11, 11) and len(seen) >= 2, seen  # 2 techniques + the references, convergence, studies
+    assert seen[-1] == (12, 12) and len(seen) >= 2, seen  # 2 techniques + the references, convergence, 7 studies
 
 
 def test_a_progress_function_that_raises_stops_the_call_with_its_exception():

@@ -111,6 +111,10 @@ def test_height_from_normals_refuses_bad_values():
         bumpmap.height_from_normals(normals, scale=0.0)
     with pytest.raises(ValueError, match="kernel"):
         bumpmap.height_from_normals(normals, method="kernel")
+    with pytest.raises(ValueError, match="kernel='spectral' is none: use method='fft'"):
+        bumpmap.height_from_normals(normals, method="kernel", kernel="spectral")
+    with pytest.raises(ValueError, match=r"from 1e-6 to 1e6 in size"):
+        bumpmap.height_from_normals(normals, scale=1e-35)
     with pytest.raises(ValueError, match="1x1"):
         bumpmap.height_from_normals(np.full((1, 1, 3), 128, np.uint8))
     bad = normals.copy()

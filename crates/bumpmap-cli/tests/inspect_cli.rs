@@ -245,6 +245,10 @@ fn height_refuses_bad_input_and_writes_nothing() {
         let o = bumpmap(&args);
         assert_eq!(o.status.code(), Some(2), "{args:?}: {}", stderr(&o));
     }
+    // --kernel spectral was given: the message must not ask to add a --kernel.
+    let o = bumpmap(&["height", s(&map), "-o", "x.exr", "--method", "kernel", "--kernel", "spectral"]);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(stderr(&o).contains("--kernel spectral is none") && !stderr(&o).contains("add --kernel"), "{}", stderr(&o));
     let o = bumpmap(&["height", s(&map), "-o", s(&dir.join("x.jpg"))]);
     assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
     assert_eq!(listing(&dir), listing_before);

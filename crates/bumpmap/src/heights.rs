@@ -78,11 +78,16 @@ bumpmap_math::named!(HeightMethod {
 /// Options that contradict each other.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
 pub enum HeightChoiceError {
-    /// The `kernel` method without a kernel named (none, or `spectral`).
+    /// The `kernel` method without a kernel named.
     #[error(
         "the kernel method undoes the kernel the map was made with, so it needs one named; the fft method fits one itself"
     )]
     KernelUnnamed,
+    /// The `kernel` method with the spectral derivative, which is no kernel to undo.
+    #[error(
+        "the kernel method undoes a finite-difference kernel, and the spectral derivative is none: the fft method integrates with it"
+    )]
+    KernelSpectral,
     /// A scale of 0, not finite, or beyond ±1e6 ([`check_scale`]).
     #[error(transparent)]
     Scale(#[from] IntegrationError),
@@ -102,6 +107,8 @@ impl HeightOptions {
     /// let o = HeightOptions::from_choices(HeightMethod::Kernel, sobel, None, 4.0).unwrap();
     /// assert_eq!((o.boundary, o.derivative), (Some(Boundary::Periodic), sobel));
     /// assert_eq!(HeightOptions::from_choices(HeightMethod::Kernel, None, None, 4.0), Err(HeightChoiceError::KernelUnnamed));
+    /// let spectral = Some(Derivative::Spectral);
+    /// assert_eq!(HeightOptions::from_choices(HeightMethod::Kernel, spectral, None, 4.0), Err(HeightChoiceError::KernelSpectral));
     /// assert_eq!(HeightOptions::from_choices(HeightMethod::Auto, None, None, 1.0), Ok(HeightOptions::default()));
     /// let zero = HeightOptions::from_choices(HeightMethod::Auto, None, None, 0.0);
     /// assert!(matches!(zero, Err(HeightChoiceError::Scale(_))), "a scale of 0 flattens every slope");
@@ -118,8 +125,12 @@ impl HeightOptions {
             HeightMethod::Dct => Some(Boundary::Free),
         };
         check_scale(scale)?;
-        if method == HeightMethod::Kernel && !matches!(derivative, Some(Derivative::Kernel(_))) {
-            return Err(HeightChoiceError::KernelUnnamed);
+        if method == HeightMethod::Kernel {
+            match derivative {
+                Some(Derivative::Kernel(_)) => {}
+                Some(_) => return Err(HeightChoiceError::KernelSpectral),
+                None => return Err(HeightChoiceError::KernelUnnamed),
+            }
         }
         Ok(Self { boundary, derivative, y_convention, scale })
     }

@@ -63,6 +63,10 @@ pub fn height_options(function: &str, kwargs: Option<&Bound<'_, PyDict>>) -> PyR
             "method",
             "'kernel' undoes a named kernel: pass kernel= the map's (method='fft' fits one itself)",
         ),
+        HeightChoiceError::KernelSpectral => r.value_error(
+            "method",
+            "'kernel' undoes a finite-difference kernel, and kernel='spectral' is none: use method='fft' for the spectral derivative",
+        ),
     })?;
     Ok((options, choices.raw))
 }

@@ -88,6 +88,10 @@ impl HeightArgs {
                 "--method kernel undoes a named kernel: add --kernel NAME (normalmap's --kernel); --method fft fits one itself"
                     .into(),
             ),
+            HeightChoiceError::KernelSpectral => CliError::Usage(
+                "--method kernel undoes a finite-difference kernel, and --kernel spectral is none: use --method fft for the spectral derivative"
+                    .into(),
+            ),
         })
     }
 }
