@@ -307,3 +307,37 @@ fn a_folder_run_reads_tga_and_every_netpbm_extension() {
     assert!(o.status.success(), "{}", stderr(&o));
     assert_eq!(listing(&out), ["a.png", "b.png", "c.png", "d.png"], "{}", stderr(&o));
 }
+
+#[test]
+fn a_level_beside_a_small_map_that_is_huge_is_refused_from_its_header() {
+    // A 64² heights file and normal map, each with a 16384² `NAME.mip1.png` beside it: the
+    // level is checked against its place in the chain (32²) from its header, before anything
+    // decodes it into the gigabytes it would take (the heights once aborted there).
+    let dir = scratch("huge_sibling");
+    let small = |name: &str, color: image::ColorType| {
+        let bytes = vec![0u8; 64 * 64 * color.bytes_per_pixel() as usize];
+        image::save_buffer(dir.join(name), &bytes, 64, 64, color).unwrap();
+    };
+    small("h.png", image::ColorType::L8);
+    small("n.png", image::ColorType::Rgb8);
+    let huge = vec![0u8; 16384 * 16384];
+    image::save_buffer(dir.join("h.mip1.png"), &huge, 16384, 16384, image::ColorType::L8).unwrap();
+    std::fs::copy(dir.join("h.mip1.png"), dir.join("n.mip1.png")).unwrap();
+    let at = |name: &str| dir.join(name).to_str().unwrap().to_string();
+    for (args, file) in [
+        (
+            vec!["render", "--scene", "wall", "--technique", "pom", "--height-map", &at("h.png"), "-o", &at("out.png")],
+            "h.mip1.png",
+        ),
+        (vec!["inspect", &at("n.png")], "n.mip1.png"),
+    ] {
+        let o = limited(600, &args);
+        let err = stderr(&o);
+        assert_eq!(o.status.code(), Some(1), "{args:?}: {err}");
+        assert!(
+            err.contains(&format!("{file}: is 16384x16384, but as level 1 of a 64x64 map it must be 32x32")),
+            "{err}"
+        );
+    }
+    assert!(!dir.join("out.png").exists());
+}

@@ -182,11 +182,14 @@ pub(crate) fn read_levels_checked(
     };
     let mut levels = read(path)?;
     if kind == Container::Png {
+        let full = levels.first().map_or((0, 0), |(w, h, _)| (*w, *h));
         for k in 1.. {
-            if levels.last().is_some_and(|(w, h, _)| (*w, *h) == (1, 1)) {
+            let Some((w, h)) = levels.last().map(|(w, h, _)| (*w, *h)) else { break };
+            if (w, h) == (1, 1) {
                 break;
             }
-            let Some(file) = crate::siblings::beside(path, &level_path(path, k))? else { break };
+            let want = (bumpmap_math::levels::next_size(w), bumpmap_math::levels::next_size(h));
+            let Some(file) = crate::siblings::png_level(path, k, full, want)? else { break };
             levels.extend(read(&file)?);
         }
     }

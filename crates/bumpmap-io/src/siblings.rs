@@ -53,6 +53,35 @@ pub fn in_folder(folder: &Path, file: &Path, place: &str) -> Result<Option<PathB
     Ok(Some(file.to_path_buf()))
 }
 
+/// Level `k` of the PNG chain whose level 0 is `path` (`full` its size), when its
+/// `NAME.mipK.png` is there ([`beside`]), with its size read from its header and checked
+/// against `want` **before** anything decodes it: a small map beside a huge file is refused
+/// naming the file, never decoded into memory it does not need.
+pub fn png_level(
+    path: &Path,
+    k: usize,
+    full: (usize, usize),
+    want: (usize, usize),
+) -> Result<Option<PathBuf>, IoError> {
+    let Some(file) = beside(path, &level_path(path, k))? else { return Ok(None) };
+    let declared = image::ImageReader::open(&file)
+        .and_then(|r| r.with_guessed_format())
+        .map_err(|source| IoError::Read { path: file.clone(), source })?
+        .into_dimensions()
+        .map_err(|e| IoError::Texture { path: file.clone(), reason: format!("not a readable image: {e}") })?;
+    let declared = (declared.0 as usize, declared.1 as usize);
+    if declared != want {
+        return Err(IoError::Texture {
+            path: file,
+            reason: format!(
+                "is {}x{}, but as level {k} of a {}x{} map it must be {}x{}",
+                declared.0, declared.1, full.0, full.1, want.0, want.1
+            ),
+        });
+    }
+    Ok(Some(file))
+}
+
 /// The `NAME.mip1.png`, `NAME.mip2.png`, … beside the PNG `path`, as many as follow one another
 /// (each passed by [`beside`]); level 0 (`path` itself) is not among them. A reader may stop
 /// earlier (at 1×1); these are every file it may read.

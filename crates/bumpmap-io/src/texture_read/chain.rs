@@ -23,10 +23,10 @@ pub fn load_texture_chain(path: &Path) -> Result<StoredTexture, IoError> {
         if size == (1, 1) {
             break;
         }
-        let Some(file) = crate::siblings::beside(path, &crate::image_file::level_path(path, k))? else {
+        size = (bumpmap_math::levels::next_size(size.0), bumpmap_math::levels::next_size(size.1));
+        let Some(file) = crate::siblings::png_level(path, k, full, size)? else {
             break;
         };
-        size = (bumpmap_math::levels::next_size(size.0), bumpmap_math::levels::next_size(size.1));
         let level = load_texture(&file)?.levels;
         let wrong = |reason: String| Err(bad(&file, reason));
         if level.size() != size {

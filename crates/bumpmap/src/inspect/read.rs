@@ -82,10 +82,11 @@ pub fn read_map(path: &Path) -> Result<DecodedMap, Error> {
             if (last.width, last.height) == (1, 1) {
                 break;
             }
-            let Some(file) = bumpmap_io::siblings::beside(path, &bumpmap_io::image_file::level_path(path, k))? else {
+            let want = (bumpmap_math::mip::next_size(last.width), bumpmap_math::mip::next_size(last.height));
+            let full = (map.levels[0].width, map.levels[0].height);
+            let Some(file) = bumpmap_io::siblings::png_level(path, k, full, want)? else {
                 break;
             };
-            let want = (bumpmap_math::mip::next_size(last.width), bumpmap_math::mip::next_size(last.height));
             let level = read_file(&file)?.levels.swap_remove(0);
             if (level.width, level.height) != want {
                 return Err(Error::Io(bumpmap_io::IoError::Texture {
