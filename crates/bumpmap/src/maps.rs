@@ -51,7 +51,9 @@ use crate::options::RoughnessLayout;
 pub struct MapOptions {
     /// How heights become normals: the kernel, the scale, the wrap, the Y convention, the
     /// encoding. The scale is also the depth, in texels, the horizons and the occlusion are
-    /// taken at.
+    /// taken at. A negative scale turns the bumps inward: the normal map's slopes flip, and the
+    /// heights, horizons, occlusion and bent normals are those of the heights turned upside
+    /// down (`1 − h`), the surface the normal map shows.
     pub normals: NormalMapOptions,
     /// Bits a channel the normal map and the heights are stored in: 8 or 16.
     pub bits: u8,
@@ -198,6 +200,7 @@ pub struct StoredHeights {
 /// the mean levels and the min–max bounds are those of the heights stored.
 pub fn height_mips(options: &MapOptions, field: &HeightField) -> Result<StoredHeights, MapError> {
     options.check()?;
+    let field = &*as_bumped(options, field);
     let mut row = Vec::new();
     let (mut lowest, mut highest) = (f32::INFINITY, f32::NEG_INFINITY);
     for y in 0..field.height() {
@@ -214,7 +217,17 @@ pub fn height_mips(options: &MapOptions, field: &HeightField) -> Result<StoredHe
 /// occlusion and bent normals are made from it, at the depth `options.normals.scale`).
 pub fn horizon_map(options: &MapOptions, field: &HeightField) -> Result<HorizonMap, MapError> {
     options.check()?;
-    Ok(HorizonMap::from_heights(field, options.normals.wrap)?)
+    Ok(HorizonMap::from_heights(&*as_bumped(options, field), options.normals.wrap)?)
+}
+
+/// The heights of the surface the normal map shows: `field` itself, or turned upside down
+/// (`1 − h`) where a negative scale turns the bumps inward.
+fn as_bumped<'a>(options: &MapOptions, field: &'a HeightField) -> std::borrow::Cow<'a, HeightField> {
+    if options.normals.scale >= 0.0 {
+        return std::borrow::Cow::Borrowed(field);
+    }
+    let flipped = field.to_f32().into_iter().map(|h| 1.0 - h).collect();
+    std::borrow::Cow::Owned(HeightField::new(field.width(), field.height(), flipped).expect("the same size"))
 }
 
 /// The bent normals of `horizons` (level 0), encoded as the normal map is and at its bits.

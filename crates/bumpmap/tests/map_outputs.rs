@@ -120,3 +120,34 @@ fn a_folder_whose_inputs_share_an_output_is_refused() {
         Err(FolderError::SameOutput { .. } | FolderError::SameFolder(_))
     ));
 }
+
+#[test]
+fn a_negative_scale_makes_every_map_of_the_heights_turned_upside_down() {
+    // `--scale -4` flips the normal map's slopes: the heights, horizons and occlusion written
+    // beside it are those of 1 − h at scale 4, the surface the normal map shows (they were the
+    // heights as given, the same as for +4's bumps).
+    let field = HeightPreset::Bricks.render(64, 64);
+    let flipped = bumpmap::HeightField::new(64, 64, field.to_f32().into_iter().map(|h| 1.0 - h).collect()).unwrap();
+    let with = |scale: f32| {
+        let mut o = MapOptions::default();
+        o.normals.scale = scale;
+        o
+    };
+    let (down, up) = (with(-4.0), with(4.0));
+    let ao = |options: &MapOptions, f: &bumpmap::HeightField| {
+        bumpmap::maps::horizon_map(options, f).unwrap().ambient_occlusion(options.normals.scale.abs())
+    };
+    assert_eq!(ao(&down, &field), ao(&up, &flipped));
+    assert_ne!(ao(&down, &field), ao(&up, &field), "bumps and dents are not occluded alike");
+    let heights = |options: &MapOptions, f: &bumpmap::HeightField| {
+        bumpmap::maps::height_mips(options, f).unwrap().mips.levels()[0].texels.clone()
+    };
+    assert_eq!(heights(&down, &field), heights(&up, &flipped));
+    // The normal map itself: the same as 1 − h's at +4.
+    let normals =
+        |options: &MapOptions, f: &bumpmap::HeightField| match bumpmap::maps::normal_map(options, false, f).unwrap() {
+            bumpmap::maps::Chain::Rgba8(c) => c.levels[0].texels.clone(),
+            bumpmap::maps::Chain::Rgba16(_) => unreachable!("8 bits"),
+        };
+    assert_eq!(normals(&down, &field), normals(&up, &flipped));
+}
