@@ -362,3 +362,43 @@ fn bad_height_out_fails_cleanly_and_out_of_range_heights_are_named() {
     assert_eq!(stored.get_pixel(0, 0).0[0], 0);
     assert_eq!(stored.get_pixel(7, 7).0[0], 65535, "clamped to 1");
 }
+
+#[test]
+fn bounds_of_other_heights_beside_a_heights_file_are_refused_naming_them() {
+    // The bricks' heights with the noise's min–max files copied in beside them: the march
+    // would skip where the bounds say no surface is. They were read as the bounds, exit 0.
+    let dir = scratch("parallax_foreign_bounds");
+    let at = |name: &str| dir.join(name).to_str().unwrap().to_string();
+    for (preset, normals, heights) in [("bricks@64", "n.png", "h.png"), ("noise:3@64", "m.png", "g.png")] {
+        let o = bumpmap(&["normalmap", preset, "-o", &at(normals), "--height-out", &at(heights)]);
+        assert!(o.status.success(), "{}", stderr(&o));
+    }
+    for entry in std::fs::read_dir(&dir).unwrap() {
+        let name = entry.unwrap().file_name().into_string().unwrap();
+        if let Some(rest) = name.strip_prefix("g.minmax") {
+            std::fs::copy(dir.join(&name), dir.join(format!("h.minmax{rest}"))).unwrap();
+        }
+    }
+    let draw = |heights: &str, normals: &str| {
+        bumpmap(&[
+            "render",
+            "--scene",
+            "wall",
+            "--technique",
+            "pom",
+            "--normal-map",
+            &at(normals),
+            "--height-map",
+            &at(heights),
+            "-o",
+            &at("out.png"),
+        ])
+    };
+    let o = draw("h.png", "n.png");
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    assert!(stderr(&o).contains("h.minmax.png: min–max level 0 does not hold the heights"), "{}", stderr(&o));
+    assert!(!dir.join("out.png").exists());
+    // The noise's own bounds still hold its heights.
+    let o = draw("g.png", "m.png");
+    assert!(o.status.success(), "{}", stderr(&o));
+}

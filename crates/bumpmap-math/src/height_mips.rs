@@ -163,6 +163,23 @@ pub enum HeightMipsError {
         /// Level 0's size.
         h0: usize,
     },
+    /// Min–max bounds that do not hold the heights: a bounds file of another field, or of
+    /// another kind of file.
+    #[error(
+        "min–max level 0 does not hold the heights: at ({x}, {y}) the height is {value} but the bounds are [{lo}, {hi}] (bounds of other heights?)"
+    )]
+    BoundsMiss {
+        /// Column.
+        x: usize,
+        /// Row.
+        y: usize,
+        /// The height there.
+        value: f32,
+        /// The lower bound there.
+        lo: f32,
+        /// The upper bound there.
+        hi: f32,
+    },
     /// A height that is not a number.
     #[error("height at ({x}, {y}) of level {level} is {value}, not a number in [0, 1]")]
     NotAHeight {
@@ -182,6 +199,7 @@ impl HeightMipsError {
     pub fn chain(&self) -> Option<HeightChain> {
         match self {
             HeightMipsError::LevelSize { what, .. } | HeightMipsError::LevelCount { what, .. } => Some(*what),
+            HeightMipsError::BoundsMiss { .. } => Some(HeightChain::MinMax),
             HeightMipsError::OutOfMemory(_) | HeightMipsError::NotAHeight { .. } => None,
         }
     }
@@ -270,6 +288,22 @@ impl HeightMips {
         }
         for (k, level) in levels.iter_mut().enumerate() {
             check_heights(level, k)?;
+        }
+        // The bounds of cell (x, y) hold its corner texel (x, y): what a bounds file of these
+        // heights does, to the 16-bit rounding it is stored at.
+        if let Some(bounds) = minmax.as_ref().and_then(|m| m.first()) {
+            const ROUNDING: f32 = 1.5 / 65535.0;
+            let level0 = &levels[0];
+            let miss = level0
+                .texels
+                .iter()
+                .zip(&bounds.texels)
+                .position(|(v, &[lo, hi])| !(lo - ROUNDING..=hi + ROUNDING).contains(v));
+            if let Some(k) = miss {
+                let [lo, hi] = bounds.texels[k];
+                let (x, y) = (k % level0.width, k / level0.width);
+                return Err(HeightMipsError::BoundsMiss { x, y, value: level0.texels[k], lo, hi });
+            }
         }
         let levels = if levels.len() == 1 { mean_levels(levels.swap_remove(0))? } else { levels };
         Ok(Self { levels, minmax, horizons: Default::default() })
