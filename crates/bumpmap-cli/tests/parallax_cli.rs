@@ -402,3 +402,53 @@ fn bounds_of_other_heights_beside_a_heights_file_are_refused_naming_them() {
     let o = draw("g.png", "m.png");
     assert!(o.status.success(), "{}", stderr(&o));
 }
+
+#[test]
+fn a_normal_map_or_a_horizon_map_given_as_heights_is_refused() {
+    // They were read as heights from their red channel, exit 0.
+    let dir = scratch("parallax_not_heights");
+    let at = |name: &str| dir.join(name).to_str().unwrap().to_string();
+    let ok = |args: &[&str]| {
+        let o = bumpmap(args);
+        assert!(o.status.success(), "{}", stderr(&o));
+    };
+    ok(&["normalmap", "bricks@64", "-o", &at("n.png"), "--height-out", &at("h.png"), "--horizon-out", &at("hz.png")]);
+    ok(&["normalmap", "bricks@64", "-o", &at("n.ktx2")]);
+    let before = listing(&dir);
+    for (heights, says) in [
+        ("n.png", "n.png: is a colour image, not heights"),
+        ("hz.png", "hz.png: is a colour image, not heights"),
+        ("n.ktx2", "n.ktx2: holds R8G8B8A8_UNORM, not heights"),
+    ] {
+        let o = bumpmap(&[
+            "render",
+            "--scene",
+            "wall",
+            "--technique",
+            "pom",
+            "--normal-map",
+            &at("n.png"),
+            "--height-map",
+            &at(heights),
+            "-o",
+            &at("out.png"),
+        ]);
+        assert_eq!(o.status.code(), Some(1), "{heights}: {}", stderr(&o));
+        assert!(stderr(&o).contains(says), "{}", stderr(&o));
+    }
+    assert_eq!(listing(&dir), before, "nothing written");
+    // The heights themselves draw.
+    ok(&[
+        "render",
+        "--scene",
+        "wall",
+        "--technique",
+        "pom",
+        "--normal-map",
+        &at("n.png"),
+        "--height-map",
+        &at("h.png"),
+        "-o",
+        &at("out.png"),
+    ]);
+}

@@ -200,9 +200,39 @@ pub(crate) fn read_levels_checked(
 type PairLevel = (usize, usize, Vec<[f32; 2]>);
 
 /// Every level a heights file holds ([`read_levels_checked`]), channel 0 and channel
-/// `channels − 1` of each texel.
+/// `channels − 1` of each texel. Heights (`channels` 1) must be gray: a container of `R8` or
+/// `R16`, an image whose channels are equal; a normal map, a horizon map or a colour image given
+/// for heights is refused, never read as its red channel.
 fn read_levels(path: &Path, channels: usize) -> Result<Vec<PairLevel>, IoError> {
-    let levels = read_levels_checked(path, &|_, _| Ok(()))?;
+    let bad = |file: &Path, reason: String| IoError::Texture { path: file.to_path_buf(), reason };
+    let png = container(path)? == Container::Png;
+    let gray_container = |file: &Path, format: Option<TextureFormat>| match format {
+        Some(f) if channels == 1 && !png && !matches!(f, TextureFormat::R8 | TextureFormat::R16) => {
+            Err(bad(file, format!("holds {}, not heights: a heights file is one channel (R8 or R16)", f.dxgi_name())))
+        }
+        _ => Ok(()),
+    };
+    let levels = read_levels_checked(path, &gray_container)?;
+    if channels == 1 && png {
+        // Gray PNGs read back with three equal channels; a colour image does not.
+        const STEP: f32 = 1.5 / 255.0;
+        for (w, _, texels) in &levels {
+            if let Some(k) = texels.iter().position(|t| (t[1] - t[0]).abs() > STEP || (t[2] - t[0]).abs() > STEP) {
+                return Err(bad(
+                    path,
+                    format!(
+                        "is a colour image, not heights: its texel ({}, {}) is ({:.3}, {:.3}, {:.3}); heights are gray \
+                         (normalmap --height-out writes them). A normal map is given with --normal-map",
+                        k % w,
+                        k / w,
+                        texels[k][0],
+                        texels[k][1],
+                        texels[k][2]
+                    ),
+                ));
+            }
+        }
+    }
     Ok(levels.into_iter().map(|(w, h, t)| (w, h, t.into_iter().map(|p| [p[0], p[channels - 1]]).collect())).collect())
 }
 
