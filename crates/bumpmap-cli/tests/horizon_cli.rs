@@ -303,3 +303,29 @@ fn a_horizon_map_file_renders_as_the_one_made_and_bad_ones_are_refused() {
     assert!(stderr(&o).contains("alone.dirs4-7.png: not found"), "{}", stderr(&o));
     assert_eq!(listing(&dir), before, "nothing written");
 }
+
+#[test]
+fn a_heights_or_horizon_file_that_cannot_be_read_is_named_as_an_input() {
+    // An input of another extension was called an "unsupported output format", and a horizon
+    // map whose first half is missing was blamed on its second half.
+    let dir = scratch("horizon_inputs_named");
+    let at = |name: &str| dir.join(name).to_str().unwrap().to_string();
+    std::fs::write(dir.join("x.xyz"), "not an image").unwrap();
+    let o = bumpmap(&["normalmap", "bricks@64", "-o", &at("n.png"), "--horizon-out", &at("hz.png")]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    std::fs::remove_file(dir.join("hz.png")).unwrap();
+    for (args, says) in [
+        (vec!["--technique", "pom", "--height-map", "x.xyz"], "x.xyz: heights are read from .png, .dds or .ktx2"),
+        (
+            vec!["--technique", "horizon", "--horizon-map", "x.xyz"],
+            "x.xyz: horizon maps are read from .png, .dds or .ktx2",
+        ),
+        (vec!["--technique", "horizon", "--horizon-map", "hz.png"], "hz.png: not found"),
+    ] {
+        let mut all = vec!["render".to_string(), "--normal-map".into(), at("n.png"), "-o".into(), at("out.png")];
+        all.extend(args.iter().map(|a| if a.contains('.') { at(a) } else { a.to_string() }));
+        let o = bumpmap(&all.iter().map(String::as_str).collect::<Vec<_>>());
+        assert_eq!(o.status.code(), Some(1), "{args:?}: {}", stderr(&o));
+        assert!(stderr(&o).contains(says) && !stderr(&o).contains("output format"), "{}", stderr(&o));
+    }
+}

@@ -48,6 +48,15 @@ pub(crate) fn container(path: &Path) -> Result<Container, IoError> {
     }
 }
 
+/// [`container`] for a file to read, `what` naming what it holds: one of another extension is
+/// an input that cannot be read, not an output format.
+pub(crate) fn container_to_read(path: &Path, what: &str) -> Result<Container, IoError> {
+    container(path).map_err(|_| IoError::Texture {
+        path: path.to_path_buf(),
+        reason: format!("{what} are read from .png, .dds or .ktx2 files (as normalmap writes them)"),
+    })
+}
+
 /// The min–max file beside heights `path`: `H.minmax.EXT`.
 pub fn minmax_path(path: &Path) -> PathBuf {
     let stem = path.file_stem().unwrap_or_default().to_string_lossy();
@@ -164,7 +173,7 @@ pub(crate) fn read_levels_checked(
     path: &Path,
     check: &impl Fn(&Path, Option<TextureFormat>) -> Result<(), IoError>,
 ) -> Result<Vec<RgbaLevel>, IoError> {
-    let kind = container(path)?;
+    let kind = container_to_read(path, "heights, horizons and bounds")?;
     let read = |file: &Path| -> Result<Vec<RgbaLevel>, IoError> {
         check(file, None)?;
         let stored = load_texture(file)?;
@@ -205,7 +214,7 @@ type PairLevel = (usize, usize, Vec<[f32; 2]>);
 /// for heights is refused, never read as its red channel.
 fn read_levels(path: &Path, channels: usize) -> Result<Vec<PairLevel>, IoError> {
     let bad = |file: &Path, reason: String| IoError::Texture { path: file.to_path_buf(), reason };
-    let png = container(path)? == Container::Png;
+    let png = container_to_read(path, "heights")? == Container::Png;
     let gray_container = |file: &Path, format: Option<TextureFormat>| match format {
         Some(f) if channels == 1 && !png && !matches!(f, TextureFormat::R8 | TextureFormat::R16) => {
             Err(bad(file, format!("holds {}, not heights: a heights file is one channel (R8 or R16)", f.dxgi_name())))
@@ -245,7 +254,7 @@ pub fn files_read(path: &Path) -> Result<Vec<PathBuf>, IoError> {
     if has_minmax {
         files.push(minmax.clone());
     }
-    if container(path)? == Container::Png {
+    if container_to_read(path, "heights")? == Container::Png {
         files.extend(crate::siblings::png_levels(path)?);
         if has_minmax {
             files.extend(crate::siblings::png_levels(&minmax)?);

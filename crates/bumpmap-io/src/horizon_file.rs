@@ -100,6 +100,7 @@ pub fn write_gray_into(
 /// One texture of a horizon map read back: its levels, four directions a texel in [0, 1]. Each
 /// file must be there and hold four channels (an RGBA PNG, an RGBA8 or RGBA16 container).
 fn read_half(path: &Path) -> Result<Vec<RgbaLevel>, IoError> {
+    crate::height_file::container_to_read(path, "horizon maps")?;
     let bad = |file: &Path, reason: String| IoError::Texture { path: file.to_path_buf(), reason };
     let png = container(path)? == Container::Png;
     read_levels_checked(path, &|file: &Path, format: Option<TextureFormat>| match format {
@@ -142,7 +143,7 @@ pub fn files_read(path: &Path) -> Result<Vec<PathBuf>, IoError> {
     if crate::siblings::beside(path, &second)?.is_some() {
         files.push(second.clone());
     }
-    if container(path)? == Container::Png {
+    if crate::height_file::container_to_read(path, "horizon maps")? == Container::Png {
         for file in files.clone() {
             files.extend(crate::siblings::png_levels(&file)?);
         }
@@ -156,6 +157,10 @@ pub fn files_read(path: &Path) -> Result<Vec<PathBuf>, IoError> {
 /// channels, sizes that do not match and values that are not numbers are errors naming the file.
 pub fn load_horizons(path: &Path) -> Result<HorizonMap, IoError> {
     let bad = |file: &Path, reason: String| IoError::Texture { path: file.to_path_buf(), reason };
+    crate::height_file::container_to_read(path, "horizon maps")?;
+    if std::fs::metadata(path).is_err() {
+        return Err(bad(path, "not found".into()));
+    }
     let second = second_half_path(path);
     if crate::siblings::beside(path, &second)?.is_none() {
         return Err(bad(
