@@ -371,3 +371,32 @@ fn a_gltf_scene_that_cannot_be_drawn_as_written_fails_cleanly() {
         fails_cleanly(&dir, &["render", "--scene", &scene, "-o", o], &file, expect);
     }
 }
+
+#[test]
+fn a_gltf_without_texture_coordinates_is_drawn_unbumped_with_a_note() {
+    // No primitive has TEXCOORD_0: it was refused ("the mesh has no texture coordinates"),
+    // though one such primitive among others is drawn unbumped; three.js draws it too.
+    let dir = scratch("gltf_no_texcoords");
+    let positions: [f32; 12] = [-1.0, -1.0, 0.0, 1.0, -1.0, 0.0, 1.0, 1.0, 0.0, -1.0, 1.0, 0.0];
+    let mut bin: Vec<u8> = positions.iter().flat_map(|v| v.to_le_bytes()).collect();
+    bin.extend([0u16, 1, 2, 0, 2, 3].iter().flat_map(|i| i.to_le_bytes()));
+    std::fs::write(dir.join("q.bin"), &bin).unwrap();
+    std::fs::write(
+        dir.join("q.gltf"),
+        r#"{"asset":{"version":"2.0"},"buffers":[{"uri":"q.bin","byteLength":60}],
+"bufferViews":[{"buffer":0,"byteOffset":0,"byteLength":48},{"buffer":0,"byteOffset":48,"byteLength":12}],
+"accessors":[{"bufferView":0,"componentType":5126,"count":4,"type":"VEC3","min":[-1,-1,0],"max":[1,1,0]},{"bufferView":1,"componentType":5123,"count":6,"type":"SCALAR"}],
+"materials":[{"pbrMetallicRoughness":{"baseColorFactor":[0.8,0.3,0.2,1]}}],
+"meshes":[{"primitives":[{"attributes":{"POSITION":0},"indices":1,"material":0}]}],"nodes":[{"mesh":0}],"scenes":[{"nodes":[0]}],"scene":0}"#,
+    )
+    .unwrap();
+    let out = dir.join("out.png");
+    let scene = format!("mesh:{}", dir.join("q.gltf").display());
+    let o = bumpmap(&["render", "--scene", &scene, "--size", "64", "-o", out.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(stderr(&o).contains("no primitive has texture coordinates: every one is drawn unbumped"), "{}", stderr(&o));
+    // Lit in its base colour: red over green.
+    let image = image::open(&out).unwrap().to_rgb8();
+    let centre = image.get_pixel(32, 32);
+    assert!(centre[0] > 60 && centre[0] > centre[1] + 30, "{centre:?}");
+}

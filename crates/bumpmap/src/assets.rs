@@ -383,7 +383,14 @@ pub fn load_mesh(path: &Path, options: &MeshLoad) -> Result<MeshAsset, Error> {
 /// A mesh already read (`path` names it in messages) made ready to draw as [`load_mesh`] makes
 /// it: tangents where it has none, its material's normal map in texture space and its base
 /// colour as the decal.
-pub fn mesh_asset(loaded: bumpmap_io::LoadedMesh, path: &Path, options: &MeshLoad) -> Result<MeshAsset, Error> {
+pub fn mesh_asset(mut loaded: bumpmap_io::LoadedMesh, path: &Path, options: &MeshLoad) -> Result<MeshAsset, Error> {
+    // A glTF none of whose primitives has texture coordinates is drawn as one with some draws
+    // the primitives without: unbumped and untextured (as three.js does), not refused.
+    let no_texcoords = loaded.mesh.texcoords.is_empty() && !loaded.parts.is_empty();
+    if no_texcoords {
+        loaded.mesh.texcoords = vec![glam::Vec2::ZERO; loaded.mesh.positions.len()];
+        loaded.notes.push("no primitive has texture coordinates: every one is drawn unbumped and untextured".into());
+    }
     let mesh = if loaded.had_tangents {
         loaded.mesh
     } else {
