@@ -73,7 +73,8 @@ fn stored(field: &HeightField, scale: f32) -> Vec<Vec3> {
     map.texels.iter().map(|t| Vec3::new(d(t[0]), d(t[1]), d(t[2])).normalize()).collect()
 }
 
-/// `field`'s normals at `scale` in float: what [`stored`] rounds.
+/// `field`'s normals at `scale` in float: what a 16-bit normal map of it rounds (central
+/// differences, wrapping, in texture space).
 pub fn exact_normals(field: &HeightField, scale: f32) -> Vec<Vec3> {
     let (w, h) = (field.width(), field.height());
     let at = |x: usize, y: usize| field.get(x % w, y % h);
