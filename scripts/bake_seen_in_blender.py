@@ -21,23 +21,12 @@ from pathlib import Path
 
 import numpy as np
 
+# The pair is written and baked by Cycles as the speed benchmark does it.
+from bench_bake_blender import bake_blender, grid, write_obj
+
 REPO = Path(__file__).resolve().parents[1]
 BUMPMAP = REPO / "target" / "release" / "bumpmap"
 SIDE = 256
-
-
-def grid(nu, nv, point):
-    """A (nu × nv)-quad grid of `point(u, v)`, texture coordinates as OBJ has them (v up), as
-    (positions, uvs, faces) without the triangles a pole makes degenerate."""
-    u, v = np.meshgrid(np.linspace(0.0, 1.0, nu + 1), np.linspace(0.0, 1.0, nv + 1))
-    pos = point(u, v).reshape(-1, 3)
-    uvs = np.stack([u, 1.0 - v], -1).reshape(-1, 2)
-    idx = np.arange((nu + 1) * (nv + 1)).reshape(nv + 1, nu + 1)
-    a, b, c, d = idx[:-1, :-1], idx[:-1, 1:], idx[1:, 1:], idx[1:, :-1]
-    faces = np.concatenate([np.stack([a, b, c], -1).reshape(-1, 3), np.stack([a, c, d], -1).reshape(-1, 3)])
-    p = pos[faces]
-    area = np.linalg.norm(np.cross(p[:, 1] - p[:, 0], p[:, 2] - p[:, 0]), axis=1)
-    return pos, uvs, faces[area > 1e-12]
 
 
 def sphere(waves):
@@ -57,22 +46,6 @@ def torus(waves):
         return np.stack([ring * np.cos(s), ring * np.sin(s), r * np.sin(t)], -1)
 
     return point
-
-
-def write_obj(path, pos, uvs, faces):
-    """An OBJ with smooth vertex normals (area-weighted), so Blender and bumpmap read the same."""
-    p = pos[faces]
-    face = np.cross(p[:, 1] - p[:, 0], p[:, 2] - p[:, 0])
-    sums = np.zeros_like(pos)
-    for k in range(3):
-        np.add.at(sums, faces[:, k], face)
-    normals = sums / (np.linalg.norm(sums, axis=1, keepdims=True) + 1e-30)
-    with open(path, "w") as f:
-        f.write(f"o {Path(path).stem}\n")
-        np.savetxt(f, pos, fmt="v %.7f %.7f %.7f")
-        np.savetxt(f, uvs, fmt="vt %.7f %.7f")
-        np.savetxt(f, normals, fmt="vn %.7f %.7f %.7f")
-        np.savetxt(f, np.repeat(faces + 1, 3, axis=1), fmt="f %d/%d/%d %d/%d/%d %d/%d/%d")
 
 
 def fresh_scene():
@@ -170,37 +143,6 @@ def mean_angle(a, b):
     return float(np.degrees(np.arccos(dots)).mean()), int(inner.sum())
 
 
-def bake_cycles(high, low, out, size):
-    """Blender's own bake of the pair (selected to active, tangent space), as a PNG."""
-    import bpy
-
-    scene = fresh_scene()
-    scene.cycles.samples = 1
-    high_obj, low_obj = import_obj(high), import_obj(low)
-    image = bpy.data.images.new("bake", width=size, height=size, float_buffer=False)
-    material = bpy.data.materials.new("bake")
-    material.use_nodes = True
-    node = material.node_tree.nodes.new("ShaderNodeTexImage")
-    node.image = image
-    material.node_tree.nodes.active = node
-    low_obj.data.materials.clear()
-    low_obj.data.materials.append(material)
-    bpy.ops.object.select_all(action="DESELECT")
-    high_obj.select_set(True)
-    low_obj.select_set(True)
-    bpy.context.view_layer.objects.active = low_obj
-    bake = scene.render.bake
-    bake.use_selected_to_active = True
-    bake.cage_extrusion = 0.1
-    bake.max_ray_distance = 0.2
-    bake.margin = 16
-    bake.normal_space = "TANGENT"
-    bpy.ops.object.bake(type="NORMAL")
-    image.filepath_raw = str(out)
-    image.file_format = "PNG"
-    image.save()
-
-
 def measure(name, surface, high_quads, low_quads, size, out):
     high, low = out / f"{name}_high.obj", out / f"{name}_low.obj"
     write_obj(high, *grid(*high_quads, surface(True)))
@@ -212,7 +154,8 @@ def measure(name, surface, high_quads, low_quads, size, out):
                         "--spp", "1", "--extrude", "0.1", "--max-distance", "0.1", "--decode", decode],
                        check=True, capture_output=True)
     maps["cycles"] = out / f"{name}_cycles.png"
-    bake_cycles(high, low, maps["cycles"], size)
+    # Blender's own bake of the pair: selected to active, tangent space, the same cage.
+    bake_blender(high, low, maps["cycles"], size, 1, 0.1, 2)
     target = normals_seen(high, None, out / f"{name}_high.exr")
     row = {"pair": name}
     for key, path in maps.items():

@@ -27,23 +27,31 @@ REPO = Path(__file__).resolve().parents[1]
 BUMPMAP = REPO / "target" / "release" / "bumpmap"
 
 
-def sphere(nu, nv, waves):
-    """A UV sphere of nu×nv quads, radius 1 (times 1 + 0.02·sin 8u·sin 6v with `waves`), its
-    texture coordinates as OBJ has them (v up), as (positions, uvs, faces)."""
-    u = np.linspace(0.0, 1.0, nu + 1)
-    v = np.linspace(0.0, 1.0, nv + 1)
-    uu, vv = np.meshgrid(u, v)
-    theta, phi = uu * 2 * np.pi, vv * np.pi
-    r = 1.0 + (0.02 * np.sin(8 * theta) * np.sin(6 * phi) if waves else 0.0)
-    pos = np.stack([r * np.sin(phi) * np.cos(theta), r * np.sin(phi) * np.sin(theta), r * np.cos(phi)], -1).reshape(-1, 3)
-    uvs = np.stack([uu, 1.0 - vv], -1).reshape(-1, 2)
+def grid(nu, nv, point):
+    """A (nu × nv)-quad grid of `point(u, v)` (arrays of u and v in [0, 1]), its texture
+    coordinates as OBJ has them (v up), as (positions, uvs, faces), without the triangles a pole
+    makes degenerate (two corners at one point)."""
+    u, v = np.meshgrid(np.linspace(0.0, 1.0, nu + 1), np.linspace(0.0, 1.0, nv + 1))
+    pos = point(u, v).reshape(-1, 3)
+    uvs = np.stack([u, 1.0 - v], -1).reshape(-1, 2)
     idx = np.arange((nu + 1) * (nv + 1)).reshape(nv + 1, nu + 1)
     a, b, c, d = idx[:-1, :-1], idx[:-1, 1:], idx[1:, 1:], idx[1:, :-1]
     faces = np.concatenate([np.stack([a, b, c], -1).reshape(-1, 3), np.stack([a, c, d], -1).reshape(-1, 3)])
-    # Drop the triangles the poles make degenerate (two corners at one point).
     p = pos[faces]
     area = np.linalg.norm(np.cross(p[:, 1] - p[:, 0], p[:, 2] - p[:, 0]), axis=1)
     return pos, uvs, faces[area > 1e-12]
+
+
+def sphere(nu, nv, waves):
+    """A UV sphere of nu×nv quads, radius 1 (times 1 + 0.02·sin 8u·sin 6v with `waves`), as
+    `grid` gives it."""
+
+    def point(u, v):
+        theta, phi = u * 2 * np.pi, v * np.pi
+        r = 1.0 + (0.02 * np.sin(8 * theta) * np.sin(6 * phi) if waves else 0.0)
+        return np.stack([r * np.sin(phi) * np.cos(theta), r * np.sin(phi) * np.sin(theta), r * np.cos(phi)], -1)
+
+    return grid(nu, nv, point)
 
 
 def vertex_normals(pos, faces):

@@ -168,16 +168,8 @@ pub fn blend_normals<'py>(
     options: Option<&Bound<'py, PyDict>>,
 ) -> PyResult<Bound<'py, PyList>> {
     let options = keywords::blend_options("blend_normals", options)?;
-    let prefixed = |name: &str, e: PyErr| {
-        let message = format!("blend_normals(): {name}: {}", e.value(py));
-        if e.is_instance_of::<pyo3::exceptions::PyTypeError>(py) {
-            pyo3::exceptions::PyTypeError::new_err(message)
-        } else {
-            pyo3::exceptions::PyValueError::new_err(message)
-        }
-    };
-    let base = arrays::normal_texels(base).map_err(|e| prefixed("base", e))?;
-    let detail = arrays::normal_texels(detail).map_err(|e| prefixed("detail", e))?;
+    let base = arrays::normal_texels(base).map_err(|e| keywords::prefixed(py, "blend_normals", "base", e))?;
+    let detail = arrays::normal_texels(detail).map_err(|e| keywords::prefixed(py, "blend_normals", "detail", e))?;
     let chain = interrupt::run(py, move |_| {
         let blended = maps::blend_maps(&base, &detail, &options).map_err(bumpmap_words::maps::blend_error)?;
         for note in &blended.notes {

@@ -20,6 +20,7 @@ mod render;
 pub use maps::{
     bake_request, blend_options, compare_options, height_options, map_keywords, map_request, one_word, tangent_options,
 };
+pub(crate) use render::prefixed;
 pub use render::render_request;
 
 use std::path::PathBuf;

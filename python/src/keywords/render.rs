@@ -28,7 +28,7 @@ fn is_arrays(value: &Bound<'_, PyAny>) -> PyResult<bool> {
 }
 
 /// A Python error raised while reading `name`'s array, prefixed with the function and keyword.
-fn prefixed(py: Python<'_>, function: &str, name: &str, e: PyErr) -> PyErr {
+pub(crate) fn prefixed(py: Python<'_>, function: &str, name: &str, e: PyErr) -> PyErr {
     let message = format!("{function}(): {name}: {}", e.value(py));
     if e.is_instance_of::<PyTypeError>(py) { PyTypeError::new_err(message) } else { PyValueError::new_err(message) }
 }
