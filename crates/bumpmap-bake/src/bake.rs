@@ -323,7 +323,7 @@ fn bake_from(
         RayMode::Explicit => low.normals.clone(),
     };
     let layout = Layout::new(low, width, height);
-    let curvature = if options.curvature { crate::curvature::vertex_curvature(high) } else { Vec::new() };
+    let curvature = if options.curvature { high.mean_curvature() } else { Vec::new() };
     // One BVH over HIGH, or one a group of a pairing.
     let targets: Vec<HighPoly> = match pairing {
         None => vec![HighPoly::new(high, &curvature, None)],

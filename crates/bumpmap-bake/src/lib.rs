@@ -34,7 +34,6 @@
 #![warn(missing_docs)]
 
 mod bake;
-mod curvature;
 mod encode;
 mod frame;
 mod high;

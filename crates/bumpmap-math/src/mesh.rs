@@ -4,6 +4,7 @@
 use glam::{Vec2, Vec3, Vec4};
 use rayon::prelude::*;
 
+mod curvature;
 mod parts;
 
 pub use parts::AlphaMode;

@@ -1,4 +1,5 @@
-//! HIGH's mean curvature at each vertex, for the curvature map: the cotangent Laplacian over
+//! A mesh's mean curvature at each vertex (the baker's curvature map, a mesh's silhouettes):
+//! the cotangent Laplacian over
 //! the vertex's mixed (Voronoi) area, Meyer, Desbrun, Schröder & Barr 2003, *Discrete
 //! differential-geometry operators for triangulated 2-manifolds*: `K = Σ (cot α + cot β)(pᵢ −
 //! pⱼ) / 2A = 2H·n`, `H` read along the vertex's normal. Vertices at one position are one
@@ -11,12 +12,28 @@
 
 use std::collections::HashMap;
 
-use bumpmap_math::mesh::Mesh;
+use super::Mesh;
 use glam::Vec3;
+
+impl Mesh {
+    /// Each vertex's mean curvature (the same for every vertex at one position), in 1 / the
+    /// mesh's units, positive where convex; the mesh must be valid and carry normals.
+    ///
+    /// ```
+    /// use bumpmap_math::surface::Surface;
+    /// let sphere = Surface::Sphere { radius: 2.0 }.tessellate(24, 12, glam::Vec2::ONE);
+    /// let k = sphere.mean_curvature();
+    /// // Away from the seam and the poles (whose copies lie a rounding error apart): 1/r.
+    /// assert!((k[6 * 25 + 10] - 0.5).abs() < 0.01);
+    /// ```
+    pub fn mean_curvature(&self) -> Vec<f32> {
+        vertex_curvature(self)
+    }
+}
 
 /// Each vertex's mean curvature (the same for every vertex at one position); `mesh` carries
 /// normals.
-pub(crate) fn vertex_curvature(mesh: &Mesh) -> Vec<f32> {
+fn vertex_curvature(mesh: &Mesh) -> Vec<f32> {
     // One slot a position, so split vertices pool their triangles.
     let mut slot_of: HashMap<[u32; 3], u32> = HashMap::with_capacity(mesh.positions.len());
     let slots: Vec<u32> = mesh
@@ -73,10 +90,10 @@ pub(crate) fn vertex_curvature(mesh: &Mesh) -> Vec<f32> {
 
 #[cfg(test)]
 mod tests {
-    use bumpmap_math::surface::Surface;
     use glam::Vec2;
 
     use super::*;
+    use crate::surface::Surface;
 
     #[test]
     fn a_sphere_bends_by_its_inverse_radius_and_a_plane_not_at_all() {
