@@ -186,7 +186,6 @@ pub fn blend_files(
     options: &BlendOptions,
 ) -> Result<(Blended, Vec<PathBuf>), BlendError> {
     let format = |bits: u8| if bits == 16 { TextureFormat::Rgba16 } else { TextureFormat::Rgba8 };
-    crate::maps::check_container(out, format(options.bits.unwrap_or(8)))?;
     let (base_map, detail_map) = (crate::inspect::read_map(base)?, crate::inspect::read_map(detail)?);
     let blended = blend_maps(&base_map, &detail_map, options)?;
     let chain = blended_chain(&blended, options.mips)?;
