@@ -35,6 +35,7 @@ ARRAY_TYPES = {
     ("render", "scene"): "Union[str, Mesh]",
     ("render", "height_field"): "Union[None, str, _Heights]",
     ("render", "normal_map"): "Union[None, _Path, _Image, Sequence[_Image], NormalMap]",
+    ("render", "detail_map"): "Union[None, _Path, _Image, Sequence[_Image], NormalMap]",
     ("render", "decal"): "Union[None, str, npt.NDArray[np.uint8]]",
 }
 # A kind's type, and its type when the option has no default.

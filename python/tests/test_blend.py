@@ -59,3 +59,27 @@ def test_bad_values_raise():
         bumpmap.blend_normals(base, base.astype(np.int64))
     with pytest.raises(TypeError):
         bumpmap.blend_normals(base, base, no_such_option=1)
+
+
+def test_a_detail_map_at_render_time_from_an_array_or_a_file(tmp_path, cli):
+    detail = bumpmap.normal_map(bumpmap.read_height_field("noise:3@32"), scale=2)
+    common = dict(scene="wall", technique="single-pass", size=64)
+    plain = bumpmap.render(**common)
+    ours = bumpmap.render(**common, detail_map=detail, detail_repeat=3, detail_method="partial-derivative")
+    assert np.abs(ours.astype(int) - plain.astype(int)).max() > 30, "the detail shows"
+    # Strength 0 is no detail at all.
+    assert np.array_equal(bumpmap.render(**common, detail_map=detail, detail_strength=0), plain)
+    # The same map from a file draws the same frame as the command line.
+    cli("normalmap", "noise:3@32", "-o", tmp_path / "d.png", "--scale", "2")
+    cli("render", "--scene", "wall", "--technique", "single-pass", "--size", "64", "-o", tmp_path / "r.png",
+        "--detail-map", tmp_path / "d.png", "--detail-repeat", "3", "--detail-method", "partial-derivative")
+    from_file = bumpmap.render(**common, detail_map=str(tmp_path / "d.png"), detail_repeat=3,
+                               detail_method="partial-derivative")
+    assert np.array_equal(from_file[..., :3], read_png(tmp_path / "r.png")[..., :3])
+    assert np.array_equal(from_file, ours)
+    with pytest.raises(ValueError, match="technique single-pass"):
+        bumpmap.render(scene="wall", size=32, detail_map=detail)
+    with pytest.raises(ValueError, match="detail_map"):
+        bumpmap.render(**common, detail_repeat=3)
+    with pytest.raises(ValueError, match="detail_method"):
+        bumpmap.render(**common, detail_map=detail, detail_method="sum")

@@ -64,3 +64,58 @@ fn a_detail_over_a_base_keeps_the_base_and_adds_the_detail() {
     assert!(stderr(&o).contains("missing.png"), "{}", stderr(&o));
     assert_eq!(listing(&dir), before, "nothing written, nothing replaced");
 }
+
+/// `render --detail-map`: a DirectX detail with its convention said draws as the OpenGL one
+/// does, and not without it; a 16-bit detail is said to be read at 8 bits; techniques that
+/// cannot read a second map refuse it, with nothing written.
+#[test]
+fn a_detail_map_at_render_time_is_converted_said_or_refused() {
+    let dir = scratch("blend_cli_render");
+    normalmap(&dir, "noise:4@32", "gl.png", &["--scale", "2"]);
+    normalmap(&dir, "noise:4@32", "dx.png", &["--scale", "2", "--y-convention", "directx"]);
+    normalmap(&dir, "noise:4@32", "sixteen.png", &["--scale", "2", "--bits", "16"]);
+    let path = |name: &str| dir.join(name).to_str().unwrap().to_string();
+    let render = |out: &str, extra: &[&str]| {
+        let out = path(out);
+        let mut args = vec!["render", "--scene", "wall", "--size", "64", "-o", &out];
+        if !extra.contains(&"--technique") {
+            args.extend(["--technique", "single-pass"]);
+        }
+        args.extend(extra);
+        bumpmap(&args)
+    };
+    let o = render("plain.png", &[]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let o = render("gl_out.png", &["--detail-map", &path("gl.png"), "--detail-repeat", "3"]);
+    assert!(o.status.success() && stderr(&o).contains("as the detail map (green up: opengl)"), "{}", stderr(&o));
+    let dx = path("dx.png");
+    let o = render("dx_out.png", &["--detail-map", &dx, "--detail-repeat", "3", "--detail-y-convention", "directx"]);
+    assert!(o.status.success() && stderr(&o).contains("(green down: directx)"), "{}", stderr(&o));
+    let o = render("dx_unsaid.png", &["--detail-map", &dx, "--detail-repeat", "3"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let o = render("sixteen_out.png", &["--detail-map", &path("sixteen.png"), "--detail-repeat", "3"]);
+    assert!(o.status.success() && stderr(&o).contains("read at 8 bits a channel"), "{}", stderr(&o));
+    let read = |name: &str| image::open(dir.join(name)).unwrap().to_rgba8().into_raw();
+    let (plain, gl, dx_said, dx_unsaid) =
+        (read("plain.png"), read("gl_out.png"), read("dx_out.png"), read("dx_unsaid.png"));
+    assert_eq!(gl, dx_said, "a DirectX detail, said so, draws as its OpenGL twin");
+    let changed = |a: &[u8], b: &[u8]| a.iter().zip(b).filter(|(x, y)| x.abs_diff(**y) > 8).count();
+    assert!(changed(&gl, &plain) > 64 * 64 / 10, "the detail shows: {}", changed(&gl, &plain));
+    assert!(changed(&gl, &dx_unsaid) > 64 * 64 / 20, "green's way matters: {}", changed(&gl, &dx_unsaid));
+    // Refused: the default kilgard (2, naming the way out), object-space's
+    // map (1), an option without the map (2), a strength out of range (2), a missing file (1).
+    let before = listing(&dir);
+    let gl = path("gl.png");
+    for (extra, code, says) in [
+        (vec!["--technique", "kilgard", "--detail-map", &gl], 2, "add --technique single-pass"),
+        (vec!["--technique", "object-space", "--detail-map", &gl], 1, "tangent-space map of unit normals"),
+        (vec!["--detail-repeat", "3"], 2, "--detail-map"),
+        (vec!["--detail-map", &gl, "--detail-strength", "-1"], 2, "strength"),
+        (vec!["--detail-map", &path("missing.png")], 1, "missing.png"),
+    ] {
+        let o = render("refused.png", &extra);
+        assert_eq!(o.status.code(), Some(code), "{extra:?}: {}", stderr(&o));
+        assert!(stderr(&o).contains(says), "{extra:?}: {}", stderr(&o));
+    }
+    assert_eq!(listing(&dir), before, "nothing written");
+}

@@ -47,6 +47,8 @@ pub enum Feature {
     Parallax,
     /// A cut-out material (alpha MASK) with heights as geometry that write their own depth.
     MaskWithDepth,
+    /// A detail normal map over a map that is not a tangent-space map of unit normals.
+    DetailMap,
 }
 
 impl std::fmt::Display for Feature {
@@ -76,6 +78,9 @@ impl std::fmt::Display for Feature {
             ),
             Feature::MaskWithDepth => f.write_str(
                 "a cut-out (alpha MASK) material with heights as geometry writing their depth (the cut is a depth pass the march would move)",
+            ),
+            Feature::DetailMap => f.write_str(
+                "a detail normal map over an object-space, offset or derivative map (the blends compose two tangent-space maps of unit normals)",
             ),
             Feature::SurfaceMap => f.write_str(
                 "a normal map made for one surface (its passes read every texture with the repeating coordinates)",

@@ -17,7 +17,8 @@
 //! - [`state`]: depth, blend and sampler state as data;
 //! - [`combiners`]: NV_register_combiners setups and their validation; [`setups`]: the
 //!   paper's (Kilgard Appendices G and H);
-//! - [`shading`]: the lighting model (Kilgard Eq. 11, 12, 16), once;
+//! - [`shading`]: the lighting model (Kilgard Eq. 11, 12, 16), once; [`detail`]: a detail
+//!   normal map laid over the base's per fragment, once;
 //! - [`parallax`]: heights as geometry: the marches that find where a view ray meets the
 //!   heights (parallax, steep parallax, POM, relief, the exact walk) and their shadows, once;
 //! - [`technique`]: techniques as passes, with their capability checks;
@@ -30,6 +31,7 @@ pub mod bump_maps;
 pub mod cache;
 pub mod catalogue;
 pub mod combiners;
+pub mod detail;
 pub mod error;
 pub mod lane_math;
 pub mod parallax;

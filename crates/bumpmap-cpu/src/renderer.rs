@@ -100,6 +100,7 @@ impl CpuRenderer {
                         },
                         decal: program.decal.as_ref().map(|d| self.texture(d)).transpose()?,
                         occlusion: program.occlusion.as_ref().map(|d| self.texture(d)).transpose()?,
+                        detail: program.detail.as_ref().map(|d| self.texture(&d.map)).transpose()?,
                         gloss: match &program.gloss {
                             Gloss::Map(g) => Some(self.texture(g)?),
                             _ => None,

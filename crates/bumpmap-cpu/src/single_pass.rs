@@ -10,6 +10,7 @@ use std::sync::Arc;
 
 use glam::Vec3;
 
+use bumpmap_core::detail::{DetailLayer, detail_normal};
 use bumpmap_core::scene::{Attenuation, NormalTexels};
 use bumpmap_core::shading::{blinn_from_derivatives, offset_to_normal, spot_cone};
 use bumpmap_core::technique::{Gloss, HalfAngle, LitProgram};
@@ -45,6 +46,8 @@ pub(crate) struct SinglePass<'a> {
     pub occlusion: Option<Arc<Texture2d>>,
     pub gloss: Option<Arc<Texture2d>>,
     pub pattern: Option<Arc<Texture2d>>,
+    /// The detail normal map of [`LitProgram::detail`], if any.
+    pub detail: Option<Arc<Texture2d>>,
 }
 
 /// Per-thread working memory: every per-fragment quantity as packed lanes (lane j is the j-th
@@ -54,8 +57,9 @@ pub struct Scratch {
     /// s, t, λ of the lookup being made.
     coords: [Lanes; 3],
     /// The filtered normal map (RGB range-compressed, A = |N'|), the decal, the gloss texture,
-    /// the occlusion map.
+    /// the occlusion map, the detail map.
     normal: [Lanes; 4],
+    detail: [Lanes; 4],
     decal: [Lanes; 4],
     gloss: [Lanes; 4],
     occlusion_map: [Lanes; 4],
@@ -102,6 +106,7 @@ impl Scratch {
         Box::new(Scratch {
             coords: [z; 3],
             normal: [z; 4],
+            detail: [z; 4],
             decal: [z; 4],
             gloss: [z; 4],
             occlusion_map: [z; 4],
@@ -210,6 +215,39 @@ impl SinglePass<'_> {
         sample_2d_lanes(tex, &self.program.sampler, s, t, lambda, n, out);
     }
 
+    /// Lays the detail map over the filtered normal in `sc.normal` ([`detail_normal`] per lane):
+    /// the detail read at `repeat` times the normal map's coordinates, with its own λ.
+    fn detail(
+        &self,
+        layer: &DetailLayer,
+        d: &Texture2d,
+        batch: &FragmentBatch,
+        scale: [f32; 2],
+        sc: &mut Scratch,
+        n: usize,
+    ) {
+        let scale = scale.map(|k| k * layer.repeat);
+        pack_2d_coords(d, batch, [var::S, var::T], scale, &mut sc.coords);
+        if self.program.parallax.is_some() {
+            // At the hit, with the entry point's footprint (as `sample` reads the normal map).
+            let m = n.next_multiple_of(8).min(LANES);
+            for c in 0..2 {
+                for j in 0..m {
+                    sc.coords[c][j] = sc.hit[c][j] * scale[c];
+                }
+            }
+        }
+        let [s, t, lambda] = &sc.coords;
+        sample_2d_lanes(d, &self.program.sampler, s, t, lambda, n, &mut sc.detail);
+        let (nm, dm) = (&mut sc.normal, &sc.detail);
+        for j in 0..n {
+            let base = glam::Vec4::new(nm[0][j], nm[1][j], nm[2][j], nm[3][j]);
+            let texel = glam::Vec4::new(dm[0][j], dm[1][j], dm[2][j], dm[3][j]);
+            let v = detail_normal(base, texel, layer.method, layer.strength);
+            (nm[0][j], nm[1][j], nm[2][j], nm[3][j]) = (v.x, v.y, v.z, v.w);
+        }
+    }
+
     /// Attenuation and the spotlight's cone and pattern, per live lane.
     fn light_factor(&self, batch: &FragmentBatch, sc: &mut Scratch, n: usize) {
         let live = batch.live();
@@ -310,7 +348,11 @@ impl FragmentShader for SinglePass<'_> {
             }
             sc.normal[3][..n].fill(1.0);
         }
-        let mut last = (size(&self.normal_map), scale);
+        if let (Some(layer), Some(d)) = (&o.detail, &self.detail) {
+            self.detail(layer, d, batch, scale, sc, live_n);
+        }
+        // The coordinates packed last (the detail's, which no other texture shares, or none).
+        let mut last = if self.detail.is_some() { ((0, 0), scale) } else { (size(&self.normal_map), scale) };
         match &self.decal {
             Some(d) => {
                 self.sample(d, batch, [1.0, 1.0], sc, live_n, Tex::Decal, last == (size(d), [1.0, 1.0]));

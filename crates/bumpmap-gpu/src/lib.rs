@@ -8,8 +8,9 @@
 //!   ([`combiners_wgsl`]);
 //! - `prelude`: the WGSL generated from the Rust constants it must agree with — the vertex
 //!   stage and its varying slots, the lit program's switches ([`shading_wgsl`]);
-//! - `lit` with `lit.wgsl`, `shading.wgsl` and `parallax.wgsl`: the single pass's fragment
-//!   program (with heights as geometry), its uniforms and its override constants;
+//! - `lit` with `lit.wgsl`, `shading.wgsl`, `detail.wgsl` and `parallax.wgsl`: the single
+//!   pass's fragment program (with a detail map, with heights as geometry), its uniforms and its
+//!   override constants;
 //! - `context`: the adapter and device, and the faults wgpu reports out of band ([`Context`]);
 //! - `present`: a frame shown on a window's surface with an overlay over it
 //!   ([`WindowSurface`]).
@@ -47,7 +48,9 @@ mod textures;
 pub use combiner_wgsl::combiners_wgsl;
 pub use context::Context;
 pub use error::GpuError;
-pub use lit::{parallax_name, parallax_shadow_name, self_shadow_name, specular_filter_name, specular_shadow_name};
+pub use lit::{
+    detail_name, parallax_name, parallax_shadow_name, self_shadow_name, specular_filter_name, specular_shadow_name,
+};
 pub use prelude::{parallax_wgsl, shading_wgsl};
 pub use present::WindowSurface;
 pub use renderer::GpuRenderer;

@@ -10,6 +10,7 @@
 //! It does not hold the model itself: that is `shading.wgsl` (tested against
 //! `bumpmap_core::shading::shade`).
 
+use bumpmap_core::detail::BlendMethod;
 use bumpmap_core::parallax::{ParallaxMethod, ParallaxShadow};
 use bumpmap_core::scene::{Attenuation, NormalTexels};
 use bumpmap_core::shading::LitTerms;
@@ -74,6 +75,32 @@ const PARALLAX_SHADOW: Switch = Switch {
     name: "PARALLAX_SHADOW",
     values: &["PARALLAX_SHADOW_OFF", "PARALLAX_SHADOW_HARD", "PARALLAX_SHADOW_SOFT", "PARALLAX_SHADOW_HORIZON"],
 };
+
+const DETAIL: Switch = Switch {
+    name: "DETAIL",
+    values: &[
+        "DETAIL_NONE",
+        "DETAIL_RNM",
+        "DETAIL_PARTIAL_DERIVATIVE",
+        "DETAIL_WHITEOUT",
+        "DETAIL_UDN",
+        "DETAIL_LINEAR",
+        "DETAIL_OVERLAY",
+    ],
+};
+
+/// The WGSL name of a detail blend's constant (`DETAIL_NONE` for no detail map).
+pub fn detail_name(method: Option<BlendMethod>) -> &'static str {
+    match method {
+        None => "DETAIL_NONE",
+        Some(BlendMethod::Rnm) => "DETAIL_RNM",
+        Some(BlendMethod::PartialDerivative) => "DETAIL_PARTIAL_DERIVATIVE",
+        Some(BlendMethod::Whiteout) => "DETAIL_WHITEOUT",
+        Some(BlendMethod::Udn) => "DETAIL_UDN",
+        Some(BlendMethod::Linear) => "DETAIL_LINEAR",
+        Some(BlendMethod::Overlay) => "DETAIL_OVERLAY",
+    }
+}
 
 /// The WGSL name of a parallax method's constant (`PARALLAX_NONE` for none).
 pub fn parallax_name(method: Option<ParallaxMethod>) -> &'static str {
@@ -154,9 +181,19 @@ fn normal_texels_name(t: &NormalTexels) -> &'static str {
 
 /// Every named value of every switch with its code: the prelude's constants.
 pub(crate) fn named_values() -> impl Iterator<Item = (&'static str, u32)> {
-    [SELF_SHADOW, SPECULAR_SHADOW, SPECULAR_FILTER, GLOSS, ATTENUATION, NORMAL_TEXELS, PARALLAX, PARALLAX_SHADOW]
-        .into_iter()
-        .flat_map(|s| s.values.iter().enumerate().map(|(i, &v)| (v, i as u32)))
+    [
+        SELF_SHADOW,
+        SPECULAR_SHADOW,
+        SPECULAR_FILTER,
+        GLOSS,
+        ATTENUATION,
+        NORMAL_TEXELS,
+        PARALLAX,
+        PARALLAX_SHADOW,
+        DETAIL,
+    ]
+    .into_iter()
+    .flat_map(|s| s.values.iter().enumerate().map(|(i, &v)| (v, i as u32)))
 }
 
 /// The switches of one lit program, as `lit.wgsl`'s override constants.
@@ -185,6 +222,7 @@ pub struct LitVariant {
     occlusion_map: bool,
     decal_alpha: bool,
     vertex_color: bool,
+    detail: u32,
 }
 
 impl Default for LitVariant {
@@ -213,6 +251,7 @@ impl Default for LitVariant {
             occlusion_map: false,
             decal_alpha: false,
             vertex_color: false,
+            detail: 0,
         }
     }
 }
@@ -245,6 +284,7 @@ impl LitVariant {
             occlusion_map: p.occlusion.is_some(),
             decal_alpha: p.decal_alpha,
             vertex_color: p.vertex_color,
+            detail: DETAIL.code(detail_name(p.detail.as_ref().map(|d| d.method))),
         }
     }
 
@@ -255,7 +295,7 @@ impl LitVariant {
 
     /// The override constants by their names in `lit.wgsl`, with their values: the one list
     /// the pipeline's constants and the prelude's declarations are made from.
-    pub(crate) fn overrides(&self) -> [(&'static str, Override); 22] {
+    pub(crate) fn overrides(&self) -> [(&'static str, Override); 23] {
         use Override::{Code, Flag, Float};
         [
             (SELF_SHADOW.name, Code(self.self_shadow)),
@@ -280,6 +320,7 @@ impl LitVariant {
             ("OCCLUSION_MAP", Flag(self.occlusion_map)),
             ("DECAL_ALPHA", Flag(self.decal_alpha)),
             ("VERTEX_COLOR", Flag(self.vertex_color)),
+            (DETAIL.name, Code(self.detail)),
         ]
     }
 
@@ -323,11 +364,12 @@ pub(crate) enum LitMember {
     NormalScale,
     Texels,
     Parallax,
+    Detail,
 }
 
 impl LitMember {
     /// Every member, in the block's order.
-    pub(crate) const ALL: [LitMember; 8] = [
+    pub(crate) const ALL: [LitMember; 9] = [
         LitMember::Ambient,
         LitMember::Diffuse,
         LitMember::Specular,
@@ -336,6 +378,7 @@ impl LitMember {
         LitMember::NormalScale,
         LitMember::Texels,
         LitMember::Parallax,
+        LitMember::Detail,
     ];
 
     /// Its name in WGSL.
@@ -349,6 +392,7 @@ impl LitMember {
             LitMember::NormalScale => "normal_scale",
             LitMember::Texels => "texels",
             LitMember::Parallax => "parallax",
+            LitMember::Detail => "detail",
         }
     }
 
@@ -367,6 +411,7 @@ impl LitMember {
             LitMember::Parallax => {
                 "Heights as geometry: x the layers, y the depth (object units per unit of height), z far / (far - near)."
             }
+            LitMember::Detail => "The detail map: x its repeat over the normal map's coordinates, y its strength.",
         }
     }
 
@@ -399,6 +444,10 @@ impl LitMember {
             },
             LitMember::Parallax => match &p.parallax {
                 Some(x) => [x.parallax.options.layers as f32, x.depth, x.depth_range, 0.0],
+                None => [0.0; 4],
+            },
+            LitMember::Detail => match &p.detail {
+                Some(d) => [d.repeat, d.strength, 0.0, 0.0],
                 None => [0.0; 4],
             },
         }

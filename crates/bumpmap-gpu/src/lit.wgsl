@@ -3,7 +3,7 @@
 // Fragment, then shading.wgsl's shade(). Texture units: the normal map, the decal, the gloss
 // map (white 1x1 textures where absent), the spotlight pattern, the normalization cube map,
 // LEAN's two moment textures, the roughness map, the heights and their min-max bounds, the
-// horizon map, the occlusion map.
+// horizon map, the occlusion map, the detail normal map (detail.wgsl blends it).
 
 // The uniform block `Lit` (the material's numbers, `u` below) is generated from Rust with the
 // prelude (src/prelude.rs lit_block, from src/lit.rs LitMember), in the order Rust packs it.
@@ -38,6 +38,10 @@
 
 // The material's occlusion map: what multiplies the ambient term, in red (white where unused).
 @group(0) @binding(15) var occlusion_map: texture_2d<f32>;
+
+// The detail normal map (bumpmap_core::detail), read at u.detail.x times the normal map's
+// coordinates with its own mips (white where unused).
+@group(0) @binding(16) var detail_map: texture_2d<f32>;
 
 fn horizon_texel(x: i32, y: i32, level: u32, half: u32) -> vec4<f32> {
     if half == 0u {
@@ -219,6 +223,11 @@ fn lit(f: Varyings) -> LitOut {
         } else if NORMAL_TEXELS == NORMAL_TEXELS_DERIVATIVES {
             normal = blinn_from_derivatives(normal, u.texels.x, u.texels.yz, vary3(f, VAR_PARAM_FRAME));
         }
+    }
+    if DETAIL != DETAIL_NONE {
+        let k = scale * u.detail.x;
+        let d = sample_map(detail_map, st * k, dx * k, dy * k);
+        normal = detail_normal(normal, d, DETAIL, u.detail.y);
     }
     var decal = sample_map(decal_map, st, dx, dy);
     var gloss = 1.0;

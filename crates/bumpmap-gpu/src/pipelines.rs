@@ -187,6 +187,8 @@ impl Pipelines {
                 unfiltered_entry(14),
                 // The material's occlusion map.
                 texture_entry(15, D2),
+                // The detail normal map.
+                texture_entry(16, D2),
             ],
         });
         let mut entries = Vec::new();

@@ -23,6 +23,8 @@ pub(crate) const LIT_WGSL: &str = include_str!("lit.wgsl");
 /// `bumpmap_core::shading::shade` in WGSL (with its `Terms` and `Fragment`); it reads the
 /// prelude's switch constants ([`shading_wgsl`]).
 pub(crate) const SHADING_WGSL: &str = include_str!("shading.wgsl");
+/// `bumpmap_core::detail::detail_normal` in WGSL; it reads the prelude's `DETAIL_*` values.
+pub(crate) const DETAIL_WGSL: &str = include_str!("detail.wgsl");
 /// `bumpmap_core::parallax` in WGSL; it reads the prelude's switches and constants, and the
 /// includer's height functions ([`parallax_wgsl`]).
 pub(crate) const PARALLAX_WGSL: &str = include_str!("parallax.wgsl");
@@ -142,10 +144,11 @@ pub fn parallax_wgsl() -> String {
     format!("{}\n{}", switches(), PARALLAX_WGSL)
 }
 
-/// `bumpmap_core::shading::shade` in WGSL with the constants it reads: what the lit program
-/// includes, and what a test runs against the Rust definition.
+/// `bumpmap_core::shading::shade` and `bumpmap_core::detail::detail_normal` in WGSL with the
+/// constants they read: what the lit program includes, and what the tests run against the Rust
+/// definitions.
 pub fn shading_wgsl() -> String {
-    format!("{}\n{}", switches(), SHADING_WGSL)
+    format!("{}\n{}\n{}", switches(), SHADING_WGSL, DETAIL_WGSL)
 }
 
 /// `lit.wgsl`'s uniform block `Lit`, a `vec4<f32>` per member of [`lit::LitMember::ALL`] in
@@ -236,8 +239,12 @@ mod tests {
         // A slot or a switch value written as a number here would not follow a change in Rust:
         // slots are read by their VAR_* names, switches compared with their values' names.
         let switches: Vec<&str> = LitVariant::default().constants().iter().map(|(n, _)| *n).collect();
-        for (file, source) in [("lit.wgsl", LIT_WGSL), ("shading.wgsl", SHADING_WGSL), ("parallax.wgsl", PARALLAX_WGSL)]
-        {
+        for (file, source) in [
+            ("lit.wgsl", LIT_WGSL),
+            ("shading.wgsl", SHADING_WGSL),
+            ("parallax.wgsl", PARALLAX_WGSL),
+            ("detail.wgsl", DETAIL_WGSL),
+        ] {
             for (i, line) in source.lines().enumerate() {
                 let code = line.split("//").next().unwrap_or_default().trim();
                 let at = format!("{file}:{}: {code}", i + 1);

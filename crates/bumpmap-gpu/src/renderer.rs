@@ -269,6 +269,10 @@ impl GpuRenderer {
             Some(o) => t.mips(ctx, o)?,
             None => t.white_2d(ctx),
         };
+        let detail = match &p.detail {
+            Some(d) => t.mips(ctx, &d.map)?,
+            None => t.white_2d(ctx),
+        };
         let pattern = match p.light.spot.as_ref().and_then(|s| s.pattern.as_ref()) {
             Some(pattern) => t.mips(ctx, pattern)?,
             None => t.white_2d(ctx),
@@ -324,6 +328,7 @@ impl GpuRenderer {
             wgpu::BindGroupEntry { binding: 13, resource: TextureView(&horizons_0123) },
             wgpu::BindGroupEntry { binding: 14, resource: TextureView(&horizons_4567) },
             wgpu::BindGroupEntry { binding: 15, resource: TextureView(&occlusion) },
+            wgpu::BindGroupEntry { binding: 16, resource: TextureView(&detail) },
         ];
         Ok(ctx.device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("lit"),

@@ -48,6 +48,8 @@ pub enum Action {
     LayersDown,
     /// The marches' self-shadowing: off, hard, soft.
     ParallaxShadow,
+    /// The detail map's blend, each in turn, then none (with `--detail-map`).
+    Detail,
     /// The other backend (CPU or GPU).
     Backend,
     /// The triangles' edges drawn over the image.
@@ -66,7 +68,7 @@ pub enum Action {
 
 impl Action {
     /// Every action, in the order the help overlay lists them.
-    pub const ALL: [Action; 28] = [
+    pub const ALL: [Action; 29] = [
         Action::Pause,
         Action::NextTechnique,
         Action::PreviousTechnique,
@@ -88,6 +90,7 @@ impl Action {
         Action::LayersUp,
         Action::LayersDown,
         Action::ParallaxShadow,
+        Action::Detail,
         Action::Backend,
         Action::Wireframe,
         Action::FrameRate,
@@ -121,6 +124,7 @@ impl Action {
             Action::LayersUp => 'K',
             Action::LayersDown => 'k',
             Action::ParallaxShadow => 'p',
+            Action::Detail => 'e',
             Action::Backend => 'b',
             Action::Wireframe => 'w',
             Action::FrameRate => 'f',
@@ -168,6 +172,7 @@ impl Action {
             Action::LayersUp => "more layers (parallax marches)",
             Action::LayersDown => "fewer layers",
             Action::ParallaxShadow => "parallax shadows: off/hard/soft/horizon",
+            Action::Detail => "detail map: next blend, then off",
             Action::Backend => "switch backend (cpu / gpu)",
             Action::Wireframe => "wireframe on / off",
             Action::FrameRate => "frame rate on / off",

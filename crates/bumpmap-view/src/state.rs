@@ -17,6 +17,8 @@
 
 use std::path::{Path, PathBuf};
 
+use bumpmap::Named;
+use bumpmap::bumpmap_core::detail::BlendMethod;
 use bumpmap::bumpmap_core::parallax::{MAX_LAYERS, ParallaxMethod};
 use bumpmap::motion::{LightOrbit, MAX_TILT, orbit_camera};
 use bumpmap::options::{Given, SceneChoice, SceneOptions};
@@ -108,6 +110,7 @@ impl Viewer {
             depth: base.spec.params.depth,
             layers: base.options.parallax.layers,
             parallax_shadow: base.options.parallax.shadow,
+            detail: base.options.single_pass.detail.as_ref().map(|d| d.method),
         };
         let scenes = scenes_with(&base.spec.kind);
         let choices = Choices { scene: scenes.iter().position(|k| *k == base.spec.kind).unwrap_or(0), ..choices };
@@ -256,6 +259,16 @@ impl Viewer {
                     Some("horizon always shadows by the horizon map: the shadow key cycles the marches' shadows".into())
             }
             Action::ParallaxShadow => c.parallax_shadow = c.parallax_shadow.next(),
+            Action::Detail if self.base.options.single_pass.detail.is_none() => {
+                self.message = Some("no detail map to blend: start the viewer with --detail-map FILE".into())
+            }
+            Action::Detail => {
+                let all = BlendMethod::ALL;
+                c.detail = match c.detail {
+                    None => Some(all[0]),
+                    Some(m) => all.iter().position(|&x| x == m).and_then(|i| all.get(i + 1)).copied(),
+                }
+            }
         }
         self.moved();
         if c != self.choices {
@@ -414,13 +427,14 @@ impl Viewer {
             None => String::new(),
         };
         // The filter the technique drawn applies (kilgard and emboss apply none, whatever `g`
-        // chose; toksvig and lean apply their own).
-        let filter = match &self.prepared.technique {
-            Technique::SinglePass(o) => o.specular_filter,
-            _ => SpecularFilter::None,
+        // chose; toksvig and lean apply their own), and the detail it lays over the normal map.
+        let (filter, detail) = match &self.prepared.technique {
+            Technique::SinglePass(o) => (o.specular_filter, o.detail.as_ref()),
+            _ => (SpecularFilter::None, None),
         };
+        let detail = detail.map(|d| format!(" | detail {} x{}", d.method.name(), d.repeat)).unwrap_or_default();
         format!(
-            "{}{heights} | {} | bumps {:.2} | shininess {:.1} | mips {} | {}{}{}{}",
+            "{}{heights} | {} | bumps {:.2} | shininess {:.1} | mips {} | {}{}{}{detail}{}",
             self.technique().name(),
             self.scenes[c.scene].name(),
             c.bump_scale,

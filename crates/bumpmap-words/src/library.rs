@@ -48,6 +48,7 @@ pub fn core_err(e: CoreError) -> Error {
         Feature::RoughnessFilter => "--specular-filter roughness-map on this map".into(),
         Feature::Parallax => "heights as geometry on this map".into(),
         Feature::MaskWithDepth => "a glTF material with alphaMode MASK under --write-depth or --silhouettes".into(),
+        Feature::DetailMap => "--detail-map on this map".into(),
     }
     };
     match e {
@@ -65,6 +66,10 @@ pub fn core_err(e: CoreError) -> Error {
         CoreError::Unsupported { technique, feature: Feature::Parallax } => Error::Render(format!(
             "--technique {technique} with heights as geometry reads a tangent-space map of unit normals at each hit; \
              the object-space, offset-map and peercy techniques' maps are made otherwise: use --technique pom (or another parallax technique) on its own"
+        )),
+        CoreError::Unsupported { technique, feature: Feature::DetailMap } => Error::Render(format!(
+            "--detail-map is laid over a tangent-space map of unit normals, and --technique {technique}'s map is made otherwise \
+             (object space, offsets or derivatives): use --technique single-pass, or blend the detail in first with `bumpmap blend`"
         )),
         e @ CoreError::HeightsSize { .. } => Error::Render(format!("--height-map: {e}")),
         CoreError::NoMinMax { technique } => Error::Render(format!(

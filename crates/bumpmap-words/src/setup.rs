@@ -40,6 +40,13 @@ pub fn setup_err(e: SetupError) -> Error {
                 f => format!(" with --specular-filter {}", specular_filter_value(f)),
             }
         )),
+        SetupError::DetailNotDrawn { technique } => Error::Usage(format!(
+            "--detail-map is laid over the normal map per pixel by single-pass and its variants, not by --technique {technique}{}: \
+             add --technique single-pass (or pom, toksvig, …), or blend the detail into the normal map first \
+             (`bumpmap blend BASE DETAIL -o OUT`, then --normal-map OUT), as a GeForce 256 title would have: \
+             the paper's combiners have both texture units taken (the normal map, the normalization cube map)",
+            if technique == bumpmap::options::TechniqueChoice::default().technique { " (the default)" } else { "" }
+        )),
         SetupError::NoMinMax { path, minmax, technique } => Error::Path {
             path,
             reason: format!(

@@ -60,13 +60,17 @@ pub fn render_request(
                 arrays.height_field = Some(arrays::height_field(v).map_err(|e| prefixed(py, function, key, e))?);
                 Value::Text("<height_field array>".into())
             }
-            "normal_map" if is_arrays(v)? => {
+            "normal_map" | "detail_map" if is_arrays(v)? => {
                 let (levels, format) = match arrays::to_chain(v).map_err(|e| prefixed(py, function, key, e))? {
                     Chain::Rgba8(c) => (StoredLevels::Rgba8(c.levels), TextureFormat::Rgba8),
                     Chain::Rgba16(c) => (StoredLevels::Rgba16(c.levels), TextureFormat::Rgba16),
                 };
-                arrays.normal_map = Some(StoredTexture { levels, format });
-                Value::Path(PathBuf::from("<normal_map array>"))
+                let texture = Some(StoredTexture { levels, format });
+                match key {
+                    "normal_map" => arrays.normal_map = texture,
+                    _ => arrays.detail_map = texture,
+                }
+                Value::Path(PathBuf::from(format!("<{key} array>")))
             }
             "decal" if is_arrays(v)? => {
                 match arrays::to_chain(v).map_err(|e| prefixed(py, function, key, e))? {

@@ -197,8 +197,11 @@ pub struct LitProgram {
     /// the backend samples [`crate::shading::roughness_texture`] of the normal map and the
     /// terms' shininess. Read with the normal map's coordinates and sampler.
     pub roughness_map: Option<Arc<Rgba8Mips>>,
-    /// The filtering of the normal map, decal, gloss and occlusion maps.
+    /// The filtering of the normal map, decal, gloss and occlusion maps (and the detail map's).
     pub sampler: Sampler,
+    /// A detail normal map laid over the normal map per fragment, read with the normal map's
+    /// coordinates times its repeat ([`crate::detail`]); `None`: none.
+    pub detail: Option<crate::detail::DetailLayer>,
     /// What multiplies the ambient term, in red, read with the decal's coordinates
     /// ([`crate::scene::Material::occlusion`]); `None`: 1.
     pub occlusion: Option<Arc<Rgba8Mips>>,

@@ -10,6 +10,7 @@ use std::sync::Arc;
 
 use bumpmap_math::Rgba8Mips;
 
+use crate::detail::{DetailLayer, MAX_DETAIL_REPEAT};
 use crate::error::{CoreError, Feature};
 use crate::parallax::{MAX_LAYERS, Parallax, ParallaxMethod};
 use crate::scene::{AlphaMode, Attenuation, Scene, SceneLight};
@@ -91,6 +92,9 @@ pub struct SinglePassOptions {
     /// Heights as geometry: the march that finds where each pixel's ray meets the material's
     /// heights, or `None` to read the maps where the ray enters the polygon.
     pub parallax: Option<Parallax>,
+    /// A detail normal map laid over every material's normal map per fragment
+    /// ([`crate::detail`]), or `None`.
+    pub detail: Option<DetailLayer>,
 }
 
 impl Default for SinglePassOptions {
@@ -106,6 +110,7 @@ impl Default for SinglePassOptions {
             specular_filter: SpecularFilter::None,
             roughness_map: None,
             parallax: None,
+            detail: None,
         }
     }
 }
@@ -151,6 +156,9 @@ pub fn validate(scene: &Scene, options: &SinglePassOptions) -> Result<(), CoreEr
     if let Some(p) = &options.parallax {
         validate_parallax(scene, p)?;
     }
+    if let Some(d) = &options.detail {
+        validate_detail(scene, d)?;
+    }
     validate_lights(&scene.lights)
 }
 
@@ -194,6 +202,28 @@ pub fn validate_parallax(scene: &Scene, p: &Parallax) -> Result<(), CoreError> {
     }
     Ok(())
 }
+
+/// Checks a detail map: its repeat and strength, and that every material's normal map is a
+/// tangent-space map of unit normals (the blends compose two tangent-space normals).
+pub fn validate_detail(scene: &Scene, d: &DetailLayer) -> Result<(), CoreError> {
+    if !(d.repeat > 0.0 && d.repeat <= MAX_DETAIL_REPEAT) {
+        return Err(CoreError::out_of_range("the detail's repeat", d.repeat, "in (0, 1024]"));
+    }
+    if !(d.strength.is_finite() && d.strength >= 0.0) {
+        return Err(CoreError::out_of_range("the detail's strength", d.strength, "finite and not negative"));
+    }
+    for object in &scene.objects {
+        let m = &object.material;
+        if m.normal_space != crate::scene::NormalSpace::Tangent
+            || m.normal_texels != crate::scene::NormalTexels::UnitVector
+        {
+            return Err(CoreError::Unsupported { technique: NAME, feature: Feature::DetailMap });
+        }
+    }
+    Ok(())
+}
+
+const _: () = assert!(MAX_DETAIL_REPEAT == 1024.0, "the message of validate_detail says 1024");
 
 const _: () = assert!(MAX_LIGHTS == 64, "the message of validate_lights says 64");
 
@@ -262,6 +292,7 @@ pub fn passes(scene: &Scene, options: &SinglePassOptions) -> Result<Vec<Pass>, C
                     _ => None,
                 },
                 sampler: options.sampler.for_material(&m.sampler),
+                detail: options.detail.clone(),
                 occlusion: m.occlusion.clone(),
                 decal_alpha: blended,
                 vertex_color: object.mesh.has_colors(),

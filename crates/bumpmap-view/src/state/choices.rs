@@ -2,6 +2,7 @@
 //! prepare the scene again ([`Choices`]), the view that only redraws ([`View`]), and what the
 //! window does next ([`Effect`]). What this module does not do: apply a key (`super::Viewer`).
 
+use bumpmap::bumpmap_core::detail::BlendMethod;
 use bumpmap::{ParallaxShadow, SpecularFilter};
 
 /// The mip levels a technique samples.
@@ -69,6 +70,8 @@ pub struct Choices {
     pub layers: u32,
     /// The marches' self-shadowing.
     pub parallax_shadow: ParallaxShadow,
+    /// How the detail map (`--detail-map`) is laid over the normal map, or `None`: not at all.
+    pub detail: Option<BlendMethod>,
 }
 
 /// Where the light and the camera are, and what is shown over the image: changes here only

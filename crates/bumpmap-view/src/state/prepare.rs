@@ -78,6 +78,10 @@ pub(super) fn prepare(
     sp.sampler = sampler;
     sp.normalize = if c.cube { Normalize::Cube } else { Normalize::Math };
     sp.specular_filter = c.specular_filter;
+    sp.detail = match (&base.options.single_pass.detail, c.detail) {
+        (Some(d), Some(method)) => Some(bumpmap::bumpmap_core::detail::DetailLayer { method, ..d.clone() }),
+        _ => None,
+    };
     if !c.self_shadow {
         sp.self_shadow = SelfShadow::Off;
         options.reference.self_shadow = SelfShadow::Off;

@@ -21,6 +21,17 @@ fn viewer(extra: &[&str]) -> Viewer {
     Viewer::new(request.options).unwrap()
 }
 
+/// A 16² detail map of tilted normals (a checker of two slopes), written once per test run.
+fn detail_map() -> String {
+    let dir = std::env::temp_dir().join(format!("bumpmap-view-detail-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let map = dir.join("detail.png");
+    let tilt =
+        |x: u32, y: u32| if (x / 2 + y / 2).is_multiple_of(2) { [200, 128, 230, 255] } else { [56, 128, 230, 255] };
+    image::RgbaImage::from_fn(16, 16, |x, y| image::Rgba(tilt(x, y))).save(&map).unwrap();
+    map.to_str().unwrap().to_string()
+}
+
 fn normal_texels(v: &Viewer) -> Vec<[u8; 4]> {
     v.prepared.scene.objects[0].material.normal_map.levels()[0].texels.clone()
 }
@@ -30,9 +41,11 @@ fn every_key_changes_what_it_names_and_toggles_come_back() {
     for action in Action::ALL {
         // The depth keys change heights as geometry, which the default technique has none of;
         // the shininess keys a shininess, which its combiners fix at 8.
+        let detail = detail_map();
         let extra: &[&str] = match action {
             Action::DepthUp | Action::DepthDown => &["--technique", "pom"],
             Action::ShininessUp | Action::ShininessDown => &["--technique", "single-pass"],
+            Action::Detail => &["--technique", "single-pass", "--detail-map", &detail],
             _ => &[],
         };
         let mut v = viewer(extra);
@@ -263,4 +276,35 @@ fn the_status_line_names_the_specular_filter_only_where_the_technique_applies_it
             assert_eq!(status.contains(&format!("| {name}")), shown == Some(name), "{technique}: {status}");
         }
     }
+}
+
+#[test]
+fn the_detail_key_cycles_the_blends_then_none_and_needs_a_detail_map() {
+    let detail = detail_map();
+    let mut v = viewer(&["--technique", "single-pass", "--detail-map", &detail, "--detail-method", "udn"]);
+    assert!(v.status().contains("| detail udn x8"), "{}", v.status());
+    let drawn = |v: &Viewer| match &v.prepared.technique {
+        Technique::SinglePass(o) => o.detail.as_ref().map(|d| d.method),
+        _ => None,
+    };
+    let mut seen = vec![drawn(&v)];
+    for _ in 0..BlendMethod::ALL.len() {
+        v.apply(Action::Detail);
+        seen.push(drawn(&v));
+    }
+    // udn, linear, overlay, none, then from the first: every blend once and none once.
+    assert_eq!(seen[3], None, "{seen:?}");
+    assert_eq!(seen.iter().flatten().count(), BlendMethod::ALL.len(), "{seen:?}");
+    assert!(v.status().contains("| detail whiteout x8"), "{}", v.status());
+    // kilgard draws no detail, and its status says none.
+    let mut v = viewer(&["--technique", "single-pass", "--detail-map", &detail]);
+    v.apply(Action::PreviousTechnique);
+    assert_eq!(v.technique(), TechniqueName::Kilgard);
+    assert!(!v.status().contains("| detail"), "{}", v.status());
+    // Without a detail map the key says how to give one and changes nothing.
+    let mut v = viewer(&["--technique", "single-pass"]);
+    let before = v.choices.clone();
+    v.apply(Action::Detail);
+    assert_eq!(v.choices, before);
+    assert!(v.message.as_deref().is_some_and(|m| m.contains("--detail-map")), "{:?}", v.message);
 }

@@ -11,7 +11,7 @@ const COMMAND: &str = "";
 type Row = Opt<BlendOptions>;
 
 /// A strength: finite and not negative.
-fn strength(v: &Value) -> Result<(), String> {
+pub(super) fn strength(v: &Value) -> Result<(), String> {
     match v {
         Value::Number(x) if x.is_finite() && *x >= 0.0 => Ok(()),
         _ => Err(format!("'{v}' is not a strength (a number, 0 or more)")),

@@ -2,6 +2,7 @@
 //! technique, heights and backend, which `bench render` and `view` take too) and the frame's
 //! size ([`FRAME`]); [`render`] is both, in `--help`'s order.
 
+use bumpmap_core::detail::MAX_DETAIL_REPEAT;
 use bumpmap_core::parallax::MAX_LAYERS;
 use bumpmap_core::technique::SelfShadow;
 
@@ -18,6 +19,7 @@ const LIGHTS: &str = "Lights";
 const MATERIAL: &str = "Material";
 const TECHNIQUE: &str = "Technique";
 const HEIGHTS: &str = "Heights as geometry (parallax, steep-parallax, pom, relief, height-exact, reference-displaced)";
+const DETAIL: &str = "Detail normal map (single-pass and its variants, the specular filters, heights as geometry)";
 const BACKEND: &str = "Backend";
 /// The frame's options are listed with the command's own (no section of their own).
 const COMMAND: &str = "";
@@ -49,6 +51,14 @@ fn repeat(v: &Value) -> Result<(), String> {
         Ok(())
     } else {
         Err(format!("repeats must be non-zero and within ±1024, got '{v}'"))
+    }
+}
+
+/// A detail's repeat: positive, at most [`MAX_DETAIL_REPEAT`].
+fn detail_repeat(v: &Value) -> Result<(), String> {
+    match v {
+        Value::Number(r) if *r > 0.0 && *r <= MAX_DETAIL_REPEAT => Ok(()),
+        _ => Err(format!("'{v}' is not a repeat: give a number in (0, {MAX_DETAIL_REPEAT}]")),
     }
 }
 
@@ -133,6 +143,11 @@ pub static SCENE: &[Opt<FrameRequest>] = &[
     Row::new("silhouettes", HEIGHTS, "On curved surfaces, drop pixels whose ray leaves the surface without meeting the heights, so bumps cut the silhouette (the surface's curvature bends the ray, Oliveira & Policarpo 2005)", |r| &mut r.options.heights.silhouettes),
     Row::new("write-depth", HEIGHTS, "Write the depth where the ray met the heights instead of the polygon's, so two bumpy surfaces intersect where their bumps do", |r| &mut r.options.heights.write_depth),
     Row::new("ambient-occlusion", HEIGHTS, "Multiply the ambient term by the ambient occlusion of the heights' horizon map (Sloan & Cohen 2000): the share of the sky each point sees past the bumps around it, at the depth drawn", |r| &mut r.options.heights.ambient_occlusion),
+    Row::new("detail-map", DETAIL, "A second normal map laid over the normal map per pixel, tiling (a fabric weave, pores, scratches): read as --normal-map reads files, with its own mip levels, at 8 bits a channel as every texture is. kilgard, emboss and the reference refuse it: blend it into the normal map first with `bumpmap blend`", |r| &mut r.options.detail.map).value_name("FILE"),
+    Row::new("detail-repeat", DETAIL, "How many times the detail repeats over one repeat of the normal map, each way", |r| &mut r.options.detail.repeat).check(detail_repeat).requires(&["detail-map"]),
+    Row::word("detail-method", DETAIL, "How the detail is laid over the normal map (rnm is exact for a detail draped over the bumps, partial-derivative for heights that add; compare's detail study measures every method)", |r| &mut r.options.detail.method).requires(&["detail-map"]),
+    Row::new("detail-strength", DETAIL, "What the detail's slopes are multiplied by (0: no detail, 1: as stored)", |r| &mut r.options.detail.strength).check(super::blend::strength).requires(&["detail-map"]),
+    Row::maybe_word("detail-y-convention", DETAIL, "Which way --detail-map's green points, when not as --y-convention says: it is flipped to the renderer's (opengl) and said [default: --y-convention's]", |r| &mut r.options.detail.y_convention).requires(&["detail-map"]),
     Row::word("backend", BACKEND, "cpu: the emulated GeForce on all cores; gpu: wgpu (Vulkan, Metal, DX12 or GL; on a machine without a GPU, Mesa's lavapipe: Debian's mesa-vulkan-drivers); auto: the GPU when an adapter exists, else the CPU (and says why). The reference always runs on the CPU", |r| &mut r.backend),
 ];
 

@@ -12,6 +12,7 @@ use bumpmap_math::imported::ImportOptions;
 use bumpmap_math::{HeightPreset, MipMode, YConvention};
 use glam::Vec3;
 
+use super::detail;
 use super::error::BesideMap;
 use super::files::{decal_mips, files_beside, named_inputs, texture_file};
 use super::technique::{check_ranges, lights, technique_options};
@@ -95,7 +96,8 @@ pub(super) fn set_up(o: &SceneOptions, given: &Given) -> Result<SetUp, SetupErro
     p.repeat = o.repeat;
     spec.params.lights = lights(o, &spec)?;
 
-    let options = technique_options(o, &mut notes)?;
+    let mut options = technique_options(o, &mut notes)?;
+    options.single_pass.detail = detail::detail_layer(o, given, &mut notes)?;
     inputs.extend(files_beside(o)?);
     Ok(SetUp { spec, options, inputs, notes })
 }

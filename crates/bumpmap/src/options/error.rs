@@ -189,6 +189,14 @@ pub enum SetupError {
         /// The specular filter asked for.
         specular_filter: SpecularFilter,
     },
+    /// A detail map given to a technique that does not read one.
+    #[error(
+        "detail_map is laid over the normal map by the single pass and its variants, not by {technique}: the paper's combiners have both texture units taken (the normal map, the normalization cube map), emboss reads no normal map and the reference draws the heights as a surface. Blend the detail into the normal map first (`bumpmap blend`, Python's blend_normals), as a GeForce 256 title would have"
+    )]
+    DetailNotDrawn {
+        /// The technique asked for.
+        technique: TechniqueName,
+    },
     /// A mesh given in memory whose values cannot be drawn.
     #[error("{}: {reason}", shown(.path))]
     MeshValues {

@@ -25,6 +25,7 @@ pub(super) fn named_inputs(o: &SceneOptions) -> Vec<PathBuf> {
         files.push(p.clone());
     }
     files.extend(o.material.roughness_map.clone());
+    files.extend(o.detail.map.clone());
     if let Some(h) = &o.heights.height_map {
         files.push(h.clone());
         files.push(bumpmap_io::height_file::minmax_path(h));

@@ -27,6 +27,7 @@
 use std::path::PathBuf;
 
 use bumpmap_core::combiners::Precision;
+use bumpmap_core::detail::BlendMethod;
 use bumpmap_core::parallax::{DEFAULT_LAYERS, ParallaxShadow};
 use bumpmap_core::scene::{Attenuation, SceneLight, ViewerModel};
 use bumpmap_core::state::Sampler;
@@ -37,6 +38,7 @@ use bumpmap_math::YConvention;
 use glam::{Vec2, Vec3};
 
 mod build;
+mod detail;
 mod error;
 mod files;
 mod roughness;
@@ -85,6 +87,8 @@ pub struct SceneOptions {
     pub technique: TechniqueChoice,
     /// Heights as geometry.
     pub heights: HeightsOptions,
+    /// A detail normal map laid over the normal map at render time.
+    pub detail: DetailOptions,
 }
 
 impl Default for SceneOptions {
@@ -107,6 +111,7 @@ impl Default for SceneOptions {
             material: MaterialOptions::default(),
             technique: TechniqueChoice::default(),
             heights: HeightsOptions::default(),
+            detail: DetailOptions::default(),
         }
     }
 }
@@ -422,6 +427,27 @@ impl Default for HeightsOptions {
     }
 }
 
+/// A detail normal map laid over the normal map per pixel ([`bumpmap_core::detail`]).
+#[derive(Clone, Debug)]
+pub struct DetailOptions {
+    /// The detail's file (`None`: no detail), read as a normal map file is.
+    pub map: Option<PathBuf>,
+    /// How many times it repeats over one repeat of the normal map, each way.
+    pub repeat: f32,
+    /// How it is laid over the normal map.
+    pub method: BlendMethod,
+    /// What its slopes are multiplied by.
+    pub strength: f32,
+    /// Which way its green points (`None`: as [`SceneOptions::y_convention`] says).
+    pub y_convention: Option<YConvention>,
+}
+
+impl Default for DetailOptions {
+    fn default() -> Self {
+        DetailOptions { map: None, repeat: 8.0, method: BlendMethod::Rnm, strength: 1.0, y_convention: None }
+    }
+}
+
 /// Inputs given in memory instead of read from files (arrays from Python, say): each stands
 /// where the file its option names would, used exactly as that file's contents would be. The
 /// option must still be given: its path names the input in messages.
@@ -433,6 +459,8 @@ pub struct Given {
     pub height_field: Option<bumpmap_math::HeightField>,
     /// [`SceneOptions::decal`]'s image.
     pub decal: Option<bumpmap_math::Rgba8Image>,
+    /// [`DetailOptions::map`]'s texture, as the file would load.
+    pub detail_map: Option<bumpmap_io::StoredTexture>,
     /// The mesh [`SceneChoice::Mesh`] names, in place of reading the file (no material: the
     /// scene's bumps and decal, as for an OBJ). Its normals are made from the faces where it
     /// has none, its tangents where it has none.

@@ -245,6 +245,8 @@ pub(super) fn technique_options(o: &SceneOptions, notes: &mut Vec<SetupNote>) ->
             parallax: None,
             specular_filter: t.specular_filter,
             roughness_map,
+            // Read from its file by `detail::detail_layer`.
+            detail: None,
         },
         emboss: EmbossOptions { sampler, cube_size, ..Default::default() },
         reference: ReferenceOptions {
