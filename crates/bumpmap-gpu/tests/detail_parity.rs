@@ -20,20 +20,12 @@ use bumpmap_gpu::{detail_name, shading_wgsl};
 use bumpmap_math::{HeightPreset, MipChain, MipMode, Named, NormalMapOptions, Rgba8Image};
 use glam::Vec4;
 
-struct Rng(u64);
+use common::{Rng, wgsl_literal};
 
-impl Rng {
-    fn unit(&mut self) -> f32 {
-        self.0 = self.0.wrapping_mul(6_364_136_223_846_793_005).wrapping_add(1_442_695_040_888_963_407);
-        (self.0 >> 40) as f32 / (1u64 << 24) as f32
-    }
-
-    /// A filtered texel: a direction in the upper hemisphere range-compressed, a length in
-    /// [0.3, 1].
-    fn texel(&mut self) -> Vec4 {
-        let n = glam::Vec3::new(self.unit() * 2.0 - 1.0, self.unit() * 2.0 - 1.0, 0.05 + self.unit()).normalize();
-        (n * 0.5 + 0.5).extend(0.3 + 0.7 * self.unit())
-    }
+/// A filtered texel: a direction in the upper hemisphere range-compressed, a length in [0.3, 1].
+fn texel(rng: &mut Rng) -> Vec4 {
+    let n = glam::Vec3::new(rng.unit() * 2.0 - 1.0, rng.unit() * 2.0 - 1.0, 0.05 + rng.unit()).normalize();
+    (n * 0.5 + 0.5).extend(0.3 + 0.7 * rng.unit())
 }
 
 #[test]
@@ -41,7 +33,7 @@ fn wgsl_detail_normal_is_the_definition() {
     let Some(ctx) = common::context() else { return };
     let mut rng = Rng(5);
     let n = 4096;
-    let pairs: Vec<(Vec4, Vec4)> = (0..n).map(|_| (rng.texel(), rng.texel())).collect();
+    let pairs: Vec<(Vec4, Vec4)> = (0..n).map(|_| (texel(&mut rng), texel(&mut rng))).collect();
     let flat: Vec<f32> = pairs.iter().flat_map(|(b, d)| b.to_array().into_iter().chain(d.to_array())).collect();
     let shading = shading_wgsl();
     let mut worst = 0f32;
@@ -56,10 +48,10 @@ struct In {{ base: vec4<f32>, detail: vec4<f32> }};
 fn main(@builtin(global_invocation_id) id: vec3<u32>) {{
     if id.x >= arrayLength(&outputs) {{ return; }}
     let i = inputs[id.x];
-    outputs[id.x] = detail_normal(i.base, i.detail, {}, bitcast<f32>({:#010x}u));
+    outputs[id.x] = detail_normal(i.base, i.detail, {}, {});
 }}",
                 detail_name(Some(method)),
-                strength.to_bits()
+                wgsl_literal(strength)
             );
             let got = common::run_compute(&ctx, &wgsl, common::bytes(&flat), n).expect("detail.wgsl compiles");
             for ((b, d), g) in pairs.iter().zip(&got) {

@@ -15,20 +15,11 @@ use bumpmap_core::technique::{SelfShadow, SpecularFilter, SpecularShadow};
 use bumpmap_gpu::{self_shadow_name, shading_wgsl, specular_filter_name, specular_shadow_name};
 use glam::{Vec2, Vec3, Vec4};
 
-struct Rng(u64);
+use common::{Rng, wgsl_literal};
 
-impl Rng {
-    fn unit(&mut self) -> f32 {
-        self.0 = self.0.wrapping_mul(6_364_136_223_846_793_005).wrapping_add(1_442_695_040_888_963_407);
-        (self.0 >> 40) as f32 / (1u64 << 24) as f32
-    }
-    fn vec3(&mut self) -> Vec3 {
-        Vec3::new(self.unit() * 2.0 - 1.0, self.unit() * 2.0 - 1.0, self.unit() * 2.0 - 1.0).normalize_or(Vec3::Z)
-    }
-}
-
-fn wgsl_literal(v: f32) -> String {
-    format!("bitcast<f32>({:#010x}u)", v.to_bits())
+/// A random direction (+Z where the draw has none).
+fn vec3(rng: &mut Rng) -> Vec3 {
+    Vec3::new(rng.unit() * 2.0 - 1.0, rng.unit() * 2.0 - 1.0, rng.unit() * 2.0 - 1.0).normalize_or(Vec3::Z)
 }
 
 #[test]
@@ -38,7 +29,7 @@ fn wgsl_shade_is_the_lighting_model() {
     let n = 2048;
     let fragments: Vec<Fragment> = (0..n)
         .map(|_| {
-            let (l, h) = (rng.vec3(), rng.vec3());
+            let (l, h) = (vec3(&mut rng), vec3(&mut rng));
             Fragment {
                 normal: Vec4::new(rng.unit(), rng.unit(), rng.unit(), rng.unit()),
                 decal: Vec3::new(rng.unit(), rng.unit(), rng.unit()),

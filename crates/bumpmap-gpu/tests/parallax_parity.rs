@@ -19,14 +19,7 @@ use bumpmap_gpu::{parallax_name, parallax_shadow_name, parallax_wgsl};
 use bumpmap_math::HeightMips;
 use glam::{Vec2, Vec3};
 
-struct Rng(u64);
-
-impl Rng {
-    fn unit(&mut self) -> f32 {
-        self.0 = self.0.wrapping_mul(6_364_136_223_846_793_005).wrapping_add(1_442_695_040_888_963_407);
-        (self.0 >> 40) as f32 / (1u64 << 24) as f32
-    }
-}
+use common::Rng;
 
 /// The heights, their min–max levels and their horizons behind a header, as `data` lays them
 /// out.

@@ -24,7 +24,7 @@ use crate::error::Error;
 mod look;
 mod normal_map;
 
-pub use normal_map::{LoadedNormalMap, load_normal_map, normal_map_from_texture};
+pub use normal_map::{LoadedNormalMap, given_or_load_normal_map, green_way, load_normal_map, normal_map_from_texture};
 
 /// The fraction of texels off unit length above which a normal map gets a
 /// [`Warning::NotUnitLength`]: a baked map's empty background can be a few percent; a photograph

@@ -7,6 +7,23 @@ use bumpmap_gpu::Context;
 use bumpmap_gpu::GpuRenderer;
 use wgpu::util::DeviceExt as _;
 
+/// The parity tests' random numbers: a 64-bit LCG (Knuth's MMIX constants), its high 24 bits as
+/// a float in [0, 1).
+pub struct Rng(pub u64);
+
+impl Rng {
+    /// The next number in [0, 1).
+    pub fn unit(&mut self) -> f32 {
+        self.0 = self.0.wrapping_mul(6_364_136_223_846_793_005).wrapping_add(1_442_695_040_888_963_407);
+        (self.0 >> 40) as f32 / (1u64 << 24) as f32
+    }
+}
+
+/// `v` as a WGSL expression of exactly its bits.
+pub fn wgsl_literal(v: f32) -> String {
+    format!("bitcast<f32>({:#010x}u)", v.to_bits())
+}
+
 /// Whether a missing adapter must fail the test (CI installs lavapipe, so there it must).
 fn adapter_required() -> bool {
     std::env::var_os("CI").is_some() || std::env::var_os("BUMPMAP_REQUIRE_GPU").is_some()

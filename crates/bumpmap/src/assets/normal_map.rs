@@ -101,6 +101,27 @@ pub fn normal_map_from_texture(
     })
 }
 
+/// [`normal_map_from_texture`] of `given` where the caller holds the texture in memory, else
+/// [`load_normal_map`] of `path`.
+pub fn given_or_load_normal_map(
+    path: &Path,
+    given: Option<&StoredTexture>,
+    options: &ImportOptions,
+) -> Result<LoadedNormalMap, Error> {
+    match given {
+        Some(texture) => normal_map_from_texture(texture, path, options),
+        None => load_normal_map(path, options),
+    }
+}
+
+/// Which way green points, as the notes say it (`up: opengl`, `down: directx`).
+pub fn green_way(y: bumpmap_math::YConvention) -> &'static str {
+    match y {
+        bumpmap_math::YConvention::YUp => "up: opengl",
+        bumpmap_math::YConvention::YDown => "down: directx",
+    }
+}
+
 /// Reads a normal map: a PNG (8 or 16 bits) or another image, or a DDS or KTX2 file with the
 /// levels it carries (RGBA8, BGRA8, RGBA16, BC5 with Z rebuilt, BC7). `options` say which way
 /// its green points, how to scale its slopes, and how to make its smaller levels when it has

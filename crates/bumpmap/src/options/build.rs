@@ -9,7 +9,7 @@ use std::sync::Arc;
 use bumpmap_core::{BumpSource, SceneKind, SceneSpec};
 use bumpmap_io::{Channel, HeightSource, MeshOptions};
 use bumpmap_math::imported::ImportOptions;
-use bumpmap_math::{HeightPreset, MipMode, YConvention};
+use bumpmap_math::{HeightPreset, MipMode};
 use glam::Vec3;
 
 use super::detail;
@@ -17,7 +17,7 @@ use super::error::BesideMap;
 use super::files::{decal_mips, files_beside, named_inputs, texture_file};
 use super::technique::{check_ranges, lights, technique_options};
 use super::{DecalChoice, Given, SceneChoice, SceneOption, SceneOptions, SetUp, SetupError, SetupNote};
-use crate::assets::{MeshLoad, load_mesh, load_normal_map, mesh_asset, normal_map_from_texture};
+use crate::assets::{MeshLoad, given_or_load_normal_map, green_way, load_mesh, mesh_asset};
 
 pub(super) fn set_up(o: &SceneOptions, given: &Given) -> Result<SetUp, SetupError> {
     check_ranges(o)?;
@@ -41,17 +41,10 @@ pub(super) fn set_up(o: &SceneOptions, given: &Given) -> Result<SetUp, SetupErro
             mip_mode: MipMode::LengthInAlpha,
             rebuild_mips: o.rebuild_mips,
         };
-        let map = match &given.normal_map {
-            Some(texture) => normal_map_from_texture(texture, path, &options),
-            None => load_normal_map(path, &options),
-        }?;
+        let map = given_or_load_normal_map(path, given.normal_map.as_ref(), &options)?;
         notes.push(SetupNote::About {
             path: path.clone(),
-            line: format!(
-                "{} as the normal map (green {})",
-                map.describe(),
-                if options.y_convention == YConvention::YUp { "up: opengl" } else { "down: directx" }
-            ),
+            line: format!("{} as the normal map (green {})", map.describe(), green_way(options.y_convention)),
         });
         notes.extend(map.warnings().iter().map(|w| SetupNote::Warning(w.to_string())));
         spec.use_bumps(map.bumps(), false);

@@ -14,7 +14,7 @@ use bumpmap_math::MipMode;
 use bumpmap_math::imported::ImportOptions;
 
 use super::{Given, SceneOptions, SetupError, SetupNote};
-use crate::assets::{load_normal_map, normal_map_from_texture};
+use crate::assets::{given_or_load_normal_map, green_way};
 
 /// The detail layer `o` asks for, or `None`; a technique outside the single pass's family
 /// refuses one.
@@ -31,16 +31,13 @@ pub(super) fn detail_layer(
     }
     let y_convention = d.y_convention.unwrap_or(o.y_convention);
     let options = ImportOptions { y_convention, scale: 1.0, mip_mode: MipMode::LengthInAlpha, rebuild_mips: false };
-    let map = match &given.detail_map {
-        Some(texture) => normal_map_from_texture(texture, path, &options),
-        None => load_normal_map(path, &options),
-    }?;
+    let map = given_or_load_normal_map(path, given.detail_map.as_ref(), &options)?;
     notes.push(SetupNote::About {
         path: path.clone(),
         line: format!(
             "{} as the detail map (green {}), {} times over the normal map by {}, strength {}{}",
             map.describe(),
-            if y_convention == bumpmap_math::YConvention::YUp { "up: opengl" } else { "down: directx" },
+            green_way(y_convention),
             d.repeat,
             bumpmap_math::Named::name(d.method),
             d.strength,
