@@ -1,11 +1,14 @@
 //! The libraries' errors, as `bumpmap_words` says them, as Python exceptions in Python's words
 //! (each flag named as its keyword): `OSError` for files (`FileNotFoundError` for a missing
-//! one), `RuntimeError` for a missing device, `ValueError` for values and combinations that
-//! cannot be drawn or made.
+//! one), `MemoryError` for inputs that need more memory than the process may have (the message
+//! says how much), `RuntimeError` for a missing device, `ValueError` for values and combinations
+//! that cannot be drawn or made.
 
 use bumpmap_io::IoError;
 use bumpmap_words::Error;
-use pyo3::exceptions::{PyFileNotFoundError, PyKeyboardInterrupt, PyOSError, PyRuntimeError, PyValueError};
+use pyo3::exceptions::{
+    PyFileNotFoundError, PyKeyboardInterrupt, PyMemoryError, PyOSError, PyRuntimeError, PyValueError,
+};
 use pyo3::prelude::*;
 
 pyo3::create_exception!(
@@ -28,6 +31,7 @@ pub fn to_py(function: &str, e: Error) -> PyErr {
         Error::Io(IoError::Read { source, .. }) if source.kind() == std::io::ErrorKind::NotFound => {
             PyFileNotFoundError::new_err(message)
         }
+        Error::OutOfMemory(_) | Error::Io(IoError::OutOfMemory { .. }) => PyMemoryError::new_err(message),
         Error::Io(_) | Error::Path { .. } => PyOSError::new_err(message),
         Error::NoDevice(_) => PyRuntimeError::new_err(message),
         Error::Interrupted => PyKeyboardInterrupt::new_err(message),

@@ -35,7 +35,6 @@ mod renderer;
 
 use std::path::PathBuf;
 
-use bumpmap::inspect::StoredAs;
 use bumpmap::maps::Chain;
 use bumpmap_io::HeightSource;
 use bumpmap_io::texture_file::TextureFormat;
@@ -114,11 +113,7 @@ fn write_texture(
 fn read_texture<'py>(py: Python<'py>, path: PathBuf) -> PyResult<Bound<'py, PyDict>> {
     let (texture, convention) = interrupt::run(py, move |_| {
         let texture = bumpmap_io::load_texture_chain(&path)?;
-        let level0 = match &texture.levels {
-            bumpmap_io::StoredLevels::Rgba8(l) => bumpmap::inspect::DecodedMap::from_unorm(&l[..1], StoredAs::Unorm8),
-            bumpmap_io::StoredLevels::Rgba16(l) => bumpmap::inspect::DecodedMap::from_unorm(&l[..1], StoredAs::Unorm16),
-        };
-        let convention = bumpmap_math::inspect::detect_convention(&level0.levels[0]).convention.ok();
+        let convention = bumpmap::inspect::stored_convention(&texture.levels);
         Ok::<_, bumpmap_io::IoError>((texture, convention))
     })?
     .map_err(|e| to_py("read_texture", Error::from(e)))?;

@@ -13,7 +13,8 @@ from conftest import read_png
 
 # Keywords that mean something only beside another (refused alone, as the command line refuses
 # them), and the frame's size, which is checked apart from its width and height.
-NEEDS_ANOTHER = {"y_convention", "spot_cutoff", "spot_exponent", "roughness_layout"}
+NEEDS_ANOTHER = {"y_convention", "spot_cutoff", "spot_exponent", "roughness_layout",
+                 "detail_repeat", "detail_method", "detail_strength"}
 
 
 @pytest.mark.parametrize("function", ["render", "compare", "normal_map", "mip_chain", "height_mips", "horizon_maps",

@@ -57,6 +57,12 @@ pub(crate) fn container_to_read(path: &Path, what: &str) -> Result<Container, Io
     })
 }
 
+/// Checks that `path`, a file of `what` (heights, horizon maps) to read, has an extension they
+/// are read from, naming it.
+pub fn check_container(path: &Path, what: &str) -> Result<(), IoError> {
+    container_to_read(path, what).map(|_| ())
+}
+
 /// The min–max file beside heights `path`: `H.minmax.EXT`.
 pub fn minmax_path(path: &Path) -> PathBuf {
     let stem = path.file_stem().unwrap_or_default().to_string_lossy();
@@ -178,6 +184,13 @@ pub(crate) fn read_levels_checked(
         check(file, None)?;
         let stored = load_texture(file)?;
         check(file, Some(stored.format))?;
+        // Four floats a texel of every level, beside the stored texels still held.
+        let texels: u64 = match &stored.levels {
+            StoredLevels::Rgba8(l) => l.iter().map(|l| l.texels.len() as u64).sum(),
+            StoredLevels::Rgba16(l) => l.iter().map(|l| l.texels.len() as u64).sum(),
+        };
+        bumpmap_math::buffer::ensure_available(texels.saturating_mul(16), "reading its texels as numbers")
+            .map_err(|source| IoError::OutOfMemory { path: file.to_path_buf(), source })?;
         fn unit<T: Copy + Into<f32>>(levels: Vec<Image<[T; 4]>>, max: f32) -> Vec<RgbaLevel> {
             levels
                 .into_iter()
@@ -215,13 +228,39 @@ type PairLevel = (usize, usize, Vec<[f32; 2]>);
 fn read_levels(path: &Path, channels: usize) -> Result<Vec<PairLevel>, IoError> {
     let bad = |file: &Path, reason: String| IoError::Texture { path: file.to_path_buf(), reason };
     let png = container_to_read(path, "heights")? == Container::Png;
-    let gray_container = |file: &Path, format: Option<TextureFormat>| match format {
+    // The formats written: heights R8 or R16 (a gray PNG of 8 or 16 bits), bounds R16G16 (a
+    // 16-bit RGB PNG, blue 0). Anything else is another map, refused before it is used.
+    let format_fits = |file: &Path, format: Option<TextureFormat>| match format {
         Some(f) if channels == 1 && !png && !matches!(f, TextureFormat::R8 | TextureFormat::R16) => {
             Err(bad(file, format!("holds {}, not heights: a heights file is one channel (R8 or R16)", f.dxgi_name())))
         }
+        Some(f) if channels == 2 && f != if png { TextureFormat::Rgba16 } else { TextureFormat::Rg16 } => Err(bad(
+            file,
+            format!(
+                "holds {}, not min–max bounds: bounds are R16G16 in .ktx2 and .dds, 16-bit RGB with blue 0 in .png \
+                 (as normalmap --height-out writes them)",
+                f.dxgi_name()
+            ),
+        )),
         _ => Ok(()),
     };
-    let levels = read_levels_checked(path, &gray_container)?;
+    let levels = read_levels_checked(path, &format_fits)?;
+    if channels == 2 && png {
+        for (w, _, texels) in &levels {
+            if let Some(k) = texels.iter().position(|t| t[2] != 0.0) {
+                return Err(bad(
+                    path,
+                    format!(
+                        "is not min–max bounds: its texel ({}, {}) has blue {:.3}, and bounds hold the lower bound in \
+                         red, the upper in green, 0 in blue (as normalmap --height-out writes them)",
+                        k % w,
+                        k / w,
+                        texels[k][2]
+                    ),
+                ));
+            }
+        }
+    }
     if channels == 1 && png {
         // Gray PNGs read back with three equal channels; a colour image does not.
         const STEP: f32 = 1.5 / 255.0;
@@ -268,12 +307,22 @@ pub fn files_read(path: &Path) -> Result<Vec<PathBuf>, IoError> {
 /// Level counts and sizes are checked, naming the file.
 pub fn load_heights(path: &Path) -> Result<HeightMips, IoError> {
     let bad = |file: &Path, reason: String| IoError::Texture { path: file.to_path_buf(), reason };
+    container_to_read(path, "heights")?;
+    // The bounds found by name beside the heights: their size, from the headers, before either
+    // is decoded (a huge file beside small heights is refused, not read).
+    let minmax_file = minmax_path(path);
+    let has_minmax = crate::siblings::beside(path, &minmax_file)?.is_some();
+    if has_minmax {
+        let ((w, h), (mw, mh)) = (crate::declared_size(path)?, crate::declared_size(&minmax_file)?);
+        if (mw, mh) != (w, h) {
+            return Err(bad(&minmax_file, format!("is {mw}x{mh}, but the heights {} are {w}x{h}", path.display())));
+        }
+    }
     let levels: Vec<HeightLevel> = read_levels(path, 1)?
         .into_iter()
         .map(|(width, height, t)| HeightLevel { width, height, texels: t.into_iter().map(|[v, _]| v).collect() })
         .collect();
-    let minmax_file = minmax_path(path);
-    let minmax = if crate::siblings::beside(path, &minmax_file)?.is_some() {
+    let minmax = if has_minmax {
         Some(
             read_levels(&minmax_file, 2)?
                 .into_iter()
@@ -332,6 +381,8 @@ mod tests {
             let mut set = FileSet::new(&[]);
             write_heights_into(&mut set, &path, &heights, HeightBits::Sixteen).unwrap();
             let written = set.commit().unwrap();
+            assert_eq!(crate::declared_size(&path).unwrap(), (12, 8), "{name}: the header's size");
+            assert_eq!(crate::declared_size(&minmax_path(&path)).unwrap(), (12, 8), "{name}");
             assert_eq!(written, heights_files(&path, heights.levels().len()).unwrap(), "{name}");
             let back = load_heights(&path).unwrap();
             assert_eq!(back.levels().len(), heights.levels().len());

@@ -168,6 +168,11 @@ pub fn load_horizons(path: &Path) -> Result<HorizonMap, IoError> {
             "not found: a horizon map is two files of four directions each (H and H.dirs4-7)".into(),
         ));
     }
+    // The second half, found by name: its size from the headers before either is decoded.
+    let ((w, h), (w2, h2)) = (crate::declared_size(path)?, crate::declared_size(&second)?);
+    if (w2, h2) != (w, h) {
+        return Err(bad(&second, format!("is {w2}x{h2}, but {} is {w}x{h}", path.display())));
+    }
     let (a, b) = (read_half(path)?, read_half(&second)?);
     if a.len() != b.len() {
         return Err(bad(&second, format!("holds {} levels, but {} holds {}", b.len(), path.display(), a.len())));

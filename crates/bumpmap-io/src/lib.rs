@@ -38,5 +38,6 @@ pub use mesh_file::{
     TextureTransform, load_mesh, load_mesh_with, read_mesh, save_gltf,
 };
 pub use texture_read::{
-    AnyTexture, StoredLevels, StoredTexture, load_any_texture, load_texture, load_texture_chain, read_texture,
+    AnyTexture, StoredLevels, StoredTexture, declared_size, load_any_texture, load_texture, load_texture_chain,
+    read_texture,
 };

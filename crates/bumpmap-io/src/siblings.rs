@@ -64,12 +64,7 @@ pub fn png_level(
     want: (usize, usize),
 ) -> Result<Option<PathBuf>, IoError> {
     let Some(file) = beside(path, &level_path(path, k))? else { return Ok(None) };
-    let declared = image::ImageReader::open(&file)
-        .and_then(|r| r.with_guessed_format())
-        .map_err(|source| IoError::Read { path: file.clone(), source })?
-        .into_dimensions()
-        .map_err(|e| IoError::Texture { path: file.clone(), reason: format!("not a readable image: {e}") })?;
-    let declared = (declared.0 as usize, declared.1 as usize);
+    let declared = crate::texture_read::declared_size(&file)?;
     if declared != want {
         return Err(IoError::Texture {
             path: file,

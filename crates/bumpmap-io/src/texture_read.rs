@@ -79,6 +79,33 @@ fn bad(path: &Path, reason: impl std::fmt::Display) -> IoError {
     IoError::Texture { path: path.to_path_buf(), reason: reason.to_string() }
 }
 
+/// The width and height of level 0 as a texture file's header declares them, read without
+/// decoding anything (DDS and KTX2 by their magic numbers, any other image by `image`'s
+/// header reader): what a file found by name, or one that must match another's size, is
+/// checked by before its texels take any memory.
+pub fn declared_size(path: &Path) -> Result<(usize, usize), IoError> {
+    use std::io::Read as _;
+    let read_err = |source| IoError::Read { path: path.to_path_buf(), source };
+    // A DDS header is its magic number and 124 bytes; a KTX2 header is 80.
+    let mut head = Vec::with_capacity(128);
+    std::fs::File::open(path).map_err(read_err)?.take(128).read_to_end(&mut head).map_err(read_err)?;
+    if head.len() >= ktx2::Header::LENGTH && head.starts_with(&KTX2_IDENTIFIER) {
+        let bytes: &[u8; ktx2::Header::LENGTH] = head[..ktx2::Header::LENGTH].try_into().expect("80 bytes");
+        let h = ktx2::Header::from_bytes(bytes).map_err(|e| bad(path, format!("not a readable KTX2 file: {e:?}")))?;
+        return Ok((h.pixel_width as usize, h.pixel_height.max(1) as usize));
+    }
+    if head.starts_with(b"DDS ") {
+        let h = ddsfile::Header::read(&head[4..]).map_err(|e| bad(path, format!("not a readable DDS file: {e}")))?;
+        return Ok((h.width as usize, h.height as usize));
+    }
+    let (w, h) = image::ImageReader::open(path)
+        .and_then(|r| r.with_guessed_format())
+        .map_err(read_err)?
+        .into_dimensions()
+        .map_err(|e| bad(path, format!("not a readable image: {e}")))?;
+    Ok((w as usize, h as usize))
+}
+
 /// Reads a texture file: `.dds`, `.ktx2`, or any image `image` decodes (by its contents) at 8
 /// or 16 bits a channel.
 pub fn load_texture(path: &Path) -> Result<StoredTexture, IoError> {

@@ -125,6 +125,30 @@ pub enum Chain {
     Rgba16(MipChain<[u16; 4]>),
 }
 
+/// Bytes a texel of level 0 costs beyond the height field itself, as measured (peak resident
+/// memory of `normalmap bricks@4096 --mips` with each output alone, less the run without it,
+/// over 4096², rounded up): the normal map at 8 and 16 bits (its chain and what making it
+/// takes), and each map written beside it. A horizon map is shared by the horizons, the
+/// occlusion and the bent normals; the bent normals cost a little more on top.
+pub(crate) mod per_texel {
+    pub const NORMAL_MAP_8: u64 = 8;
+    pub const NORMAL_MAP_16: u64 = 18;
+    pub const LEAN: u64 = 74;
+    pub const ROUGHNESS: u64 = 20;
+    pub const HEIGHTS: u64 = 24;
+    pub const HORIZONS: u64 = 44;
+    pub const BENT_NORMALS: u64 = 10;
+}
+
+/// Refuses, before anything of it is made, a map of `field` costing `per` bytes a texel of
+/// level 0 (its [`per_texel`] figure) when it will not fit in the memory the process may still
+/// have; a negative scale's upside-down copy of the field counts too.
+fn ensure_room(options: &MapOptions, field: &HeightField, per: u64, what: &'static str) -> Result<(), MapError> {
+    let per = per + if options.normals.scale < 0.0 { 4 } else { 0 };
+    let bytes = (field.width() as u64 * field.height() as u64).saturating_mul(per);
+    Ok(bumpmap_math::buffer::ensure_available(bytes, what)?)
+}
+
 /// The normal map of `field` at the depth `format` stores (16 bits a channel for
 /// [`TextureFormat::Rgba16`](bumpmap_io::texture_file::TextureFormat), else 8): level 0, or
 /// every level down to 1×1 with `mips`, the smaller levels as `options.mip_mode` says.
@@ -147,6 +171,8 @@ pub fn normal_map_as(
 pub fn normal_map(options: &MapOptions, mips: bool, field: &HeightField) -> Result<Chain, MapError> {
     use bumpmap_io::texture_file::TextureFormat;
     options.check()?;
+    let per = if options.bits == 16 { per_texel::NORMAL_MAP_16 } else { per_texel::NORMAL_MAP_8 };
+    ensure_room(options, field, per, "making the normal map")?;
     let format = if options.bits == 16 { TextureFormat::Rgba16 } else { TextureFormat::Rgba8 };
     normal_map_as(options, mips, format, field)
 }
@@ -200,6 +226,7 @@ pub struct StoredHeights {
 /// the mean levels and the min–max bounds are those of the heights stored.
 pub fn height_mips(options: &MapOptions, field: &HeightField) -> Result<StoredHeights, MapError> {
     options.check()?;
+    ensure_room(options, field, per_texel::HEIGHTS, "making the heights' levels and bounds")?;
     let field = &*as_bumped(options, field);
     let mut row = Vec::new();
     let (mut lowest, mut highest) = (f32::INFINITY, f32::NEG_INFINITY);
@@ -217,6 +244,7 @@ pub fn height_mips(options: &MapOptions, field: &HeightField) -> Result<StoredHe
 /// occlusion and bent normals are made from it, at the depth `options.normals.scale`).
 pub fn horizon_map(options: &MapOptions, field: &HeightField) -> Result<HorizonMap, MapError> {
     options.check()?;
+    ensure_room(options, field, per_texel::HORIZONS, "making the horizon map")?;
     Ok(HorizonMap::from_heights(&*as_bumped(options, field), options.normals.wrap)?)
 }
 
@@ -244,6 +272,7 @@ pub fn bent_normals(options: &MapOptions, horizons: &HorizonMap) -> Chain {
 /// ([`roughness_map`](crate::options::roughness_map)), in the channels the layout names.
 pub fn roughness_map(options: &MapOptions, field: &HeightField) -> Result<MipChain, MapError> {
     options.check()?;
+    ensure_room(options, field, per_texel::ROUGHNESS, "making the roughness map")?;
     Ok(crate::options::roughness_map(field, &options.normals, options.roughness, options.roughness_layout)?)
 }
 
@@ -258,6 +287,8 @@ pub fn lean_moments(
     made: Option<&Chain>,
 ) -> Result<[Vec<Image<[f32; 4]>>; 2], MapError> {
     options.check()?;
+    let per = per_texel::LEAN + if matches!(made, Some(Chain::Rgba8(_))) { 0 } else { per_texel::NORMAL_MAP_8 };
+    ensure_room(options, field, per, "making LEAN's moments")?;
     let own;
     let (level0, count) = match made {
         Some(Chain::Rgba8(chain)) => (&chain.levels[0], chain.levels.len()),

@@ -15,9 +15,21 @@
 //!
 //! Reading X the wrong way also negates one slope: a map with red flipped reads as the other
 //! convention. What this module does not do: read files or decide anything else about a map.
+//!
+//! ```
+//! use bumpmap_math::inspect::{centre_crop, detect_convention};
+//! use bumpmap_math::{HeightPreset, MipChain, MipMode, NormalMapOptions, YConvention};
+//!
+//! let field = HeightPreset::Dimples.render(64, 64);
+//! let options = NormalMapOptions { y_convention: YConvention::YDown, ..Default::default() };
+//! let chain: MipChain = MipChain::from_height(&field, &options, MipMode::LengthInAlpha).unwrap();
+//! let verdict = detect_convention(&centre_crop(&chain.levels[0]));
+//! assert_eq!(verdict.convention.ok(), Some(YConvention::YDown));
+//! ```
 
 use glam::Vec4;
 
+use crate::encoding::Texel;
 use crate::image::Image;
 use crate::kernel::{Kernel, Tap};
 use crate::normalmap::YConvention;
@@ -102,6 +114,18 @@ pub struct ConventionVerdict {
     pub mixed_energy: f32,
     /// Texels measured.
     pub texels: usize,
+}
+
+/// The centre [`CROP`]² of unorm texels (8 or 16 bits) as signed vectors, the rest of the
+/// level left undecoded: all of a map [`detect_convention`] reads, at a few megabytes whatever
+/// the map's size.
+pub fn centre_crop<T: Texel>(level: &Image<T>) -> Image<Vec4> {
+    let (cw, ch) = (level.width.min(CROP), level.height.min(CROP));
+    let (x0, y0) = ((level.width - cw) / 2, (level.height - ch) / 2);
+    let texels = (0..cw * ch)
+        .map(|i| Vec4::from(level.texel(x0 + i % cw, y0 + i / cw).unpack(crate::Encoding::Unorm)))
+        .collect();
+    Image::new(cw, ch, texels)
 }
 
 /// The curl test on `normals` (signed xyz; w not read).

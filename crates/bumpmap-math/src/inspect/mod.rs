@@ -15,7 +15,7 @@ pub mod convention;
 mod mips;
 mod texels;
 
-pub use convention::{ConventionVerdict, Undecidable, detect_convention};
+pub use convention::{CROP, ConventionVerdict, Undecidable, centre_crop, detect_convention};
 pub use mips::{
     ALPHA_HOLDS_LENGTH, LevelCheck, MipFilter, MipReport, OTHER_ABOVE, SMOOTH_ABOVE, TELLING_TEXELS,
     classify as classify_mips,

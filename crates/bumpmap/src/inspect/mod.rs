@@ -321,6 +321,18 @@ fn kind_name(kind: MapKind) -> &'static str {
     }
 }
 
+/// The Y convention the texels of a texture's level 0 show by the curl test, `None` where it
+/// cannot decide; only the centre the test reads is decoded
+/// ([`bumpmap_math::inspect::centre_crop`]), so a map of any size costs a few megabytes.
+pub fn stored_convention(levels: &bumpmap_io::StoredLevels) -> Option<YConvention> {
+    use bumpmap_math::inspect::{centre_crop, detect_convention};
+    let crop = match levels {
+        bumpmap_io::StoredLevels::Rgba8(l) => centre_crop(l.first()?),
+        bumpmap_io::StoredLevels::Rgba16(l) => centre_crop(l.first()?),
+    };
+    detect_convention(&crop).convention.ok()
+}
+
 /// Inspects a file ([`read_map`] reads it).
 pub fn inspect_file(path: &Path) -> Result<MapReport, Error> {
     Ok(inspect_map(&path.display().to_string(), &read_map(path)?))

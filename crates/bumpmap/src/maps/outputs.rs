@@ -103,21 +103,6 @@ pub enum OutputsError {
     Io(#[from] IoError),
 }
 
-/// Bytes a texel of level 0 costs beyond the height field itself, as measured (peak resident
-/// memory of `normalmap bricks@4096 --mips` with each output alone, less the run without it,
-/// over 4096², rounded up): the normal map at 8 and 16 bits (its chain and what making it
-/// takes), and each map written beside it. A horizon map is shared by the horizons, the
-/// occlusion and the bent normals; the bent normals cost a little more on top.
-mod per_texel {
-    pub const NORMAL_MAP_8: u64 = 8;
-    pub const NORMAL_MAP_16: u64 = 18;
-    pub const LEAN: u64 = 74;
-    pub const ROUGHNESS: u64 = 20;
-    pub const HEIGHTS: u64 = 24;
-    pub const HORIZONS: u64 = 44;
-    pub const BENT_NORMALS: u64 = 10;
-}
-
 /// The files each output takes, planned before any work.
 struct Planned {
     lean: Option<[PathBuf; 2]>,
@@ -244,7 +229,7 @@ impl MapOutputs {
     /// can; this check is what keeps the rest (the moments as written, the encoders' copies)
     /// from aborting.
     pub fn ensure_room(&self, bits: u8, width: usize, height: usize) -> Result<(), OutputsError> {
-        use per_texel::*;
+        use super::per_texel::*;
         let mut per = if bits == 16 { NORMAL_MAP_16 } else { NORMAL_MAP_8 };
         if self.lean.is_some() {
             per += LEAN + if bits == 16 { NORMAL_MAP_8 } else { 0 };

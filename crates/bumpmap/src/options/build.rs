@@ -160,12 +160,20 @@ fn heights_as_geometry(o: &SceneOptions, spec: &mut SceneSpec, notes: &mut Vec<S
     let normal_map = spec.params.bumps.size();
     let mismatch =
         |path: &Path, map, size| SetupError::SizeMismatch { path: path.to_path_buf(), map, size, normal_map };
+    // Each file's size from its header, against the normal map's, before it is decoded.
+    // (A missing file is left to the reader's own message.)
+    let declared = |path: &Path, map| {
+        let what = if map == BesideMap::Heights { "heights" } else { "horizon maps" };
+        bumpmap_io::height_file::check_container(path, what)?;
+        match std::fs::metadata(path).is_ok().then(|| bumpmap_io::declared_size(path)).transpose()? {
+            Some(size) if size != normal_map => Err(mismatch(path, map, size)),
+            _ => Ok(()),
+        }
+    };
     if let Some(path) = &o.heights.height_map {
+        declared(path, BesideMap::Heights)?;
         let heights = bumpmap_io::height_file::load_heights(path)?;
         let size = (heights.width(), heights.height());
-        if size != normal_map {
-            return Err(mismatch(path, BesideMap::Heights, size));
-        }
         let technique = o.technique.technique;
         if technique.parallax_method() == Some(bumpmap_core::parallax::ParallaxMethod::Exact)
             && heights.minmax().is_none()
@@ -193,11 +201,9 @@ fn heights_as_geometry(o: &SceneOptions, spec: &mut SceneSpec, notes: &mut Vec<S
         spec.params.height_mips = Some(Arc::new(heights));
     }
     if let Some(path) = &o.heights.horizon_map {
+        declared(path, BesideMap::Horizons)?;
         let horizons = bumpmap_io::horizon_file::load_horizons(path)?;
         let size = (horizons.width(), horizons.height());
-        if size != normal_map {
-            return Err(mismatch(path, BesideMap::Horizons, size));
-        }
         notes.push(SetupNote::About {
             path: path.clone(),
             line: format!(
