@@ -2,8 +2,10 @@
 //! thread wakes every 50 ms to let Python handle signals, so Ctrl-C raises `KeyboardInterrupt`
 //! at once instead of when the work ends.
 //!
-//! What it does not do: stop the work. An interrupted call returns at once; its thread runs on
-//! to its end and its result is dropped. Work that writes files claims the right to put them in
+//! An interrupted call returns at once. Work that tells its progress stops at its next step: the
+//! function it tells its steps to unwinds it from there ([`Stopped`], caught nowhere but the
+//! worker thread's end), so a render or a bake given up on frees its cores within one step.
+//! Other work runs on to its end and its result is dropped. Work that writes files claims the right to put them in
 //! place ([`Cancel::begin_commit`]) after staging them: an interrupted call has given that right
 //! up, so it writes nothing, and its staged files are removed when the work ends — or, when the
 //! interpreter exits first, by the exit hook the module registers (`abandon_all`). A Ctrl-C
@@ -43,6 +45,11 @@ impl Cancel {
         self.0.compare_exchange(RUNNING, COMMITTING, Ordering::SeqCst, Ordering::SeqCst).is_ok()
     }
 
+    /// Whether the caller gave up on the work.
+    fn is_cancelled(&self) -> bool {
+        self.0.load(Ordering::SeqCst) == CANCELLED
+    }
+
     /// Gives up on the work unless it is already putting files in place; whether it gave up.
     fn give_up(&self) -> bool {
         matches!(
@@ -68,17 +75,23 @@ pub fn run<T: Send + 'static>(py: Python<'_>, work: impl FnOnce(&Cancel) -> T + 
     run_reporting(py, move |cancel, _| work(cancel), None)
 }
 
-/// [`run`] for work that tells its progress to the function it is given, where `progress` (a
-/// `progress=` function) asks for it; without one the work gets none and shows nothing.
+/// What unwinds work whose caller gave up, from the function it tells its progress to.
+struct Stopped;
+
+/// [`run`] for work that tells its progress to the function it is given: `progress` (a
+/// `progress=` function) is told the steps, and a caller that gives up (Ctrl-C, or `progress`
+/// raising) stops the work at its next step.
 pub fn run_reporting<T: Send + 'static>(
     py: Python<'_>,
     work: impl FnOnce(&Cancel, Option<ReportFn>) -> T + Send + 'static,
     progress: Option<&Bound<'_, PyAny>>,
 ) -> PyResult<T> {
     let counter = Arc::new(Counter::default());
-    let shown = progress.map(|_| counter.report_fn());
+    let cancel = Cancel::default();
+    let shown = Some(counter.report_fn(cancel.clone()));
     let (value, said) = wait(
         py,
+        cancel,
         move |cancel, pool| pool.install(|| bumpmap_words::report::collect(|| work(cancel, shown))),
         progress.map(|f| (&counter, f)),
     )?;
@@ -94,10 +107,14 @@ struct Counter {
 }
 
 impl Counter {
-    /// The function the work tells its steps to.
-    fn report_fn(self: &Arc<Self>) -> ReportFn {
+    /// The function the work tells its steps to; once `cancel` is given up, it unwinds the work
+    /// instead (`resume_unwind`: no panic message, and the staged files' guards drop).
+    fn report_fn(self: &Arc<Self>, cancel: Cancel) -> ReportFn {
         let counter = self.clone();
         Arc::new(move |done, total| {
+            if cancel.is_cancelled() {
+                std::panic::resume_unwind(Box::new(Stopped));
+            }
             counter.total.store(total, Ordering::Relaxed);
             counter.done.fetch_max(done, Ordering::Relaxed);
         })
@@ -138,13 +155,14 @@ pub fn run_beside_pool<T: Send + 'static>(
     py: Python<'_>,
     work: impl FnOnce(&Cancel, &rayon::ThreadPool) -> T + Send + 'static,
 ) -> PyResult<T> {
-    wait(py, work, None)
+    wait(py, Cancel::default(), work, None)
 }
 
 /// Runs `work` on its own thread beside the pool and waits for it, handling signals and
 /// telling `progress` between waits.
 fn wait<T: Send + 'static>(
     py: Python<'_>,
+    cancel: Cancel,
     work: impl FnOnce(&Cancel, &rayon::ThreadPool) -> T + Send + 'static,
     progress: Option<(&Arc<Counter>, &Bound<'_, PyAny>)>,
 ) -> PyResult<T> {
@@ -158,7 +176,6 @@ fn wait<T: Send + 'static>(
         }
         Ok(())
     };
-    let cancel = Cancel::default();
     let (tx, rx) = channel();
     // Waited on with the GIL released, from whichever thread the closure runs on.
     let rx = Mutex::new(rx);

@@ -56,3 +56,27 @@ def test_read_texture_of_a_16384_png_tests_its_convention_on_the_centre_only(tmp
     assert done.returncode == 0, done.stderr[-2000:]
     # A flat map: nothing to decide from, and no abort converting all of it to decide it.
     assert done.stdout.strip() == "(16384, 16384, 4) None", done.stdout
+
+
+def test_a_progress_function_that_raises_stops_the_work_not_only_the_call():
+    """The call ended with the exception at once before too; the render then ran on to its end
+    on every core. Now it stops at its next tile: the second after the call uses no CPU."""
+    import time
+
+    import pytest
+
+    import bumpmap
+
+    class Stop(Exception):
+        pass
+
+    def stop(done, total):
+        raise Stop(f"{done}/{total}")
+
+    with pytest.raises(Stop):
+        bumpmap.render(technique="reference", size=512, spp=256, progress=stop)
+    time.sleep(0.3)
+    before = time.process_time()
+    time.sleep(1.0)
+    used = time.process_time() - before
+    assert used < 0.5, f"the render went on: {used:.2f} s of CPU in the second after the call"

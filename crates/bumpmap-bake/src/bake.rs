@@ -1,8 +1,6 @@
 //! The bake itself: options, what comes out, and the rays cast from every texel of LOW's UV
 //! layout into HIGH (the crate's page says how a texel is baked).
 
-use std::sync::atomic::{AtomicUsize, Ordering};
-
 use bumpmap_math::buffer::OutOfMemory;
 use bumpmap_math::mesh::{Mesh, MeshError};
 use glam::{Vec2, Vec3};
@@ -344,7 +342,7 @@ fn bake_from(
         filled: Vec::new(),
         distances: (front, back),
     };
-    let done = AtomicUsize::new(0);
+    let told = bumpmap_math::progress::Told::new(progress, height);
     let samples = options.samples as usize;
     let reach_out = 2.0 * (front + back) + bounds_diagonal(high);
     // Without occlusion or curvature each row gets an empty slice of it.
@@ -361,6 +359,9 @@ fn bake_from(
         .zip(occlusion_rows.par_iter_mut())
         .enumerate()
         .for_each(|(y, ((((((tangent, object), displacement), curvature), hit), covered), occlusion))| {
+            if told.stopped() {
+                return;
+            }
             for x in 0..width {
                 let (mut sum_t, mut sum_o, mut sum_d, mut hits, mut inside) = (Vec3::ZERO, Vec3::ZERO, 0.0, 0, false);
                 let mut sum_k = 0.0;
@@ -408,8 +409,9 @@ fn bake_from(
                     hit[x] = true;
                 }
             }
-            progress(done.fetch_add(1, Ordering::Relaxed) + 1, height);
+            told.step();
         });
+    told.finish();
 
     let covered = baked.covered.iter().filter(|c| **c).count();
     if covered == 0 {

@@ -40,6 +40,7 @@ pub mod mesh;
 pub mod mip;
 pub mod named;
 pub mod normalmap;
+pub mod progress;
 pub mod roughness;
 pub mod surface;
 pub mod tangent;

@@ -5,8 +5,6 @@ mod displaced;
 
 pub use displaced::{DisplacedScene, SceneHit, camera_ray};
 
-use std::sync::atomic::{AtomicUsize, Ordering};
-
 use glam::{Vec2, Vec3, Vec4};
 use rayon::prelude::*;
 
@@ -135,7 +133,8 @@ pub fn render(
 
 /// Runs `tile(index, (x0, y0, width, height))` for every tile of [`TILE`]² pixels of a
 /// `width`×`height` image in parallel (each returning its pixels row-major), calling
-/// `progress(done, total)` as each finishes; the tiles in order.
+/// `progress(done, total)` as each finishes; the tiles in order. A `progress` that panics stops
+/// the tiles not yet begun, and its panic goes on ([`bumpmap_math::progress`]).
 pub(crate) fn render_tiles(
     width: usize,
     height: usize,
@@ -144,16 +143,21 @@ pub(crate) fn render_tiles(
 ) -> Vec<Vec<Vec3>> {
     let tiles_x = width.div_ceil(TILE);
     let total = tiles_x * height.div_ceil(TILE);
-    let done = AtomicUsize::new(0);
-    (0..total)
+    let told = bumpmap_math::progress::Told::new(progress, total);
+    let tiles = (0..total)
         .into_par_iter()
         .map(|index| {
+            if told.stopped() {
+                return Vec::new();
+            }
             let (x0, y0) = ((index % tiles_x) * TILE, (index / tiles_x) * TILE);
             let pixels = tile(index, (x0, y0, TILE.min(width - x0), TILE.min(height - y0)));
-            progress(done.fetch_add(1, Ordering::Relaxed) + 1, total);
+            told.step();
             pixels
         })
-        .collect()
+        .collect();
+    told.finish();
+    tiles
 }
 
 /// The image from its tiles of [`TILE`]² pixels (row-major within a tile, tiles row-major).
