@@ -317,7 +317,7 @@ def render(
     technique: _Technique = "kilgard",
     spp: int = 64,
     seed: int = 0,
-    filter: _Filter = "trilinear",
+    filter: Optional[_Filter] = None,
     no_self_shadow: bool = False,
     precision: _Precision = "float",
     specular_mode: _SpecularMode = "power8",

@@ -95,7 +95,7 @@ mod tests {
         assert_eq!(o.decal, Some(DecalChoice::None));
         assert_eq!(o.material.gloss, GlossChoice::Bricks);
         assert_eq!(o.technique.self_shadow, SelfShadow::Off);
-        assert_eq!(o.technique.filter, bumpmap::options::Filter::Nearest);
+        assert_eq!(o.technique.filter, Some(bumpmap::options::Filter::Nearest));
         assert_eq!(o.technique.technique, bumpmap::TechniqueName::SinglePass);
     }
 }

@@ -71,6 +71,14 @@ impl MeshParts {
         }
     }
 
+    /// Every material's textures filtered as the technique says, whatever filters its sampler
+    /// names (its wrap modes stay): what a filter the user chose asks.
+    pub fn replace_filters(&mut self) {
+        for m in &mut self.materials {
+            (m.sampler.min, m.sampler.mag) = (None, None);
+        }
+    }
+
     /// The bumps of the materials that have their own.
     pub fn own_bumps(&self) -> impl Iterator<Item = &BumpSource> {
         self.materials.iter().filter_map(|m| m.bumps.as_ref())

@@ -229,18 +229,19 @@ pub(crate) fn read(
         Some(c) if options.read_base_color_texture => Some(texture(file, c.texture(), "baseColorTexture", 1.0)?),
         _ => None,
     };
-    let look = options.read_base_color_texture;
+    // Occlusion, emission and roughness are the material's whatever replaces its base colour
+    // (`--decal` speaks of the base colour alone): a decal given draws with the file's glow.
     let occlusion = match material.occlusion_texture() {
-        Some(o) if look => Some(texture(file, o.texture(), "occlusionTexture", o.strength())?),
-        _ => None,
+        Some(o) => Some(texture(file, o.texture(), "occlusionTexture", o.strength())?),
+        None => None,
     };
     let emissive = match material.emissive_texture() {
-        Some(e) if look => Some(texture(file, e.texture(), "emissiveTexture", 1.0)?),
-        _ => None,
+        Some(e) => Some(texture(file, e.texture(), "emissiveTexture", 1.0)?),
+        None => None,
     };
     let metallic_roughness = match pbr.metallic_roughness_texture() {
-        Some(t) if look => Some(texture(file, t.texture(), "metallicRoughnessTexture", 1.0)?),
-        _ => None,
+        Some(t) => Some(texture(file, t.texture(), "metallicRoughnessTexture", 1.0)?),
+        None => None,
     };
     let alpha_mode = match material.alpha_mode() {
         gltf::material::AlphaMode::Opaque => AlphaMode::Opaque,
@@ -297,7 +298,7 @@ pub(crate) fn read(
 pub(crate) fn mesh_read(reads: &MaterialReads, options: &MeshOptions, name: &str) -> (TextureRead, Option<String>) {
     let normal = reads.normal.filter(|_| options.read_normal_texture);
     let color = reads.base_color.filter(|_| options.read_base_color_texture);
-    let others: &[(&'static str, TextureRead)] = if options.read_base_color_texture { &reads.others } else { &[] };
+    let others: &[(&'static str, TextureRead)] = &reads.others;
     let (chosen_role, chosen) = match (normal, color, others.first()) {
         (Some(n), _, _) => ("normalTexture", n),
         (None, Some(c), _) => ("baseColorTexture", c),

@@ -116,7 +116,7 @@ pub static SCENE: &[Opt<FrameRequest>] = &[
     Row::word("technique", TECHNIQUE, "Any technique of the catalogue (below); one that cannot draw the scene says why", |r| &mut r.options.technique.technique),
     Row::new("spp", TECHNIQUE, "reference: samples per pixel (stratified); the image converges as it grows", |r| &mut r.options.technique.samples_per_pixel).range(1, MAX_SAMPLES_PER_PIXEL as u64),
     Row::new("seed", TECHNIQUE, "reference: which sample pattern (each pixel's rotation of the stratified sequence; 0 is the usual one): another seed gives an independent image of the same scene, and two seeds' difference shows the noise left", |r| &mut r.options.technique.seed),
-    Row::word("filter", TECHNIQUE, "Texture filtering of the normal map and decal", |r| &mut r.options.technique.filter),
+    Row::maybe_word("filter", TECHNIQUE, "Texture filtering of the normal map, decal and every other map; given, it replaces a glTF material's sampler's filters (its wrap modes stay) [default: the material's filters where its sampler names them, else trilinear]", |r| &mut r.options.technique.filter),
     Row::with("no-self-shadow", TECHNIQUE, "Leave out Eq. 12's self-shadowing term (Figure 14, left)", Access::Custom {
         kind: || Kind::Flag,
         get: |_| None,

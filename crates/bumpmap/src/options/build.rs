@@ -141,17 +141,24 @@ fn mesh_spec(
         if asset.materials.iter().all(|m| m.normal_map.is_none()) && !own_bumps && o.bump_scale.is_some() {
             notes.push(SetupNote::NothingToScale { path: path.to_path_buf() });
         }
+        let names_filters = asset.materials.iter().any(|m| m.sampler.min.is_some() || m.sampler.mag.is_some());
         for (given, option) in [
             (o.height_field.is_some(), SceneOption::HeightField),
             (o.normal_map.is_some(), SceneOption::NormalMap),
             (o.decal.is_some(), SceneOption::Decal),
+            (o.technique.filter.is_some() && names_filters, SceneOption::Filter),
         ] {
             if given {
                 notes.push(SetupNote::Replaces { path: path.to_path_buf(), option });
             }
         }
     }
-    Ok(asset.spec())
+    let mut spec = asset.spec();
+    // A filter the caller chose wins over the file's samplers (their wrap modes stay).
+    if let (Some(_), Some(parts)) = (o.technique.filter, &mut spec.params.parts) {
+        Arc::make_mut(parts).replace_filters();
+    }
+    Ok(spec)
 }
 
 /// Heights as geometry: a heights file's and a horizon file's maps (each the normal map's

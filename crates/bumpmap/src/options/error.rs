@@ -45,6 +45,8 @@ pub enum SceneOption {
     SpecularMode,
     /// [`super::TechniqueChoice::specular_filter`].
     SpecularFilter,
+    /// [`super::TechniqueChoice::filter`].
+    Filter,
     /// [`super::SceneOptions::tessellation`].
     Tessellation,
     /// [`super::SceneOptions::repeat`].
@@ -67,7 +69,7 @@ pub enum SceneOption {
 
 impl SceneOption {
     /// Every option a message may name.
-    pub const ALL: [SceneOption; 24] = [
+    pub const ALL: [SceneOption; 25] = [
         SceneOption::HeightField,
         SceneOption::NormalMap,
         SceneOption::BumpScale,
@@ -83,6 +85,7 @@ impl SceneOption {
         SceneOption::Precision,
         SceneOption::SpecularMode,
         SceneOption::SpecularFilter,
+        SceneOption::Filter,
         SceneOption::Tessellation,
         SceneOption::Repeat,
         SceneOption::Eye,
@@ -113,6 +116,7 @@ impl SceneOption {
             SceneOption::Precision => "precision",
             SceneOption::SpecularMode => "specular_mode",
             SceneOption::SpecularFilter => "specular_filter",
+            SceneOption::Filter => "filter",
             SceneOption::Tessellation => "tessellation",
             SceneOption::Repeat => "repeat",
             SceneOption::Eye => "eye",
@@ -314,6 +318,7 @@ impl SetupNote {
         match option {
             SceneOption::Decal => "base colour",
             SceneOption::NormalMap => "normal map",
+            SceneOption::Filter => "samplers' filters",
             _ => "bumps",
         }
     }

@@ -351,8 +351,9 @@ pub struct TechniqueChoice {
     pub samples_per_pixel: u32,
     /// The reference's sample pattern (0 is the default one).
     pub seed: u32,
-    /// Texture filtering.
-    pub filter: Filter,
+    /// Texture filtering (`None`: a glTF material's sampler where it names filters, else
+    /// trilinear); one given replaces every material's.
+    pub filter: Option<Filter>,
     /// The self-shadowing factor (kilgard: the ramp or off).
     pub self_shadow: SelfShadow,
     /// kilgard: the register combiners' arithmetic.
@@ -378,7 +379,7 @@ impl Default for TechniqueChoice {
             technique: TechniqueName::Kilgard,
             samples_per_pixel: 64,
             seed: 0,
-            filter: Filter::Trilinear,
+            filter: None,
             self_shadow: SelfShadow::Ramp,
             precision: Precision::Float,
             specular_mode: SpecularMode::EighthPower,

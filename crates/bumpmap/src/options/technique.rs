@@ -223,7 +223,7 @@ pub(super) fn technique_options(o: &SceneOptions, notes: &mut Vec<SetupNote>) ->
             return Err(SetupError::RoughnessMapUnread { technique: name, specular_filter: t.specular_filter });
         }
     };
-    let sampler = t.filter.sampler();
+    let sampler = t.filter.unwrap_or_default().sampler();
     let cube_size = t.cube_size as usize;
     Ok(TechniqueOptions {
         kilgard: KilgardOptions {
