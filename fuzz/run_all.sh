@@ -7,7 +7,7 @@
 set -euo pipefail
 cd "$(dirname "$0")"
 RUNS=${RUNS:-10000000}
-for t in ${TARGETS:-image texture obj gltf cli_args}; do
+for t in ${TARGETS:-image texture obj gltf cli_args height_sets}; do
     mkdir -p "corpus/$t" "artifacts/$t"
     cp -n regressions/"$t"/* "corpus/$t/" 2>/dev/null || true
     log="artifacts/$t.log"

@@ -78,3 +78,46 @@ pub fn cli_args(data: &[u8]) {
         let _ = format!("{cli:?}");
     }
 }
+
+/// A heights or horizon set as `render --height-map` / `--horizon-map` reads it: the file named
+/// and the files found by name beside it. The first byte picks the container (its value mod 3:
+/// PNG, KTX2, DDS) and the set (top bit: horizons); the rest is up to 8 files, each a 2-byte
+/// little-endian length and its bytes: the named file, its sibling (`H.minmax` or `H.dirs4-7`),
+/// then for PNG the `.mipK.png` levels of each in turn. Written into a folder of this process's
+/// own, emptied first, and read back with every image bounded by [`IMAGE_LIMITS`].
+pub fn height_sets(data: &[u8]) {
+    use bumpmap_io::{height_file, horizon_file};
+    let Some((&pick, mut rest)) = data.split_first() else { return };
+    let ext = ["png", "ktx2", "dds"][pick as usize % 3];
+    let horizons = pick & 0x80 != 0;
+    let mut parts: Vec<&[u8]> = Vec::new();
+    while parts.len() < 8 && rest.len() >= 2 {
+        let n = (u16::from_le_bytes([rest[0], rest[1]]) as usize).min(rest.len() - 2);
+        parts.push(&rest[2..2 + n]);
+        rest = &rest[2 + n..];
+    }
+    let dir = std::env::temp_dir().join(format!("bumpmap-fuzz-sets-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    if std::fs::create_dir_all(&dir).is_err() {
+        return;
+    }
+    let main = dir.join(format!("h.{ext}"));
+    let sibling = if horizons { format!("h.dirs4-7.{ext}") } else { format!("h.minmax.{ext}") };
+    let mut names = vec![main.clone(), dir.join(&sibling)];
+    for k in 1..=3 {
+        names.push(dir.join(format!("h.mip{k}.png")));
+        names.push(dir.join(sibling.replace(".png", &format!(".mip{k}.png"))));
+    }
+    for (name, bytes) in names.iter().zip(&parts) {
+        let _ = std::fs::write(name, bytes);
+    }
+    if horizons {
+        let _ = horizon_file::files_read(&main);
+        let _ = horizon_file::load_horizons_within(&main, Some(&IMAGE_LIMITS));
+    } else {
+        let _ = height_file::files_read(&main);
+        let _ = height_file::load_heights_within(&main, Some(&IMAGE_LIMITS));
+    }
+    let _ = bumpmap_io::declared_size(&main);
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -28,6 +28,7 @@ fn saved_crashers_no_longer_crash() {
         ("obj", targets::obj),
         ("gltf", targets::gltf),
         ("cli_args", targets::cli_args),
+        ("height_sets", targets::height_sets),
     ]
     .into_iter()
     .map(|(t, f)| (t, replay(t, f)))

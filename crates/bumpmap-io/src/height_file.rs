@@ -18,9 +18,10 @@ use bumpmap_math::{HeightMips, Image};
 
 use crate::atomic::FileSet;
 use crate::error::IoError;
+use crate::image_file::DecodeLimits;
 use crate::image_file::{Png16, PngLayout, level_path, save_png_into, save_png16_samples_into};
 use crate::texture_file::{Level, TextureFormat, TextureLayout, write_dds_into, write_ktx2_into};
-use crate::texture_read::{StoredLevels, load_texture};
+use crate::texture_read::{StoredLevels, load_texture_within};
 
 /// Bits a stored height has.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -177,12 +178,13 @@ pub(crate) type RgbaLevel = (usize, usize, Vec<[f32; 4]>);
 /// after.
 pub(crate) fn read_levels_checked(
     path: &Path,
+    limits: Option<&DecodeLimits>,
     check: &impl Fn(&Path, Option<TextureFormat>) -> Result<(), IoError>,
 ) -> Result<Vec<RgbaLevel>, IoError> {
     let kind = container_to_read(path, "heights, horizons and bounds")?;
     let read = |file: &Path| -> Result<Vec<RgbaLevel>, IoError> {
         check(file, None)?;
-        let stored = load_texture(file)?;
+        let stored = load_texture_within(file, limits)?;
         check(file, Some(stored.format))?;
         // Four floats a texel of every level, beside the stored texels still held.
         let texels: u64 = match &stored.levels {
@@ -225,7 +227,7 @@ type PairLevel = (usize, usize, Vec<[f32; 2]>);
 /// `channels − 1` of each texel. Heights (`channels` 1) must be gray: a container of `R8` or
 /// `R16`, an image whose channels are equal; a normal map, a horizon map or a colour image given
 /// for heights is refused, never read as its red channel.
-fn read_levels(path: &Path, channels: usize) -> Result<Vec<PairLevel>, IoError> {
+fn read_levels(path: &Path, channels: usize, limits: Option<&DecodeLimits>) -> Result<Vec<PairLevel>, IoError> {
     let bad = |file: &Path, reason: String| IoError::Texture { path: file.to_path_buf(), reason };
     let png = container_to_read(path, "heights")? == Container::Png;
     // The formats written: heights R8 or R16 (a gray PNG of 8 or 16 bits), bounds R16G16 (a
@@ -244,7 +246,7 @@ fn read_levels(path: &Path, channels: usize) -> Result<Vec<PairLevel>, IoError> 
         )),
         _ => Ok(()),
     };
-    let levels = read_levels_checked(path, &format_fits)?;
+    let levels = read_levels_checked(path, limits, &format_fits)?;
     if channels == 2 && png {
         for (w, _, texels) in &levels {
             if let Some(k) = texels.iter().position(|t| t[2] != 0.0) {
@@ -306,6 +308,12 @@ pub fn files_read(path: &Path) -> Result<Vec<PathBuf>, IoError> {
 /// its levels or alone), with the min–max levels from `H.minmax.EXT` where that file is there.
 /// Level counts and sizes are checked, naming the file.
 pub fn load_heights(path: &Path) -> Result<HeightMips, IoError> {
+    load_heights_within(path, None)
+}
+
+/// [`load_heights`], each image's decoding bounded by `limits` where given
+/// ([`crate::texture_read::load_texture_within`]).
+pub fn load_heights_within(path: &Path, limits: Option<&DecodeLimits>) -> Result<HeightMips, IoError> {
     let bad = |file: &Path, reason: String| IoError::Texture { path: file.to_path_buf(), reason };
     container_to_read(path, "heights")?;
     // The bounds found by name beside the heights: their size, from the headers, before either
@@ -318,13 +326,13 @@ pub fn load_heights(path: &Path) -> Result<HeightMips, IoError> {
             return Err(bad(&minmax_file, format!("is {mw}x{mh}, but the heights {} are {w}x{h}", path.display())));
         }
     }
-    let levels: Vec<HeightLevel> = read_levels(path, 1)?
+    let levels: Vec<HeightLevel> = read_levels(path, 1, limits)?
         .into_iter()
         .map(|(width, height, t)| HeightLevel { width, height, texels: t.into_iter().map(|[v, _]| v).collect() })
         .collect();
     let minmax = if has_minmax {
         Some(
-            read_levels(&minmax_file, 2)?
+            read_levels(&minmax_file, 2, limits)?
                 .into_iter()
                 .map(|(width, height, texels)| MinMaxLevel { width, height, texels })
                 .collect::<Vec<_>>(),

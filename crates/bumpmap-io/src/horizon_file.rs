@@ -19,6 +19,7 @@ use bumpmap_math::{HorizonLevel, HorizonMap, Image};
 use crate::atomic::FileSet;
 use crate::error::IoError;
 use crate::height_file::{Container, HeightBits, RgbaLevel, container, read_levels_checked, write_levels};
+use crate::image_file::DecodeLimits;
 use crate::image_file::level_path;
 use crate::texture_file::{Level, TextureFormat};
 
@@ -99,11 +100,11 @@ pub fn write_gray_into(
 
 /// One texture of a horizon map read back: its levels, four directions a texel in [0, 1]. Each
 /// file must be there and hold four channels (an RGBA PNG, an RGBA8 or RGBA16 container).
-fn read_half(path: &Path) -> Result<Vec<RgbaLevel>, IoError> {
+fn read_half(path: &Path, limits: Option<&DecodeLimits>) -> Result<Vec<RgbaLevel>, IoError> {
     crate::height_file::container_to_read(path, "horizon maps")?;
     let bad = |file: &Path, reason: String| IoError::Texture { path: file.to_path_buf(), reason };
     let png = container(path)? == Container::Png;
-    read_levels_checked(path, &|file: &Path, format: Option<TextureFormat>| match format {
+    read_levels_checked(path, limits, &|file: &Path, format: Option<TextureFormat>| match format {
         None if !file.is_file() => {
             Err(bad(file, "not found: a horizon map is two files of four directions each (H and H.dirs4-7)".into()))
         }
@@ -156,6 +157,12 @@ pub fn files_read(path: &Path) -> Result<Vec<PathBuf>, IoError> {
 /// level 0 alone or a chain (the rest are made). Missing files, textures of other than four
 /// channels, sizes that do not match and values that are not numbers are errors naming the file.
 pub fn load_horizons(path: &Path) -> Result<HorizonMap, IoError> {
+    load_horizons_within(path, None)
+}
+
+/// [`load_horizons`], each image's decoding bounded by `limits` where given
+/// ([`crate::texture_read::load_texture_within`]).
+pub fn load_horizons_within(path: &Path, limits: Option<&DecodeLimits>) -> Result<HorizonMap, IoError> {
     let bad = |file: &Path, reason: String| IoError::Texture { path: file.to_path_buf(), reason };
     crate::height_file::container_to_read(path, "horizon maps")?;
     if std::fs::metadata(path).is_err() {
@@ -173,7 +180,7 @@ pub fn load_horizons(path: &Path) -> Result<HorizonMap, IoError> {
     if (w2, h2) != (w, h) {
         return Err(bad(&second, format!("is {w2}x{h2}, but {} is {w}x{h}", path.display())));
     }
-    let (a, b) = (read_half(path)?, read_half(&second)?);
+    let (a, b) = (read_half(path, limits)?, read_half(&second, limits)?);
     if a.len() != b.len() {
         return Err(bad(&second, format!("holds {} levels, but {} holds {}", b.len(), path.display(), a.len())));
     }

@@ -112,6 +112,22 @@ pub fn load_texture(path: &Path) -> Result<StoredTexture, IoError> {
     unorm_only(load_any_texture(path)?, path)
 }
 
+/// [`load_texture`], an image's decoding bounded by `limits` where given (the whole file read
+/// into memory first, at most [`MAX_TEXTURE_FILE_BYTES`]): what a reader of untrusted sets of
+/// files found by name (a fuzzer's) asks for.
+pub fn load_texture_within(path: &Path, limits: Option<&DecodeLimits>) -> Result<StoredTexture, IoError> {
+    let Some(limits) = limits else { return load_texture(path) };
+    let read_err = |source| IoError::Read { path: path.to_path_buf(), source };
+    let meta = std::fs::metadata(path).map_err(read_err)?;
+    if !meta.is_file() {
+        return Err(bad(path, "is not a regular file"));
+    }
+    if meta.len() > MAX_TEXTURE_FILE_BYTES {
+        return Err(bad(path, format!("{} bytes; the limit is {MAX_TEXTURE_FILE_BYTES}", meta.len())));
+    }
+    read_texture(&std::fs::read(path).map_err(read_err)?, path, limits)
+}
+
 /// [`load_texture`], but a floating-point image (EXR, float TIFF) is read too, as
 /// [`AnyTexture::Float`].
 pub fn load_any_texture(path: &Path) -> Result<AnyTexture, IoError> {
