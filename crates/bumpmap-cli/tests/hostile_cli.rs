@@ -320,13 +320,27 @@ fn a_level_beside_a_small_map_that_is_huge_is_refused_from_its_header() {
     };
     small("h.png", image::ColorType::L8);
     small("n.png", image::ColorType::Rgb8);
+    // The heights' own normal map, without a sibling: the heights are checked against its size.
+    small("m.png", image::ColorType::Rgb8);
     let huge = vec![0u8; 16384 * 16384];
     image::save_buffer(dir.join("h.mip1.png"), &huge, 16384, 16384, image::ColorType::L8).unwrap();
     std::fs::copy(dir.join("h.mip1.png"), dir.join("n.mip1.png")).unwrap();
     let at = |name: &str| dir.join(name).to_str().unwrap().to_string();
     for (args, file) in [
         (
-            vec!["render", "--scene", "wall", "--technique", "pom", "--height-map", &at("h.png"), "-o", &at("out.png")],
+            vec![
+                "render",
+                "--scene",
+                "wall",
+                "--technique",
+                "pom",
+                "--normal-map",
+                &at("m.png"),
+                "--height-map",
+                &at("h.png"),
+                "-o",
+                &at("out.png"),
+            ],
             "h.mip1.png",
         ),
         (vec!["inspect", &at("n.png")], "n.mip1.png"),

@@ -112,3 +112,75 @@ fn two_channel_maps_are_found_and_their_z_rebuilt() {
     assert!((level.texels[0].z - 0.8).abs() < 1e-6 && (level.texels[1].z - 0.6).abs() < 1e-6);
     assert!(!is_xy_only(&level));
 }
+
+/// A normal map laid out as a bake lays one out: islands of different heights and kernels, each
+/// turned by a quarter turn or not (the heights turned, then their normals made, as a baker
+/// stores a turned island), on a flat background, each island's edge copied a few texels outward
+/// (dilation padding) — so that neighbouring islands meet in seams where the normals jump.
+fn atlas(y: YConvention, seed: u64) -> Image<Vec4> {
+    use crate::hash::splitmix64;
+    let n = 512;
+    let mut state = seed;
+    let mut next = |below: u64| {
+        state = splitmix64(state);
+        (state % below) as usize
+    };
+    let mut out = vec![Vec4::new(0.0, 0.0, 1.0, 1.0); n * n];
+    let mut filled = vec![false; n * n];
+    let presets = [HeightPreset::Bricks, HeightPreset::Dimples, HeightPreset::Pinwheel, HeightPreset::Noise(seed)];
+    for (cell, (cx, cy)) in (0..4).flat_map(|j| (0..4).map(move |i| (i * 128, j * 128))).enumerate() {
+        let (w, h) = (60 + next(60), 60 + next(60));
+        let (x0, y0) = (cx + 2 + next((124 - w) as u64), cy + 2 + next((124 - h) as u64));
+        let source = presets[cell % presets.len()].render(128, 128);
+        let turns = next(4);
+        let field = HeightField::from_fn(w, h, |x, y| match turns {
+            0 => source.get(x, y),
+            1 => source.get(y, 127 - x),
+            2 => source.get(127 - x, 127 - y),
+            _ => source.get(127 - y, x),
+        });
+        let kernel = Kernel::ALL[next(Kernel::ALL.len() as u64)];
+        let scale = 2.0 + next(6) as f32;
+        let options =
+            NormalMapOptions { kernel, scale, y_convention: y, wrap: crate::Wrap::Clamp, ..Default::default() };
+        let chain: MipChain = MipChain::from_height(&field, &options, MipMode::LengthInAlpha).unwrap();
+        let island = &signed_levels(&chain.levels[..1])[0];
+        for yy in 0..h {
+            for xx in 0..w {
+                out[(y0 + yy) * n + x0 + xx] = island.texel(xx, yy);
+                filled[(y0 + yy) * n + x0 + xx] = true;
+            }
+        }
+    }
+    // Dilation: six passes, each background texel beside an island's copying it.
+    for _ in 0..6 {
+        let before = filled.clone();
+        for i in 0..n * n {
+            let (x, y) = (i % n, i / n);
+            if before[i] {
+                continue;
+            }
+            let beside = [
+                (x > 0).then(|| i - 1),
+                (x + 1 < n).then(|| i + 1),
+                (y > 0).then(|| i - n),
+                (y + 1 < n).then(|| i + n),
+            ];
+            if let Some(j) = beside.into_iter().flatten().find(|&j| before[j]) {
+                out[i] = out[j];
+                filled[i] = true;
+            }
+        }
+    }
+    Image::new(n, n, out)
+}
+
+#[test]
+fn a_baked_layout_of_turned_padded_islands_is_decided() {
+    for seed in 0..6 {
+        for y in [YConvention::YUp, YConvention::YDown] {
+            let v = detect_convention(&atlas(y, seed));
+            assert_eq!(v.convention, Ok(y), "seed {seed} {y:?}: {v:?}");
+        }
+    }
+}
