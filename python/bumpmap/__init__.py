@@ -13,6 +13,8 @@ make the same bytes the command writes from the same options:
   averaged normal in alpha (Kilgard §2.4.2);
 - ``height_mips(heights, **options)``: the heights as the parallax techniques read them: their
   levels and min–max levels (``bumpmap normalmap --height-out``);
+- ``write_heights(path, heights, **options)``: the same written as the files ``--height-out``
+  writes, which ``render --height-map`` and the command line's parallax techniques read;
 - ``horizon_maps(heights, **options)``: the horizon map, ambient occlusion and bent normals
   (``bumpmap normalmap --horizon-out --ao-out --bent-normals-out``);
 - ``roughness_map(heights, **options)``: the roughness map, every level
@@ -49,8 +51,9 @@ file, written, inspected, integrated back into heights, drawn). ``render`` and
 
 Warnings (heights clamped, a roughness map of one level, ...) are issued through ``warnings`` as
 ``BumpmapWarning``; notes (what a glTF material gave, a technique ``compare`` skipped, the CPU
-taken where ``backend="auto"`` found no GPU) go to the ``bumpmap`` logger at INFO. ``render``
-and ``compare`` take ``progress=``, a function told ``(done, total)`` as the work advances.
+taken where ``backend="auto"`` found no GPU) go to the ``bumpmap`` logger at INFO. ``render``,
+``compare``, ``bake`` and ``horizon_maps`` take ``progress=``, a function told ``(done, total)``
+as the work advances.
 
 Errors are exceptions carrying the library's message: ``ValueError`` for values, ``TypeError``
 for arrays of the wrong dtype or options that do not exist, ``OSError`` for files
@@ -80,6 +83,7 @@ __all__ = [
     "normal_map",
     "mip_chain",
     "height_mips",
+    "write_heights",
     "horizon_maps",
     "roughness_map",
     "lean_moments",
@@ -177,6 +181,18 @@ def height_mips(heights, **options):
     return _bumpmap.height_mips(heights, options)
 
 
+def write_heights(path, heights, **options):
+    """The heights written as ``bumpmap normalmap IN --height-out PATH`` writes them, all files
+    or none: what ``height_mips`` returns, stored by ``path``'s extension. ``.png``: the levels
+    as gray PNGs (``H.png``, ``H.mip1.png``, ...) and the min–max levels as 16-bit RGB
+    (``H.minmax.png``, ...); ``.ktx2`` or ``.dds``: one file of every level (``R8_UNORM`` or
+    ``R16_UNORM`` by ``bits``) and ``H.minmax.ktx2`` (``R16G16_UNORM``). Bounds are rounded
+    outward, so they still bound the stored heights' interpolant. ``render(height_map=path)``
+    and ``bumpmap render --height-map`` read them back. Returns the paths written.
+    """
+    return _bumpmap.write_heights(path, heights, options)
+
+
 def horizon_maps(heights, **options):
     """The horizon map (Max 1988; Sloan & Cohen 2000) and what it gives, as
     ``bumpmap normalmap IN --horizon-out H --ao-out A --bent-normals-out B`` makes them.
@@ -188,6 +204,9 @@ def horizon_maps(heights, **options):
     (H, W) float32 array, the cosine-weighted share of the sky each texel sees (1 open);
     ``"bent_normals"``, an (H, W, 4) array encoded as ``normal_map`` encodes normals (green per
     ``y_convention``), the mean open direction.
+
+    ``progress``: a function called ``progress(done, total)`` on the calling thread as rows of
+    the horizon map are made (the long part: minutes for 8192² heights).
     """
     return _bumpmap.horizon_maps(heights, options)
 
@@ -576,7 +595,7 @@ def _default(text):
 
 
 # Keywords of the package's own beside the command line's options.
-_OWN_KEYWORDS = {"render": ["progress"], "compare": ["progress"], "bake": ["progress"]}
+_OWN_KEYWORDS = {"render": ["progress"], "compare": ["progress"], "bake": ["progress"], "horizon_maps": ["progress"]}
 
 
 def _signature(function, leading):
@@ -594,7 +613,7 @@ def _signature(function, leading):
     return _inspect.Signature(params)
 
 
-for _f, _leading in ((normal_map, 1), (mip_chain, 1), (height_mips, 1), (horizon_maps, 1),
+for _f, _leading in ((normal_map, 1), (mip_chain, 1), (height_mips, 1), (write_heights, 2), (horizon_maps, 1),
                      (roughness_map, 1), (lean_moments, 1), (read_height_field, 1),
                      (write_texture, 2), (tangents, 4), (render, 0), (compare, 1), (height_from_normals, 1),
                      (bake, 2), (blend_normals, 2)):

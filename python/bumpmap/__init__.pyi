@@ -97,6 +97,14 @@ def height_mips(
     bits: int = 8,
     # END options of height_mips
 ) -> tuple[list[npt.NDArray[np.float32]], list[npt.NDArray[np.float32]]]: ...
+def write_heights(
+    path: _Path,
+    heights: _Heights,
+    *,
+    # BEGIN options of write_heights
+    bits: int = 8,
+    # END options of write_heights
+) -> list[Path]: ...
 class HorizonMaps(TypedDict):
     horizons: list[npt.NDArray[np.float32]]
     ambient_occlusion: npt.NDArray[np.float32]
@@ -113,6 +121,7 @@ def horizon_maps(
     encoding: _Encoding = "unorm",
     y_convention: _YConvention = "opengl",
     # END options of horizon_maps
+    progress: Optional[_Progress] = None,
 ) -> HorizonMaps: ...
 def roughness_map(
     heights: _Heights,

@@ -321,6 +321,7 @@ fn _bumpmap(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(maps::blend_normals, m)?)?;
     m.add_function(wrap_pyfunction!(maps::mip_chain, m)?)?;
     m.add_function(wrap_pyfunction!(maps::height_mips, m)?)?;
+    m.add_function(wrap_pyfunction!(maps::write_heights, m)?)?;
     m.add_function(wrap_pyfunction!(maps::horizon_maps, m)?)?;
     m.add_function(wrap_pyfunction!(maps::roughness_map, m)?)?;
     m.add_function(wrap_pyfunction!(maps::lean_moments, m)?)?;

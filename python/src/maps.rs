@@ -1,16 +1,20 @@
 //! Heights → the maps `bumpmap normalmap` writes, as arrays: the normal map and its chain, the
 //! heights the parallax techniques read, the horizon map with ambient occlusion and bent
-//! normals, the roughness map and LEAN's moments. Each reads its keywords as typed values
+//! normals, the roughness map and LEAN's moments; and the heights written as their files. Each reads its keywords as typed values
 //! (`keywords::map_request`) and calls the library's function (`bumpmap::maps`), which the
 //! command calls too.
 
+use std::path::PathBuf;
+
 use bumpmap::maps::{self, Chain, MapOptions};
-use bumpmap_words::maps::map_error;
+use bumpmap_io::atomic::FileSet;
+use bumpmap_words::Error;
+use bumpmap_words::maps::{map_error, outputs_error};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
 
 use crate::errors::to_py;
-use crate::{arrays, interrupt, keywords};
+use crate::{arrays, interrupt, keywords, take_progress};
 
 /// `function`'s keywords as the request they make.
 fn request(function: &str, options: Option<&Bound<'_, PyDict>>) -> PyResult<MapOptions> {
@@ -85,9 +89,39 @@ pub fn height_mips<'py>(
     Ok((PyList::new(py, levels)?, PyList::new(py, minmax)?))
 }
 
+/// Heights → the files `normalmap --height-out PATH` writes (every level rounded to `bits` and
+/// the min–max levels, by PATH's extension), all or none; returns the paths written.
+#[pyfunction]
+#[pyo3(signature = (path, heights, options = None))]
+pub fn write_heights(
+    py: Python<'_>,
+    path: PathBuf,
+    heights: &Bound<'_, PyAny>,
+    options: Option<&Bound<'_, PyDict>>,
+) -> PyResult<Vec<PathBuf>> {
+    let map = request("write_heights", options)?;
+    let field = arrays::height_field(heights)?;
+    let written = interrupt::run(py, move |cancel| {
+        let mut set = FileSet::new(&[]);
+        let clamped =
+            maps::write_heights_into(&mut set, &path, &map, &field).map_err(|e| outputs_error(e, "heights"))?;
+        if let Some(clamped) = clamped {
+            bumpmap_words::report::warn(format!("heights: {clamped}"));
+        }
+        // Nothing goes into place once the caller gave up (Ctrl-C); the staged files go.
+        if !cancel.begin_commit() {
+            return Err(Error::Interrupted);
+        }
+        Ok(set.commit()?)
+    })?
+    .map_err(|e| to_py("write_heights", e))?;
+    Ok(written)
+}
+
 /// Heights → the horizon map (every level, float32 (H, W, 8): atan(rise)/90° per direction),
 /// ambient occlusion (float32 (H, W)) and bent normals (encoded as `normal_map` encodes normals),
-/// as `normalmap --horizon-out --ao-out --bent-normals-out` makes them.
+/// as `normalmap --horizon-out --ao-out --bent-normals-out` makes them; the rows of level 0 told
+/// to a `progress=` function.
 #[pyfunction]
 #[pyo3(signature = (heights, options = None))]
 pub fn horizon_maps<'py>(
@@ -95,11 +129,23 @@ pub fn horizon_maps<'py>(
     heights: &Bound<'py, PyAny>,
     options: Option<&Bound<'py, PyDict>>,
 ) -> PyResult<Bound<'py, PyDict>> {
-    let request = request("horizon_maps", options)?;
+    let (options, progress) = take_progress("horizon_maps", options)?;
+    let request = request("horizon_maps", options.as_ref())?;
     let field = arrays::height_field(heights)?;
     let asked = request;
-    let map = interrupt::run(py, move |_| maps::horizon_map(&asked, &field).map_err(|e| map_error(e, "heights")))?
-        .map_err(|e| to_py("horizon_maps", e))?;
+    let map = interrupt::run_reporting(
+        py,
+        move |_, report| {
+            let rows = |done: usize, total: usize| {
+                if let Some(f) = &report {
+                    f(done as u64, total as u64);
+                }
+            };
+            maps::horizon_map(&asked, &field, &rows).map_err(|e| map_error(e, "heights"))
+        },
+        progress.as_ref(),
+    )?
+    .map_err(|e| to_py("horizon_maps", e))?;
     let depth = request.normals.scale.abs();
     let levels: Vec<_> = map
         .levels()

@@ -14,10 +14,11 @@ use bumpmap_words::as_keywords;
 pub type OptionRow = (String, Option<String>, String, Vec<String>, bool);
 
 /// Every function that takes options, by Python name.
-pub const FUNCTIONS: [&str; 14] = [
+pub const FUNCTIONS: [&str; 15] = [
     "normal_map",
     "mip_chain",
     "height_mips",
+    "write_heights",
     "horizon_maps",
     "roughness_map",
     "lean_moments",

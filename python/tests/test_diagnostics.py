@@ -63,6 +63,28 @@ def test_progress_of_a_technique_is_one_step_and_of_compare_every_step():
     assert seen[-1] == (12, 12) and len(seen) >= 2, seen  # 2 techniques + the references, convergence, 7 studies
 
 
+def test_progress_of_the_horizon_map_counts_its_rows():
+    seen = []
+    heights = bumpmap.read_height_field("bricks@64")
+    plain = bumpmap.horizon_maps(heights)
+    told = bumpmap.horizon_maps(heights, progress=lambda *a: seen.append(a))
+    # The calling thread reads the count as it goes (a quick map may be told only its end).
+    assert {t for _, t in seen} == {64} and seen[-1] == (64, 64), seen
+    done = [d for d, _ in seen]
+    assert done == sorted(done), seen
+    # Telling changes nothing made.
+    assert all(np.array_equal(a, b) for a, b in zip(plain["horizons"], told["horizons"]))
+
+    class Stop(Exception):
+        pass
+
+    def stop(done, total):
+        raise Stop(f"{done}/{total}")
+
+    with pytest.raises(Stop):
+        bumpmap.horizon_maps(heights, progress=stop)
+
+
 def test_a_progress_function_that_raises_stops_the_call_with_its_exception():
     class Stop(Exception):
         pass

@@ -187,3 +187,39 @@ def test_heights_containers_mean_what_their_formats_say(tmp_path, cli, bricks, e
         # Rounded outward, within one step.
         assert (theirs[..., 0] <= ours[..., 0] + 1e-7).all() and (theirs[..., 1] >= ours[..., 1] - 1e-7).all(), k
         assert np.abs(theirs - ours).max() <= 1 / 65535 + 1e-7, k
+
+
+@pytest.mark.parametrize("ext, bits", [("png", 16), ("png", 8), ("ktx2", 16), ("dds", 8)])
+def test_write_heights_writes_the_files_height_out_writes(tmp_path, cli, bricks, ext, bits):
+    cli("normalmap", "bricks@32", "-o", tmp_path / "n.png", "--mips", "--bits", bits, "--height-out",
+        tmp_path / "cli" / f"h.{ext}")
+    written = bumpmap.write_heights(tmp_path / "py" / f"h.{ext}", bricks, bits=bits)
+    theirs = sorted(p.name for p in (tmp_path / "cli").iterdir())
+    # Six levels of heights and six of bounds as PNGs; one file of each in a container.
+    assert len(theirs) == (12 if ext == "png" else 2)
+    assert sorted(p.name for p in written) == theirs
+    assert all(p.parent == tmp_path / "py" for p in written)
+    for name in theirs:
+        assert (tmp_path / "py" / name).read_bytes() == (tmp_path / "cli" / name).read_bytes(), name
+
+
+def test_write_heights_are_read_back_by_render(tmp_path, bricks):
+    (normals,) = bumpmap.write_texture(tmp_path / "n.png", bumpmap.normal_map(bricks))
+    heights = bumpmap.write_heights(tmp_path / "h.ktx2", bricks, bits=16)
+    got = bumpmap.render(scene="wall", technique="height-exact", size=40, normal_map=normals, height_map=heights[0])
+    # Drawn by the exact walk over the written bounds, not refused and not black.
+    assert (got[..., :3].max(axis=2) > 40).mean() > 0.2
+
+
+def test_write_heights_refuses_before_writing_anything(tmp_path, bricks):
+    with pytest.raises(OSError, match=r"h\.jpg.*unsupported output format.*\.png, \.dds or \.ktx2"):
+        bumpmap.write_heights(tmp_path / "h.jpg", bricks)
+    with pytest.raises(ValueError, match=r"bits"):
+        bumpmap.write_heights(tmp_path / "h.png", bricks, bits=12)
+    with pytest.raises(ValueError, match=r"heights must be a 2-D array"):
+        bumpmap.write_heights(tmp_path / "h.png", np.zeros((4, 4, 3), np.float32))
+    # A folder where the bounds would go: the set fails as a whole, none of its files stays.
+    (tmp_path / "h.minmax.png").mkdir()
+    with pytest.raises(OSError, match=r"h\.minmax\.png"):
+        bumpmap.write_heights(tmp_path / "h.png", bricks)
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["h.minmax.png"]

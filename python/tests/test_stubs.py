@@ -15,7 +15,7 @@ from bumpmap import _bumpmap
 
 STUB = Path(bumpmap.__file__).with_name("__init__.pyi")
 # Every function that takes the command line's options.
-FUNCTIONS = ["normal_map", "mip_chain", "height_mips", "horizon_maps", "roughness_map", "lean_moments",
+FUNCTIONS = ["normal_map", "mip_chain", "height_mips", "write_heights", "horizon_maps", "roughness_map", "lean_moments",
              "read_height_field", "write_texture", "tangents", "render", "compare", "height_from_normals", "bake", "blend_normals"]
 
 

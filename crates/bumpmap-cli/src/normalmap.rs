@@ -41,7 +41,15 @@ pub fn run(args: &NormalmapArgs) -> Result<(), CliError> {
     let err = |e| outputs_error(e, &args.input);
     outputs.check(&inputs).map_err(err)?;
     let field = source.load(channel)?;
-    let written = outputs.write(field, &args.maps.0, args.mips, format, &inputs).map_err(err)?;
+    // The horizon map is the long part (minutes for 8192²): its rows on a bar.
+    let bar = if outputs.makes_horizon_map() { ProgressBar::new(field.height() as u64) } else { ProgressBar::hidden() };
+    let bar = bar.with_style(
+        ProgressStyle::with_template("horizon map {bar:40} {pos}/{len} rows {elapsed}").expect("a valid template"),
+    );
+    let written =
+        outputs.write(field, &args.maps.0, args.mips, format, &inputs, &|rows, _| bar.set_position(rows as u64));
+    bar.finish_and_clear();
+    let written = written.map_err(err)?;
     if let Some(clamped) = written.clamped {
         crate::report::warn(format!("{}: {clamped} for --height-out", args.input));
     }

@@ -155,6 +155,17 @@ impl HorizonMap {
     /// The horizons of `heights` (read beyond the edges as `wrap` says), every level. Texels run
     /// in parallel by rows.
     pub fn from_heights(heights: &(impl HeightGrid + Sync), wrap: Wrap) -> Result<Self, HorizonError> {
+        Self::from_heights_told(heights, wrap, &|_, _| {})
+    }
+
+    /// [`Self::from_heights`], telling `progress(rows done, rows)` as level 0's rows finish (from
+    /// any thread); a `progress` that panics stops the rows not begun, and its panic goes on
+    /// ([`crate::progress::Told`]).
+    pub fn from_heights_told(
+        heights: &(impl HeightGrid + Sync),
+        wrap: Wrap,
+        progress: &(dyn Fn(usize, usize) + Sync),
+    ) -> Result<Self, HorizonError> {
         let (w, h) = (heights.width(), heights.height());
         let mut texels = try_vec(w * h, "the horizon map's level 0")?;
         texels.resize(w * h, [0.0; AZIMUTHS]);
@@ -163,11 +174,17 @@ impl HorizonMap {
             .fold((f32::INFINITY, f32::NEG_INFINITY), |(lo, hi), (x, y)| {
                 (lo.min(heights.at(x, y)), hi.max(heights.at(x, y)))
             });
+        let told = crate::progress::Told::new(progress, h);
         texels.par_chunks_mut(w.max(1)).enumerate().for_each(|(y, row)| {
+            if told.stopped() {
+                return;
+            }
             for (x, texel) in row.iter_mut().enumerate() {
                 *texel = horizons_at(heights, wrap, range, x, y);
             }
+            told.step();
         });
+        told.finish();
         Self::from_level0(HorizonLevel { width: w, height: h, texels })
     }
 

@@ -35,7 +35,7 @@ pub use blend::{BlendError, BlendOptions, Blended, MAX_REPEAT, blend_files, blen
 pub use cube::write_cube_map;
 pub use files::{SaveError, check_container, write_chain, write_chain_into};
 pub use folder::{FolderBatch, FolderError};
-pub use outputs::{MapOutputs, Output, OutputsError, Written, lean_files};
+pub use outputs::{MapOutputs, Output, OutputsError, Written, lean_files, write_heights, write_heights_into};
 
 use bumpmap_math::buffer::OutOfMemory;
 use bumpmap_math::normalmap::{NormalMapError, normal_map_level0_texels};
@@ -241,11 +241,16 @@ pub fn height_mips(options: &MapOptions, field: &HeightField) -> Result<StoredHe
 }
 
 /// The horizon map of `field`, read beyond its edges as the normal map's wrap says (ambient
-/// occlusion and bent normals are made from it, at the depth `options.normals.scale`).
-pub fn horizon_map(options: &MapOptions, field: &HeightField) -> Result<HorizonMap, MapError> {
+/// occlusion and bent normals are made from it, at the depth `options.normals.scale`), telling
+/// `progress(rows done, rows)` as level 0's rows finish: the long part (minutes for 8192²).
+pub fn horizon_map(
+    options: &MapOptions,
+    field: &HeightField,
+    progress: &(dyn Fn(usize, usize) + Sync),
+) -> Result<HorizonMap, MapError> {
     options.check()?;
     ensure_room(options, field, per_texel::HORIZONS, "making the horizon map")?;
-    Ok(HorizonMap::from_heights(&*as_bumped(options, field), options.normals.wrap)?)
+    Ok(HorizonMap::from_heights_told(&*as_bumped(options, field), options.normals.wrap, progress)?)
 }
 
 /// The heights of the surface the normal map shows: `field` itself, or turned upside down

@@ -46,7 +46,7 @@ fn outputs_on_one_file_are_refused_before_anything_is_written() {
     for (outputs, output, other) in cases {
         let outputs = MapOutputs { normal_map: n.clone(), ..outputs };
         let field = HeightPreset::Bricks.render(16, 16);
-        match outputs.write(field, &MapOptions::default(), true, TextureFormat::Rgba8, &[]) {
+        match outputs.write(field, &MapOptions::default(), true, TextureFormat::Rgba8, &[], &|_, _| {}) {
             Err(OutputsError::Clash { output: o, other: t, .. }) => assert_eq!((o, t), (output, other)),
             other => panic!("{outputs:?}: {other:?}"),
         }
@@ -67,7 +67,7 @@ fn gltfs_orm_texture_holds_the_occlusion_in_red() {
     };
     let options = MapOptions { roughness_layout: RoughnessLayout::Gltf, ..Default::default() };
     let field = HeightPreset::Bricks.render(32, 32);
-    let written = outputs.write(field, &options, true, TextureFormat::Rgba8, &[]).unwrap();
+    let written = outputs.write(field, &options, true, TextureFormat::Rgba8, &[], &|_, _| {}).unwrap();
     assert!(written.files.contains(&dir.join("orm.mip1.png")), "{:?}", written.files);
     let orm = bumpmap_io::load_rgba8(&dir.join("orm.png")).unwrap();
     let ao = bumpmap_io::load_rgba8(&dir.join("ao.png")).unwrap();
@@ -79,7 +79,7 @@ fn gltfs_orm_texture_holds_the_occlusion_in_red() {
     // Without the occlusion, red is glTF's 1.
     let plain =
         MapOutputs { normal_map: dir.join("p.png"), roughness: Some(dir.join("p_orm.png")), ..Default::default() };
-    plain.write(HeightPreset::Bricks.render(32, 32), &options, false, TextureFormat::Rgba8, &[]).unwrap();
+    plain.write(HeightPreset::Bricks.render(32, 32), &options, false, TextureFormat::Rgba8, &[], &|_, _| {}).unwrap();
     let orm = bumpmap_io::load_rgba8(&dir.join("p_orm.png")).unwrap();
     assert!(orm.texels.iter().all(|t| t[0] == 255));
 }
@@ -135,7 +135,7 @@ fn a_negative_scale_makes_every_map_of_the_heights_turned_upside_down() {
     };
     let (down, up) = (with(-4.0), with(4.0));
     let ao = |options: &MapOptions, f: &bumpmap::HeightField| {
-        bumpmap::maps::horizon_map(options, f).unwrap().ambient_occlusion(options.normals.scale.abs())
+        bumpmap::maps::horizon_map(options, f, &|_, _| {}).unwrap().ambient_occlusion(options.normals.scale.abs())
     };
     assert_eq!(ao(&down, &field), ao(&up, &flipped));
     assert_ne!(ao(&down, &field), ao(&up, &field), "bumps and dents are not occluded alike");
@@ -150,4 +150,25 @@ fn a_negative_scale_makes_every_map_of_the_heights_turned_upside_down() {
             bumpmap::maps::Chain::Rgba16(_) => unreachable!("8 bits"),
         };
     assert_eq!(normals(&down, &field), normals(&up, &flipped));
+}
+
+#[test]
+fn the_horizon_map_tells_its_rows_and_nothing_else_does() {
+    use std::sync::Mutex;
+    let dir = std::env::temp_dir().join(format!("bumpmap-outputs-told-{}", std::process::id()));
+    let told = Mutex::new(Vec::new());
+    let tell = |done: usize, total: usize| told.lock().unwrap().push((done, total));
+    let field = || HeightPreset::Bricks.render(32, 24);
+    let plain = MapOutputs { normal_map: dir.join("n.png"), ..Default::default() };
+    plain.write(field(), &MapOptions::default(), false, TextureFormat::Rgba8, &[], &tell).unwrap();
+    assert!(told.lock().unwrap().is_empty(), "no horizon map, nothing told");
+    let with_ao = MapOutputs { normal_map: dir.join("n.png"), ambient_occlusion: Some(dir.join("ao.png")), ..plain };
+    with_ao.write(field(), &MapOptions::default(), false, TextureFormat::Rgba8, &[], &tell).unwrap();
+    let mut seen = told.into_inner().unwrap();
+    // One call a row, from any thread, each with the rows in all.
+    assert_eq!(seen.len(), 24);
+    assert!(seen.iter().all(|&(_, total)| total == 24));
+    seen.sort();
+    assert_eq!(seen.iter().map(|&(done, _)| done).collect::<Vec<_>>(), (1..=24).collect::<Vec<_>>());
+    std::fs::remove_dir_all(dir).unwrap();
 }

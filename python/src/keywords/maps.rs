@@ -1,8 +1,9 @@
 //! The keywords of the functions whose options are one library table each: the map functions
-//! (`normal_map`, `mip_chain`, `height_mips`, `horizon_maps`, `roughness_map`, `lean_moments`:
-//! parts of the maps' table, as the library's `MapOptions`), `read_height_field`'s channel,
-//! `write_texture`'s format, `tangents`' algorithm and split angle, how `height_from_normals`
-//! integrates slopes (the library's `HeightChoices`), and `compare`'s `CompareOptions`.
+//! (`normal_map`, `mip_chain`, `height_mips`, `write_heights`, `horizon_maps`, `roughness_map`,
+//! `lean_moments`: parts of the maps' table, as the library's `MapOptions`), `read_height_field`'s
+//! channel, `write_texture`'s format, `tangents`' algorithm and split angle, how
+//! `height_from_normals` integrates slopes (the library's `HeightChoices`), and `compare`'s
+//! `CompareOptions`.
 
 use bumpmap::heights::{HeightChoiceError, HeightChoices, HeightOptions};
 use bumpmap::maps::MapOptions;
@@ -89,7 +90,7 @@ pub fn map_keywords(function: &str) -> Option<Vec<&'static str>> {
     let extra: &[&'static str] = match function {
         "normal_map" | "horizon_maps" => &["bits"],
         "mip_chain" => &["bits", "mip_mode"],
-        "height_mips" => return Some(vec!["bits"]),
+        "height_mips" | "write_heights" => return Some(vec!["bits"]),
         "roughness_map" => &["roughness", "roughness_layout"],
         "lean_moments" => &[],
         _ => return None,

@@ -4,6 +4,7 @@
 //! map is made, then each map made and every file staged into one [`FileSet`], so all land or
 //! none. glTF's ORM packing is done here too: with the ambient occlusion asked for and the
 //! roughness in glTF's layout, the roughness map's red channel holds each level's occlusion.
+//! The heights alone, as a set of files of their own, go through [`write_heights`].
 //!
 //! What this module does not do: read the heights (the caller does, so a preset or a file),
 //! say anything (the heights' clamping comes back as data), or name the command line's flags
@@ -130,6 +131,54 @@ pub fn lean_files(out: &Path) -> Result<[PathBuf; 2], OutputsError> {
     Ok([out.to_path_buf(), out.with_file_name(format!("{stem}.mxy-j.{ext}"))])
 }
 
+/// Writes `field`'s heights as the parallax techniques read them ([`super::height_mips`]: every
+/// level rounded to `options.bits`, and the min–max levels), as `normalmap --height-out OUT`
+/// writes them: by `out`'s extension (`.png` with `.mipK.png` and `.minmax.png` files beside it,
+/// or one `.ktx2` / `.dds` and its `.minmax` twin), all files or none, none replacing one of
+/// `inputs`. The files are checked before any work.
+///
+/// ```
+/// use bumpmap::maps::{self, MapOptions};
+/// use bumpmap::HeightPreset;
+///
+/// let dir = std::env::temp_dir().join(format!("bumpmap-doc-heights-{}", std::process::id()));
+/// let field = HeightPreset::Bricks.render(16, 16);
+/// let written = maps::write_heights(&dir.join("h.ktx2"), &MapOptions::default(), &field, &[]).unwrap();
+/// assert_eq!(written.files, [dir.join("h.ktx2"), dir.join("h.minmax.ktx2")]);
+/// assert!(written.clamped.is_none()); // the preset's heights lie in [0, 1]
+/// assert!(maps::write_heights(&dir.join("h.jpg"), &MapOptions::default(), &field, &[]).is_err());
+/// std::fs::remove_dir_all(dir).unwrap();
+/// ```
+pub fn write_heights(
+    out: &Path,
+    options: &MapOptions,
+    field: &HeightField,
+    inputs: &[&Path],
+) -> Result<Written, OutputsError> {
+    for file in bumpmap_io::height_file::heights_files(out, 1)? {
+        ensure_not_input(&file, inputs)?;
+    }
+    let mut set = FileSet::new(inputs);
+    let clamped = write_heights_into(&mut set, out, options, field)?;
+    Ok(Written { files: set.commit()?, clamped })
+}
+
+/// [`write_heights`] staged into `set` (which a caller commits, or drops to write nothing);
+/// returns the heights' range where it leaves [0, 1]. `out`'s extension is checked before any
+/// work.
+pub fn write_heights_into(
+    set: &mut FileSet,
+    out: &Path,
+    options: &MapOptions,
+    field: &HeightField,
+) -> Result<Option<Clamped>, OutputsError> {
+    bumpmap_io::height_file::heights_files(out, 1)?;
+    let stored = super::height_mips(options, field)?;
+    let bits = if options.bits == 16 { HeightBits::Sixteen } else { HeightBits::Eight };
+    bumpmap_io::height_file::write_heights_into(set, out, &stored.mips, bits)?;
+    Ok(stored.clamped)
+}
+
 impl MapOutputs {
     /// Whether any map besides the normal map is asked for.
     pub fn any_beside(&self) -> bool {
@@ -142,7 +191,7 @@ impl MapOutputs {
     }
 
     /// Whether the horizon map is made (the horizons, the occlusion or the bent normals).
-    fn horizon_map(&self) -> bool {
+    pub fn makes_horizon_map(&self) -> bool {
         self.horizons.is_some() || self.ambient_occlusion.is_some() || self.bent_normals.is_some()
     }
 
@@ -240,7 +289,7 @@ impl MapOutputs {
         if self.heights.is_some() {
             per += HEIGHTS;
         }
-        if self.horizon_map() {
+        if self.makes_horizon_map() {
             per += HORIZONS;
         }
         if self.bent_normals.is_some() {
@@ -257,7 +306,9 @@ impl MapOutputs {
     /// Checks the outputs against each other and `inputs` ([`Self::check`]) and the memory they
     /// need ([`Self::ensure_room`]), then makes every map of `field` asked for (the normal map's
     /// chain with `mips`, at `format`'s depth) and writes them all or none, the normal map's DDS
-    /// or KTX2 texels in `format`; the horizon map's file holds every level with `mips`.
+    /// or KTX2 texels in `format`; the horizon map's file holds every level with `mips`. The
+    /// horizon map, the long part where one is made ([`Self::makes_horizon_map`]), tells
+    /// `progress(rows done, rows)` ([`super::horizon_map`]).
     pub fn write(
         &self,
         field: HeightField,
@@ -265,11 +316,13 @@ impl MapOutputs {
         mips: bool,
         format: TextureFormat,
         inputs: &[&Path],
+        progress: &(dyn Fn(usize, usize) + Sync),
     ) -> Result<Written, OutputsError> {
         let planned = self.plan(inputs)?;
         self.ensure_room(options.bits, field.width(), field.height())?;
         let chain = super::normal_map_as(options, mips, format, &field)?;
-        let horizons = if self.horizon_map() { Some(super::horizon_map(options, &field)?) } else { None };
+        let horizons =
+            if self.makes_horizon_map() { Some(super::horizon_map(options, &field, progress)?) } else { None };
         let mut roughness = if self.roughness.is_some() { Some(super::roughness_map(options, &field)?) } else { None };
         let lean = match &planned.lean {
             Some(_) => Some(super::lean_moments(options, &field, Some(&chain))?),
