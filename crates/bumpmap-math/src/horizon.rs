@@ -14,6 +14,8 @@
 //! interpolant (`crate::interpolant`, the surface `crate::height_trace` casts rays at): its slope
 //! at the texel, every quarter of the first step (where the surface bends most for its
 //! distance), then texel centres and, over the first eight steps, the midpoints between them, out to [`MAX_REACH`] steps or until no height left in the field could rise higher.
+//! Over repeating heights the far steps go block by block where a max pyramid shows a block
+//! too low to rise above the horizon found (`reach`: the same horizons, bit for bit).
 //!
 //! What this module does not do: light a fragment (the lighting model multiplies by
 //! [`visibility`]), or read and write files.
@@ -174,13 +176,18 @@ impl HorizonMap {
             .fold((f32::INFINITY, f32::NEG_INFINITY), |(lo, hi), (x, y)| {
                 (lo.min(heights.at(x, y)), hi.max(heights.at(x, y)))
             });
+        // Repeating heights skip the far steps a max pyramid bounds (`reach`).
+        let maxima = match wrap {
+            Wrap::Repeat => Some(MaxPyramid::new(heights)?),
+            _ => None,
+        };
         let told = crate::progress::Told::new(progress, h);
         texels.par_chunks_mut(w.max(1)).enumerate().for_each(|(y, row)| {
             if told.stopped() {
                 return;
             }
             for (x, texel) in row.iter_mut().enumerate() {
-                *texel = horizons_at(heights, wrap, range, x, y);
+                *texel = search(heights, wrap, range, maxima.as_ref(), x, y);
             }
             told.step();
         });
@@ -336,6 +343,19 @@ fn mean_plane<const N: usize>(
 /// Catmull-Rom's overshoot past a sharp edge is not part of the surface), and no search goes on
 /// once the highest could not rise above the horizon found.
 pub fn horizons_at(heights: &impl HeightGrid, wrap: Wrap, range: (f32, f32), x: usize, y: usize) -> Horizons {
+    search(heights, wrap, range, None, x, y)
+}
+
+/// [`horizons_at`], its far steps skipped block by block where `maxima` (of `heights`, which
+/// repeat) bound them below the horizon found: the same horizons, bit for bit.
+fn search(
+    heights: &impl HeightGrid,
+    wrap: Wrap,
+    range: (f32, f32),
+    maxima: Option<&MaxPyramid>,
+    x: usize,
+    y: usize,
+) -> Horizons {
     let (w, h) = (heights.width(), heights.height());
     let (lowest, highest) = range;
     let at = |i: i64, j: i64| heights.at(wrap_index(wrap, i, w), wrap_index(wrap, j, h));
@@ -380,9 +400,30 @@ pub fn horizons_at(heights: &impl HeightGrid, wrap: Wrap, range: (f32, f32), x: 
         // Farther out, centres only, their indices stepped under the wrap (no division a step).
         let (mut i, mut j) =
             (wrap_index(wrap, x + MIDPOINT_STEPS * dx, w), wrap_index(wrap, y + MIDPOINT_STEPS * dy, h));
-        for n in MIDPOINT_STEPS + 1..=MAX_REACH as i64 {
+        // Steps before this one are not bounded again: the block there could rise higher.
+        let mut ask_from = MIDPOINT_STEPS + 1;
+        let mut n = MIDPOINT_STEPS;
+        while n < MAX_REACH as i64 {
+            n += 1;
             i = advance(i, dx, w, wrap);
             j = advance(j, dy, h, wrap);
+            if let (Some(maxima), true) = (maxima, n >= ask_from) {
+                let left = MAX_REACH as i64 - n + 1;
+                match maxima.skip((i, j), (dx, dy), n, left, h0, length, best) {
+                    Ok(steps) => {
+                        // Every step of the block from here is no higher than the horizon found:
+                        // on to its last, which the wrap does not cross inside a block.
+                        n += steps - 1;
+                        i = (i as i64 + dx * (steps - 1)) as usize;
+                        j = (j as i64 + dy * (steps - 1)) as usize;
+                        if far(n, best) {
+                            break;
+                        }
+                        continue;
+                    }
+                    Err(steps) => ask_from = n + steps,
+                }
+            }
             best = best.max((heights.at(i, j) - h0) / (n as f32 * length));
             // Under clamp, once every coordinate the step moves is past the edge, the heights
             // stay as they are and the rise only falls.
@@ -477,5 +518,8 @@ pub fn bent_normal(horizons: &Horizons, depth: f32) -> Vec3 {
     sum.normalize_or(Vec3::Z)
 }
 
+mod reach;
 #[cfg(test)]
 mod tests;
+
+use reach::MaxPyramid;

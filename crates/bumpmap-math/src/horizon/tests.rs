@@ -112,3 +112,42 @@ fn levels_of_the_wrong_size_or_out_of_range_are_refused() {
     assert_eq!(HorizonMap::from_levels(vec![]).unwrap_err(), HorizonError::Empty);
     assert_eq!(HorizonMap::from_levels(vec![level(4, 4, 0.5)]).unwrap().levels().len(), 3);
 }
+
+#[test]
+fn the_max_pyramid_skips_only_what_changes_nothing() {
+    use crate::height::HeightPreset;
+    // Fields of every kind the search meets, sizes not powers of two among them: plateaus
+    // (bricks), smooth bumps (dimples), noise, and a few spikes on flat ground far apart, where
+    // whole blocks lie below the start (a falling bound) and single ones above it.
+    let spikes = HeightField::from_fn(300, 70, |x, y| if (x * 7 + y * 13) % 97 == 0 { 0.9 } else { 0.2 });
+    let fields = [
+        HeightPreset::Bricks.render(96, 64),
+        HeightPreset::Dimples.render(67, 45),
+        HeightPreset::Noise(3).render(128, 128),
+        spikes,
+    ];
+    for field in &fields {
+        let (w, h) = (field.width(), field.height());
+        let range = (0..w * h).fold((f32::INFINITY, f32::NEG_INFINITY), |(lo, hi), i| {
+            (lo.min(field.get(i % w, i / w)), hi.max(field.get(i % w, i / w)))
+        });
+        let map = HorizonMap::from_heights(field, Wrap::Repeat).unwrap();
+        let maxima = MaxPyramid::new(field).unwrap();
+        for y in 0..h {
+            for x in 0..w {
+                let every_step = horizons_at(field, Wrap::Repeat, range, x, y);
+                assert_eq!(map.levels()[0].texels[y * w + x], every_step, "{w}x{h} at ({x}, {y})");
+                // Bit for bit, as the map itself is made.
+                let bounded = search(field, Wrap::Repeat, range, Some(&maxima), x, y);
+                assert_eq!(bounded.map(f32::to_bits), every_step.map(f32::to_bits));
+            }
+        }
+    }
+    // And it does skip: on level ground, from step 40 toward +x, the 16-texel block there (one
+    // of level 4) holds nothing above the start, so all its steps from here go at once.
+    let flat = HeightField::from_fn(256, 256, |_, _| 0.5);
+    let maxima = MaxPyramid::new(&flat).unwrap();
+    assert_eq!(maxima.skip((40, 7), (1, 0), 40, 200, 0.5, 1.0, 0.0), Ok(8));
+    // A block with a height above the start that could rise above the horizon is stepped.
+    assert!(maxima.skip((40, 7), (1, 0), 40, 200, 0.4, 1.0, 0.0).is_err());
+}
