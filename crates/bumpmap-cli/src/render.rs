@@ -67,7 +67,19 @@ pub fn draw_request(
     given: &crate::setup::Given,
 ) -> Result<Drawn, CliError> {
     let name = request.options.technique.technique;
-    let prepared = prepare_request(request, given)?;
+    // Preparing a large scene (its maps, the heights and their bounds) takes a minute at 16384²
+    // and tells no steps: a spinner with the time taken, on a terminal.
+    let spinner = match progress {
+        crate::report::Progress::Bar => indicatif::ProgressBar::new_spinner().with_style(
+            indicatif::ProgressStyle::with_template("preparing {msg} {spinner} {elapsed}").expect("valid template"),
+        ),
+        crate::report::Progress::Hidden => indicatif::ProgressBar::hidden(),
+    };
+    spinner.set_message(name.to_string());
+    spinner.enable_steady_tick(std::time::Duration::from_millis(250));
+    let prepared = prepare_request(request, given);
+    spinner.finish_and_clear();
+    let prepared = prepared?;
     say_frame_notes(&prepared);
     let reference_progress = match progress {
         crate::report::Progress::Hidden => None,
