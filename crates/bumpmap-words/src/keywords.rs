@@ -19,7 +19,11 @@ pub fn as_keywords(message: &str) -> String {
             .find(|c: char| !(c.is_ascii_lowercase() || c.is_ascii_digit() || c == '-'))
             .unwrap_or(after.len() - 2);
         let starts_word = before.is_empty() || before.ends_with([' ', '\'', '(', '"', ',', '`', '[', '/']);
-        if name_len == 0 || !starts_word || !after[2..].starts_with(|c: char| c.is_ascii_lowercase()) {
+        if name_len == 0
+            || !starts_word
+            || !after[2..].starts_with(|c: char| c.is_ascii_lowercase())
+            || in_quoted_command(&out)
+        {
             out.push_str("--");
             rest = &after[2..];
             continue;
@@ -38,6 +42,14 @@ pub fn as_keywords(message: &str) -> String {
     out
 }
 
+/// Whether text ending in `so_far` is inside a backticked command line (`` `normalmap
+/// --height-out` ``): one that opens with a word, not a flag. Its flags are the command's, and
+/// stay flags.
+fn in_quoted_command(so_far: &str) -> bool {
+    so_far.matches('`').count() % 2 == 1
+        && so_far.rfind('`').is_some_and(|i| so_far[i + 1..].starts_with(|c: char| c.is_ascii_alphabetic()))
+}
+
 #[cfg(test)]
 mod tests {
     use super::as_keywords;
@@ -47,6 +59,18 @@ mod tests {
         assert_eq!(as_keywords("--bump-scale must be ≥ 0"), "bump_scale must be ≥ 0");
         assert_eq!(as_keywords("use --scale <SCALE> here"), "use scale here");
         assert_eq!(as_keywords("(--size, or --width and --height)"), "(size, or width and height)");
+    }
+
+    #[test]
+    fn a_quoted_command_keeps_its_flags_and_a_quoted_flag_is_a_keyword() {
+        let command = "what `normalmap --height-out` writes";
+        assert_eq!(as_keywords(command), command);
+        assert_eq!(
+            as_keywords("`bumpmap render --technique pom --size 64`"),
+            "`bumpmap render --technique pom --size 64`"
+        );
+        assert_eq!(as_keywords("use `--scale` or --depth"), "use `scale` or depth");
+        assert_eq!(as_keywords("`a --b` then --c-d"), "`a --b` then c_d");
     }
 
     #[test]
