@@ -18,6 +18,7 @@
 //! on the calling thread between waits (at most every 50 ms) and once at the end with done =
 //! total; an exception the function raises ends the call as Ctrl-C does and is raised.
 
+use std::path::PathBuf;
 use std::sync::atomic::{AtomicU8, AtomicU64, Ordering};
 use std::sync::mpsc::{RecvTimeoutError, channel};
 use std::sync::{Arc, Mutex};
@@ -25,6 +26,8 @@ use std::time::Duration;
 
 use pyo3::exceptions::PyRuntimeError;
 
+use bumpmap_io::atomic::FileSet;
+use bumpmap_words::Error;
 use bumpmap_words::as_keywords;
 use bumpmap_words::report::{Diagnostic, ReportFn};
 use pyo3::prelude::*;
@@ -43,6 +46,15 @@ impl Cancel {
     /// nothing); once claimed, the caller's Ctrl-C waits for the work to end.
     pub fn begin_commit(&self) -> bool {
         self.0.compare_exchange(RUNNING, COMMITTING, Ordering::SeqCst, Ordering::SeqCst).is_ok()
+    }
+
+    /// Puts `set`'s staged files in place, unless the caller gave up (Ctrl-C): then nothing goes
+    /// in place and the staged files go with the set.
+    pub fn commit(&self, set: FileSet) -> Result<Vec<PathBuf>, Error> {
+        if !self.begin_commit() {
+            return Err(Error::Interrupted);
+        }
+        Ok(set.commit()?)
     }
 
     /// Whether the caller gave up on the work.

@@ -95,11 +95,7 @@ fn write_texture(
     let written = interrupt::run(py, move |cancel| {
         let mut set = bumpmap_io::atomic::FileSet::new(&[]);
         bumpmap::maps::write_chain_into(&mut set, &path, &chain, format).map_err(bumpmap_words::maps::save_error)?;
-        // Nothing goes into place once the caller gave up (Ctrl-C); the staged files go.
-        if !cancel.begin_commit() {
-            return Err(Error::Interrupted);
-        }
-        Ok(set.commit()?)
+        cancel.commit(set)
     })?
     .map_err(|e| to_py("write_texture", e))?;
     Ok(written)

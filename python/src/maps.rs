@@ -8,7 +8,6 @@ use std::path::PathBuf;
 
 use bumpmap::maps::{self, Chain, MapOptions};
 use bumpmap_io::atomic::FileSet;
-use bumpmap_words::Error;
 use bumpmap_words::maps::{map_error, outputs_error};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
@@ -108,11 +107,7 @@ pub fn write_heights(
         if let Some(clamped) = clamped {
             bumpmap_words::report::warn(format!("heights: {clamped}"));
         }
-        // Nothing goes into place once the caller gave up (Ctrl-C); the staged files go.
-        if !cancel.begin_commit() {
-            return Err(Error::Interrupted);
-        }
-        Ok(set.commit()?)
+        cancel.commit(set)
     })?
     .map_err(|e| to_py("write_heights", e))?;
     Ok(written)

@@ -32,6 +32,14 @@ pub enum HeightBits {
     Sixteen,
 }
 
+impl HeightBits {
+    /// The bits a map's options ask for: 16 is [`HeightBits::Sixteen`], anything else (8, the
+    /// options' only other value) [`HeightBits::Eight`].
+    pub fn of(bits: u8) -> Self {
+        if bits == 16 { HeightBits::Sixteen } else { HeightBits::Eight }
+    }
+}
+
 /// The container a heights file is, by its extension.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(crate) enum Container {

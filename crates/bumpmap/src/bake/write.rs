@@ -120,7 +120,7 @@ pub fn bake_files(
         save_png_into(&mut set, path, w, h, PngLayout::Gray8, &gray)?;
     }
     if let Some(path) = &outputs.occlusion {
-        let bits = if request.bits == 16 { HeightBits::Sixteen } else { HeightBits::Eight };
+        let bits = HeightBits::of(request.bits);
         bumpmap_io::horizon_file::write_gray_into(&mut set, path, (w, h), &baked.occlusion, bits)?;
     }
     if let Some(path) = &outputs.displacement {

@@ -174,7 +174,7 @@ pub fn write_heights_into(
 ) -> Result<Option<Clamped>, OutputsError> {
     bumpmap_io::height_file::heights_files(out, 1)?;
     let stored = super::height_mips(options, field)?;
-    let bits = if options.bits == 16 { HeightBits::Sixteen } else { HeightBits::Eight };
+    let bits = HeightBits::of(options.bits);
     bumpmap_io::height_file::write_heights_into(set, out, &stored.mips, bits)?;
     Ok(stored.clamped)
 }
@@ -360,7 +360,7 @@ impl MapOutputs {
                 }
             }
         }
-        let bits = if options.bits == 16 { HeightBits::Sixteen } else { HeightBits::Eight };
+        let bits = HeightBits::of(options.bits);
         if let (Some(path), Some(heights)) = (&self.heights, &heights) {
             bumpmap_io::height_file::write_heights_into(&mut set, path, &heights.mips, bits)?;
         }
