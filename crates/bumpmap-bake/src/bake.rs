@@ -299,12 +299,14 @@ fn bake_from(
         return Err(BakeError::NoTangents);
     }
     let (front, back) = distances(low, options)?;
-    // Texel outputs (normals twice, the distance, the curvature, three flags) and HIGH's BVH,
-    // before any of it.
+    // Texel outputs (normals twice, the distance, the curvature, three flags), LOW's layout
+    // and HIGH's BVH, before any of it.
     let texels = (width * height) as u64;
     let occlusion_bytes = if options.occlusion_rays > 0 { 4 } else { 0 };
     let curvature_bytes = if options.curvature { 4 } else { 0 };
-    let bytes = texels * (31 + occlusion_bytes + curvature_bytes) + high.indices.len() as u64 * BYTES_PER_TRIANGLE;
+    let bytes = texels * (31 + occlusion_bytes + curvature_bytes)
+        + Layout::max_bytes(width, height)
+        + high.indices.len() as u64 * BYTES_PER_TRIANGLE;
     bumpmap_math::buffer::ensure_available(bytes, "the bake")?;
 
     let high_normals;
@@ -368,7 +370,7 @@ fn bake_from(
                 let mut open = 0.0;
                 for k in 0..samples {
                     let p = Vec2::new(x as f32, y as f32) + sample_offset(k, samples);
-                    let Some(at) = layout.at(y, p) else { continue };
+                    let Some(at) = layout.at(x, y, p) else { continue };
                     inside = true;
                     let target = target_of(at.triangle);
                     let mut frame = Frame::at(low, &rays, at);

@@ -59,17 +59,18 @@ pub(crate) fn cage_ray(cage: &[Vec3], low: &Mesh, at: Covered, p: Vec3) -> Optio
 impl Frame {
     /// The frame at `at`, its rays along `rays` (one a vertex).
     pub fn at(low: &Mesh, rays: &[Vec3], at: Covered) -> Frame {
-        let ids = low.indices[at.triangle as usize].map(|i| i as usize);
-        let mix3 = |f: &dyn Fn(usize) -> Vec3| ids.iter().zip(at.weights).map(|(&i, w)| f(i) * w).sum::<Vec3>();
-        let w = ids.iter().zip(at.weights).map(|(&i, w)| low.tangents[i].w * w).sum::<f32>();
-        let n = mix3(&|i| low.normals[i]);
+        let [i, j, k] = low.indices[at.triangle as usize].map(|i| i as usize);
+        let [a, b, c] = at.weights;
+        let mix = |v: &[Vec3]| v[i] * a + v[j] * b + v[k] * c;
+        let (ti, tj, tk) = (low.tangents[i], low.tangents[j], low.tangents[k]);
+        let n = mix(&low.normals);
         Frame {
-            p: mix3(&|i| low.positions[i]),
-            d: mix3(&|i| rays[i]).normalize_or(n.normalize_or(Vec3::Z)),
-            t: mix3(&|i| low.tangents[i].truncate()),
+            p: mix(&low.positions),
+            d: mix(rays).normalize_or(n.normalize_or(Vec3::Z)),
+            t: ti.truncate() * a + tj.truncate() * b + tk.truncate() * c,
             n,
-            b_per_vertex: mix3(&|i| low.bitangent(i)),
-            w,
+            b_per_vertex: low.bitangent(i) * a + low.bitangent(j) * b + low.bitangent(k) * c,
+            w: ti.w * a + tj.w * b + tk.w * c,
         }
     }
 

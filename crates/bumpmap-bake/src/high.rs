@@ -24,8 +24,10 @@ pub const BYTES_PER_TRIANGLE: u64 = 176;
 /// HIGH, or some of its triangles, ready to be hit.
 pub struct HighPoly<'a> {
     mesh: &'a Mesh,
-    /// The mesh's triangle each of the BVH's is (empty: all, in order).
+    /// The mesh's triangle each of the BVH's primitives is.
     ids: Vec<u32>,
+    /// The triangles in the BVH's primitive order, so a leaf's index reads its triangle
+    /// without going through the BVH's index list.
     triangles: Vec<Triangle>,
     bvh: CwBvh,
     /// Each vertex's mean curvature (empty: not asked for, 0 at every hit).
@@ -47,15 +49,18 @@ impl<'a> HighPoly<'a> {
     /// The BVH over `mesh`'s triangles (which must be valid and carry normals), or over those
     /// of `only` (indices into [`Mesh::indices`], not empty); `curvature` holds each vertex's.
     pub fn new(mesh: &'a Mesh, curvature: &'a [f32], only: Option<&[u32]>) -> Self {
-        let triangle = |t: &[u32; 3]| {
-            let [a, b, c] = t.map(|i| Vec3A::from(mesh.positions[i as usize]));
+        let triangle = |k: u32| {
+            let [a, b, c] = mesh.indices[k as usize].map(|i| Vec3A::from(mesh.positions[i as usize]));
             Triangle { v0: a, v1: b, v2: c }
         };
-        let (ids, triangles): (Vec<u32>, Vec<Triangle>) = match only {
-            Some(ids) => (ids.to_vec(), ids.iter().map(|&k| triangle(&mesh.indices[k as usize])).collect()),
-            None => (Vec::new(), mesh.indices.iter().map(triangle).collect()),
+        let ids: Vec<u32> = match only {
+            Some(ids) => ids.to_vec(),
+            None => (0..mesh.indices.len() as u32).collect(),
         };
+        let triangles: Vec<Triangle> = ids.iter().map(|&k| triangle(k)).collect();
         let bvh = build_cwbvh_from_tris(&triangles, BvhBuildParams::medium_build(), &mut Duration::default());
+        let ids: Vec<u32> = bvh.primitive_indices.iter().map(|&p| ids[p as usize]).collect();
+        let triangles = bvh.primitive_indices.iter().map(|&p| triangles[p as usize]).collect();
         HighPoly { mesh, ids, triangles, bvh, curvature }
     }
 
@@ -66,15 +71,11 @@ impl<'a> HighPoly<'a> {
         let direction = direction + Vec3::ZERO;
         let ray = Ray::new(origin.into(), direction.into(), 0.0, reach);
         let mut hit = RayHit::none();
-        let found = self.bvh.ray_traverse(ray, &mut hit, |ray, id| {
-            self.triangles[self.bvh.primitive_indices[id] as usize].intersect(ray)
-        });
+        let found = self.bvh.ray_traverse(ray, &mut hit, |ray, id| self.triangles[id].intersect(ray));
         if !found {
             return None;
         }
-        let local = self.bvh.primitive_indices[hit.primitive_id as usize] as usize;
-        let index = if self.ids.is_empty() { local } else { self.ids[local] as usize };
-        let ids = self.mesh.indices[index].map(|i| i as usize);
+        let ids = self.mesh.indices[self.ids[hit.primitive_id as usize] as usize].map(|i| i as usize);
         let Some((w, face)) = self.weights(ids, origin + direction * hit.t) else {
             return Some(Hit { t: hit.t, normal: Vec3::Z, curvature: 0.0 });
         };
@@ -91,9 +92,7 @@ impl<'a> HighPoly<'a> {
     pub fn blocked(&self, origin: Vec3, direction: Vec3, near: f32, far: f32) -> bool {
         let direction = direction + Vec3::ZERO;
         let ray = Ray::new(origin.into(), direction.into(), near, far);
-        !self
-            .bvh
-            .ray_traverse_miss(ray, |ray, id| self.triangles[self.bvh.primitive_indices[id] as usize].intersect(ray))
+        !self.bvh.ray_traverse_miss(ray, |ray, id| self.triangles[id].intersect(ray))
     }
 
     /// The barycentric weights of `p` on the triangle of vertices `ids`, and its unit face
