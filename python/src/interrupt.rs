@@ -8,7 +8,8 @@
 //! Other work runs on to its end and its result is dropped. Work that writes files claims the right to put them in
 //! place ([`Cancel::begin_commit`]) after staging them: an interrupted call has given that right
 //! up, so it writes nothing, and its staged files are removed when the work ends — or, when the
-//! interpreter exits first, by the exit hook the module registers (`abandon_all`). A Ctrl-C
+//! interpreter exits first, by the exit hook the module registers (`abandon_all`, which first
+//! gives up on all running work and waits a while for it to end). A Ctrl-C
 //! that arrives while files are being renamed into place (a few milliseconds) waits for the
 //! renames and is raised as the call returns: the call happened whole, then the interrupt.
 //!
@@ -19,9 +20,9 @@
 //! total; an exception the function raises ends the call as Ctrl-C does and is raised.
 
 use std::path::PathBuf;
-use std::sync::atomic::{AtomicU8, AtomicU64, Ordering};
+use std::sync::atomic::{AtomicBool, AtomicU8, AtomicU64, Ordering};
 use std::sync::mpsc::{RecvTimeoutError, channel};
-use std::sync::{Arc, Mutex};
+use std::sync::{Arc, Condvar, Mutex, PoisonError};
 use std::time::Duration;
 
 use pyo3::exceptions::PyRuntimeError;
@@ -192,21 +193,26 @@ fn wait<T: Send + 'static>(
     // Waited on with the GIL released, from whichever thread the closure runs on.
     let rx = Mutex::new(rx);
     let worker_cancel = cancel.clone();
+    let in_flight = InFlight::enter(&cancel)?;
     let handle = std::thread::Builder::new()
         .name("bumpmap".into())
         .stack_size(STACK_BYTES)
-        .spawn(move || match crate::pool::current(STACK_BYTES) {
-            // On this process's own pool, so the parallel loops inside survive a fork.
-            Ok(pool) => {
-                let _ = tx.send(Ok(work(&worker_cancel, &pool)));
-            }
-            Err(e) => {
-                let _ = tx.send(Err(e.to_string()));
+        .spawn(move || {
+            // Counted until the work and everything it holds are gone, whatever way it ends.
+            let _in_flight = in_flight;
+            match crate::pool::current(STACK_BYTES) {
+                // On this process's own pool, so the parallel loops inside survive a fork.
+                Ok(pool) => {
+                    let _ = tx.send(Ok(work(&worker_cancel, &pool)));
+                }
+                Err(e) => {
+                    let _ = tx.send(Err(e.to_string()));
+                }
             }
         })
         .map_err(|e| PyRuntimeError::new_err(format!("cannot start a worker thread: {e}")))?;
     loop {
-        match py.detach(|| rx.lock().expect("one waiter").recv_timeout(Duration::from_millis(50))) {
+        match py.detach(|| unless_exiting(rx.lock().expect("one waiter").recv_timeout(Duration::from_millis(50)))) {
             Ok(value) => {
                 let _ = handle.join();
                 let value = value.map_err(no_threads)?;
@@ -231,7 +237,7 @@ fn wait<T: Send + 'static>(
                     }
                     // The files are going into place: the call ends as it was going to, and the
                     // interrupt comes right after it.
-                    let value = py.detach(|| rx.lock().expect("one waiter").recv());
+                    let value = py.detach(|| unless_exiting(rx.lock().expect("one waiter").recv()));
                     let _ = handle.join();
                     interrupt_again();
                     drop(e);
@@ -269,10 +275,74 @@ fn interrupt_again() {
     unsafe { pyo3::ffi::PyErr_SetInterrupt() };
 }
 
-/// Removes every staged file and folder not yet in place ([`bumpmap_io::atomic::abandon_all`]):
-/// registered with `atexit`, for work whose caller was interrupted and whose thread is still
-/// running when the interpreter exits.
+/// The work running on worker threads, so the interpreter's exit can give up on it and wait for
+/// it; and whether the exit has begun (no new work starts then).
+static IN_FLIGHT: Mutex<Vec<Cancel>> = Mutex::new(Vec::new());
+static IN_FLIGHT_ENDED: Condvar = Condvar::new();
+static EXITING: AtomicBool = AtomicBool::new(false);
+
+/// How long the interpreter's exit waits for running work: a step of a render or a bake, or a
+/// whole map that tells no steps.
+const EXIT_WAIT: Duration = Duration::from_secs(10);
+
+/// One piece of work counted in [`IN_FLIGHT`] while it lives.
+struct InFlight(Cancel);
+
+impl InFlight {
+    /// Counts the work of `cancel`, unless the interpreter is exiting.
+    fn enter(cancel: &Cancel) -> PyResult<InFlight> {
+        let mut list = IN_FLIGHT.lock().unwrap_or_else(PoisonError::into_inner);
+        if EXITING.load(Ordering::SeqCst) {
+            return Err(PyRuntimeError::new_err("the interpreter is exiting: bumpmap starts no new work"));
+        }
+        list.push(cancel.clone());
+        Ok(InFlight(cancel.clone()))
+    }
+}
+
+impl Drop for InFlight {
+    fn drop(&mut self) {
+        let mut list = IN_FLIGHT.lock().unwrap_or_else(PoisonError::into_inner);
+        list.retain(|c| !Arc::ptr_eq(&c.0, &self.0.0));
+        IN_FLIGHT_ENDED.notify_all();
+    }
+}
+
+/// `value`, on a thread that may take the GIL back; a thread that waited through the start of
+/// the interpreter's exit (a daemon thread's call: every other thread has been joined by then)
+/// never returns instead. Taking the GIL back during the exit ends the thread by a forced
+/// unwind through this crate's frames, which aborts the process ("exception not rethrown");
+/// Python 3.14 parks such threads itself.
+fn unless_exiting<T>(value: T) -> T {
+    if EXITING.load(Ordering::SeqCst) {
+        loop {
+            std::thread::park();
+        }
+    }
+    value
+}
+
+/// Registered with `atexit`: gives up on every piece of work still running (a daemon thread's
+/// call, or one whose caller was interrupted), waits up to [`EXIT_WAIT`] with the GIL released
+/// for their threads to end, and removes every staged file and folder not yet in place
+/// ([`bumpmap_io::atomic::abandon_all`]). Without the wait, the process's exit tears down the
+/// libraries a worker is inside — the Vulkan driver under a GPU render — and it crashes.
 #[pyfunction]
-pub fn abandon_all() {
+pub fn abandon_all(py: Python<'_>) {
+    EXITING.store(true, Ordering::SeqCst);
+    py.detach(|| {
+        let deadline = std::time::Instant::now() + EXIT_WAIT;
+        let mut list = IN_FLIGHT.lock().unwrap_or_else(PoisonError::into_inner);
+        for work in list.iter() {
+            work.give_up();
+        }
+        while !list.is_empty() {
+            let left = deadline.saturating_duration_since(std::time::Instant::now());
+            if left.is_zero() {
+                break;
+            }
+            list = IN_FLIGHT_ENDED.wait_timeout(list, left).unwrap_or_else(PoisonError::into_inner).0;
+        }
+    });
     bumpmap_io::atomic::abandon_all();
 }

@@ -65,8 +65,8 @@ impl Layout {
                 let last = |v: f32, n: usize| (v.floor() as i64).min(n as i64 - 1);
                 let (x1, y1) = (last(hi.x, width), last(hi.y, height));
                 let (x0, y0) = (first(lo.x), first(lo.y));
-                (x1 >= 0 && y1 >= 0 && x0 < width && y0 < height && lo.is_finite() && hi.is_finite())
-                    .then_some([x0, y0, x1 as usize, y1 as usize])
+                let inside = x1 >= 0 && y1 >= 0 && x0 < width && y0 < height && lo.is_finite() && hi.is_finite();
+                inside.then_some([x0, y0, x1 as usize, y1 as usize])
             })
             .collect();
         // Cells of 8 texels, larger where that would bin too much.
