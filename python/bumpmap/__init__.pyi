@@ -39,6 +39,7 @@ _HalfAngle = Literal["vertex", "fragment"]
 _SpecularShadow = Literal["kilgard", "cg", "off"]
 _SpecularFilter = Literal["none", "toksvig", "roughness-map", "lean", "clean"]
 _ParallaxShadow = Literal["off", "hard", "soft", "horizon"]
+_HitNormal = Literal["map", "heights"]
 _DetailMethod = Literal["rnm", "partial-derivative", "whiteout", "udn", "linear", "overlay"]
 _DetailYConvention = Literal["opengl", "directx"]
 _Backend = Literal["cpu", "gpu", "auto"]
@@ -343,6 +344,7 @@ def render(
     parallax_shadow: _ParallaxShadow = "off",
     silhouettes: bool = False,
     write_depth: bool = False,
+    hit_normal: Optional[_HitNormal] = None,
     ambient_occlusion: bool = False,
     detail_map: Union[None, _Path, _Image, Sequence[_Image], NormalMap] = None,
     detail_repeat: float = 8.0,

@@ -344,6 +344,23 @@ fn the_marches_find_the_displaced_surface_where_normal_mapping_cannot() {
     // The goal for POM: within a tenth of a texel of the exact hit at 70° (measured 0.053).
     let pom = get("bricks", 70.0, "pom", "hit_error_mean");
     assert!(pom <= 0.1, "pom at 70°: {pom} texel");
+    // The normal at the hit: every march is drawn with both, its own default among them, and
+    // on this magnified wall the heights' own normal brings each nearer the reference than the
+    // normal map's (measured at 70° on bricks: POM 0.169 → 0.070, the exact walk 0.164 → 0.057).
+    for field in ["bricks", "dimples"] {
+        for degrees in [30.0, 70.0, 85.0] {
+            for march in ["steep-parallax", "pom", "relief", "height-exact"] {
+                let (map, heights) = (
+                    get(field, degrees, march, "flip_mean_hit_normal_map"),
+                    get(field, degrees, march, "flip_mean_hit_normal_heights"),
+                );
+                let own = if march == "height-exact" { heights } else { map };
+                assert_eq!(get(field, degrees, march, "flip_mean"), own, "{field} {degrees}° {march}");
+                assert!(heights < 0.85 * map, "{field} {degrees}° {march}: heights {heights} vs map {map}");
+            }
+        }
+    }
+    assert!(rows.iter().filter(|r| r["technique"] == "single-pass").all(|r| r["flip_mean_hit_normal_map"].is_null()));
     for file in r["parallax"]["images"].as_array().unwrap() {
         let img = image::open(dir.join("cmp").join(file.as_str().unwrap())).unwrap().to_rgb8();
         assert!(img.pixels().filter(|p| p.0.iter().any(|&c| c > 40)).count() > 5000, "{file} is nearly black");

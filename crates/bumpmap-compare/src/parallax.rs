@@ -9,7 +9,9 @@
 //! shadow agreement compares each march's hard shadow at its own hit with the reference's
 //! shadow ray at the exact hit, over the pixels whose exact surface faces the light. FLIP and
 //! RMSE compare each technique's image (drawn by the chosen backend) with the displaced
-//! reference's.
+//! reference's; each march is drawn a second time with the other normal at its hit (the normal
+//! map's, or the heights' own: `--hit-normal`), so the error of the march and the error of the
+//! normal it shades with are told apart.
 //!
 //! What this module does not do: draw the techniques' images (the backends do) or write files.
 
@@ -18,8 +20,8 @@ use std::time::Instant;
 
 use bumpmap::{BumpSource, Prepared, Renderer, SceneKind, SceneParams, SceneSpec, TechniqueName, TechniqueOptions};
 use bumpmap_core::parallax::{
-    FragmentRays, HorizonLookup, Parallax, ParallaxOptions, ParallaxShadow, TextureFrame, fragment, height_lambda,
-    height_level,
+    FragmentHeights, FragmentRays, HitNormal, HorizonLookup, Parallax, ParallaxOptions, ParallaxShadow, TextureFrame,
+    fragment, height_lambda, height_level,
 };
 use bumpmap_core::scene::SceneLight;
 use bumpmap_core::state::Sampler;
@@ -71,6 +73,9 @@ pub struct ParallaxRow {
     pub shadow_agreement: f64,
     /// Mean FLIP of its image against the displaced reference's.
     pub flip: f64,
+    /// For a march: the mean FLIP with the hit shaded with the normal map's normal, and with
+    /// the heights' own (`--hit-normal map` and `heights`; one of them is [`Self::flip`]).
+    pub flip_by_hit_normal: Option<(f64, f64)>,
     /// RMSE of its image against the displaced reference's.
     pub rmse: f64,
     /// Milliseconds its image took.
@@ -171,6 +176,23 @@ pub fn parallax_study(backend: &mut Renderer) -> Result<ParallaxStudy, CompareEr
                 let drawn = backend.draw(&prepared, SIZE, SIZE)?;
                 let millis = t.elapsed().as_secs_f64() * 1e3;
                 let (scores, _) = metrics::score(&image, &ref_rgb, &drawn);
+                // The same technique with the other normal at the hit.
+                let flip_by_hit_normal = match technique.parallax_method() {
+                    Some(method) => {
+                        let own = HitNormal::default_for(method);
+                        let other = if own == HitNormal::Map { HitNormal::Heights } else { HitNormal::Map };
+                        let mut with_other = options.clone();
+                        with_other.parallax.hit_normal = Some(other);
+                        let drawn = backend.draw(&Prepared::new(&spec, technique, &with_other)?, SIZE, SIZE)?;
+                        let other_flip = metrics::score(&image, &ref_rgb, &drawn).0.flip_mean;
+                        Some(if own == HitNormal::Map {
+                            (scores.flip_mean, other_flip)
+                        } else {
+                            (other_flip, scores.flip_mean)
+                        })
+                    }
+                    None => None,
+                };
                 let parallax = technique.parallax_method().map(|method| Parallax {
                     method,
                     options: ParallaxOptions { shadow: ParallaxShadow::Hard, ..Default::default() },
@@ -194,6 +216,7 @@ pub fn parallax_study(backend: &mut Renderer) -> Result<ParallaxStudy, CompareEr
                     hit_p95,
                     shadow_agreement,
                     flip: scores.flip_mean,
+                    flip_by_hit_normal,
                     rmse: scores.rmse,
                     millis,
                 });
@@ -285,7 +308,7 @@ pub(super) fn hits(
     depth: f32,
 ) -> Result<(f64, f64, f64), bumpmap_math::HorizonError> {
     let levels = heights.levels();
-    let exact = heights.minmax().map(|m| (&levels[0], m));
+    let exact = FragmentHeights { level0: &levels[0], minmax: heights.minmax() };
     let texels = Vec2::new(heights.width() as f32, heights.height() as f32);
     let horizons = heights.horizons()?;
     let mut errors = Vec::with_capacity(pixels.len());

@@ -102,6 +102,8 @@ fn parallax_json(p: &super::parallax::ParallaxStudy) -> Value {
             "field": row.field, "degrees": row.angle, "technique": row.technique.name(),
             "hit_error_mean": row.hit_mean, "hit_error_p95": row.hit_p95,
             "shadow_agreement": row.shadow_agreement, "flip_mean": row.flip, "rmse": row.rmse, "millis": row.millis,
+            "flip_mean_hit_normal_map": row.flip_by_hit_normal.map(|f| f.0),
+            "flip_mean_hit_normal_heights": row.flip_by_hit_normal.map(|f| f.1),
         })).collect::<Vec<_>>(),
     })
 }
@@ -142,8 +144,10 @@ fn parallax_section(p: &super::parallax::ParallaxStudy) -> String {
         for angle in ANGLES {
             for t in TECHNIQUES {
                 if let Some(row) = p.row(field, angle, t) {
+                    let by_normal =
+                        row.flip_by_hit_normal.map_or("—".to_string(), |(m, h)| format!("{m:.4} / {h:.4}"));
                     table += &format!(
-                        "<tr><td>{field}</td><td>{angle}°</td><td><b>{}</b></td><td>{:.3}</td><td>{:.3}</td><td>{:.1} %</td><td>{:.4}</td><td>{:.4}</td><td>{:.1}</td></tr>\n",
+                        "<tr><td>{field}</td><td>{angle}°</td><td><b>{}</b></td><td>{:.3}</td><td>{:.3}</td><td>{:.1} %</td><td>{:.4}</td><td>{by_normal}</td><td>{:.4}</td><td>{:.1}</td></tr>\n",
                         t.name(),
                         row.hit_mean,
                         row.hit_p95,
@@ -171,6 +175,8 @@ fn parallax_section(p: &super::parallax::ParallaxStudy) -> String {
     let p95 = |t: T, angle: f32| p.row("bricks", angle, t).map_or(f64::NAN, |r| r.hit_p95);
     let flip = |t: T, angle: f32| p.row("bricks", angle, t).map_or(f64::NAN, |r| r.flip);
     let shadow = |t: T, angle: f32| p.row("bricks", angle, t).map_or(f64::NAN, |r| 100.0 * r.shadow_agreement);
+    let by_normal =
+        |t: T, angle: f32| p.row("bricks", angle, t).and_then(|r| r.flip_by_hit_normal).unwrap_or((f64::NAN, f64::NAN));
     let ms = |t: T| {
         let rows: Vec<f64> = p.rows.iter().filter(|r| r.technique == t).map(|r| r.millis).collect();
         rows.iter().sum::<f64>() / rows.len().max(1) as f64
@@ -186,7 +192,10 @@ fn parallax_section(p: &super::parallax::ParallaxStudy) -> String {
          Relief mapping's binary search refines the same layer and fails where POM's linear search does ({re85:.3} at 85°). \
          The exact walk meets the interpolant within rounding everywhere ({ex85:.1e} texels at 85°) at {ex_ms:.0} ms a frame against POM's {po_ms:.0} ms. \
          The marches' hard shadows agree with the shadow rays on {pos70:.1} % (POM) of the pixels that face the light at 70°. \
-         FLIP against the displaced reference stays higher than the hits alone would say ({pof70:.3} for POM at 70°, {exf70:.3} for the exact walk): POM shades with the normal map (8 bits, bilinear between texels, mipmapped), the reference and the exact walk with the interpolant's own normal, and the reference is antialiased with {spp} samples a pixel where every technique takes one.",
+         FLIP against the displaced reference ({pof70:.3} for POM at 70°, {exf70:.3} for the exact walk) is the hit's error and the normal's together; each march is drawn twice to tell them apart (the table's second FLIP column, <code>--hit-normal</code>). \
+         Shaded with the normal map at the hit (8 bits, filtered between texels and levels), POM reads {pom_m:.3} at 70°, relief {re_m:.3}, the exact walk {ex_m:.3}: nearly alike, however exact the hit. \
+         Shaded with the heights' own normal (their interpolant's at level 0, which the reference draws: the exact walk's default, <code>--hit-normal heights</code> for the marches), POM reads {pom_h:.3}, relief {re_h:.3}, the exact walk {ex_h:.3}: the normal map was most of the error. \
+         What is left is the hits themselves and the reference's antialiasing ({spp} samples a pixel where every technique takes one).",
         sp30 = hit(T::SinglePass, 30.0),
         sp85 = hit(T::SinglePass, 85.0),
         pa30 = hit(T::Parallax, 30.0),
@@ -207,6 +216,12 @@ fn parallax_section(p: &super::parallax::ParallaxStudy) -> String {
         pos70 = shadow(T::Pom, 70.0),
         pof70 = flip(T::Pom, 70.0),
         exf70 = flip(T::HeightExact, 70.0),
+        pom_m = by_normal(T::Pom, 70.0).0,
+        pom_h = by_normal(T::Pom, 70.0).1,
+        re_m = by_normal(T::Relief, 70.0).0,
+        re_h = by_normal(T::Relief, 70.0).1,
+        ex_m = by_normal(T::HeightExact, 70.0).0,
+        ex_h = by_normal(T::HeightExact, 70.0).1,
         spp = p.spp,
     );
     format!(
@@ -214,7 +229,7 @@ fn parallax_section(p: &super::parallax::ParallaxStudy) -> String {
 <p>The brick wall (and the dimples) seen from 1.2 units at 30°, 60°, 70°, 75° and 85° from its normal, {size}×{size} pixels (about a third of a texel across a pixel at the centre), lit by a directional light {light}° from the normal. The heights carve {depth} texels deep, what the bump scale stands for; the normal maps are made with central differences, whose slope at each texel centre is the interpolant's. Each technique runs with its defaults (32 layers) against the displaced reference ({spp} samples per pixel). <b>Hit error</b>: for every pixel whose ray enters the wall, the distance in texels between where the technique reads its maps and where the pixel-centre ray meets the interpolant (the march as both backends run it, per pixel; normal mapping "hits" where the ray enters the polygon). <b>Shadow</b>: each march's hard shadow at its own hit against a shadow ray from the exact hit, over the pixels whose exact surface faces the light. <b>FLIP</b> and <b>RMSE</b>: the technique's image against the reference's.</p>
 <div class="grid">
 {figure}</div>
-<table><tr><th>field</th><th>view</th><th>technique</th><th>hit error, mean</th><th>hit error, 95 %</th><th>shadow agrees</th><th>FLIP</th><th>RMSE</th><th>ms</th></tr>
+<table><tr><th>field</th><th>view</th><th>technique</th><th>hit error, mean</th><th>hit error, 95 %</th><th>shadow agrees</th><th>FLIP</th><th>FLIP, hit normal map / heights</th><th>RMSE</th><th>ms</th></tr>
 {table}</table>
 <p><img src="parallax_hits_bricks.svg" alt="hit error by angle, bricks"> <img src="parallax_flip_bricks.svg" alt="FLIP by angle, bricks"></p>
 <p><img src="parallax_hits_dimples.svg" alt="hit error by angle, dimples"> <img src="parallax_flip_dimples.svg" alt="FLIP by angle, dimples"></p>

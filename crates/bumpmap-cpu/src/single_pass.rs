@@ -339,8 +339,8 @@ impl FragmentShader for SinglePass<'_> {
                 }
             }
         }
-        if o.parallax.as_ref().is_some_and(|p| p.parallax.method == bumpmap_core::parallax::ParallaxMethod::Exact) {
-            // The exact walk's own normal, from the interpolant it walked (A = 1: one surface).
+        if o.parallax.as_ref().is_some_and(|p| p.parallax.hit_normal() == bumpmap_core::parallax::HitNormal::Heights) {
+            // The heights' own normal at the hit, from their interpolant (A = 1: one surface).
             for c in 0..3 {
                 for j in 0..n {
                     sc.normal[c][j] = sc.par_n[c][j] * 0.5 + 0.5;

@@ -11,7 +11,7 @@
 //! `bumpmap_core::shading::shade`).
 
 use bumpmap_core::detail::BlendMethod;
-use bumpmap_core::parallax::{ParallaxMethod, ParallaxShadow};
+use bumpmap_core::parallax::{HitNormal, ParallaxMethod, ParallaxShadow};
 use bumpmap_core::scene::{Attenuation, NormalTexels};
 use bumpmap_core::shading::LitTerms;
 use bumpmap_core::technique::{Gloss, HalfAngle, LitProgram, Normalize, SelfShadow, SpecularFilter, SpecularShadow};
@@ -217,6 +217,8 @@ pub struct LitVariant {
     silhouettes: bool,
     write_depth: bool,
     ambient_occlusion: bool,
+    /// The hit shaded with the heights' normal, not the normal map's.
+    hit_normal_heights: bool,
     height_mipmaps: bool,
     positional_light: bool,
     occlusion_map: bool,
@@ -246,6 +248,7 @@ impl Default for LitVariant {
             silhouettes: false,
             write_depth: false,
             ambient_occlusion: false,
+            hit_normal_heights: false,
             height_mipmaps: false,
             positional_light: false,
             occlusion_map: false,
@@ -279,6 +282,7 @@ impl LitVariant {
             silhouettes: p.parallax.as_ref().is_some_and(|x| x.parallax.options.silhouettes),
             write_depth: p.parallax.as_ref().is_some_and(|x| x.parallax.options.write_depth),
             ambient_occlusion: p.parallax.as_ref().is_some_and(|x| x.parallax.options.ambient_occlusion),
+            hit_normal_heights: p.parallax.as_ref().is_some_and(|x| x.parallax.hit_normal() == HitNormal::Heights),
             height_mipmaps: p.parallax.is_some() && p.sampler.has_mipmaps(),
             positional_light: matches!(p.light.light, bumpmap_math::lighting::Light::Positional(_)),
             occlusion_map: p.occlusion.is_some(),
@@ -295,7 +299,7 @@ impl LitVariant {
 
     /// The override constants by their names in `lit.wgsl`, with their values: the one list
     /// the pipeline's constants and the prelude's declarations are made from.
-    pub(crate) fn overrides(&self) -> [(&'static str, Override); 23] {
+    pub(crate) fn overrides(&self) -> [(&'static str, Override); 24] {
         use Override::{Code, Flag, Float};
         [
             (SELF_SHADOW.name, Code(self.self_shadow)),
@@ -315,6 +319,7 @@ impl LitVariant {
             ("SILHOUETTES", Flag(self.silhouettes)),
             ("WRITE_DEPTH", Flag(self.write_depth)),
             ("AMBIENT_OCCLUSION", Flag(self.ambient_occlusion)),
+            ("HIT_NORMAL_HEIGHTS", Flag(self.hit_normal_heights)),
             ("HEIGHT_MIPMAPS", Flag(self.height_mipmaps)),
             ("POSITIONAL_LIGHT", Flag(self.positional_light)),
             ("OCCLUSION_MAP", Flag(self.occlusion_map)),

@@ -213,8 +213,8 @@ fn lit(f: Varyings) -> LitOut {
     }
     let scale = u.normal_scale.xy;
     var normal: vec4<f32>;
-    if PARALLAX == PARALLAX_EXACT {
-        // The exact walk's own normal, from the interpolant it walked.
+    if PARALLAX != PARALLAX_NONE && HIT_NORMAL_HEIGHTS {
+        // The heights' own normal at the hit, from their interpolant.
         normal = vec4<f32>(par.normal * 0.5 + 0.5, 1.0);
     } else {
         normal = sample_map(normal_map, st * scale, dx * scale, dy * scale);

@@ -553,7 +553,7 @@ fn parallax_fragment(
         }
     }
     var normal = vec3<f32>(0.0, 0.0, 1.0);
-    if PARALLAX == PARALLAX_EXACT {
+    if HIT_NORMAL_HEIGHTS {
         let size = vec2<f32>(height_size(0u));
         let g = interpolant(hit.st);
         var gradient = vec2<f32>(0.0);

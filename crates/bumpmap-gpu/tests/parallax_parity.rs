@@ -1,19 +1,21 @@
 //! `parallax.wgsl`'s `parallax_fragment()` against its definition,
 //! `bumpmap_core::parallax::fragment`, on random fragments over bricks: every march, every
-//! shadow mode (the horizon map's too), with and without silhouettes, on a compute shader reading
+//! shadow mode (the horizon map's too), with and without silhouettes, the hit shaded with the
+//! normal map's normal or the heights' own, on a compute shader reading
 //! the same heights, min–max levels and horizons from a storage buffer.
 //!
 //! Tolerance: both sides compute in f32, but the GPU may contract multiply-adds and orders a few
 //! sums differently, so a march may end one layer apart (or a walk one crossing apart) where the
 //! ray grazes a height within rounding. So: the hit within 1e-3 of a texture coordinate (a
 //! quarter texel at 256²; far below, 1e-6, in practice) for at least 98 % of the fragments, the
-//! discard decision and the shadow on at least 98 %, and L, V and the exact normal within 1e-3
+//! discard decision and the shadow on at least 98 %, and L, V and the heights' normal within 1e-3
 //! wherever the hits agree.
 
 mod common;
 
 use bumpmap_core::parallax::{
-    FragmentRays, HorizonLookup, Parallax, ParallaxMethod, ParallaxOptions, ParallaxShadow, fragment,
+    FragmentHeights, FragmentRays, HitNormal, HorizonLookup, Parallax, ParallaxMethod, ParallaxOptions, ParallaxShadow,
+    fragment,
 };
 use bumpmap_gpu::{parallax_name, parallax_shadow_name, parallax_wgsl};
 use bumpmap_math::HeightMips;
@@ -171,12 +173,14 @@ fn wgsl_parallax_fragment_is_the_cores() {
     let program =
         format!("{}\nconst DEPTH: f32 = {depth:?};\nconst LAYERS: u32 = {layers}u;\n{HARNESS}", parallax_wgsl());
     let levels = heights.levels();
-    let exact = Some((&levels[0], heights.minmax().unwrap()));
+    let exact = FragmentHeights { level0: &levels[0], minmax: Some(heights.minmax().unwrap()) };
     let horizons = heights.horizons().unwrap();
     let mut worst = 0f32;
     for method in ParallaxMethod::ALL {
         for shadow in ParallaxShadow::ALL {
-            for silhouettes in [false, true] {
+            for (silhouettes, hit_normal) in
+                [false, true].into_iter().flat_map(|s| [HitNormal::Map, HitNormal::Heights].map(|h| (s, h)))
+            {
                 // Ambient occlusion from the horizon map along with its shadows.
                 let ambient_occlusion = shadow == ParallaxShadow::Horizon;
                 let constants = [
@@ -184,11 +188,19 @@ fn wgsl_parallax_fragment_is_the_cores() {
                     ("PARALLAX_SHADOW", code(parallax_shadow_name(shadow))),
                     ("SILHOUETTES", silhouettes as u32 as f64),
                     ("AMBIENT_OCCLUSION", ambient_occlusion as u32 as f64),
+                    ("HIT_NORMAL_HEIGHTS", (hit_normal == HitNormal::Heights) as u32 as f64),
                 ];
                 let got =
                     common::run_compute_with(&ctx, &program, common::bytes(&data), 4 * fragments.len(), &constants)
                         .expect("parallax.wgsl compiles");
-                let options = ParallaxOptions { layers, shadow, silhouettes, write_depth: true, ambient_occlusion };
+                let options = ParallaxOptions {
+                    layers,
+                    shadow,
+                    silhouettes,
+                    write_depth: true,
+                    ambient_occlusion,
+                    hit_normal: Some(hit_normal),
+                };
                 let p = Parallax { method, options };
                 let (mut hits, mut decisions, mut shadows, mut occluded) = (0, 0, 0, 0);
                 for (i, f) in fragments.iter().enumerate() {
@@ -237,6 +249,7 @@ fn wgsl_parallax_fragment_is_the_cores() {
                         want.occlusion
                     );
                     occluded += (want.occlusion < 0.95) as usize;
+                    assert_eq!(want.normal.is_some(), hit_normal == HitNormal::Heights, "{method:?} {hit_normal:?}");
                     if let Some(n) = want.normal {
                         assert!((v3(g[3]) - n).length() < 1e-3, "{method:?}: normal {} vs {n}", v3(g[3]));
                     }
@@ -244,7 +257,7 @@ fn wgsl_parallax_fragment_is_the_cores() {
                 let n = fragments.len();
                 let share = |k: usize| k as f32 / n as f32;
                 println!(
-                    "{method:?} {shadow:?} silhouettes {silhouettes}: hits {:.3}, discards {:.3}, shadows {:.3}",
+                    "{method:?} {shadow:?} silhouettes {silhouettes} {hit_normal:?}: hits {:.3}, discards {:.3}, shadows {:.3}",
                     share(hits),
                     share(decisions),
                     share(shadows)

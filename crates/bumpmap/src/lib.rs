@@ -64,7 +64,7 @@ pub mod renderer;
 pub use error::Error;
 pub use renderer::{Backend, BackendChoice, Prepared, Renderer, WindowSurface};
 
-pub use bumpmap_core::parallax::{Parallax, ParallaxMethod, ParallaxOptions, ParallaxShadow};
+pub use bumpmap_core::parallax::{HitNormal, Parallax, ParallaxMethod, ParallaxOptions, ParallaxShadow};
 pub use bumpmap_core::scene::{Attenuation, Camera, SceneLight, Spot, ViewerModel};
 pub use bumpmap_core::technique::{
     BackFacing, EmbossOptions, Gloss, HalfAngle, KilgardOptions, Normalize, ReferenceOptions, SelfShadow,

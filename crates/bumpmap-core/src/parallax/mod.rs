@@ -151,6 +151,37 @@ impl ParallaxShadow {
     }
 }
 
+/// Which normal a parallax fragment is shaded with at its hit.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum HitNormal {
+    /// The normal map read at the hit, filtered through its mip chain as every map is.
+    Map,
+    /// The heights' C¹ interpolant's own normal at the hit (`bumpmap_math::interpolant` on
+    /// level 0, its analytic gradient): the surface the exact walk walks and the displaced
+    /// reference draws, unfiltered (one sample a pixel of it aliases where the heights are
+    /// minified).
+    Heights,
+}
+
+bumpmap_math::named!(HitNormal {
+    Map => "map": "the normal map at the hit, through its mip chain",
+    Heights => "heights": "the heights' own normal at the hit, from their C1 interpolant at level 0: the surface the reference draws, unfiltered",
+});
+
+impl HitNormal {
+    /// What a method shades with when not told: the exact walk, whose hit is on level 0's
+    /// interpolant, that surface's normal; the marches, which read the footprint's level, the
+    /// normal map, filtered as they are. (The heights' normal brings a magnified march much
+    /// nearer the displaced reference, but costs a quarter more time a frame on the CPU and,
+    /// unfiltered, sparkles where the heights are minified: BENCHMARKS.md.)
+    pub fn default_for(method: ParallaxMethod) -> HitNormal {
+        match method {
+            ParallaxMethod::Exact => HitNormal::Heights,
+            _ => HitNormal::Map,
+        }
+    }
+}
+
 /// The options every parallax technique shares.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ParallaxOptions {
@@ -168,6 +199,8 @@ pub struct ParallaxOptions {
     /// Multiply the ambient term by the ambient occlusion of the horizon map at the hit
     /// (`bumpmap_math::horizon::ambient_occlusion` at the material's depth).
     pub ambient_occlusion: bool,
+    /// The normal the hit is shaded with (`None`: [`HitNormal::default_for`] the method).
+    pub hit_normal: Option<HitNormal>,
 }
 
 impl Default for ParallaxOptions {
@@ -178,6 +211,7 @@ impl Default for ParallaxOptions {
             silhouettes: false,
             write_depth: false,
             ambient_occlusion: false,
+            hit_normal: None,
         }
     }
 }
@@ -221,8 +255,8 @@ pub struct ParallaxFragment {
     /// point's distance from the eye: a window depth `z` becomes `a + (z − a)/(1 + κ)` with
     /// `a = far/(far − near)` (perspective divides by a w that grows by 1 + κ).
     pub kappa: f32,
-    /// The interpolant's normal there (tangent frame, unit), for `exact`; `None` for the
-    /// others, which read the normal map at `st`.
+    /// The interpolant's normal there (tangent frame, unit) where the hit is shaded with the
+    /// heights' ([`HitNormal::Heights`]); `None` where the normal map is read at `st`.
     pub normal: Option<Vec3>,
     /// What multiplies the ambient term: the horizon map's ambient occlusion at the hit with
     /// [`ParallaxOptions::ambient_occlusion`], else 1.
@@ -234,10 +268,22 @@ impl Parallax {
     pub fn reads_horizons(&self) -> bool {
         self.options.shadow == ParallaxShadow::Horizon || self.options.ambient_occlusion
     }
+
+    /// The normal the hit is shaded with: as asked, else the method's own.
+    pub fn hit_normal(&self) -> HitNormal {
+        self.options.hit_normal.unwrap_or(HitNormal::default_for(self.method))
+    }
 }
 
-/// Heights a fragment's exact walk reads: level 0 and the min–max levels.
-pub type ExactHeights<'a> = (&'a HeightLevel, &'a [MinMaxLevel]);
+/// The heights' levels a fragment reads besides its march's samples: level 0, for the exact
+/// walk and the interpolant's normal at the hit, and the min–max levels the exact walk needs.
+#[derive(Clone, Copy)]
+pub struct FragmentHeights<'a> {
+    /// Level 0.
+    pub level0: &'a HeightLevel,
+    /// The min–max levels (`None`: not made; `exact` then leaves the entry point as its hit).
+    pub minmax: Option<&'a [MinMaxLevel]>,
+}
 
 /// What a fragment shadowed by the horizon map reads: the horizons at a point (filtered as the
 /// backend's texture unit filters them) and the size of level 0 in texels, which turns texture
@@ -268,7 +314,8 @@ pub fn horizon_occlusion(horizons: &Horizons, size: Vec2, frame: &TextureFrame) 
 }
 
 /// Everything a parallax fragment needs before it is lit: the march of `parallax.method`
-/// (sampling heights through `sample`; `exact` reads `exact_heights`, which it needs), the light
+/// (sampling heights through `sample`; `exact` walks `heights`' level 0 and min–max levels), the
+/// normal at the hit where it is the heights' (from `heights`' level 0), the light
 /// and eye vectors at the hit, the shadow (the horizon map's through `horizons`, which
 /// [`ParallaxShadow::Horizon`] needs; without it the fragment is lit), and the depth factor. `None`: the fragment is
 /// discarded (a silhouette). `positional`: whether `to_light` is a vector to a point (it then
@@ -280,9 +327,10 @@ pub fn fragment(
     depth: f32,
     positional: bool,
     sample: &mut impl FnMut(Vec2) -> f32,
-    exact_heights: Option<ExactHeights>,
+    heights: FragmentHeights,
     horizons: Option<HorizonLookup>,
 ) -> Option<ParallaxFragment> {
+    let exact_heights = heights.minmax.map(|minmax| (heights.level0, minmax));
     let frame = TextureFrame { jacobian: rays.jacobian, depth };
     let curvature = if parallax.options.silhouettes { rays.curvature } else { Vec2::ZERO };
     let to_eye_tangent = frame.to_tangent(rays.to_eye);
@@ -329,8 +377,9 @@ pub fn fragment(
             shadow(hit.st, surface, to_light, layers, parallax.options.shadow, sample)
         }
     };
-    let normal = match (parallax.method, exact_heights) {
-        (ParallaxMethod::Exact, Some((level0, _))) => {
+    let normal = match parallax.hit_normal() {
+        HitNormal::Heights => {
+            let level0 = heights.level0;
             let (w, h) = (level0.width as f32, level0.height as f32);
             let g = bumpmap_math::interpolant::sample(level0, bumpmap_math::Wrap::Repeat, hit.st.x, hit.st.y);
             // Where the interpolant is clamped to the slab, the surface is flat.
@@ -338,7 +387,7 @@ pub fn fragment(
             let gradient = if inside { Vec2::new(g.dx * w, g.dy * h) } else { Vec2::ZERO };
             Some(frame.normal(gradient))
         }
-        _ => None,
+        HitNormal::Map => None,
     };
     Some(ParallaxFragment {
         st: hit.st,

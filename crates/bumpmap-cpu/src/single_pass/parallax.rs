@@ -8,7 +8,9 @@
 
 use glam::{Vec2, Vec3};
 
-use bumpmap_core::parallax::{FragmentRays, HorizonLookup, displaced_depth, fragment, height_lambda, height_level};
+use bumpmap_core::parallax::{
+    FragmentHeights, FragmentRays, HorizonLookup, displaced_depth, fragment, height_lambda, height_level,
+};
 use bumpmap_core::technique::ParallaxProgram;
 use bumpmap_core::vertex::var;
 use bumpmap_math::lighting::Light;
@@ -19,7 +21,7 @@ use crate::raster::FragmentBatch;
 
 impl SinglePass<'_> {
     /// Marches every live fragment (lanes `0..n`) into the heights: fills the scratch's hit
-    /// coordinates, L and V there, the light let through, the exact walk's normal and the window
+    /// coordinates, L and V there, the light let through, the heights' normal at the hit and the window
     /// depth (NaN where a silhouette discards the fragment). Leaves the normal map's packed
     /// coordinates and λ of the entry points in `sc.coords`.
     pub(super) fn parallax(&self, p: &ParallaxProgram, batch: &FragmentBatch, sc: &mut Scratch, n: usize) {
@@ -33,10 +35,10 @@ impl SinglePass<'_> {
         }
         batch.pack_lanes(&batch.depth, &mut sc.depth);
         let levels = p.heights.levels();
-        let exact = p.heights.minmax().map(|m| (&levels[0], m));
         let horizon_levels = p.horizons.as_ref().map_or(&[][..], |h| h.levels());
         let positional = matches!(self.program.light.light, Light::Positional(_));
         let sampler = self.program.sampler;
+        let heights = FragmentHeights { level0: &levels[0], minmax: p.heights.minmax() };
         let size = Vec2::new(levels[0].width as f32, levels[0].height as f32);
         let (s, t_) = (&batch.varyings[var::S], &batch.varyings[var::T]);
         let t = &sc.tex;
@@ -61,7 +63,7 @@ impl SinglePass<'_> {
                 curvature: Vec2::new(t[10][j], t[11][j]),
             };
             let (hit, l, v, light, normal, depth, occlusion) =
-                match fragment(&rays, &p.parallax, p.depth, positional, &mut sample, exact, horizons) {
+                match fragment(&rays, &p.parallax, p.depth, positional, &mut sample, heights, horizons) {
                     Some(f) => {
                         let depth = if p.parallax.options.write_depth {
                             displaced_depth(sc.depth[j], f.kappa, p.depth_range)

@@ -28,7 +28,7 @@ use std::path::PathBuf;
 
 use bumpmap_core::combiners::Precision;
 use bumpmap_core::detail::BlendMethod;
-use bumpmap_core::parallax::{DEFAULT_LAYERS, ParallaxShadow};
+use bumpmap_core::parallax::{DEFAULT_LAYERS, HitNormal, ParallaxShadow};
 use bumpmap_core::scene::{Attenuation, SceneLight, ViewerModel};
 use bumpmap_core::state::Sampler;
 use bumpmap_core::technique::{HalfAngle, Normalize, SelfShadow, SpecularFilter, SpecularMode, SpecularShadow};
@@ -411,6 +411,8 @@ pub struct HeightsOptions {
     pub write_depth: bool,
     /// Multiply the ambient term by the heights' ambient occlusion.
     pub ambient_occlusion: bool,
+    /// The normal the hit is shaded with (`None`: the technique's own).
+    pub hit_normal: Option<HitNormal>,
 }
 
 impl Default for HeightsOptions {
@@ -424,6 +426,7 @@ impl Default for HeightsOptions {
             silhouettes: false,
             write_depth: false,
             ambient_occlusion: false,
+            hit_normal: None,
         }
     }
 }

@@ -262,6 +262,7 @@ pub(super) fn technique_options(o: &SceneOptions, notes: &mut Vec<SetupNote>) ->
             silhouettes: o.heights.silhouettes,
             write_depth: o.heights.write_depth,
             ambient_occlusion: o.heights.ambient_occlusion,
+            hit_normal: o.heights.hit_normal,
         },
     })
 }
