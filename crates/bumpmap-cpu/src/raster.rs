@@ -403,6 +403,9 @@ fn prefetch_rows<T>(buffer: &[T], tile: &Tile, x0: usize, x1: usize, y0: usize, 
             }
         }
     }
+    // Elsewhere (the web's wasm32) the loads wait as they come.
+    #[cfg(not(target_arch = "x86_64"))]
+    let _ = (buffer, tile, x0, x1, y0, y1);
 }
 
 /// For each edge, the quad's pixels (bits 0–3) where its function `e + off` is negative.

@@ -199,11 +199,11 @@ impl TextureFormat {
 
 /// Rows per band a level is compressed in, in parallel: a multiple of the 4-row block, so the
 /// bands' blocks laid end to end are the level's.
+#[cfg(not(target_arch = "wasm32"))]
 const BAND_ROWS: usize = 64;
 
 /// One level's bytes in `format`.
 fn encode_level(path: &Path, level: Level, format: TextureFormat) -> Result<Vec<u8>, IoError> {
-    use rayon::prelude::*;
     let narrowed;
     let le16 = |v: &[u16]| v.iter().flat_map(|c| c.to_le_bytes()).collect::<Vec<u8>>();
     let level = match (level, format) {
@@ -266,6 +266,13 @@ fn encode_level(path: &Path, level: Level, format: TextureFormat) -> Result<Vec<
     } else {
         level
     };
+    encode_blocks(level, target, path)
+}
+
+/// `level` (whole 4×4 blocks) encoded as `target`, in bands of rows on every core.
+#[cfg(not(target_arch = "wasm32"))]
+fn encode_blocks(level: &Rgba8Image, target: image_dds::ImageFormat, path: &Path) -> Result<Vec<u8>, IoError> {
+    use rayon::prelude::*;
     let row_bytes = 4 * level.width;
     let bands: Vec<Vec<u8>> = level
         .as_bytes()
@@ -286,6 +293,13 @@ fn encode_level(path: &Path, level: Level, format: TextureFormat) -> Result<Vec<
         })
         .collect::<Result<_, _>>()?;
     Ok(bands.concat())
+}
+
+/// On the web the encoder (ISPC kernels) is not built: BC5 and BC7 are refused in words.
+#[cfg(target_arch = "wasm32")]
+fn encode_blocks(_: &Rgba8Image, target: image_dds::ImageFormat, path: &Path) -> Result<Vec<u8>, IoError> {
+    let why = format!("{target:?} encoding is not built for WebAssembly: write rgba8 or rgba16, or encode natively");
+    Err(IoError::Write { path: path.to_path_buf(), source: std::io::Error::other(why) })
 }
 
 /// `level` grown to whole 4×4 blocks, the new texels copies of the nearest edge texel.

@@ -73,6 +73,7 @@ pub(crate) fn zeroed<T: crate::Texel>(n: usize) -> Vec<T> {
 /// assert!(e.to_string().starts_with("not enough memory: a huge map needs"));
 /// ```
 pub fn try_zeroed<T: crate::Texel>(n: usize, what: &'static str) -> Result<Vec<T>, OutOfMemory> {
+    #[cfg(target_os = "linux")]
     const HUGE: usize = 2 << 20;
     if n == 0 {
         return Ok(Vec::new());
