@@ -20,9 +20,10 @@
 //! total; an exception the function raises ends the call as Ctrl-C does and is raised.
 
 use std::path::PathBuf;
-use std::sync::atomic::{AtomicBool, AtomicU8, AtomicU64, Ordering};
+use std::sync::atomic::{AtomicU8, AtomicU64, Ordering};
 use std::sync::mpsc::{RecvTimeoutError, channel};
-use std::sync::{Arc, Condvar, Mutex, PoisonError};
+use std::sync::{Arc, Condvar, Mutex, OnceLock, PoisonError};
+use std::thread::ThreadId;
 use std::time::Duration;
 
 use pyo3::exceptions::PyRuntimeError;
@@ -193,7 +194,12 @@ fn wait<T: Send + 'static>(
     // Waited on with the GIL released, from whichever thread the closure runs on.
     let rx = Mutex::new(rx);
     let worker_cancel = cancel.clone();
-    let in_flight = InFlight::enter(&cancel)?;
+    // A daemon thread calling in once the interpreter's exit has begun: the call never starts,
+    // and the thread waits, without the GIL, for the process to end.
+    if exiting_elsewhere() {
+        py.detach(|| park_for_ever());
+    }
+    let in_flight = InFlight::enter(&cancel);
     let handle = std::thread::Builder::new()
         .name("bumpmap".into())
         .stack_size(STACK_BYTES)
@@ -276,10 +282,10 @@ fn interrupt_again() {
 }
 
 /// The work running on worker threads, so the interpreter's exit can give up on it and wait for
-/// it; and whether the exit has begun (no new work starts then).
+/// it; and the thread that exit runs on, once it has begun.
 static IN_FLIGHT: Mutex<Vec<Cancel>> = Mutex::new(Vec::new());
 static IN_FLIGHT_ENDED: Condvar = Condvar::new();
-static EXITING: AtomicBool = AtomicBool::new(false);
+static EXIT_THREAD: OnceLock<ThreadId> = OnceLock::new();
 
 /// How long the interpreter's exit waits for running work: a step of a render or a bake, or a
 /// whole map that tells no steps.
@@ -289,14 +295,14 @@ const EXIT_WAIT: Duration = Duration::from_secs(10);
 struct InFlight(Cancel);
 
 impl InFlight {
-    /// Counts the work of `cancel`, unless the interpreter is exiting.
-    fn enter(cancel: &Cancel) -> PyResult<InFlight> {
+    /// Counts the work of `cancel`; given up at once where the exit already began elsewhere.
+    fn enter(cancel: &Cancel) -> InFlight {
         let mut list = IN_FLIGHT.lock().unwrap_or_else(PoisonError::into_inner);
-        if EXITING.load(Ordering::SeqCst) {
-            return Err(PyRuntimeError::new_err("the interpreter is exiting: bumpmap starts no new work"));
+        if exiting_elsewhere() {
+            cancel.give_up();
         }
         list.push(cancel.clone());
-        Ok(InFlight(cancel.clone()))
+        InFlight(cancel.clone())
     }
 }
 
@@ -308,28 +314,41 @@ impl Drop for InFlight {
     }
 }
 
-/// `value`, on a thread that may take the GIL back; a thread that waited through the start of
-/// the interpreter's exit (a daemon thread's call: every other thread has been joined by then)
-/// never returns instead. Taking the GIL back during the exit ends the thread by a forced
-/// unwind through this crate's frames, which aborts the process ("exception not rethrown");
-/// Python 3.14 parks such threads itself.
+/// Whether the interpreter's exit has begun on another thread than this one. By then every
+/// thread but the exiting one and daemon threads has been joined, so this thread is a daemon
+/// thread; the exiting thread itself (an `atexit` function that runs after the module's) calls
+/// in as before.
+fn exiting_elsewhere() -> bool {
+    EXIT_THREAD.get().is_some_and(|t| *t != std::thread::current().id())
+}
+
+/// Never returns: for a daemon thread during the interpreter's exit, which ends with the process.
+fn park_for_ever() -> ! {
+    loop {
+        std::thread::park();
+    }
+}
+
+/// `value`, on a thread that may take the GIL back; a daemon thread that waited through the
+/// start of the interpreter's exit never returns instead. Taking the GIL back during the exit
+/// ends the thread by a forced unwind through this crate's frames, which aborts the process
+/// ("exception not rethrown"); Python 3.14 parks such threads itself.
 fn unless_exiting<T>(value: T) -> T {
-    if EXITING.load(Ordering::SeqCst) {
-        loop {
-            std::thread::park();
-        }
+    if exiting_elsewhere() {
+        park_for_ever();
     }
     value
 }
 
 /// Registered with `atexit`: gives up on every piece of work still running (a daemon thread's
 /// call, or one whose caller was interrupted), waits up to [`EXIT_WAIT`] with the GIL released
-/// for their threads to end, and removes every staged file and folder not yet in place
+/// for their threads to end (daemon threads' calls made after it never start), and removes
+/// every staged file and folder not yet in place
 /// ([`bumpmap_io::atomic::abandon_all`]). Without the wait, the process's exit tears down the
 /// libraries a worker is inside — the Vulkan driver under a GPU render — and it crashes.
 #[pyfunction]
 pub fn abandon_all(py: Python<'_>) {
-    EXITING.store(true, Ordering::SeqCst);
+    let _ = EXIT_THREAD.set(std::thread::current().id());
     py.detach(|| {
         let deadline = std::time::Instant::now() + EXIT_WAIT;
         let mut list = IN_FLIGHT.lock().unwrap_or_else(PoisonError::into_inner);

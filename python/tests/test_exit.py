@@ -4,8 +4,8 @@ Before the module's exit hook gave up on running work and waited for it, a daemo
 a GPU render when the main thread returned crashed the process in about a third of the runs of
 the script below with the GPU backend (SIGSEGV: the exit tore down the Vulkan driver under the render), and a daemon
 thread that took the GIL back during the exit aborted it ("FATAL: exception not rethrown"). Now
-the process exits with 0 every time, and a call made after the hook (an `atexit` function
-registered before `import bumpmap`) is refused with a `RuntimeError` instead of starting work.
+the process exits with 0 every time, daemon threads print nothing, and an `atexit` function
+that runs after the hook (registered before `import bumpmap`) still calls in.
 """
 
 import subprocess
@@ -58,5 +58,7 @@ def test_the_interpreter_exits_with_0_while_daemon_threads_render(backend):
         run(backend, seed)
 
 
-def test_a_call_after_the_exit_hook_is_refused():
-    assert "late call refused: the interpreter is exiting" in run("cpu", 0, late=True)
+def test_an_atexit_function_after_the_hook_still_calls_in():
+    # On the exiting thread itself a call runs as before; daemon threads' calls made after the
+    # hook never start (they wait for the process to end, so nothing is printed for them).
+    assert "late call ran" in run("cpu", 0, late=True)
