@@ -373,7 +373,7 @@ fn bake_from(
                     let Some(at) = layout.at(x, y, p) else { continue };
                     inside = true;
                     let target = target_of(at.triangle);
-                    let mut frame = Frame::at(low, &rays, at);
+                    let mut frame = Frame::at(low, &rays, at, options.decode);
                     // From the cage's point where there is one, else `front` along the frame's.
                     let front = match cage.and_then(|cage| cage_ray(cage, low, at, frame.p)) {
                         Some((out, distance)) => {
@@ -385,7 +385,7 @@ fn bake_from(
                     let Some(found) = target.first_hit(frame.p + frame.d * front, -frame.d, front + back) else {
                         continue;
                     };
-                    let encoded = frame.encode(found.normal, options.decode);
+                    let encoded = frame.encode(found.normal);
                     if options.occlusion_rays > 0 {
                         let at = frame.p + frame.d * (front - found.t);
                         let seed = [x as u32, y as u32, k as u32];

@@ -39,10 +39,8 @@ pub(crate) struct Frame {
     pub d: Vec3,
     t: Vec3,
     n: Vec3,
-    /// B as each vertex has it (`w · N × T`), interpolated.
-    b_per_vertex: Vec3,
-    /// The handedness, interpolated (its sign is MikkTSpace's per-triangle sign).
-    w: f32,
+    /// B as the decode forms it.
+    b: Vec3,
 }
 
 /// Where a sample's ray starts on a cage given point by point: the cage's point interpolated as
@@ -57,29 +55,25 @@ pub(crate) fn cage_ray(cage: &[Vec3], low: &Mesh, at: Covered, p: Vec3) -> Optio
 }
 
 impl Frame {
-    /// The frame at `at`, its rays along `rays` (one a vertex).
-    pub fn at(low: &Mesh, rays: &[Vec3], at: Covered) -> Frame {
+    /// The frame at `at`, its rays along `rays` (one a vertex), B as `decode` forms it.
+    pub fn at(low: &Mesh, rays: &[Vec3], at: Covered, decode: TangentDecode) -> Frame {
         let [i, j, k] = low.indices[at.triangle as usize].map(|i| i as usize);
         let [a, b, c] = at.weights;
         let mix = |v: &[Vec3]| v[i] * a + v[j] * b + v[k] * c;
         let (ti, tj, tk) = (low.tangents[i], low.tangents[j], low.tangents[k]);
         let n = mix(&low.normals);
-        Frame {
-            p: mix(&low.positions),
-            d: mix(rays).normalize_or(n.normalize_or(Vec3::Z)),
-            t: ti.truncate() * a + tj.truncate() * b + tk.truncate() * c,
-            n,
-            b_per_vertex: low.bitangent(i) * a + low.bitangent(j) * b + low.bitangent(k) * c,
-            w: ti.w * a + tj.w * b + tk.w * c,
-        }
+        let t = ti.truncate() * a + tj.truncate() * b + tk.truncate() * c;
+        let b = match decode {
+            // The handedness interpolated: its sign is MikkTSpace's per-triangle sign.
+            TangentDecode::MikkTSpace => (ti.w * a + tj.w * b + tk.w * c).signum() * n.cross(t),
+            // B as each vertex has it (`w · N × T`), interpolated.
+            TangentDecode::PerVertex => low.bitangent(i) * a + low.bitangent(j) * b + low.bitangent(k) * c,
+        };
+        Frame { p: mix(&low.positions), d: mix(rays).normalize_or(n.normalize_or(Vec3::Z)), t, n, b }
     }
 
-    /// `normal` in this frame, as `decode` will read it back.
-    pub fn encode(&self, normal: Vec3, decode: TangentDecode) -> Vec3 {
-        let b = match decode {
-            TangentDecode::MikkTSpace => self.w.signum() * self.n.cross(self.t),
-            TangentDecode::PerVertex => self.b_per_vertex,
-        };
-        encode_in_frame(normal, self.t, b, self.n).unwrap_or(Vec3::Z)
+    /// `normal` in this frame, as the decode it was made for will read it back.
+    pub fn encode(&self, normal: Vec3) -> Vec3 {
+        encode_in_frame(normal, self.t, self.b, self.n).unwrap_or(Vec3::Z)
     }
 }
