@@ -35,6 +35,7 @@ _Precision = Literal["float", "fixed9"]
 _SpecularMode = Literal["power8", "ramp"]
 _Normalize = Literal["math", "cube"]
 _SelfShadow = Literal["ramp", "step", "off"]
+_Decode = Literal["mikktspace", "per-vertex"]
 _HalfAngle = Literal["vertex", "fragment"]
 _SpecularShadow = Literal["kilgard", "cg", "off"]
 _SpecularFilter = Literal["none", "toksvig", "roughness-map", "lean", "clean"]
@@ -48,7 +49,6 @@ _Method = Literal["auto", "fft", "dct", "kernel"]
 _HeightFromNormalsKernel = Literal["auto", "spectral", "forward", "central", "sobel3", "sobel5", "prewitt3", "scharr3", "gaussian7"]
 _HeightFromNormalsYConvention = Literal["auto", "opengl", "directx"]
 _Ray = Literal["averaged", "explicit"]
-_Decode = Literal["mikktspace", "per-vertex"]
 _Tangents = Literal["ours", "mikktspace"]
 _BlendNormalsMethod = Literal["rnm", "partial-derivative", "whiteout", "udn", "linear", "overlay"]
 # END closed sets
@@ -334,6 +334,7 @@ def render(
     cube_size: int = 32,
     normalize: Optional[_Normalize] = None,
     self_shadow: _SelfShadow = "ramp",
+    decode: Optional[_Decode] = None,
     half_angle: _HalfAngle = "vertex",
     specular_shadow: _SpecularShadow = "kilgard",
     specular_filter: _SpecularFilter = "none",

@@ -4,26 +4,12 @@
 //! with dot products) is inverted by `[T B N]⁻¹ · n`, normalized — not by dot products with an
 //! orthonormalized frame, which is what leaves seams and waviness where the frame is skewed.
 //!
-//! [`TangentDecode`] names the two decodes a bake is made for (each picks its B).
+//! `bumpmap_math::tangent::TangentDecode` names the two decodes a bake is made for (each picks
+//! its B), and the renderer decodes with the same.
 
 use glam::{Mat3, Vec3};
 
-/// How the renderer forms the object-space normal from a tangent-space one, which the bake
-/// inverts exactly: both from LOW's interpolated, unnormalized vertex tangent T and normal N.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
-pub enum TangentDecode {
-    /// MikkTSpace's per-pixel decode: B = sign · cross(N, T) of the interpolated vectors.
-    #[default]
-    MikkTSpace,
-    /// This renderer's vertex stage: each vertex's B = w · cross(N, T), interpolated as T and
-    /// N are (what `bumpmap render` decodes with).
-    PerVertex,
-}
-
-bumpmap_math::named!(TangentDecode {
-    MikkTSpace => "mikktspace": "MikkTSpace's per-pixel decode, B = sign·cross(N, T) of the interpolated vectors (Blender, Unity, Unreal, glTF viewers)",
-    PerVertex => "per-vertex": "Each vertex's B = w·cross(N, T) interpolated with T and N: what bumpmap render decodes with",
-});
+pub use bumpmap_math::tangent::TangentDecode;
 
 /// The unit tangent-space normal `v` with `normalize(v.x·t + v.y·b + v.z·n) = normal` for the
 /// frame `t`, `b`, `n` (unnormalized, not orthogonal), or `None` where the frame is degenerate
@@ -65,6 +51,24 @@ mod tests {
             let v = encode_in_frame(normal, t, b, n).expect("not degenerate");
             worst = worst.max(((v.x * t + v.y * b + v.z * n).normalize() - normal).length());
             assert!((v.length() - 1.0).abs() < 1e-5);
+        }
+        assert!(worst < 1e-5, "{worst}");
+    }
+
+    #[test]
+    fn the_renderers_per_pixel_decode_reads_back_what_the_encode_wrote() {
+        // The bake's frame for MikkTSpace's decode (B = sign · N × T of the interpolated
+        // vectors), and the renderer's decode of the encoded normal: the normal again.
+        let mut worst = 0.0f32;
+        for k in 0..400 {
+            let f = k as f32;
+            let t = Vec3::new(1.0 + 0.8 * (f * 0.37).sin(), 0.4 * (f * 0.11).cos(), 0.3 * (f * 0.7).sin());
+            let n = Vec3::new(0.3 * (f * 0.5).cos(), 0.2 * (f * 0.3).sin(), 0.6 + 0.5 * (f * 0.9).cos().abs());
+            let sign = if k % 3 == 0 { -1.0 } else { 1.0 };
+            let normal = Vec3::new((f * 0.13).sin(), (f * 0.29).cos(), 1.2).normalize();
+            let v = encode_in_frame(normal, t, sign * n.cross(t), n).expect("not degenerate");
+            let back = bumpmap_math::tangent::decode_per_pixel(v, t, sign, n);
+            worst = worst.max((back - normal).length());
         }
         assert!(worst < 1e-5, "{worst}");
     }

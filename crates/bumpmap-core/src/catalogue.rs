@@ -13,6 +13,7 @@
 
 use std::fmt;
 
+use bumpmap_math::tangent::TangentDecode;
 use bumpmap_math::{Kernel, MipMode};
 
 use crate::error::CoreError;
@@ -360,6 +361,28 @@ impl TechniqueName {
         params
     }
 
+    /// How a tangent-space map is decoded when the caller does not say: per pixel as
+    /// MikkTSpace's header says on a mesh (what the files' tools bake for, `bumpmap bake`
+    /// included) where this technique with `options` can (the single pass and its variants,
+    /// without heights as geometry, LEAN or CLEAN, a detail map or Peercy's surface maps); in the
+    /// papers' per-vertex frame on their built-in surfaces and wherever the technique lights
+    /// in that frame.
+    pub fn default_decode(self, kind: &crate::spec::SceneKind, options: &TechniqueOptions) -> TangentDecode {
+        let Technique::SinglePass(single) = self.technique(options) else { return TangentDecode::PerVertex };
+        let per_pixel = !kind.is_surface()
+            && single.parallax.is_none()
+            && single.detail.is_none()
+            && !matches!(single.specular_filter, SpecularFilter::Lean | SpecularFilter::Clean)
+            && !matches!(
+                self,
+                TechniqueName::ObjectSpace
+                    | TechniqueName::PeercyDependent
+                    | TechniqueName::PeercyBlinn
+                    | TechniqueName::OffsetMap
+            );
+        if per_pixel { TangentDecode::MikkTSpace } else { TangentDecode::PerVertex }
+    }
+
     /// Whether the name is one of the references (drawn by `bumpmap-reference` on the CPU, not
     /// as passes).
     pub fn is_reference(self) -> bool {
@@ -443,7 +466,9 @@ impl TechniqueName {
     /// option (`kilgard` with a gloss map): [`Technique::passes`].
     pub fn prepare(self, spec: &SceneSpec, options: &TechniqueOptions) -> Result<(Scene, Technique), CoreError> {
         self.check(spec)?;
-        let scene = crate::scenes::build(&spec.kind, &self.scene_params(&spec.params))?;
+        let mut params = self.scene_params(&spec.params);
+        params.decode = Some(params.decode.unwrap_or_else(|| self.default_decode(&spec.kind, options)));
+        let scene = crate::scenes::build(&spec.kind, &params)?;
         Ok((scene, self.technique(options)))
     }
 }

@@ -24,6 +24,9 @@ pub enum Feature {
     SelfShadowStep,
     /// An object-space normal map.
     ObjectSpace,
+    /// A tangent-space map decoded per pixel (MikkTSpace's decode), which needs the frame at
+    /// each fragment.
+    PerPixelDecode,
     /// A specular colour other than white.
     SpecularColor,
     /// More than one light.
@@ -62,6 +65,9 @@ impl std::fmt::Display for Feature {
             Feature::FragmentHalfAngle => f.write_str("a per-fragment half-angle (H is per vertex)"),
             Feature::SelfShadowStep => f.write_str("a step self-shadowing term (Eq. 12's ramp or none)"),
             Feature::ObjectSpace => f.write_str("object-space lighting (its self-shadowing reads tangent-space L_z)"),
+            Feature::PerPixelDecode => {
+                f.write_str("MikkTSpace's per-pixel decode (this lights in the per-vertex tangent frame)")
+            }
             Feature::SpecularColor => f.write_str("a specular colour other than white or black"),
             Feature::MultipleLights => f.write_str("more than one light"),
             Feature::BumpScale(s) => write!(f, "a bump scale of {s} (its combiners scale by 1, 2 or 4)"),

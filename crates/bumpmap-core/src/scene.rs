@@ -253,6 +253,12 @@ pub enum NormalSpace {
         /// Multiplies the texture coordinates to address the map (1 / the texture's repeat).
         scale: glam::Vec2,
     },
+    /// Tangent space decoded per pixel as MikkTSpace's header says
+    /// (`bumpmap_math::tangent::decode_per_pixel`): each fragment takes the map's normal to
+    /// object space with the interpolated, unnormalized T and N and B = sign · N × T, and is lit
+    /// with object-space L and H. What `bumpmap bake` inverts by default, and what glTF viewers
+    /// do; [`NormalSpace::Tangent`] is the papers' per-vertex frame.
+    TangentPerPixel,
 }
 
 impl NormalSpace {
@@ -260,14 +266,20 @@ impl NormalSpace {
     /// repeats with the texture.
     pub fn texcoord_scale(self) -> glam::Vec2 {
         match self {
-            NormalSpace::Tangent => glam::Vec2::ONE,
+            NormalSpace::Tangent | NormalSpace::TangentPerPixel => glam::Vec2::ONE,
             NormalSpace::SurfaceTangent { scale } | NormalSpace::Object { scale } => scale,
         }
     }
 
-    /// Whether the map's vectors, and so L and H, are in object space.
+    /// Whether the map's vectors are in object space.
     pub fn is_object(self) -> bool {
         matches!(self, NormalSpace::Object { .. })
+    }
+
+    /// Whether L and H are in object space: an object-space map's, or a tangent-space one's
+    /// decoded per pixel.
+    pub fn lit_in_object_space(self) -> bool {
+        matches!(self, NormalSpace::Object { .. } | NormalSpace::TangentPerPixel)
     }
 }
 

@@ -9,6 +9,7 @@ use bumpmap_math::blinn::displacement_per_unit_height;
 use bumpmap_math::lighting::Light;
 use bumpmap_math::mesh::Mesh;
 use bumpmap_math::surface::{BicubicPatch, Surface};
+use bumpmap_math::tangent::TangentDecode;
 use bumpmap_math::{HeightField, HeightMips, MipChain, MipMode, Rgba8Image, Rgba8Mips, bricks_decal};
 
 use crate::bump_maps::{offset_map, surface_material};
@@ -273,7 +274,10 @@ fn material<'a>(
     let normal_map = Arc::new(Arc::try_unwrap(chain).map_or_else(|shared| shared.to_mips(), MipChain::into_mips));
     let mut material = Material {
         normal_map,
-        normal_space: NormalSpace::Tangent,
+        normal_space: match params.decode.unwrap_or(TangentDecode::PerVertex) {
+            TangentDecode::PerVertex => NormalSpace::Tangent,
+            TangentDecode::MikkTSpace => NormalSpace::TangentPerPixel,
+        },
         normal_texels: NormalTexels::UnitVector,
         decal,
         ambient: params.ambient,

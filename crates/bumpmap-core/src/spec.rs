@@ -11,6 +11,7 @@ use std::sync::Arc;
 use glam::{Vec2, Vec3};
 
 use bumpmap_math::mesh::Mesh;
+use bumpmap_math::tangent::TangentDecode;
 use bumpmap_math::{HeightField, HeightMips, MipChain, MipMode, NormalMapOptions, Rgba8Mips};
 
 use crate::scene::{SceneLight, ViewerModel};
@@ -235,6 +236,12 @@ pub struct SceneParams {
     pub repeat: Option<Vec2>,
     /// The bump texture and how the surface reads it; the tangent-space normal map by default.
     pub bump_map: BumpMap,
+    /// How a tangent-space map ([`BumpMap::Tangent`]) is decoded: in the papers' per-vertex
+    /// frame, or per pixel as MikkTSpace's header says
+    /// ([`crate::scene::NormalSpace::TangentPerPixel`]). `None`: as the technique drawing the
+    /// scene decodes by default (`TechniqueName::default_decode`); a scene built without one is
+    /// decoded per vertex.
+    pub decode: Option<TangentDecode>,
     /// What the normal map's smaller levels store: the length factor (Kilgard §5.3) or
     /// renormalized normals. A [`BumpSource::NormalMap`] keeps its own levels, with A = 1 under
     /// [`MipMode::Renormalize`].
@@ -293,6 +300,7 @@ impl Default for SceneParams {
             tessellation: None,
             repeat: None,
             bump_map: BumpMap::Tangent,
+            decode: None,
             mip_mode: MipMode::LengthInAlpha,
             height_map: true,
             depth: None,

@@ -58,12 +58,15 @@ pub mod var {
     /// The vertex colour, linear RGBA (4 slots): what multiplies the base colour, for meshes
     /// with colours only (glTF `COLOR_0`); a pass reads it where its program says so.
     pub const COLOR: usize = 40;
+    /// The object-space vertex tangent and its handedness w (4 slots), for a tangent-space map
+    /// decoded per pixel ([`NormalSpace::TangentPerPixel`], which puts the normal in [`N`]).
+    pub const TANGENT: usize = 44;
     /// Slots in use.
-    pub const COUNT: usize = 44;
+    pub const COUNT: usize = 48;
 }
 
-/// Varyings per vertex (texture coordinates, light and half-angle vectors, …): eleven vec4s.
-pub const MAX_VARYINGS: usize = 44;
+/// Varyings per vertex (texture coordinates, light and half-angle vectors, …): twelve vec4s.
+pub const MAX_VARYINGS: usize = 48;
 
 /// A vertex after the vertex stage: clip-space position and its varyings.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -141,8 +144,11 @@ impl Scene {
                 NormalSpace::Tangent | NormalSpace::SurfaceTangent { .. } => {
                     (TangentFrame { t: t.truncate(), b: t.w * n.cross(t.truncate()), n }, Vec3::Z)
                 }
-                // Object space: no rotation; the surface normal is what self-shadowing tests.
-                NormalSpace::Object { .. } => (TangentFrame { t: Vec3::X, b: Vec3::Y, n: Vec3::Z }, n),
+                // Object space: no rotation; the surface normal is what self-shadowing tests (and,
+                // decoded per pixel, what the frame is made of with the tangent).
+                NormalSpace::Object { .. } | NormalSpace::TangentPerPixel => {
+                    (TangentFrame { t: Vec3::X, b: Vec3::Y, n: Vec3::Z }, n)
+                }
             };
             let (l, h) = lighting.tangent_space(p, &frame);
             let v = frame.tangent_from_object(lighting.to_eye(p)).normalize_or(Vec3::Z);
@@ -153,6 +159,9 @@ impl Scene {
             varyings[var::H..var::H + 3].copy_from_slice(&h.to_array());
             varyings[var::V..var::V + 3].copy_from_slice(&v.to_array());
             varyings[var::N..var::N + 3].copy_from_slice(&geometric.to_array());
+            if object.material.normal_space == NormalSpace::TangentPerPixel {
+                varyings[var::TANGENT..var::TANGENT + 4].copy_from_slice(&t.to_array());
+            }
             if let (Some(source), NormalSpace::Tangent) = (&object.source, object.material.normal_space) {
                 let st = mesh.texcoords[i];
                 let sp = source.surface.eval(st.x / source.repeat.x, st.y / source.repeat.y);

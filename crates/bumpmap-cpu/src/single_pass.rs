@@ -11,7 +11,7 @@ use std::sync::Arc;
 use glam::Vec3;
 
 use bumpmap_core::detail::{DetailLayer, detail_normal};
-use bumpmap_core::scene::{Attenuation, NormalTexels};
+use bumpmap_core::scene::{Attenuation, NormalSpace, NormalTexels};
 use bumpmap_core::shading::{blinn_from_derivatives, offset_to_normal, spot_cone};
 use bumpmap_core::technique::{Gloss, HalfAngle, LitProgram};
 use bumpmap_core::vertex::var;
@@ -181,6 +181,26 @@ impl SinglePass<'_> {
         }
     }
 
+    /// MikkTSpace's per-pixel decode of the normal in `sc.normal` (range-compressed, its length
+    /// kept): to object space in the interpolated, unnormalized tangent and normal, as
+    /// `bumpmap_math::tangent::decode_per_pixel` says. Runs after every lookup, so the packed
+    /// coordinates and the vectors of L and H are free.
+    fn decode_per_pixel(&self, batch: &FragmentBatch, sc: &mut Scratch, n: usize) {
+        for k in 0..3 {
+            batch.pack(var::TANGENT + k, &mut sc.v[k]);
+            batch.pack(var::N + k, &mut sc.w[k]);
+        }
+        batch.pack(var::TANGENT + 3, &mut sc.coords[0]);
+        let (nm, t, nv, sign) = (&mut sc.normal, &sc.v, &sc.w, &sc.coords[0]);
+        for j in 0..n {
+            let v = Vec3::new(nm[0][j], nm[1][j], nm[2][j]) * 2.0 - 1.0;
+            let frame_t = Vec3::new(t[0][j], t[1][j], t[2][j]);
+            let frame_n = Vec3::new(nv[0][j], nv[1][j], nv[2][j]);
+            let d = bumpmap_math::tangent::decode_per_pixel(v, frame_t, sign[j], frame_n) * 0.5 + 0.5;
+            (nm[0][j], nm[1][j], nm[2][j]) = (d.x, d.y, d.z);
+        }
+    }
+
     /// Samples a 2D texture at the live lanes at `scale ⊙ (s, t)`, λ once per quad. With
     /// `same_coords` the coordinates packed for the previous lookup are reused (same texture
     /// size and scale: same s, t and λ).
@@ -301,7 +321,7 @@ impl FragmentShader for SinglePass<'_> {
         let live_n = batch.live().len();
         // Every loop runs over whole 8-lane vectors; the lanes past live_n are never written out.
         let n = live_n.next_multiple_of(8);
-        let (scale, object_space) = (o.normal_space.texcoord_scale().to_array(), o.normal_space.is_object());
+        let (scale, object_space) = (o.normal_space.texcoord_scale().to_array(), o.normal_space.lit_in_object_space());
         let size = |t: &Texture2d| (t.width(), t.height());
         if let Some(p) = &o.parallax {
             self.parallax(p, batch, sc, live_n);
@@ -446,6 +466,9 @@ impl FragmentShader for SinglePass<'_> {
                     sc.decal[c][j] *= sc.coords[0][j];
                 }
             }
+        }
+        if o.normal_space == NormalSpace::TangentPerPixel {
+            self.decode_per_pixel(batch, sc, n);
         }
         lighting_lanes(&o.terms, sc, object_space, n, out);
         if o.decal_alpha {

@@ -6,7 +6,7 @@
 use std::path::Path;
 
 use bumpmap::assets::{MeshLoad, load_mesh};
-use bumpmap::bake::{BakeOutputs, BakeRequest, RayMode, TangentDecode, bake_files};
+use bumpmap::bake::{BakeOutputs, BakeRequest, RayMode, bake_files};
 use bumpmap::frame::draw_passes;
 use bumpmap::{Light, Prepared, Renderer, SceneLight, TechniqueName, TechniqueOptions};
 use bumpmap_io::image_file::{PngLayout, save_png};
@@ -40,7 +40,6 @@ pub fn write(out: &Path, renderer: &mut Renderer) -> Result<String, Error> {
         request.options.width = 512;
         request.options.height = 512;
         request.options.rays = rays;
-        request.options.decode = TangentDecode::PerVertex;
         (request.options.front, request.options.back) = (Some(0.3), Some(0.3));
         let outputs = BakeOutputs {
             normal_map: dir.join(format!("{name}_normal.png")),

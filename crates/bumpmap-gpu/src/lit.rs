@@ -206,6 +206,8 @@ pub struct LitVariant {
     fragment_half_angle: bool,
     gloss: u32,
     object_space: bool,
+    /// The tangent-space normal decoded per pixel (MikkTSpace's decode).
+    per_pixel_decode: bool,
     attenuation: u32,
     spot: bool,
     spot_pattern: bool,
@@ -238,6 +240,7 @@ impl Default for LitVariant {
             fragment_half_angle: false,
             gloss: 0,
             object_space: false,
+            per_pixel_decode: false,
             attenuation: 0,
             spot: false,
             spot_pattern: false,
@@ -269,7 +272,8 @@ impl LitVariant {
             normalize_cube: p.normalize == Normalize::Cube,
             fragment_half_angle: p.half_angle == HalfAngle::Fragment,
             gloss: GLOSS.code(gloss_name(&p.gloss)),
-            object_space: p.normal_space.is_object(),
+            object_space: p.normal_space.lit_in_object_space(),
+            per_pixel_decode: p.normal_space == bumpmap_core::scene::NormalSpace::TangentPerPixel,
             attenuation: ATTENUATION.code(attenuation_name(&p.light.attenuation)),
             spot: p.light.spot.is_some(),
             spot_pattern: p.light.spot.as_ref().is_some_and(|s| s.pattern.is_some()),
@@ -299,7 +303,7 @@ impl LitVariant {
 
     /// The override constants by their names in `lit.wgsl`, with their values: the one list
     /// the pipeline's constants and the prelude's declarations are made from.
-    pub(crate) fn overrides(&self) -> [(&'static str, Override); 24] {
+    pub(crate) fn overrides(&self) -> [(&'static str, Override); 25] {
         use Override::{Code, Flag, Float};
         [
             (SELF_SHADOW.name, Code(self.self_shadow)),
@@ -309,6 +313,7 @@ impl LitVariant {
             ("FRAGMENT_HALF_ANGLE", Flag(self.fragment_half_angle)),
             (GLOSS.name, Code(self.gloss)),
             ("OBJECT_SPACE", Flag(self.object_space)),
+            ("PER_PIXEL_DECODE", Flag(self.per_pixel_decode)),
             (ATTENUATION.name, Code(self.attenuation)),
             ("SPOTLIGHT", Flag(self.spot)),
             ("SPOT_PATTERN", Flag(self.spot_pattern)),

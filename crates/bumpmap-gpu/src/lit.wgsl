@@ -98,6 +98,19 @@ fn normalize_or_z(v: vec3<f32>) -> vec3<f32> {
     return vec3<f32>(0.0, 0.0, 1.0);
 }
 
+// MikkTSpace's per-pixel decode of the tangent-space normal v (bumpmap_math::tangent::
+// decode_per_pixel): the direction of v.x·T + v.y·w·(N × T) + v.z·N in the interpolated,
+// unnormalized frame, at v's length; N's direction (or +Z) where the sum has none.
+fn decode_per_pixel(v: vec3<f32>, t: vec3<f32>, w: f32, n: vec3<f32>) -> vec3<f32> {
+    let b = select(-1.0, 1.0, w >= 0.0) * cross(n, t);
+    let sum = v.x * t + v.y * b + v.z * n;
+    let d = dot(sum, sum);
+    if d > 0.0 && d < 3.0e38 {
+        return sum * inverseSqrt(d) * length(v);
+    }
+    return normalize_or_z(n) * length(v);
+}
+
 // Per-fragment renormalization: by math, or by the cube map expanded as 2c - 1.
 fn unit(v: vec3<f32>) -> vec3<f32> {
     if NORMALIZE_CUBE {
@@ -260,6 +273,9 @@ fn lit(f: Varyings) -> LitOut {
         let n = normalize_or_z(vary3(f, VAR_N));
         l_n = dot(l, n);
         h_n = dot(h, n);
+    }
+    if PER_PIXEL_DECODE {
+        normal = vec4<f32>(decode_per_pixel(normal.xyz * 2.0 - 1.0, vary3(f, VAR_TANGENT), vary(f, VAR_TANGENT + 3u), vary3(f, VAR_N)) * 0.5 + 0.5, normal.w);
     }
     let light = attenuation(vary(f, VAR_LIGHT_DISTANCE)) * spot_factor(f) * par.light;
     let t = Terms(u.ambient.rgb, u.diffuse.rgb, u.specular.rgb, SHININESS, SELF_SHADOW, SPECULAR_SHADOW, SPECULAR_FILTER);

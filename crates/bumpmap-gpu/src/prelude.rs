@@ -34,7 +34,7 @@ pub(crate) const PARALLAX_WGSL: &str = include_str!("parallax.wgsl");
 pub(crate) const ALPHA_CUTOFF: &str = "ALPHA_CUTOFF";
 
 /// The varying slots by the names WGSL uses.
-pub(crate) const SLOTS: [(&str, usize); 18] = [
+pub(crate) const SLOTS: [(&str, usize); 19] = [
     ("VAR_S", var::S),
     ("VAR_T", var::T),
     ("VAR_L", var::L),
@@ -52,6 +52,7 @@ pub(crate) const SLOTS: [(&str, usize); 18] = [
     ("VAR_TANGENT_FROM_TEX", var::TANGENT_FROM_TEX),
     ("VAR_CURVATURE", var::CURVATURE),
     ("VAR_COLOR", var::COLOR),
+    ("VAR_TANGENT", var::TANGENT),
     ("VAR_COUNT", var::COUNT),
 ];
 

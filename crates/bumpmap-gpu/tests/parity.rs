@@ -24,6 +24,7 @@ use bumpmap_core::technique::{
 use bumpmap_core::{BumpMap, BumpSource};
 use bumpmap_gpu::GpuRenderer;
 use bumpmap_math::lighting::Light;
+use bumpmap_math::tangent::TangentDecode;
 use bumpmap_math::{HeightPreset, Rgba8Image, Rgba8Mips};
 use glam::Vec3;
 
@@ -133,6 +134,12 @@ fn the_single_pass_model_matches_the_cpu_feature_by_feature() {
             params,
             single(SinglePassOptions::default()),
         );
+    }
+    // MikkTSpace's per-pixel decode: the frame's varyings and the decode on both backends.
+    for (name, kind) in [("mesh", mesh()), ("torus", SceneKind::Torus)] {
+        let params = SceneParams { decode: Some(TangentDecode::MikkTSpace), shininess: 20.0, ..Default::default() };
+        let options = SinglePassOptions { specular_filter: SpecularFilter::Toksvig, ..Default::default() };
+        check(&mut gpu, &format!("gpu_sp_per_pixel_decode_{name}"), kind, params, single(options));
     }
     let object = SceneParams { bump_map: BumpMap::ObjectSpace, ..Default::default() };
     check(&mut gpu, "gpu_sp_object_space", SceneKind::Torus, object, single(SinglePassOptions::default()));

@@ -13,7 +13,7 @@
 //! tangents are split into separate vertices.
 //!
 //! This file holds the interface and ours; `mikktspace.rs` the MikkTSpace mode; `corners.rs`
-//! the vertex → corners grouping both use.
+//! the vertex → corners grouping both use; `decode.rs` how a renderer reads a map in the frames.
 
 use std::sync::atomic::{AtomicU8, Ordering};
 
@@ -23,12 +23,14 @@ use rayon::prelude::*;
 use crate::mesh::{Mesh, MeshError};
 
 mod corners;
+mod decode;
 mod faces;
 mod mikktspace;
 #[cfg(test)]
 mod tests;
 
 use corners::CornersByVertex;
+pub use decode::{TangentDecode, decode_per_pixel};
 use faces::face_frames;
 pub use mikktspace::{MAX_CORNERS_AT_ONE_POSITION, mikktspace_corner_tangents, mikktspace_in_pieces};
 

@@ -38,6 +38,7 @@ pub fn core_err(e: CoreError) -> Error {
             "--normalize, --half-angle or --self-shadow (it always normalizes by the cube map, with per-vertex H, the ramp or --no-self-shadow)".into()
         }
         Feature::ObjectSpace => "object-space lighting (its self-shadowing reads tangent-space L_z)".into(),
+        Feature::PerPixelDecode => "--decode mikktspace (this lights in the per-vertex tangent frame, as --decode per-vertex does)".into(),
         Feature::SpecularColor => "--specular other than 0 or 1 (its specular is white)".into(),
         Feature::MultipleLights => "more than one --light".into(),
         Feature::BumpScale(s) => format!("--bump-scale {s} (its combiners scale by 1, 2 or 4)"),

@@ -78,6 +78,9 @@ pub fn passes(scene: &Scene, options: &EmbossOptions) -> Result<Vec<Pass>, CoreE
         if m.normal_space.is_object() {
             return unsupported(Feature::ObjectSpace);
         }
+        if m.normal_space == crate::scene::NormalSpace::TangentPerPixel {
+            return unsupported(Feature::PerPixelDecode);
+        }
         let Some(scale) = scale_of(m.bump_scale) else {
             return unsupported(Feature::BumpScale(m.bump_scale));
         };

@@ -94,6 +94,7 @@ pub fn validate(scene: &Scene) -> Result<(), CoreError> {
             NormalSpace::Tangent => {}
             NormalSpace::SurfaceTangent { .. } => return unsupported(Feature::SurfaceMap),
             NormalSpace::Object { .. } => return unsupported(Feature::ObjectSpace),
+            NormalSpace::TangentPerPixel => return unsupported(Feature::PerPixelDecode),
         }
         if m.normal_texels != crate::scene::NormalTexels::UnitVector {
             return unsupported(Feature::OffsetMap);

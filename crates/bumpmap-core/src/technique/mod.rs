@@ -249,11 +249,13 @@ impl LitProgram {
     }
 
     fn varyings_read_uncoloured(&self) -> usize {
-        if self.parallax.is_some() {
+        if self.normal_space == NormalSpace::TangentPerPixel {
+            var::TANGENT + 4
+        } else if self.parallax.is_some() {
             var::CURVATURE + 2
         } else if matches!(self.normal_texels, crate::scene::NormalTexels::Derivatives { .. }) {
             var::PARAM_FRAME + 3
-        } else if self.normal_space.is_object() {
+        } else if self.normal_space.lit_in_object_space() {
             var::N + 3
         } else if self.light.spot.is_some() {
             var::PROJ + 3

@@ -136,6 +136,16 @@ pub fn validate(scene: &Scene, options: &SinglePassOptions) -> Result<(), CoreEr
         if options.gloss == Gloss::DecalAlpha && m.decal.is_none() {
             return Err(CoreError::GlossNeedsDecal);
         }
+        // The slopes' moments, the march, the detail's blend and Peercy's derivatives are
+        // tangent-space work that the per-vertex frame's L and H meet; decoded per pixel, L and
+        // H are in object space.
+        let tangent_work = matches!(options.specular_filter, SpecularFilter::Lean | SpecularFilter::Clean)
+            || options.parallax.is_some()
+            || options.detail.is_some()
+            || matches!(m.normal_texels, crate::scene::NormalTexels::Derivatives { .. });
+        if m.normal_space == crate::scene::NormalSpace::TangentPerPixel && tangent_work {
+            return Err(CoreError::Unsupported { technique: NAME, feature: Feature::PerPixelDecode });
+        }
         if matches!(options.specular_filter, SpecularFilter::Lean | SpecularFilter::Clean)
             && (m.normal_space.is_object() || m.normal_texels != crate::scene::NormalTexels::UnitVector)
         {

@@ -87,6 +87,7 @@ pub(super) fn set_up(o: &SceneOptions, given: &Given) -> Result<SetUp, SetupErro
     p.torus_radii = o.torus_radii;
     p.tessellation = o.tessellation;
     p.repeat = o.repeat;
+    p.decode = o.technique.decode;
     spec.params.lights = lights(o, &spec)?;
 
     let mut options = technique_options(o, &mut notes)?;

@@ -371,6 +371,9 @@ pub struct TechniqueChoice {
     pub specular_shadow: SpecularShadow,
     /// How the specular lobe answers the bumps a pixel averages (single pass).
     pub specular_filter: SpecularFilter,
+    /// How a tangent-space map is decoded (`None`: `TechniqueName::default_decode`'s choice,
+    /// per pixel on meshes where the technique can).
+    pub decode: Option<bumpmap_math::tangent::TangentDecode>,
 }
 
 impl Default for TechniqueChoice {
@@ -388,6 +391,7 @@ impl Default for TechniqueChoice {
             half_angle: HalfAngle::Vertex,
             specular_shadow: SpecularShadow::Kilgard,
             specular_filter: SpecularFilter::None,
+            decode: None,
         }
     }
 }
