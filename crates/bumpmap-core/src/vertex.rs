@@ -59,7 +59,8 @@ pub mod var {
     /// with colours only (glTF `COLOR_0`); a pass reads it where its program says so.
     pub const COLOR: usize = 40;
     /// The object-space vertex tangent and its handedness w (4 slots), for a tangent-space map
-    /// decoded per pixel ([`NormalSpace::TangentPerPixel`], which puts the normal in [`N`]).
+    /// decoded per pixel ([`crate::scene::NormalSpace::TangentPerPixel`], which puts the normal in
+    /// [`N`]).
     pub const TANGENT: usize = 44;
     /// Slots in use.
     pub const COUNT: usize = 48;

@@ -31,7 +31,8 @@ pub mod texture_read;
 
 pub use error::IoError;
 pub use image_file::{
-    Channel, DecodeLimits, HeightSource, load_height_field, load_rgba8, read_height_field, read_rgba8,
+    Channel, DecodeLimits, HeightSource, PngLayout, load_height_field, load_rgba8, png_file_bytes, read_height_field,
+    read_rgba8,
 };
 pub use mesh_file::{
     LoadedMesh, MaterialTexture, MeshFormat, MeshMaterial, MeshOptions, MeshPart, ObjTexcoords, TextureSampler,

@@ -5,6 +5,7 @@ use std::path::PathBuf;
 
 use bumpmap_core::CoreError;
 use bumpmap_cpu::CpuError;
+#[cfg(feature = "gpu")]
 use bumpmap_gpu::GpuError;
 use bumpmap_io::IoError;
 use bumpmap_math::imported::ImportError;
@@ -21,8 +22,13 @@ pub enum Error {
     #[error(transparent)]
     Cpu(CpuError),
     /// The GPU backend failed (no adapter, a limit, a lost device).
+    #[cfg(feature = "gpu")]
     #[error(transparent)]
     Gpu(GpuError),
+    /// The GPU backend was asked for where this build has none (a web page's module).
+    #[cfg(not(feature = "gpu"))]
+    #[error("this build of bumpmap has no GPU backend (the `gpu` feature); draw on the CPU")]
+    NoGpuBackend,
     /// The reference refused (a mesh, a projected spotlight pattern, a size).
     #[error(transparent)]
     Reference(ReferenceError),
@@ -56,6 +62,7 @@ impl From<CpuError> for Error {
     }
 }
 
+#[cfg(feature = "gpu")]
 impl From<GpuError> for Error {
     fn from(e: GpuError) -> Self {
         match e {

@@ -62,7 +62,9 @@ pub mod options;
 pub mod renderer;
 
 pub use error::Error;
-pub use renderer::{Backend, BackendChoice, Prepared, Renderer, WindowSurface};
+#[cfg(feature = "gpu")]
+pub use renderer::WindowSurface;
+pub use renderer::{Backend, BackendChoice, Prepared, Renderer};
 
 pub use bumpmap_core::parallax::{HitNormal, Parallax, ParallaxMethod, ParallaxOptions, ParallaxShadow};
 pub use bumpmap_core::scene::{Attenuation, Camera, SceneLight, Spot, ViewerModel};

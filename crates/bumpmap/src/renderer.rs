@@ -12,6 +12,7 @@ use std::sync::Arc;
 use bumpmap_core::technique::ReferenceOptions;
 use bumpmap_core::{Scene, SceneSpec, Technique, TechniqueName, TechniqueOptions};
 use bumpmap_cpu::{CpuError, CpuRenderer, Framebuffer};
+#[cfg(feature = "gpu")]
 use bumpmap_gpu::GpuRenderer;
 use bumpmap_math::Rgba8Image;
 
@@ -58,7 +59,11 @@ impl Backend {
 
 /// The backend's state, kept between frames so buffers, textures and pipelines are reused.
 enum Inner {
-    Cpu { renderer: Box<CpuRenderer>, framebuffer: Option<Framebuffer> },
+    Cpu {
+        renderer: Box<CpuRenderer>,
+        framebuffer: Option<Framebuffer>,
+    },
+    #[cfg(feature = "gpu")]
     Gpu(Box<GpuRenderer>),
 }
 
@@ -153,6 +158,7 @@ impl Renderer {
     /// [`BackendChoice::Auto`] falls back to the CPU and keeps the reason.
     pub fn new(choice: BackendChoice) -> Result<Self, Error> {
         let cpu = || Inner::Cpu { renderer: Box::new(CpuRenderer::new()), framebuffer: None };
+        #[cfg(feature = "gpu")]
         let (inner, fallback) = match choice {
             BackendChoice::Cpu => (cpu(), None),
             BackendChoice::Gpu => (Inner::Gpu(Box::new(GpuRenderer::new()?)), None),
@@ -161,6 +167,12 @@ impl Renderer {
                 Err(e) => (cpu(), Some(e.to_string())),
             },
         };
+        #[cfg(not(feature = "gpu"))]
+        let (inner, fallback) = match choice {
+            BackendChoice::Cpu => (cpu(), None),
+            BackendChoice::Gpu => return Err(Error::NoGpuBackend),
+            BackendChoice::Auto => (cpu(), Some(Error::NoGpuBackend.to_string())),
+        };
         Ok(Self { inner, fallback, progress: None })
     }
 
@@ -168,6 +180,7 @@ impl Renderer {
     pub fn backend(&self) -> Backend {
         match self.inner {
             Inner::Cpu { .. } => Backend::Cpu,
+            #[cfg(feature = "gpu")]
             Inner::Gpu(_) => Backend::Gpu,
         }
     }
@@ -176,6 +189,7 @@ impl Renderer {
     pub fn describe(&self) -> String {
         match &self.inner {
             Inner::Cpu { .. } => format!("cpu, {} threads", rayon::current_num_threads()),
+            #[cfg(feature = "gpu")]
             Inner::Gpu(g) => format!("gpu: {}", g.adapter_name()),
         }
     }
@@ -245,6 +259,7 @@ impl Renderer {
                 })?;
                 Ok(Rgba8Image::new(width, height, fb.to_rgba8()))
             }
+            #[cfg(feature = "gpu")]
             Inner::Gpu(g) => Ok(match on_pass {
                 Some(f) => g.render(scene, technique, width, height, f)?,
                 None => g.render_frame(scene, technique, width, height)?,
@@ -265,6 +280,7 @@ impl Renderer {
                 let fb = framebuffer_of(framebuffer, width, height)?;
                 Ok(renderer.render(scene, technique, fb, |_, _| {})?)
             }
+            #[cfg(feature = "gpu")]
             Inner::Gpu(g) => Ok(g.draw(scene, technique, width, height)?),
         }
     }
@@ -289,8 +305,10 @@ impl Renderer {
 
 /// A window the GPU backend draws into (a swap chain): frames go to the screen without coming
 /// back to the CPU. Made by [`Renderer::window_surface`].
+#[cfg(feature = "gpu")]
 pub struct WindowSurface(bumpmap_gpu::WindowSurface);
 
+#[cfg(feature = "gpu")]
 impl WindowSurface {
     /// The size frames are drawn at.
     pub fn size(&self) -> (usize, usize) {
@@ -299,6 +317,7 @@ impl WindowSurface {
     }
 }
 
+#[cfg(feature = "gpu")]
 impl Renderer {
     /// A surface on `window` (a winit window, say, behind an `Arc`) for frames of
     /// `width`×`height`, on the GPU backend; `None` on the CPU's, whose frames a caller shows

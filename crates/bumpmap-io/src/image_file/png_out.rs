@@ -37,6 +37,25 @@ pub fn save_png_into(
     layout: PngLayout,
     bytes: &[u8],
 ) -> Result<(), IoError> {
+    set.write(path, |w| write_png(w, width, height, layout, bytes))
+}
+
+/// The bytes [`save_png`] writes, in memory (what a web page offers to save).
+pub fn png_file_bytes(width: usize, height: usize, layout: PngLayout, bytes: &[u8]) -> Result<Vec<u8>, IoError> {
+    let mut out = Vec::new();
+    write_png(&mut out, width, height, layout, bytes)
+        .map_err(|e| IoError::Texture { path: "a PNG in memory".into(), reason: e.to_string() })?;
+    Ok(out)
+}
+
+/// The 8-bit PNG encoding of the files this crate writes: fast compression, adaptive filters.
+fn write_png(
+    w: impl std::io::Write,
+    width: usize,
+    height: usize,
+    layout: PngLayout,
+    bytes: &[u8],
+) -> std::io::Result<()> {
     use image::ImageEncoder;
     let color = match layout {
         PngLayout::Gray8 => image::ExtendedColorType::L8,
@@ -44,15 +63,13 @@ pub fn save_png_into(
         PngLayout::Rgba8 => image::ExtendedColorType::Rgba8,
     };
     debug_assert_eq!(bytes.len(), width * height * color.bits_per_pixel() as usize / 8);
-    set.write(path, |w| {
-        image::codecs::png::PngEncoder::new_with_quality(
-            w,
-            image::codecs::png::CompressionType::Fast,
-            image::codecs::png::FilterType::Adaptive,
-        )
-        .write_image(bytes, width as u32, height as u32, color)
-        .map_err(std::io::Error::other)
-    })
+    image::codecs::png::PngEncoder::new_with_quality(
+        w,
+        image::codecs::png::CompressionType::Fast,
+        image::codecs::png::FilterType::Adaptive,
+    )
+    .write_image(bytes, width as u32, height as u32, color)
+    .map_err(std::io::Error::other)
 }
 
 /// An 8-bit PNG's bytes in memory (a texture carried inside a glTF's buffer, say): `bytes`

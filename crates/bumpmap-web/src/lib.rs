@@ -1,0 +1,282 @@
+//! bumpmap on a web page: what the page (`web/`) asks of the library, as the command line asks
+//! it, behind a handful of functions over the module's linear memory.
+//!
+//! The page speaks the command line's language: each call takes `name=value` lines, the options
+//! of `bumpmap render` or `bumpmap normalmap` by their command-line names, read through the
+//! library's option tables (`bumpmap::option_table`), so the page has the same options, defaults
+//! and checks as the command line and the Python module. A file the user drops travels as its
+//! bytes, decoded here by the library's readers as the command line decodes the file.
+//!
+//! - [`render`]: a frame of a built-in scene on the CPU renderer (the emulated GeForce 256, one
+//!   thread in a browser), as RGBA8;
+//! - [`normal_map_png`]: a height field's normal map as the PNG `bumpmap normalmap` writes,
+//!   byte for byte;
+//! - [`names`]: the closed sets the page's menus list (techniques, scenes, presets).
+//!
+//! `exports` wraps them for JavaScript (pointers and lengths; the answer kept until the next
+//! call). What this crate does not do: draw through WebGPU (the GPU backend waits
+//! synchronously, which a browser forbids, and its bindings need wasm-bindgen's tool), read
+//! meshes, or hold any logic of its own beyond reading the lines.
+
+pub mod exports;
+
+use std::path::Path;
+
+use bumpmap::frame::{FrameRequest, draw_frame, prepare_frame};
+use bumpmap::maps::{Chain, MapOptions};
+use bumpmap::option_table::{self, FRAME, MAPS, Opt, SCENE};
+use bumpmap::options::Given;
+use bumpmap::{BackendChoice, Renderer, Rgba8Image};
+use bumpmap_io::{Channel, DecodeLimits, HeightSource};
+use bumpmap_math::HeightField;
+
+/// The largest side of an image the page decodes: a 4096² RGBA image at 16 bits is 128 MiB,
+/// and a wasm module has at most 4 GiB for everything it holds while working on it.
+pub const MAX_SIDE: u32 = 4096;
+
+/// Why a call made nothing.
+#[derive(Debug, thiserror::Error)]
+pub enum WebError {
+    /// A line that is not `name=value` or `name`, or a name no table has.
+    #[error("{0}")]
+    Usage(String),
+    /// A value the option does not take.
+    #[error("{name}: {reason}")]
+    Value {
+        /// The option, as the command line spells it.
+        name: String,
+        /// What is wrong with the value.
+        reason: String,
+    },
+    /// The dropped file (or a preset) could not be read.
+    #[error(transparent)]
+    Io(#[from] bumpmap_io::IoError),
+    /// The frame could not be drawn.
+    #[error(transparent)]
+    Frame(#[from] bumpmap::frame::FrameError),
+    /// The renderer could not start.
+    #[error(transparent)]
+    Renderer(#[from] bumpmap::Error),
+    /// The normal map could not be made.
+    #[error(transparent)]
+    Map(#[from] bumpmap::maps::MapError),
+}
+
+impl WebError {
+    /// Whether the call itself was wrong (an option or its value), as the command line's exit
+    /// status 2 says, rather than what it was given.
+    pub fn is_usage(&self) -> bool {
+        matches!(self, WebError::Usage(_) | WebError::Value { .. })
+    }
+}
+
+/// A file the user gave the page: its name (what messages call it) and its bytes.
+#[derive(Clone, Copy, Debug)]
+pub struct Dropped<'a> {
+    /// The file's name.
+    pub name: &'a str,
+    /// Its contents.
+    pub bytes: &'a [u8],
+}
+
+/// `(name, value)` for each non-empty line of `args`: `name=value`, or `name` alone for a flag
+/// (`true`).
+fn lines(args: &str) -> Result<Vec<(&str, &str)>, WebError> {
+    args.lines()
+        .map(str::trim)
+        .filter(|l| !l.is_empty())
+        .map(|l| match l.split_once('=') {
+            Some((name, value)) if !name.trim().is_empty() => Ok((name.trim(), value.trim())),
+            Some(_) => Err(WebError::Usage(format!("'{l}' names no option"))),
+            None => Ok((l, "true")),
+        })
+        .collect()
+}
+
+/// Sets each line into `options` through the first of `tables` that has its name, then checks
+/// what the options need or exclude together.
+fn read_into<R: Default>(options: &mut R, args: &str, tables: &[&[Opt<R>]]) -> Result<(), WebError> {
+    let given = lines(args)?;
+    for (name, text) in &given {
+        let row = tables
+            .iter()
+            .find_map(|t| option_table::find(t, name))
+            .ok_or_else(|| WebError::Usage(format!("unknown option '{name}'")))?;
+        let value = row.parse_text(text).map_err(|reason| WebError::Value { name: row.name.into(), reason })?;
+        row.set(options, value).map_err(|reason| WebError::Value { name: row.name.into(), reason })?;
+    }
+    let names: Vec<&str> = given.iter().map(|(n, _)| n.trim_start_matches("--")).collect();
+    for table in tables {
+        option_table::check_together(table, &names).map_err(|t| WebError::Usage(together(&t)))?;
+    }
+    Ok(())
+}
+
+/// [`option_table::Together`] in words.
+fn together(t: &option_table::Together) -> String {
+    match t {
+        option_table::Together::Needs { option, needs } => format!("{option} is given only with {needs}"),
+        option_table::Together::Excludes { option, other } => format!("{option} and {other} cannot both be given"),
+    }
+}
+
+/// The heights in `file`'s image (its luminance, as `normalmap` reads a colour image), no side
+/// over [`MAX_SIDE`].
+fn heights_of(file: Dropped) -> Result<HeightField, WebError> {
+    let limits = DecodeLimits { max_dimension: MAX_SIDE, max_alloc: 1 << 30 };
+    Ok(bumpmap_io::read_height_field(file.bytes, Path::new(file.name), Channel::Luminance, &limits)?)
+}
+
+/// A frame as `bumpmap render` draws it with the options in `args` (`render`'s names:
+/// `technique=pom`, `scene=sphere`, `light=dir:1,1,2`, `width=800`, …), on the CPU renderer.
+/// `file`, where given, is the height field (`height-field` names it; its name is used if the
+/// options do not).
+///
+/// ```
+/// let frame = bumpmap_web::render("technique=single-pass\nsize=64", None).unwrap();
+/// assert_eq!((frame.width, frame.height), (64, 64));
+/// assert!(bumpmap_web::render("technique=nonesuch", None).unwrap_err().is_usage());
+/// ```
+pub fn render(args: &str, file: Option<Dropped>) -> Result<Rgba8Image, WebError> {
+    let mut request = FrameRequest { size: (512, 512), ..Default::default() };
+    read_into(&mut request, args, &[SCENE, FRAME])?;
+    request.backend = BackendChoice::Cpu;
+    let mut given = Given::default();
+    if let Some(file) = file {
+        if request.options.height_field.is_none() {
+            request.options.height_field = Some(HeightSource::File(file.name.into()));
+        }
+        given.height_field = Some(heights_of(file)?);
+    }
+    let prepared = prepare_frame(&request, &given)?;
+    let mut renderer = Renderer::new(BackendChoice::Cpu)?;
+    Ok(draw_frame(&mut renderer, &prepared, false)?.image)
+}
+
+/// The PNG file `bumpmap normalmap HEIGHTS -o OUT.png` writes with the options in `args`
+/// (`normalmap`'s names: `scale=4`, `kernel=sobel3`, `y-convention=directx`, …; level 0, 8 bits),
+/// byte for byte. The heights are `file`'s, or the preset `preset` names (`bricks@256`).
+///
+/// ```
+/// let png = bumpmap_web::normal_map_png("scale=4", None, "bricks@64").unwrap();
+/// assert_eq!(&png[1..4], b"PNG");
+/// ```
+pub fn normal_map_png(args: &str, file: Option<Dropped>, preset: &str) -> Result<Vec<u8>, WebError> {
+    let mut options = MapOptions::default();
+    read_into(&mut options, args, &[MAPS])?;
+    if options.bits != 8 {
+        return Err(WebError::Value { name: "bits".into(), reason: "the page exports 8-bit maps".into() });
+    }
+    let field = match file {
+        Some(file) => heights_of(file)?,
+        None => match HeightSource::parse(preset) {
+            source @ HeightSource::Preset { .. } => source.load(Channel::Luminance)?,
+            HeightSource::File(_) => {
+                return Err(WebError::Usage(format!(
+                    "'{preset}' is not a preset ({}, optionally @SIZE)",
+                    bumpmap_math::HeightPreset::NAMES
+                )));
+            }
+        },
+    };
+    let Chain::Rgba8(chain) = bumpmap::maps::normal_map(&options, false, &field)? else {
+        unreachable!("8 bits were checked")
+    };
+    let level = &chain.levels[0];
+    Ok(bumpmap_io::png_file_bytes(level.width, level.height, bumpmap_io::PngLayout::Rgba8, level.as_bytes())?)
+}
+
+/// A closed set the page lists, one name a line.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Names {
+    /// The technique catalogue, in `compare`'s order.
+    Techniques,
+    /// The built-in scenes.
+    Scenes,
+    /// The height-field presets.
+    Presets,
+}
+
+/// The names of `set`, one a line, as the command line spells them.
+///
+/// ```
+/// use bumpmap_web::{Names, names};
+/// assert!(names(Names::Techniques).lines().any(|t| t == "kilgard"));
+/// assert!(names(Names::Scenes).lines().any(|s| s == "torus"));
+/// ```
+pub fn names(set: Names) -> String {
+    use bumpmap::TechniqueName;
+    use bumpmap_core::SceneKind;
+    match set {
+        Names::Techniques => TechniqueName::ALL.map(TechniqueName::name).join("\n"),
+        Names::Scenes => SceneKind::BUILT_IN.iter().map(SceneKind::name).collect::<Vec<_>>().join("\n"),
+        // `noise:SEED` as the help says it: the page asks for the seed.
+        Names::Presets => bumpmap_math::HeightPreset::NAMES.split(", ").collect::<Vec<_>>().join("\n"),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn lines_are_names_and_values_and_a_bare_name_is_a_flag() {
+        assert_eq!(lines("a=b\n\n  c = d e \nflag").unwrap(), [("a", "b"), ("c", "d e"), ("flag", "true")]);
+        assert!(lines("=3").unwrap_err().is_usage());
+    }
+
+    #[test]
+    fn options_are_checked_as_the_command_line_checks_them() {
+        let e = render("nonesuch=1", None).unwrap_err();
+        assert!(e.is_usage() && e.to_string().contains("nonesuch"), "{e}");
+        let e = render("size=0", None).unwrap_err();
+        assert!(e.is_usage() && e.to_string().starts_with("size:"), "{e}");
+        let e = render("spot-cutoff=20", None).unwrap_err();
+        assert!(e.is_usage() && e.to_string().contains("spot"), "needs --spot: {e}");
+        let e = normal_map_png("bits=16", None, "bricks").unwrap_err();
+        assert!(e.is_usage() && e.to_string().contains("8-bit"), "{e}");
+        let e = normal_map_png("", None, "brick").unwrap_err();
+        assert!(e.is_usage() && e.to_string().contains("brick"), "{e}");
+    }
+
+    #[test]
+    fn a_dropped_file_that_is_not_an_image_is_named() {
+        let file = Dropped { name: "notes.txt", bytes: b"not pixels" };
+        let e = render("size=32", Some(file)).unwrap_err();
+        assert!(!e.is_usage() && e.to_string().contains("notes.txt"), "{e}");
+        let e = normal_map_png("", Some(file), "bricks").unwrap_err();
+        assert!(e.to_string().contains("notes.txt"), "{e}");
+    }
+
+    #[test]
+    fn a_dropped_height_field_is_the_one_drawn() {
+        let field = bumpmap_math::HeightPreset::Pinwheel.render(64, 64);
+        let png = bumpmap_io::png_file_bytes(64, 64, bumpmap_io::PngLayout::Gray8, &field.to_u8()).unwrap();
+        let file = Dropped { name: "pinwheel.png", bytes: &png };
+        let dropped = render("size=48\ntechnique=single-pass", Some(file)).unwrap();
+        let bricks = render("size=48\ntechnique=single-pass", None).unwrap();
+        let preset = render("size=48\ntechnique=single-pass\nheight-field=pinwheel@64", None).unwrap();
+        let mean_difference = |a: &Rgba8Image, b: &Rgba8Image| {
+            let d: u32 = a
+                .texels
+                .iter()
+                .zip(&b.texels)
+                .map(|(p, q)| p[..3].iter().zip(&q[..3]).map(|(x, y)| x.abs_diff(*y) as u32).sum::<u32>())
+                .sum();
+            d as f64 / (3 * a.texels.len()) as f64
+        };
+        // The same heights, but for the file's 8 bits.
+        assert!(mean_difference(&dropped, &preset) < 1.0, "{}", mean_difference(&dropped, &preset));
+        assert!(mean_difference(&dropped, &bricks) > 5.0, "{}", mean_difference(&dropped, &bricks));
+    }
+
+    #[test]
+    fn the_exports_answer_and_give_buffers_back() {
+        assert_eq!(exports::bm_names(1), 0);
+        assert!(exports::bm_answer_len() > 0 && exports::bm_answer_width() == 0);
+        assert_eq!(exports::bm_names(7), 2, "no such set");
+        let p = exports::bm_alloc(16);
+        // SAFETY: the pointer and length bm_alloc just gave.
+        unsafe { exports::bm_free(p, 16) };
+    }
+}

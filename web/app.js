@@ -1,0 +1,166 @@
+// The page: the controls become `bumpmap render`'s options as `name=value` lines, the module
+// (crates/bumpmap-web, built by scripts/web.sh) draws on the CPU, and the frame goes to the
+// canvas. Nothing here knows a technique, a scene or a default: the names come from the module,
+// the defaults and checks from the library's option table.
+
+const $ = (id) => document.getElementById(id);
+const form = $("controls");
+const canvas = $("frame");
+const utf8 = new TextEncoder();
+
+const bytes = await (await fetch("bumpmap_web.wasm")).arrayBuffer();
+const { instance } = await WebAssembly.instantiate(bytes, {});
+const bm = instance.exports;
+
+// Copies `data` into the module's memory; [pointer, length] (null for nothing).
+function put(data) {
+  if (!data || data.length === 0) return [0, 0];
+  const ptr = bm.bm_alloc(data.length);
+  new Uint8Array(bm.memory.buffer, ptr, data.length).set(data);
+  return [ptr, data.length];
+}
+
+// Calls `fn` with the buffers `inputs` (Uint8Arrays or null) as pointer-length pairs, then
+// gives them back; the status and a copy of the answer.
+function call(fn, ...inputs) {
+  const held = inputs.map(put);
+  try {
+    const status = bm[fn](...held.flat());
+    const answer = new Uint8Array(bm.memory.buffer, bm.bm_answer_ptr(), bm.bm_answer_len()).slice();
+    return { status, answer, width: bm.bm_answer_width(), height: bm.bm_answer_height() };
+  } finally {
+    for (const [ptr, len] of held) if (ptr) bm.bm_free(ptr, len);
+  }
+}
+
+// A closed set's names (0 techniques, 1 scenes, 2 presets), as the command line spells them.
+function names(set) {
+  bm.bm_names(set);
+  const text = new Uint8Array(bm.memory.buffer, bm.bm_answer_ptr(), bm.bm_answer_len());
+  return new TextDecoder().decode(text).split("\n");
+}
+
+function fill(select, list, chosen) {
+  for (const name of list) select.add(new Option(name, name, false, name === chosen));
+}
+fill(form.technique, names(0), "single-pass");
+fill(form.scene, names(1), null); // the first: the command line's default scene
+fill(form.preset, names(2), "bricks");
+
+let dropped = null; // { name, bytes } of the user's own heights
+let light = null; // the scene's own until the picture is dragged
+
+// The options the controls stand for, one `name=value` a line.
+function options(extra = {}) {
+  const o = {
+    scene: form.scene.value,
+    technique: form.technique.value,
+    "bump-scale": form["bump-scale"].value,
+    width: canvas.width,
+    height: canvas.height,
+  };
+  if (light) o.light = `dir:${light.map((c) => c.toFixed(3)).join(",")}`;
+  if (dropped) o["height-field"] = dropped.name;
+  else o["height-field"] = heightsPreset();
+  if (form.filter.value) o.filter = form.filter.value;
+  return Object.entries({ ...o, ...extra }).map(([k, v]) => `${k}=${v}`).join("\n");
+}
+
+function heightsPreset() {
+  return form.preset.value.replace("SEED", String(Math.max(0, Math.round(Number(form.seed.value) || 0))));
+}
+
+function showError(text) {
+  $("error").hidden = !text;
+  $("error").textContent = text || "";
+}
+
+// Draws the frame the controls describe; what the last draw said.
+function draw(extra = {}) {
+  const t0 = performance.now();
+  const r = call("bm_render", utf8.encode(options(extra)), dropped && utf8.encode(dropped.name), dropped && dropped.bytes);
+  const ms = performance.now() - t0;
+  if (r.status !== 0) {
+    showError(new TextDecoder().decode(r.answer));
+    $("status").textContent = "";
+    return { ...r, ms };
+  }
+  showError("");
+  canvas.width = r.width;
+  canvas.height = r.height;
+  canvas.getContext("2d").putImageData(new ImageData(new Uint8ClampedArray(r.answer.buffer), r.width, r.height), 0, 0);
+  const what = dropped ? dropped.name : heightsPreset();
+  $("status").textContent = `${form.technique.value} on the ${form.scene.value}, heights: ${what}; drawn in ${ms.toFixed(0)} ms`;
+  return { ...r, ms };
+}
+
+let pending = false;
+function redraw() {
+  if (pending) return;
+  pending = true;
+  requestAnimationFrame(() => {
+    pending = false;
+    draw();
+  });
+}
+
+form.addEventListener("input", (e) => {
+  if (e.target.name === "bump-scale") form["scale-shown"].value = e.target.value;
+  if (e.target.name !== "file") redraw();
+});
+form.file.addEventListener("change", async () => {
+  const file = form.file.files[0];
+  dropped = file ? { name: file.name, bytes: new Uint8Array(await file.arrayBuffer()) } : null;
+  draw();
+});
+
+canvas.addEventListener("pointermove", (e) => {
+  if (e.buttons !== 1) return;
+  const r = canvas.getBoundingClientRect();
+  const x = ((e.clientX - r.left) / r.width) * 2 - 1;
+  const y = 1 - ((e.clientY - r.top) / r.height) * 2;
+  light = [2 * x, 2 * y, 1];
+  redraw();
+});
+
+$("export").addEventListener("click", () => {
+  const r = call(
+    "bm_normal_map",
+    utf8.encode(`scale=${form["bump-scale"].value}`),
+    dropped && utf8.encode(dropped.name),
+    dropped && dropped.bytes,
+    utf8.encode(heightsPreset()),
+  );
+  if (r.status !== 0) return showError(new TextDecoder().decode(r.answer));
+  const a = document.createElement("a");
+  a.href = URL.createObjectURL(new Blob([r.answer], { type: "image/png" }));
+  a.download = `${(dropped ? dropped.name.replace(/\.[^.]*$/, "") : heightsPreset().replace(/[:@]/g, "_"))}_normal.png`;
+  a.click();
+});
+
+$("backend").textContent = "CPU renderer in WebAssembly (the emulated GeForce 256, one thread); WebGPU is not used yet";
+
+// What the tests drive (scripts/test_web.py): a frame or a normal map for given options, the
+// answer as base64 so it crosses the DevTools protocol as text.
+function base64(u8) {
+  let s = "";
+  for (let i = 0; i < u8.length; i += 0x8000) s += String.fromCharCode(...u8.subarray(i, i + 0x8000));
+  return btoa(s);
+}
+window.bumpmap = {
+  render(args) {
+    const r = call("bm_render", utf8.encode(args), null, null);
+    return { status: r.status, width: r.width, height: r.height, data: r.status === 0 ? base64(r.answer) : new TextDecoder().decode(r.answer) };
+  },
+  normalMap(args, preset) {
+    const r = call("bm_normal_map", utf8.encode(args), null, null, utf8.encode(preset));
+    return { status: r.status, data: r.status === 0 ? base64(r.answer) : new TextDecoder().decode(r.answer) };
+  },
+  draw: (extra) => {
+    const r = draw(extra);
+    return { status: r.status, ms: r.ms };
+  },
+  state: () => ({ status: $("status").textContent, error: $("error").hidden ? "" : $("error").textContent }),
+};
+draw();
+document.body.dataset.ready = "yes";
