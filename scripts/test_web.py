@@ -6,9 +6,10 @@ driven over the DevTools protocol on a pipe (standard library only):
 - kilgard, single-pass and pom of the bricks on the wall, drawn in the page, match the
   command line's CPU renderer (`bumpmap render --backend cpu`) at 40 dB or more;
 - the normal map the page saves is the file `bumpmap normalmap` writes, byte for byte;
-- a height field given through the page's file input is drawn (against the command line with
-  the same file and options), and a file that is not an image, and a PNG that says it is
-  16384² texels, each give a message in the page and leave it working.
+- a height field and a GLB given through the page's file input are drawn (against the command
+  line with the same files and options), and a file that is not an image, a PNG that says it is
+  16384² texels and a glTF without its buffers each give a message in the page and leave it
+  working.
 
     scripts/test_web.py [--cli target/debug/bumpmap] [--screenshot docs/web_page.png] [--bench]
 
@@ -35,7 +36,12 @@ from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
 SITE = ROOT / "target" / "web"
-MIN_PSNR = 40.0  # the same bytes in, wasm's f32 math against the native build's (FMA, libm)
+MIN_PSNR = 40.0
+# The canvas's pixels as base64.
+CANVAS = ("(() => { const c = document.getElementById('frame');"
+          " const d = c.getContext('2d').getImageData(0, 0, c.width, c.height).data;"
+          " let s = ''; for (let i = 0; i < d.length; i += 0x8000)"
+          " s += String.fromCharCode(...d.subarray(i, i + 0x8000)); return btoa(s); })()")  # the same bytes in, wasm's f32 math against the native build's (FMA, libm)
 
 
 def png_rgba(data):
@@ -214,6 +220,13 @@ def main():
         first_frame = time.monotonic() - started
         state = chrome.evaluate("bumpmap.state()")
         check(state["error"] == "" and "drawn in" in state["status"], f"the page loads and draws: {state}")
+        # Dragging: the kept scene drawn again with the light turned, and back where it was.
+        first = chrome.evaluate(CANVAS)
+        moved = chrome.evaluate("bumpmap.draw({}, false, {light: [0.3, 0.4]}).status")
+        turned = chrome.evaluate(CANVAS)
+        chrome.evaluate("bumpmap.draw({}, false, {light: [0, 0]}).status")
+        check(moved == 0 and turned != first and chrome.evaluate(CANVAS) == first,
+              "a drag turns the light, drawing the kept scene, and turning it back gives the first frame")
 
         options = {"scene": "wall", "size": 256, "light": "dir:0.4,0.5,1"}
         drawn = []  # each technique's frame, none the same as another's
@@ -244,25 +257,36 @@ def main():
         node = chrome.send("DOM.querySelector", nodeId=doc, selector="input[name=file]")["nodeId"]
         chrome.send("DOM.setFileInputFiles", files=[str(heights)], nodeId=node)
         state = chrome.wait_for("bumpmap.state().status.includes('heights.png') && bumpmap.state()")
-        canvas = chrome.evaluate(
-            "(() => { const c = document.getElementById('frame');"
-            " const d = c.getContext('2d').getImageData(0, 0, c.width, c.height).data;"
-            " let s = ''; for (let i = 0; i < d.length; i += 0x8000)"
-            " s += String.fromCharCode(...d.subarray(i, i + 0x8000)); return btoa(s); })()")
+        canvas = chrome.evaluate(CANVAS)
         w, h, native = cli_render(args.cli, work / "dropped.png", {
             "scene": "torus", "technique": "single-pass", "bump-scale": 4, "width": 512, "height": 512,
             "height-field": heights})
         value = psnr(base64.b64decode(canvas), native)
         check(value >= MIN_PSNR, f"heights from the file input drawn as the command line draws them: {value:.1f} dB")
 
+        # A model through the file input: drawn with its own material, as the command line does.
+        cube = work / "cube.glb"
+        subprocess.run([args.cli, "tangents", str(ROOT / "crates/bumpmap-io/tests/data/mikktspace/cube.obj"),
+                        "-o", str(cube)], check=True, capture_output=True)
+        chrome.send("DOM.setFileInputFiles", files=[str(cube)], nodeId=node)
+        chrome.wait_for("bumpmap.state().status.includes('cube.glb') && bumpmap.state()")
+        w, h, native = cli_render(args.cli, work / "cube.png", {
+            "scene": f"mesh:{cube}", "technique": "single-pass", "bump-scale": 4, "width": 512, "height": 512})
+        value = psnr(base64.b64decode(chrome.evaluate(CANVAS)), native)
+        check(value >= MIN_PSNR, f"a GLB from the file input drawn as `render --scene mesh:` draws it: {value:.1f} dB")
+
         for name, data, says in [
             ("notes.png", b"these are not pixels", "notes.png"),
             ("huge.png", huge_png_header(), "16384"),
+            ("parts.gltf", b'{"asset":{"version":"2.0"},"buffers":[{"uri":"parts.bin","byteLength":48}]}', "parts"),
         ]:
             (work / name).write_bytes(data)
             chrome.send("DOM.setFileInputFiles", files=[str(work / name)], nodeId=node)
-            state = chrome.wait_for("bumpmap.state().error && bumpmap.state()")
-            check(says in state["error"], f"{name}: a message in the page: {state['error']!r}")
+            try:
+                state = chrome.wait_for(f"bumpmap.state().error.includes('{name}') && bumpmap.state()", timeout=20)
+            except TimeoutError:
+                state = chrome.evaluate("bumpmap.state()")
+            check(name in state["error"] and says in state["error"], f"{name}: a message in the page: {state['error']!r}")
         chrome.send("DOM.setFileInputFiles", files=[str(heights)], nodeId=node)
         state = chrome.wait_for("!bumpmap.state().error && bumpmap.state()")
         check("heights.png" in state["status"], f"the page draws again after them: {state['status']}")
@@ -276,7 +300,11 @@ def main():
                 for w, h in [(800, 600), (512, 512)]:
                     draw = f'bumpmap.draw({{width: {w}, height: {h}, technique: "{technique}"}}).ms'
                     times = sorted(chrome.evaluate(draw) for _ in range(7))
-                    print(f"{technique} {w}x{h}: median {times[3]:.0f} ms, fastest {times[0]:.0f} ms")
+                    print(f"{technique} {w}x{h}: prepared and drawn, median {times[3]:.0f} ms, fastest {times[0]:.0f} ms")
+                    # What a drag costs: the kept scene drawn with the light turned a little more.
+                    drag = "bumpmap.draw({}, false, {light: [Math.random(), 0.2]}).ms"
+                    times = sorted(chrome.evaluate(drag) for _ in range(7))
+                    print(f"{technique} {w}x{h}: drawn (a drag), median {times[3]:.0f} ms, fastest {times[0]:.0f} ms")
         if args.screenshot:
             chrome.send("Page.navigate", url=url)
             chrome.wait_for("document.body && document.body.dataset.ready === 'yes'")

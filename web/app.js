@@ -47,8 +47,10 @@ fill(form.technique, names(0), "single-pass");
 fill(form.scene, names(1), null); // the first: the command line's default scene
 fill(form.preset, names(2), "bricks");
 
-let dropped = null; // { name, bytes } of the user's own heights
-let light = null; // the scene's own until the picture is dragged
+let dropped = null; // { name, bytes } of the user's own heights or model
+// How far the picture has been dragged: the light (turns round, tilt up) and, with Shift or the
+// right button, the camera (yaw, pitch), as `bumpmap view`'s mouse turns them.
+const turn = { light: [0, 0], camera: [0, 0] };
 
 // The options the controls stand for, one `name=value` a line.
 function options(extra = {}) {
@@ -59,9 +61,8 @@ function options(extra = {}) {
     width: canvas.width,
     height: canvas.height,
   };
-  if (light) o.light = `dir:${light.map((c) => c.toFixed(3)).join(",")}`;
-  if (dropped) o["height-field"] = dropped.name;
-  else o["height-field"] = heightsPreset();
+  // A dropped image is the height field, a dropped model the scene: the module tells them apart.
+  if (!dropped) o["height-field"] = heightsPreset();
   if (form.filter.value) o.filter = form.filter.value;
   return Object.entries({ ...o, ...extra }).map(([k, v]) => `${k}=${v}`).join("\n");
 }
@@ -70,57 +71,95 @@ function heightsPreset() {
   return form.preset.value.replace("SEED", String(Math.max(0, Math.round(Number(form.seed.value) || 0))));
 }
 
+const isModel = (name) => /\.(glb|gltf|obj)$/i.test(name);
+
 function showError(text) {
   $("error").hidden = !text;
   $("error").textContent = text || "";
 }
 
-// Draws the frame the controls describe; what the last draw said.
-function draw(extra = {}) {
-  const t0 = performance.now();
-  const r = call("bm_render", utf8.encode(options(extra)), dropped && utf8.encode(dropped.name), dropped && dropped.bytes);
-  const ms = performance.now() - t0;
-  if (r.status !== 0) {
+let prepared = false;
+
+// Prepares the scene the controls describe (its maps made once); false, with the message shown,
+// where it cannot be.
+function prepare(extra = {}) {
+  const name = dropped && utf8.encode(dropped.name);
+  const r = call("bm_view", utf8.encode(options(extra)), name, dropped && dropped.bytes);
+  prepared = r.status === 0;
+  if (!prepared) {
     showError(new TextDecoder().decode(r.answer));
     $("status").textContent = "";
-    return { ...r, ms };
   }
-  showError("");
-  canvas.width = r.width;
-  canvas.height = r.height;
-  canvas.getContext("2d").putImageData(new ImageData(new Uint8ClampedArray(r.answer.buffer), r.width, r.height), 0, 0);
-  const what = dropped ? dropped.name : heightsPreset();
-  $("status").textContent = `${form.technique.value} on the ${form.scene.value}, heights: ${what}; drawn in ${ms.toFixed(0)} ms`;
-  return { ...r, ms };
+  return r.status;
 }
 
-let pending = false;
-function redraw() {
-  if (pending) return;
-  pending = true;
+// Prepares (unless only the light or camera moved) and draws; the status and the time taken.
+function draw(extra = {}, again = true) {
+  const t0 = performance.now();
+  const status = again || !prepared ? prepare(extra) : 0;
+  if (status !== 0) return { status, ms: performance.now() - t0 };
+  bm.bm_view_draw(turn.light[0], turn.light[1], turn.camera[0], turn.camera[1]);
+  const answer = new Uint8Array(bm.memory.buffer, bm.bm_answer_ptr(), bm.bm_answer_len()).slice();
+  const ms = performance.now() - t0;
+  const [w, h] = [bm.bm_answer_width(), bm.bm_answer_height()];
+  if (w === 0) {
+    showError(new TextDecoder().decode(answer));
+    return { status: 1, ms };
+  }
+  showError("");
+  canvas.width = w;
+  canvas.height = h;
+  canvas.getContext("2d").putImageData(new ImageData(new Uint8ClampedArray(answer.buffer), w, h), 0, 0);
+  const on = dropped && isModel(dropped.name) ? dropped.name : `the ${form.scene.value}, heights: ${dropped ? dropped.name : heightsPreset()}`;
+  $("status").textContent = `${form.technique.value} on ${on}; ${again ? "prepared and drawn" : "drawn"} in ${ms.toFixed(0)} ms`;
+  return { status: 0, ms };
+}
+
+let pending = null;
+function redraw(again) {
+  if (pending !== null) {
+    pending = pending || again;
+    return;
+  }
+  pending = again;
   requestAnimationFrame(() => {
-    pending = false;
-    draw();
+    const a = pending;
+    pending = null;
+    draw({}, a);
   });
 }
 
 form.addEventListener("input", (e) => {
   if (e.target.name === "bump-scale") form["scale-shown"].value = e.target.value;
-  if (e.target.name !== "file") redraw();
+  if (e.target.name !== "file") redraw(true);
 });
 form.file.addEventListener("change", async () => {
   const file = form.file.files[0];
   dropped = file ? { name: file.name, bytes: new Uint8Array(await file.arrayBuffer()) } : null;
+  // A model is the scene: the built-in scenes and the presets wait until it is taken away.
+  const model = Boolean(dropped && isModel(dropped.name));
+  form.scene.disabled = model;
+  form.preset.disabled = model;
   draw();
 });
 
+let from = null; // where a drag started, and the turn then
+canvas.addEventListener("pointerdown", (e) => {
+  canvas.setPointerCapture(e.pointerId);
+  const which = e.shiftKey || e.button === 2 ? "camera" : "light";
+  from = { x: e.clientX, y: e.clientY, which, start: [...turn[which]] };
+});
+canvas.addEventListener("pointerup", () => (from = null));
+canvas.addEventListener("contextmenu", (e) => e.preventDefault());
 canvas.addEventListener("pointermove", (e) => {
-  if (e.buttons !== 1) return;
+  if (!from) return;
   const r = canvas.getBoundingClientRect();
-  const x = ((e.clientX - r.left) / r.width) * 2 - 1;
-  const y = 1 - ((e.clientY - r.top) / r.height) * 2;
-  light = [2 * x, 2 * y, 1];
-  redraw();
+  const dx = (e.clientX - from.x) / r.width;
+  const dy = (e.clientY - from.y) / r.height;
+  turn[from.which] = from.which === "light"
+    ? [from.start[0] + dx, from.start[1] - dy * 2]
+    : [from.start[0] - dx * Math.PI, from.start[1] + dy * Math.PI];
+  redraw(false);
 });
 
 $("export").addEventListener("click", () => {
@@ -156,9 +195,10 @@ window.bumpmap = {
     const r = call("bm_normal_map", utf8.encode(args), null, null, utf8.encode(preset));
     return { status: r.status, data: r.status === 0 ? base64(r.answer) : new TextDecoder().decode(r.answer) };
   },
-  draw: (extra) => {
-    const r = draw(extra);
-    return { status: r.status, ms: r.ms };
+  // Prepares and draws (`again`, the default) or draws the kept scene again, turned by `t`.
+  draw: (extra = {}, again = true, t = null) => {
+    if (t) Object.assign(turn, t);
+    return draw(extra, again);
   },
   state: () => ({ status: $("status").textContent, error: $("error").hidden ? "" : $("error").textContent }),
 };

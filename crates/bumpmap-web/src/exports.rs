@@ -134,6 +134,47 @@ pub unsafe extern "C" fn bm_render(
     }))
 }
 
+std::thread_local! {
+    /// The scene [`bm_view`] prepared, drawn by [`bm_view_draw`].
+    static VIEW: std::cell::RefCell<Option<crate::View>> = const { std::cell::RefCell::new(None) };
+}
+
+/// [`crate::View::new`]: prepares the scene the options (and the file) describe and keeps it
+/// for [`bm_view_draw`]; the answer is empty, or the message.
+///
+/// # Safety
+/// Each pointer is null or has its length of readable bytes for the call ([`bm_alloc`]'s).
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn bm_view(
+    args: *const u8,
+    args_len: usize,
+    name: *const u8,
+    name_len: usize,
+    file: *const u8,
+    file_len: usize,
+) -> u32 {
+    // SAFETY: the caller's contract, passed on.
+    let inputs = unsafe { inputs((args, args_len), (name, name_len), (file, file_len)) };
+    finish(inputs.and_then(|(args, file)| {
+        let view = crate::View::new(args, file)?;
+        VIEW.with(|v| *v.borrow_mut() = Some(view));
+        Ok((Vec::new(), 0, 0))
+    }))
+}
+
+/// [`crate::View::draw`] of the kept scene, the light turned `light_turns` round and tilted
+/// `light_tilt` radians, the camera turned `yaw` and tilted `pitch` radians: the answer is the
+/// frame, RGBA8 (status 1 before any [`bm_view`]).
+#[unsafe(no_mangle)]
+pub extern "C" fn bm_view_draw(light_turns: f32, light_tilt: f32, yaw: f32, pitch: f32) -> u32 {
+    let turn = crate::Turn { light_turns, light_tilt, camera_yaw: yaw, camera_pitch: pitch };
+    let drawn = VIEW.with(|v| match v.borrow_mut().as_mut() {
+        Some(view) => view.draw(turn),
+        None => Err(WebError::Usage("no scene is prepared: call bm_view first".into())),
+    });
+    finish(drawn.map(|image| (image.as_bytes().to_vec(), image.width as u32, image.height as u32)))
+}
+
 /// [`crate::normal_map_png`] (the heights the file's, or the preset's that `preset` names): the
 /// answer is the PNG file.
 ///

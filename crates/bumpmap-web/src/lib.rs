@@ -25,7 +25,7 @@ use std::path::Path;
 use bumpmap::frame::{FrameRequest, draw_frame, prepare_frame};
 use bumpmap::maps::{Chain, MapOptions};
 use bumpmap::option_table::{self, FRAME, MAPS, Opt, SCENE};
-use bumpmap::options::Given;
+use bumpmap::options::{Given, SceneChoice};
 use bumpmap::{BackendChoice, Renderer, Rgba8Image};
 use bumpmap_io::{Channel, DecodeLimits, HeightSource};
 use bumpmap_math::HeightField;
@@ -129,8 +129,9 @@ fn heights_of(file: Dropped) -> Result<HeightField, WebError> {
 
 /// A frame as `bumpmap render` draws it with the options in `args` (`render`'s names:
 /// `technique=pom`, `scene=sphere`, `light=dir:1,1,2`, `width=800`, …), on the CPU renderer.
-/// `file`, where given, is the height field (`height-field` names it; its name is used if the
-/// options do not).
+/// `file`, where given, is a mesh by its name's extension (`.glb`, `.gltf`, `.obj`: the scene,
+/// drawn with its own material; a `.gltf` brings its buffers and images as `data:` URIs, as a
+/// page has no folder to find files in), or else the height field.
 ///
 /// ```
 /// let frame = bumpmap_web::render("technique=single-pass\nsize=64", None).unwrap();
@@ -138,19 +139,86 @@ fn heights_of(file: Dropped) -> Result<HeightField, WebError> {
 /// assert!(bumpmap_web::render("technique=nonesuch", None).unwrap_err().is_usage());
 /// ```
 pub fn render(args: &str, file: Option<Dropped>) -> Result<Rgba8Image, WebError> {
+    View::new(args, file)?.draw(Turn::default())
+}
+
+/// How far the light and the camera are turned from where the options put them, as `bumpmap
+/// view`'s mouse turns them (`bumpmap::motion`): the light round the point looked at and up
+/// toward the view's up axis, the camera likewise.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Turn {
+    /// Turns of the light about the up axis (1: once round).
+    pub light_turns: f32,
+    /// Radians the light is tilted toward the up axis.
+    pub light_tilt: f32,
+    /// Radians the camera is turned about the up axis.
+    pub camera_yaw: f32,
+    /// Radians the camera is tilted toward the up axis.
+    pub camera_pitch: f32,
+}
+
+/// A scene prepared once from the options (its maps made) and drawn as often as wanted while the
+/// light and the camera move: what the page keeps while the picture is dragged.
+///
+/// ```
+/// use bumpmap_web::{Turn, View};
+/// let mut view = View::new("size=48\ntechnique=single-pass", None).unwrap();
+/// let still = view.draw(Turn::default()).unwrap();
+/// let turned = view.draw(Turn { light_turns: 0.5, ..Turn::default() }).unwrap();
+/// assert_ne!(still.texels, turned.texels);
+/// assert_eq!(still.texels, bumpmap_web::render("size=48\ntechnique=single-pass", None).unwrap().texels);
+/// ```
+pub struct View {
+    frame: bumpmap::frame::PreparedFrame,
+    renderer: Renderer,
+    scene: bumpmap_core::Scene,
+    orbit: bumpmap::motion::LightOrbit,
+}
+
+impl View {
+    /// The scene `args` and `file` describe, as [`render`] reads them, prepared.
+    pub fn new(args: &str, file: Option<Dropped>) -> Result<View, WebError> {
+        let frame = prepare(args, file)?;
+        let scene = frame.prepared.scene.clone();
+        let orbit = bumpmap::motion::LightOrbit::of(&scene);
+        Ok(View { frame, renderer: Renderer::new(BackendChoice::Cpu)?, scene, orbit })
+    }
+
+    /// The scene drawn with the light and the camera turned by `turn`.
+    pub fn draw(&mut self, turn: Turn) -> Result<Rgba8Image, WebError> {
+        let scene = &mut self.frame.prepared.scene;
+        *scene = self.scene.clone();
+        // Unturned, the scene is exactly as prepared (a turn by zero still rounds).
+        if turn.light_turns != 0.0 || turn.light_tilt != 0.0 {
+            self.orbit.place(scene, turn.light_turns, turn.light_tilt);
+        }
+        if turn.camera_yaw != 0.0 || turn.camera_pitch != 0.0 {
+            scene.camera = bumpmap::motion::orbit_camera(&self.scene.camera, turn.camera_yaw, turn.camera_pitch, 1.0);
+        }
+        Ok(draw_frame(&mut self.renderer, &self.frame, false)?.image)
+    }
+}
+
+/// The frame `args` and `file` describe, prepared as `bumpmap render` prepares it.
+fn prepare(args: &str, file: Option<Dropped>) -> Result<bumpmap::frame::PreparedFrame, WebError> {
     let mut request = FrameRequest { size: (512, 512), ..Default::default() };
     read_into(&mut request, args, &[SCENE, FRAME])?;
     request.backend = BackendChoice::Cpu;
     let mut given = Given::default();
-    if let Some(file) = file {
-        if request.options.height_field.is_none() {
-            request.options.height_field = Some(HeightSource::File(file.name.into()));
+    match file {
+        Some(file) if let Some(format) = bumpmap_io::MeshFormat::from_path(Path::new(file.name)) => {
+            request.options.scene = SceneChoice::Mesh(file.name.into());
+            given.mesh = Some(bumpmap_io::read_mesh(file.bytes, Path::new(file.name), format)?);
         }
-        given.height_field = Some(heights_of(file)?);
+        Some(file) => {
+            if request.options.height_field.is_none() {
+                request.options.height_field = Some(HeightSource::File(file.name.into()));
+            }
+            given.height_field = Some(heights_of(file)?);
+        }
+        None => {}
     }
-    let prepared = prepare_frame(&request, &given)?;
-    let mut renderer = Renderer::new(BackendChoice::Cpu)?;
-    Ok(draw_frame(&mut renderer, &prepared, false)?.image)
+    Ok(prepare_frame(&request, &given)?)
 }
 
 /// The PNG file `bumpmap normalmap HEIGHTS -o OUT.png` writes with the options in `args`
@@ -268,6 +336,24 @@ mod tests {
         // The same heights, but for the file's 8 bits.
         assert!(mean_difference(&dropped, &preset) < 1.0, "{}", mean_difference(&dropped, &preset));
         assert!(mean_difference(&dropped, &bricks) > 5.0, "{}", mean_difference(&dropped, &bricks));
+    }
+
+    #[test]
+    fn a_dropped_mesh_is_the_scene_and_a_gltf_without_its_buffers_is_refused_by_name() {
+        let dir = std::env::temp_dir().join(format!("bumpmap-web-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let glb = dir.join("cube.glb");
+        let cube = bumpmap_math::mesh::rounded_cube(4, 0.3);
+        bumpmap_io::save_gltf(&glb, &cube).unwrap();
+        let bytes = std::fs::read(&glb).unwrap();
+        let file = Dropped { name: "cube.glb", bytes: &bytes };
+        let frame = render("size=48\ntechnique=single-pass", Some(file)).unwrap();
+        let torus = render("size=48\ntechnique=single-pass", None).unwrap();
+        assert_ne!(frame.texels, torus.texels, "the cube, not the torus");
+        let gltf = br#"{"asset":{"version":"2.0"},"buffers":[{"uri":"cube.bin","byteLength":48}]}"#;
+        let e = render("size=48", Some(Dropped { name: "cube.gltf", bytes: gltf })).unwrap_err();
+        assert!(e.to_string().contains("cube.gltf"), "{e}");
+        std::fs::remove_dir_all(dir).unwrap();
     }
 
     #[test]

@@ -21,15 +21,21 @@ fn viewer(extra: &[&str]) -> Viewer {
     Viewer::new(request.options).unwrap()
 }
 
-/// A 16² detail map of tilted normals (a checker of two slopes), written once per test run.
+/// A 16² detail map of tilted normals (a checker of two slopes), written once per test run (the
+/// tests run in parallel: one writing it while another read it was a flaky failure).
 fn detail_map() -> String {
-    let dir = std::env::temp_dir().join(format!("bumpmap-view-detail-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    let map = dir.join("detail.png");
-    let tilt =
-        |x: u32, y: u32| if (x / 2 + y / 2).is_multiple_of(2) { [200, 128, 230, 255] } else { [56, 128, 230, 255] };
-    image::RgbaImage::from_fn(16, 16, |x, y| image::Rgba(tilt(x, y))).save(&map).unwrap();
-    map.to_str().unwrap().to_string()
+    static MAP: std::sync::OnceLock<String> = std::sync::OnceLock::new();
+    MAP.get_or_init(|| {
+        let dir = std::env::temp_dir().join(format!("bumpmap-view-detail-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let map = dir.join("detail.png");
+        let tilt = |x: u32, y: u32| {
+            if (x / 2 + y / 2).is_multiple_of(2) { [200, 128, 230, 255] } else { [56, 128, 230, 255] }
+        };
+        image::RgbaImage::from_fn(16, 16, |x, y| image::Rgba(tilt(x, y))).save(&map).unwrap();
+        map.to_str().unwrap().to_string()
+    })
+    .clone()
 }
 
 fn normal_texels(v: &Viewer) -> Vec<[u8; 4]> {
