@@ -6,6 +6,7 @@ driven over the DevTools protocol on a pipe (standard library only):
 - kilgard, single-pass and pom of the bricks on the wall, drawn in the page, match the
   command line's CPU renderer (`bumpmap render --backend cpu`) at 40 dB or more;
 - the normal map the page saves is the file `bumpmap normalmap` writes, byte for byte;
+- `inspect`'s verdict on an image given through the file input is the command line's;
 - a height field and a GLB given through the page's file input are drawn (against the command
   line with the same files and options), and a file that is not an image, a PNG that says it is
   16384² texels and a glTF without its buffers each give a message in the page and leave it
@@ -263,6 +264,26 @@ def main():
             "height-field": heights})
         value = psnr(base64.b64decode(canvas), native)
         check(value >= MIN_PSNR, f"heights from the file input drawn as the command line draws them: {value:.1f} dB")
+
+        # inspect's verdict on an image given through the file input: the command line's lines.
+        chrome.send("DOM.setFileInputFiles", files=[str(work / "n.png")], nodeId=node)
+        chrome.wait_for("bumpmap.state().status.includes('n.png') && bumpmap.state()")
+        chrome.evaluate("document.getElementById('inspect').click()")
+        verdict = chrome.wait_for("bumpmap.state().verdict")
+        cli = subprocess.run([args.cli, "inspect", str(work / "n.png")], check=True, capture_output=True, text=True)
+        check(verdict.splitlines()[1:] == cli.stdout.strip().splitlines()[1:] and "convention: opengl" in verdict,
+              f"inspect's verdict in the page is the command line's: {verdict.splitlines()[2:3]}")
+        # The same image drawn as the normal map it is.
+        chrome.evaluate("const s = document.querySelector('select[name=\"image-is\"]'); s.value = 'normal-map';"
+                        " s.dispatchEvent(new Event('input', {bubbles: true}))")
+        chrome.wait_for("bumpmap.state().status.includes('normal map: n.png') && bumpmap.state()")
+        w, h, native = cli_render(args.cli, work / "as_normal_map.png", {
+            "scene": "torus", "technique": "single-pass", "bump-scale": 4, "width": 512, "height": 512,
+            "normal-map": work / "n.png"})
+        value = psnr(base64.b64decode(chrome.evaluate(CANVAS)), native)
+        check(value >= MIN_PSNR, f"an image given as the normal map drawn as `render --normal-map` draws it: {value:.1f} dB")
+        chrome.evaluate("const t = document.querySelector('select[name=\"image-is\"]'); t.value = 'heights';"
+                        " t.dispatchEvent(new Event('input', {bubbles: true}))")
 
         # A model through the file input: drawn with its own material, as the command line does.
         cube = work / "cube.glb"

@@ -63,6 +63,7 @@ function options(extra = {}) {
   };
   // A dropped image is the height field, a dropped model the scene: the module tells them apart.
   if (!dropped) o["height-field"] = heightsPreset();
+  else if (!isModel(dropped.name) && form["image-is"].value === "normal-map") o["normal-map"] = dropped.name;
   if (form.filter.value) o.filter = form.filter.value;
   return Object.entries({ ...o, ...extra }).map(([k, v]) => `${k}=${v}`).join("\n");
 }
@@ -110,7 +111,8 @@ function draw(extra = {}, again = true) {
   canvas.width = w;
   canvas.height = h;
   canvas.getContext("2d").putImageData(new ImageData(new Uint8ClampedArray(answer.buffer), w, h), 0, 0);
-  const on = dropped && isModel(dropped.name) ? dropped.name : `the ${form.scene.value}, heights: ${dropped ? dropped.name : heightsPreset()}`;
+  const image = form["image-is"].value === "normal-map" ? "normal map" : "heights";
+  const on = dropped && isModel(dropped.name) ? dropped.name : `the ${form.scene.value}, ${dropped ? image : "heights"}: ${dropped ? dropped.name : heightsPreset()}`;
   $("status").textContent = `${form.technique.value} on ${on}; ${again ? "prepared and drawn" : "drawn"} in ${ms.toFixed(0)} ms`;
   return { status: 0, ms };
 }
@@ -129,7 +131,13 @@ function redraw(again) {
   });
 }
 
+// Saving makes a normal map from heights: not from a model, nor from an image that is one.
+function syncExport() {
+  $("export").disabled = Boolean(dropped && (isModel(dropped.name) || form["image-is"].value === "normal-map"));
+}
+
 form.addEventListener("input", (e) => {
+  if (e.target.name === "image-is") syncExport();
   if (e.target.name === "bump-scale") form["scale-shown"].value = e.target.value;
   if (e.target.name !== "file") redraw(true);
 });
@@ -139,7 +147,12 @@ form.file.addEventListener("change", async () => {
   // A model is the scene: the built-in scenes and the presets wait until it is taken away.
   const model = Boolean(dropped && isModel(dropped.name));
   form.scene.disabled = model;
-  form.preset.disabled = model;
+  form.preset.disabled = Boolean(dropped);
+  form.seed.disabled = Boolean(dropped);
+  form["image-is"].disabled = !dropped || model;
+  syncExport();
+  $("inspect").disabled = !dropped || model;
+  $("verdict").hidden = true;
   draw();
 });
 
@@ -177,6 +190,14 @@ $("export").addEventListener("click", () => {
   a.click();
 });
 
+$("inspect").addEventListener("click", () => {
+  const r = call("bm_inspect", utf8.encode(dropped.name), dropped.bytes);
+  const text = new TextDecoder().decode(r.answer);
+  if (r.status !== 0) return showError(text);
+  $("verdict").textContent = text;
+  $("verdict").hidden = false;
+});
+
 $("backend").textContent = "CPU renderer in WebAssembly (the emulated GeForce 256, one thread); WebGPU is not used yet";
 
 // What the tests drive (scripts/test_web.py): a frame or a normal map for given options, the
@@ -200,7 +221,11 @@ window.bumpmap = {
     if (t) Object.assign(turn, t);
     return draw(extra, again);
   },
-  state: () => ({ status: $("status").textContent, error: $("error").hidden ? "" : $("error").textContent }),
+  state: () => ({
+    status: $("status").textContent,
+    error: $("error").hidden ? "" : $("error").textContent,
+    verdict: $("verdict").hidden ? "" : $("verdict").textContent,
+  }),
 };
 draw();
 document.body.dataset.ready = "yes";

@@ -202,6 +202,20 @@ pub unsafe extern "C" fn bm_normal_map(
     }))
 }
 
+/// [`crate::inspect`] of the file `name`d: the answer is the verdict's lines.
+///
+/// # Safety
+/// Each pointer is null or has its length of readable bytes for the call ([`bm_alloc`]'s).
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn bm_inspect(name: *const u8, name_len: usize, file: *const u8, file_len: usize) -> u32 {
+    // SAFETY: the caller's contract, passed on.
+    let inputs = unsafe { inputs((std::ptr::null(), 0), (name, name_len), (file, file_len)) };
+    finish(inputs.and_then(|(_, file)| {
+        let file = file.ok_or_else(|| WebError::Usage("no file to inspect".into()))?;
+        Ok((crate::inspect(file)?.into_bytes(), 0, 0))
+    }))
+}
+
 /// [`crate::names`] of set 0 (techniques), 1 (scenes) or 2 (presets): the answer is the names,
 /// one a line.
 #[unsafe(no_mangle)]

@@ -11,6 +11,7 @@
 //!   thread in a browser), as RGBA8;
 //! - [`normal_map_png`]: a height field's normal map as the PNG `bumpmap normalmap` writes,
 //!   byte for byte;
+//! - [`inspect`]: `bumpmap inspect`'s verdict on a normal map the user gave;
 //! - [`names`]: the closed sets the page's menus list (techniques, scenes, presets).
 //!
 //! `exports` wraps them for JavaScript (pointers and lengths; the answer kept until the next
@@ -131,7 +132,8 @@ fn heights_of(file: Dropped) -> Result<HeightField, WebError> {
 /// `technique=pom`, `scene=sphere`, `light=dir:1,1,2`, `width=800`, …), on the CPU renderer.
 /// `file`, where given, is a mesh by its name's extension (`.glb`, `.gltf`, `.obj`: the scene,
 /// drawn with its own material; a `.gltf` brings its buffers and images as `data:` URIs, as a
-/// page has no folder to find files in), or else the height field.
+/// page has no folder to find files in), the normal map where the options name one
+/// (`normal-map=NAME`), or else the height field.
 ///
 /// ```
 /// let frame = bumpmap_web::render("technique=single-pass\nsize=64", None).unwrap();
@@ -210,6 +212,11 @@ fn prepare(args: &str, file: Option<Dropped>) -> Result<bumpmap::frame::Prepared
             request.options.scene = SceneChoice::Mesh(file.name.into());
             given.mesh = Some(bumpmap_io::read_mesh(file.bytes, Path::new(file.name), format)?);
         }
+        // The options name it as the normal map: drawn as it is, with its own levels.
+        Some(file) if request.options.normal_map.is_some() => {
+            let limits = DecodeLimits { max_dimension: MAX_SIDE, max_alloc: 1 << 30 };
+            given.normal_map = Some(bumpmap_io::read_texture(file.bytes, Path::new(file.name), &limits)?);
+        }
         Some(file) => {
             if request.options.height_field.is_none() {
                 request.options.height_field = Some(HeightSource::File(file.name.into()));
@@ -252,6 +259,21 @@ pub fn normal_map_png(args: &str, file: Option<Dropped>, preset: &str) -> Result
     };
     let level = &chain.levels[0];
     Ok(bumpmap_io::png_file_bytes(level.width, level.height, bumpmap_io::PngLayout::Rgba8, level.as_bytes())?)
+}
+
+/// `inspect`'s verdict on a normal map the user gave (a PNG or other image, a DDS or a KTX2 with
+/// its levels): the lines `bumpmap inspect FILE` prints.
+///
+/// ```
+/// let png = bumpmap_web::normal_map_png("", None, "bricks@64").unwrap();
+/// let file = bumpmap_web::Dropped { name: "bricks_normal.png", bytes: &png };
+/// let verdict = bumpmap_web::inspect(file).unwrap();
+/// assert!(verdict.contains("convention: opengl"), "{verdict}");
+/// ```
+pub fn inspect(file: Dropped) -> Result<String, WebError> {
+    let limits = DecodeLimits { max_dimension: MAX_SIDE, max_alloc: 1 << 30 };
+    let map = bumpmap::inspect::read_bytes(file.bytes, Path::new(file.name), &limits)?;
+    Ok(bumpmap::inspect::inspect_map(file.name, &map).lines().join("\n"))
 }
 
 /// A closed set the page lists, one name a line.

@@ -35,7 +35,7 @@ use crate::Error;
 mod compression;
 mod read;
 
-pub use read::{DecodedMap, WORKING_BYTES_PER_TEXEL, maps_in_folder, read_file, read_map};
+pub use read::{DecodedMap, WORKING_BYTES_PER_TEXEL, maps_in_folder, read_bytes, read_file, read_map};
 
 /// How a file stores its vectors.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

@@ -106,13 +106,23 @@ pub fn read_map(path: &Path) -> Result<DecodedMap, Error> {
 /// One file's own levels, without the `NAME.mipK.png` files beside a PNG: what `height`
 /// reads (it needs level 0 only, and a broken level beside it is no reason to refuse).
 pub fn read_file(path: &Path) -> Result<DecodedMap, Error> {
+    decoded(bumpmap_io::load_any_texture(path)?, &path.display().to_string())
+}
+
+/// A map file's bytes already in memory (a DDS, a KTX2 or an image; not floating point), as
+/// [`read_file`] reads the file; `name` is the file messages name, `limits` bound the decoding.
+pub fn read_bytes(bytes: &[u8], name: &Path, limits: &bumpmap_io::DecodeLimits) -> Result<DecodedMap, Error> {
+    decoded(AnyTexture::Stored(bumpmap_io::read_texture(bytes, name, limits)?), &name.display().to_string())
+}
+
+/// `texture` (named `what`) as vectors, refused where they and the inspection would not fit.
+fn decoded(texture: AnyTexture, what: &str) -> Result<DecodedMap, Error> {
     use bumpmap_io::texture_file::TextureFormat;
-    let texture = bumpmap_io::load_any_texture(path)?;
     let (w, h) = match &texture {
         AnyTexture::Stored(t) => t.levels.size(),
         AnyTexture::Float(img) => (img.width, img.height),
     };
-    DecodedMap::check_memory(&path.display().to_string(), w * h)?;
+    DecodedMap::check_memory(what, w * h)?;
     Ok(match texture {
         AnyTexture::Stored(t) => {
             let stored = match (t.format, &t.levels) {
