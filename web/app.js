@@ -209,7 +209,13 @@ function base64(u8) {
 }
 window.bumpmap = {
   render(args) {
-    const r = call("bm_render", utf8.encode(args), null, null);
+    // As the controls would, without touching them or the kept scene's turn.
+    let r = call("bm_view", utf8.encode(args), null, null);
+    if (r.status === 0) {
+      bm.bm_view_draw(0, 0, 0, 0);
+      r = { status: 0, answer: new Uint8Array(bm.memory.buffer, bm.bm_answer_ptr(), bm.bm_answer_len()).slice(), width: bm.bm_answer_width(), height: bm.bm_answer_height() };
+    }
+    prepared = false; // the page's own scene is prepared again on its next draw
     return { status: r.status, width: r.width, height: r.height, data: r.status === 0 ? base64(r.answer) : new TextDecoder().decode(r.answer) };
   },
   normalMap(args, preset) {

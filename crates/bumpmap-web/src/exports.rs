@@ -113,34 +113,14 @@ unsafe fn inputs<'a>(
     Ok((args, (!file.is_empty()).then_some(Dropped { name, bytes: file })))
 }
 
-/// [`crate::render`]: the answer is the frame, RGBA8.
-///
-/// # Safety
-/// Each pointer is null or has its length of readable bytes for the call ([`bm_alloc`]'s).
-#[unsafe(no_mangle)]
-pub unsafe extern "C" fn bm_render(
-    args: *const u8,
-    args_len: usize,
-    name: *const u8,
-    name_len: usize,
-    file: *const u8,
-    file_len: usize,
-) -> u32 {
-    // SAFETY: the caller's contract, passed on.
-    let inputs = unsafe { inputs((args, args_len), (name, name_len), (file, file_len)) };
-    finish(inputs.and_then(|(args, file)| {
-        let image = crate::render(args, file)?;
-        Ok((image.as_bytes().to_vec(), image.width as u32, image.height as u32))
-    }))
-}
-
 std::thread_local! {
     /// The scene [`bm_view`] prepared, drawn by [`bm_view_draw`].
     static VIEW: std::cell::RefCell<Option<crate::View>> = const { std::cell::RefCell::new(None) };
 }
 
-/// [`crate::View::new`]: prepares the scene the options (and the file) describe and keeps it
-/// for [`bm_view_draw`]; the answer is empty, or the message.
+/// [`crate::View::new`]: prepares the scene the options (and the file) describe, as
+/// [`crate::render`] reads them, and keeps it for [`bm_view_draw`]; the answer is empty, or the
+/// message.
 ///
 /// # Safety
 /// Each pointer is null or has its length of readable bytes for the call ([`bm_alloc`]'s).
