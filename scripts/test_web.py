@@ -5,7 +5,8 @@ driven over the DevTools protocol on a pipe (standard library only):
 - the page loads its module and draws a first frame;
 - kilgard, single-pass and pom of the bricks on the wall, drawn in the page, match the
   command line's CPU renderer (`bumpmap render --backend cpu`) at 40 dB or more;
-- the normal map the page saves is the file `bumpmap normalmap` writes, byte for byte;
+- the normal map the page saves (PNG, or 16-bit KTX2 with its mips) is the file `bumpmap
+  normalmap` writes, byte for byte;
 - `inspect`'s verdict on an image given through the file input is the command line's;
 - a height field and a GLB given through the page's file input are drawn (against the command
   line with the same files and options), and a file that is not an image, a PNG that says it is
@@ -249,6 +250,11 @@ def main():
                        check=True, capture_output=True)
         check(page["status"] == 0 and base64.b64decode(page["data"]) == (work / "n.png").read_bytes(),
               "the normal map the page saves is normalmap's file, byte for byte")
+        page = chrome.evaluate('bumpmap.normalMap("scale=4", "bricks@256", "ktx2-16")')
+        subprocess.run([args.cli, "normalmap", "bricks@256", "-o", str(work / "n.ktx2"), "--scale", "4", "--mips",
+                        "--bits", "16"], check=True, capture_output=True)
+        check(page["status"] == 0 and base64.b64decode(page["data"]) == (work / "n.ktx2").read_bytes(),
+              "the 16-bit KTX2 with every level the page saves is normalmap's file, byte for byte")
 
         # The user's own heights through the file input.
         heights = work / "heights.png"

@@ -175,18 +175,28 @@ canvas.addEventListener("pointermove", (e) => {
   redraw(false);
 });
 
+// The normal map as `bumpmap normalmap` writes it: `as` is png, ktx2-8 or ktx2-16.
+function normalMapFile(args, preset, as) {
+  const bits = as === "ktx2-16" ? "\nbits=16" : "";
+  const held = [utf8.encode(args + bits), dropped && utf8.encode(dropped.name), dropped && dropped.bytes, utf8.encode(preset)];
+  const ptrs = held.map(put);
+  try {
+    const status = bm.bm_normal_map(...ptrs.flat(), as === "png" ? 0 : 1);
+    const answer = new Uint8Array(bm.memory.buffer, bm.bm_answer_ptr(), bm.bm_answer_len()).slice();
+    return { status, answer };
+  } finally {
+    for (const [ptr, len] of ptrs) if (ptr) bm.bm_free(ptr, len);
+  }
+}
+
 $("export").addEventListener("click", () => {
-  const r = call(
-    "bm_normal_map",
-    utf8.encode(`scale=${form["bump-scale"].value}`),
-    dropped && utf8.encode(dropped.name),
-    dropped && dropped.bytes,
-    utf8.encode(heightsPreset()),
-  );
+  const as = form["save-as"].value;
+  const r = normalMapFile(`scale=${form["bump-scale"].value}`, heightsPreset(), as);
   if (r.status !== 0) return showError(new TextDecoder().decode(r.answer));
   const a = document.createElement("a");
-  a.href = URL.createObjectURL(new Blob([r.answer], { type: "image/png" }));
-  a.download = `${(dropped ? dropped.name.replace(/\.[^.]*$/, "") : heightsPreset().replace(/[:@]/g, "_"))}_normal.png`;
+  const ktx2 = as !== "png";
+  a.href = URL.createObjectURL(new Blob([r.answer], { type: ktx2 ? "image/ktx2" : "image/png" }));
+  a.download = `${(dropped ? dropped.name.replace(/\.[^.]*$/, "") : heightsPreset().replace(/[:@]/g, "_"))}_normal.${ktx2 ? "ktx2" : "png"}`;
   a.click();
 });
 
@@ -218,8 +228,8 @@ window.bumpmap = {
     prepared = false; // the page's own scene is prepared again on its next draw
     return { status: r.status, width: r.width, height: r.height, data: r.status === 0 ? base64(r.answer) : new TextDecoder().decode(r.answer) };
   },
-  normalMap(args, preset) {
-    const r = call("bm_normal_map", utf8.encode(args), null, null, utf8.encode(preset));
+  normalMap(args, preset, as = "png") {
+    const r = normalMapFile(args, preset, as);
     return { status: r.status, data: r.status === 0 ? base64(r.answer) : new TextDecoder().decode(r.answer) };
   },
   // Prepares and draws (`again`, the default) or draws the kept scene again, turned by `t`.

@@ -422,58 +422,87 @@ pub fn write_ktx2_into(
     tex: &TextureLayout,
     format: TextureFormat,
 ) -> Result<(), IoError> {
-    let data = encode(path, tex, format)?;
-    let (base_width, base_height) = tex.faces[0][0].size();
-    let levels = tex.faces[0].len();
-    let faces = tex.faces.len();
-    const IDENTIFIER: [u8; 12] = [0xAB, 0x4B, 0x54, 0x58, 0x20, 0x32, 0x30, 0xBB, 0x0D, 0x0A, 0x1A, 0x0A];
-    let dfd = linear_dfd(format);
-    let dfd_offset = 12 + 9 * 4 + 4 * 4 + 2 * 8 + 24 * levels;
-    let mut offset = dfd_offset + dfd.len();
-    // Level data, smallest level first; each level starts at a multiple of lcm(block size, 4)
-    // (block sizes are powers of two).
-    let align = format.block_bytes().max(4);
-    let mut index = vec![(0u64, 0u64); levels];
-    for level in (0..levels).rev() {
-        offset = offset.next_multiple_of(align);
-        let len: usize = data.iter().map(|f| f[level].len()).sum();
-        index[level] = (offset as u64, len as u64);
-        offset += len;
-    }
-    let mut head = Vec::with_capacity(dfd_offset + dfd.len());
-    head.extend_from_slice(&IDENTIFIER);
-    let type_size = match format {
-        TextureFormat::Rgba16 | TextureFormat::R16 | TextureFormat::Rg16 => 2,
-        TextureFormat::Rgba32Float => 4,
-        _ => 1,
-    };
-    for v in [format.vk(), type_size, base_width as u32, base_height as u32, 0, 0, faces as u32, levels as u32, 0] {
-        head.extend_from_slice(&v.to_le_bytes());
-    }
-    for v in [dfd_offset as u32, dfd.len() as u32, 0, 0] {
-        head.extend_from_slice(&v.to_le_bytes());
-    }
-    head.extend_from_slice(&[0u8; 16]); // no supercompression global data
-    for &(off, len) in &index {
-        for v in [off, len, len] {
+    let file = Ktx2::new(path, tex, format)?;
+    set.write(path, |w| file.write(w))
+}
+
+/// The KTX2 file [`write_ktx2_into`] writes, as bytes in memory (what a web page offers to
+/// save); `name` is the file messages name.
+pub fn ktx2_bytes(name: &Path, tex: &TextureLayout, format: TextureFormat) -> Result<Vec<u8>, IoError> {
+    let mut out = Vec::new();
+    Ktx2::new(name, tex, format)?
+        .write(&mut out)
+        .map_err(|e| IoError::Texture { path: name.to_path_buf(), reason: e.to_string() })?;
+    Ok(out)
+}
+
+/// A KTX2 file ready to write: its header, level index and data-format descriptor, and each
+/// face's levels encoded.
+struct Ktx2 {
+    head: Vec<u8>,
+    data: Vec<Vec<Vec<u8>>>,
+    levels: usize,
+    align: usize,
+}
+
+impl Ktx2 {
+    fn new(path: &Path, tex: &TextureLayout, format: TextureFormat) -> Result<Self, IoError> {
+        let data = encode(path, tex, format)?;
+        let (base_width, base_height) = tex.faces[0][0].size();
+        let levels = tex.faces[0].len();
+        let faces = tex.faces.len();
+        const IDENTIFIER: [u8; 12] = [0xAB, 0x4B, 0x54, 0x58, 0x20, 0x32, 0x30, 0xBB, 0x0D, 0x0A, 0x1A, 0x0A];
+        let dfd = linear_dfd(format);
+        let dfd_offset = 12 + 9 * 4 + 4 * 4 + 2 * 8 + 24 * levels;
+        let mut offset = dfd_offset + dfd.len();
+        // Level data, smallest level first; each level starts at a multiple of lcm(block size, 4)
+        // (block sizes are powers of two).
+        let align = format.block_bytes().max(4);
+        let mut index = vec![(0u64, 0u64); levels];
+        for level in (0..levels).rev() {
+            offset = offset.next_multiple_of(align);
+            let len: usize = data.iter().map(|f| f[level].len()).sum();
+            index[level] = (offset as u64, len as u64);
+            offset += len;
+        }
+        let mut head = Vec::with_capacity(dfd_offset + dfd.len());
+        head.extend_from_slice(&IDENTIFIER);
+        let type_size = match format {
+            TextureFormat::Rgba16 | TextureFormat::R16 | TextureFormat::Rg16 => 2,
+            TextureFormat::Rgba32Float => 4,
+            _ => 1,
+        };
+        for v in [format.vk(), type_size, base_width as u32, base_height as u32, 0, 0, faces as u32, levels as u32, 0] {
             head.extend_from_slice(&v.to_le_bytes());
         }
+        for v in [dfd_offset as u32, dfd.len() as u32, 0, 0] {
+            head.extend_from_slice(&v.to_le_bytes());
+        }
+        head.extend_from_slice(&[0u8; 16]); // no supercompression global data
+        for &(off, len) in &index {
+            for v in [off, len, len] {
+                head.extend_from_slice(&v.to_le_bytes());
+            }
+        }
+        head.extend_from_slice(&dfd);
+        Ok(Self { head, data, levels, align })
     }
-    head.extend_from_slice(&dfd);
-    set.write(path, |w| {
-        w.write_all(&head)?;
-        let mut written = head.len();
-        for level in (0..levels).rev() {
-            let pad = written.next_multiple_of(align) - written;
+
+    /// The file: the header, then the levels smallest first, each at its alignment.
+    fn write(&self, w: &mut impl Write) -> std::io::Result<()> {
+        w.write_all(&self.head)?;
+        let mut written = self.head.len();
+        for level in (0..self.levels).rev() {
+            let pad = written.next_multiple_of(self.align) - written;
             w.write_all(&[0u8; 16][..pad])?;
             written += pad;
-            for face in &data {
+            for face in &self.data {
                 w.write_all(&face[level])?;
                 written += face[level].len();
             }
         }
         Ok(())
-    })
+    }
 }
 
 /// The Khronos basic data-format descriptor of `format`, linear: RGBA8 as four 8-bit samples

@@ -9,8 +9,8 @@
 //!
 //! - [`render`]: a frame of a built-in scene on the CPU renderer (the emulated GeForce 256, one
 //!   thread in a browser), as RGBA8;
-//! - [`normal_map_png`]: a height field's normal map as the PNG `bumpmap normalmap` writes,
-//!   byte for byte;
+//! - [`normal_map_png`], [`normal_map_ktx2`]: a height field's normal map as the PNG (level 0) or
+//!   the KTX2 (every level) `bumpmap normalmap` writes, byte for byte;
 //! - [`inspect`]: `bumpmap inspect`'s verdict on a normal map the user gave;
 //! - [`names`]: the closed sets the page's menus list (techniques, scenes, presets).
 //!
@@ -237,11 +237,40 @@ fn prepare(args: &str, file: Option<Dropped>) -> Result<bumpmap::frame::Prepared
 /// assert_eq!(&png[1..4], b"PNG");
 /// ```
 pub fn normal_map_png(args: &str, file: Option<Dropped>, preset: &str) -> Result<Vec<u8>, WebError> {
+    let (options, field) = map_inputs(args, file, preset)?;
+    if options.bits != 8 {
+        return Err(WebError::Value {
+            name: "bits".into(),
+            reason: "the page saves 8-bit PNGs (16 bits: KTX2)".into(),
+        });
+    }
+    let Chain::Rgba8(chain) = bumpmap::maps::normal_map(&options, false, &field)? else {
+        unreachable!("8 bits were checked")
+    };
+    let level = &chain.levels[0];
+    Ok(bumpmap_io::png_file_bytes(level.width, level.height, bumpmap_io::PngLayout::Rgba8, level.as_bytes())?)
+}
+
+/// The KTX2 file `bumpmap normalmap HEIGHTS -o OUT.ktx2 --mips` writes with the options in
+/// `args` (`bits=16` for 16 bits a channel): every level down to 1×1, byte for byte.
+///
+/// ```
+/// let ktx2 = bumpmap_web::normal_map_ktx2("bits=16", None, "bricks@64").unwrap();
+/// assert_eq!(&ktx2[1..7], b"KTX 20");
+/// ```
+pub fn normal_map_ktx2(args: &str, file: Option<Dropped>, preset: &str) -> Result<Vec<u8>, WebError> {
+    use bumpmap_io::texture_file::TextureFormat;
+    let (options, field) = map_inputs(args, file, preset)?;
+    let chain = bumpmap::maps::normal_map(&options, true, &field)?;
+    let format = if options.bits == 16 { TextureFormat::Rgba16 } else { TextureFormat::Rgba8 };
+    let name = Path::new(file.map_or(preset, |f| f.name));
+    Ok(bumpmap_io::texture_file::ktx2_bytes(name, &bumpmap::maps::chain_layout(&chain), format)?)
+}
+
+/// `normalmap`'s options read from `args`, and the heights: `file`'s, or the preset's.
+fn map_inputs(args: &str, file: Option<Dropped>, preset: &str) -> Result<(MapOptions, HeightField), WebError> {
     let mut options = MapOptions::default();
     read_into(&mut options, args, &[MAPS])?;
-    if options.bits != 8 {
-        return Err(WebError::Value { name: "bits".into(), reason: "the page exports 8-bit maps".into() });
-    }
     let field = match file {
         Some(file) => heights_of(file)?,
         None => match HeightSource::parse(preset) {
@@ -254,11 +283,7 @@ pub fn normal_map_png(args: &str, file: Option<Dropped>, preset: &str) -> Result
             }
         },
     };
-    let Chain::Rgba8(chain) = bumpmap::maps::normal_map(&options, false, &field)? else {
-        unreachable!("8 bits were checked")
-    };
-    let level = &chain.levels[0];
-    Ok(bumpmap_io::png_file_bytes(level.width, level.height, bumpmap_io::PngLayout::Rgba8, level.as_bytes())?)
+    Ok((options, field))
 }
 
 /// `inspect`'s verdict on a normal map the user gave (a PNG or other image, a DDS or a KTX2 with

@@ -33,7 +33,7 @@ mod outputs;
 
 pub use blend::{BlendError, BlendOptions, Blended, MAX_REPEAT, blend_files, blend_maps, blended_chain};
 pub use cube::write_cube_map;
-pub use files::{SaveError, check_container, write_chain, write_chain_into};
+pub use files::{SaveError, chain_layout, check_container, write_chain, write_chain_into};
 pub use folder::{FolderBatch, FolderError};
 pub use outputs::{MapOutputs, Output, OutputsError, Written, lean_files, write_heights, write_heights_into};
 

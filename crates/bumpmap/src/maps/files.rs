@@ -39,6 +39,16 @@ pub fn check_container(out: &Path, format: TextureFormat) -> Result<(), SaveErro
     Ok(())
 }
 
+/// `chain`'s levels as one face of a DDS or KTX2 file's texture.
+pub fn chain_layout(chain: &Chain) -> TextureLayout<'_> {
+    TextureLayout {
+        faces: vec![match chain {
+            Chain::Rgba8(c) => c.levels.iter().map(Level::from).collect(),
+            Chain::Rgba16(c) => c.levels.iter().map(Level::from).collect(),
+        }],
+    }
+}
+
 /// `out`'s extension in lower case ("" for none).
 fn extension(out: &Path) -> String {
     out.extension().map(|e| e.to_string_lossy().to_ascii_lowercase()).unwrap_or_default()
@@ -48,12 +58,7 @@ fn extension(out: &Path) -> String {
 /// and KTX2 texels in `format`.
 pub fn write_chain_into(set: &mut FileSet, out: &Path, chain: &Chain, format: TextureFormat) -> Result<(), SaveError> {
     check_container(out, format)?;
-    let layout = || TextureLayout {
-        faces: vec![match chain {
-            Chain::Rgba8(c) => c.levels.iter().map(Level::from).collect(),
-            Chain::Rgba16(c) => c.levels.iter().map(Level::from).collect(),
-        }],
-    };
+    let layout = || chain_layout(chain);
     match extension(out).as_str() {
         "png" => match chain {
             Chain::Rgba8(c) => {
