@@ -11,7 +11,8 @@ driven over the DevTools protocol on a pipe (standard library only):
 - a height field and a GLB given through the page's file input are drawn (against the command
   line with the same files and options), and a file that is not an image, a PNG that says it is
   16384² texels and a glTF without its buffers each give a message in the page and leave it
-  working.
+  working; after a trap (what a module out of memory ends in) the page starts a fresh module,
+  says so, and draws again.
 
     scripts/test_web.py [--cli target/debug/bumpmap] [--screenshot docs/web_page.png] [--bench]
 
@@ -317,6 +318,12 @@ def main():
         chrome.send("DOM.setFileInputFiles", files=[str(heights)], nodeId=node)
         state = chrome.wait_for("!bumpmap.state().error && bumpmap.state()")
         check("heights.png" in state["status"], f"the page draws again after them: {state['status']}")
+
+        # After a trap the page starts a fresh module and draws again.
+        chrome.evaluate("bumpmap.trapForTest()")
+        state = chrome.wait_for("bumpmap.state().status.includes('bricks') && bumpmap.state()")
+        check("started again" in state["error"] and "drawn in" in state["status"],
+              f"after a trap the module is started again and draws: {state['error']!r}, {state['status']!r}")
 
         if args.bench:
             # The page as it opens (the torus, bricks), each frame drawn and put on the canvas.

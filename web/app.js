@@ -8,16 +8,40 @@ const form = $("controls");
 const canvas = $("frame");
 const utf8 = new TextEncoder();
 
-const bytes = await (await fetch("bumpmap_web.wasm")).arrayBuffer();
-const { instance } = await WebAssembly.instantiate(bytes, {});
-const bm = instance.exports;
+const module = await WebAssembly.compile(await (await fetch("bumpmap_web.wasm")).arrayBuffer());
+let bm = (await WebAssembly.instantiate(module, {})).exports;
 
 // Copies `data` into the module's memory; [pointer, length] (null for nothing).
 function put(data) {
   if (!data || data.length === 0) return [0, 0];
   const ptr = bm.bm_alloc(data.length);
+  if (ptr === 0) {
+    throw new Error(`the page's module cannot hold ${(data.length / 2 ** 20).toFixed(0)} MiB more (it has 4 GiB at most)`);
+  }
   new Uint8Array(bm.memory.buffer, ptr, data.length).set(data);
   return [ptr, data.length];
+}
+
+// Runs `work`; what it threw is shown. A trap (the module aborted: out of its memory, most
+// likely) leaves the module unusable, so a fresh one is started and the picture drawn again.
+function guarded(work, failed = { status: 1, ms: 0 }) {
+  try {
+    return work();
+  } catch (e) {
+    if (e instanceof WebAssembly.RuntimeError) {
+      showError(`the module stopped (${e.message}), most likely out of its memory (4 GiB at most); it is started again`);
+      prepared = false;
+      WebAssembly.instantiate(module, {}).then((fresh) => {
+        bm = fresh.exports;
+        dropped = null;
+        form.file.value = "";
+        draw({}, true, true);
+      });
+    } else {
+      showError(e.message);
+    }
+    return failed;
+  }
 }
 
 // Calls `fn` with the buffers `inputs` (Uint8Arrays or null) as pointer-length pairs, then
@@ -95,7 +119,12 @@ function prepare(extra = {}) {
 }
 
 // Prepares (unless only the light or camera moved) and draws; the status and the time taken.
-function draw(extra = {}, again = true) {
+// `keepError` leaves a message shown by whatever called.
+function draw(extra = {}, again = true, keepError = false) {
+  return guarded(() => drawNow(extra, again, keepError));
+}
+
+function drawNow(extra, again, keepError) {
   const t0 = performance.now();
   const status = again || !prepared ? prepare(extra) : 0;
   if (status !== 0) return { status, ms: performance.now() - t0 };
@@ -107,7 +136,7 @@ function draw(extra = {}, again = true) {
     showError(new TextDecoder().decode(answer));
     return { status: 1, ms };
   }
-  showError("");
+  if (!keepError) showError("");
   canvas.width = w;
   canvas.height = h;
   canvas.getContext("2d").putImageData(new ImageData(new Uint8ClampedArray(answer.buffer), w, h), 0, 0);
@@ -189,7 +218,7 @@ function normalMapFile(args, preset, as) {
   }
 }
 
-$("export").addEventListener("click", () => {
+$("export").addEventListener("click", () => guarded(() => {
   const as = form["save-as"].value;
   const r = normalMapFile(`scale=${form["bump-scale"].value}`, heightsPreset(), as);
   if (r.status !== 0) return showError(new TextDecoder().decode(r.answer));
@@ -198,15 +227,15 @@ $("export").addEventListener("click", () => {
   a.href = URL.createObjectURL(new Blob([r.answer], { type: ktx2 ? "image/ktx2" : "image/png" }));
   a.download = `${(dropped ? dropped.name.replace(/\.[^.]*$/, "") : heightsPreset().replace(/[:@]/g, "_"))}_normal.${ktx2 ? "ktx2" : "png"}`;
   a.click();
-});
+}));
 
-$("inspect").addEventListener("click", () => {
+$("inspect").addEventListener("click", () => guarded(() => {
   const r = call("bm_inspect", utf8.encode(dropped.name), dropped.bytes);
   const text = new TextDecoder().decode(r.answer);
   if (r.status !== 0) return showError(text);
   $("verdict").textContent = text;
   $("verdict").hidden = false;
-});
+}));
 
 $("backend").textContent = "CPU renderer in WebAssembly (the emulated GeForce 256, one thread); WebGPU is not used yet";
 
@@ -237,6 +266,10 @@ window.bumpmap = {
     if (t) Object.assign(turn, t);
     return draw(extra, again);
   },
+  // What the page does after a trap (as a module out of memory ends in), without one.
+  trapForTest: () => guarded(() => {
+    throw new WebAssembly.RuntimeError("unreachable (a test's)");
+  }),
   state: () => ({
     status: $("status").textContent,
     error: $("error").hidden ? "" : $("error").textContent,

@@ -52,10 +52,16 @@ unsafe fn bytes<'a>(ptr: *const u8, len: usize) -> &'a [u8] {
     unsafe { std::slice::from_raw_parts(ptr, len) }
 }
 
-/// A buffer of `len` zeroed bytes for the page to fill; give it back with [`bm_free`].
+/// A buffer of `len` zeroed bytes for the page to fill, or null where the module's memory cannot
+/// hold it (a file too large; the page says so); give it back with [`bm_free`].
 #[unsafe(no_mangle)]
 pub extern "C" fn bm_alloc(len: usize) -> *mut u8 {
-    Box::into_raw(vec![0u8; len].into_boxed_slice()).cast()
+    let mut buffer = Vec::new();
+    if buffer.try_reserve_exact(len).is_err() {
+        return std::ptr::null_mut();
+    }
+    buffer.resize(len, 0u8);
+    Box::into_raw(buffer.into_boxed_slice()).cast()
 }
 
 /// Gives back a buffer from [`bm_alloc`].

@@ -408,6 +408,7 @@ mod tests {
         assert_eq!(exports::bm_names(1), 0);
         assert!(exports::bm_answer_len() > 0 && exports::bm_answer_width() == 0);
         assert_eq!(exports::bm_names(7), 2, "no such set");
+        assert!(exports::bm_alloc(usize::MAX / 2).is_null(), "more than memory: null, not an abort");
         let p = exports::bm_alloc(16);
         // SAFETY: the pointer and length bm_alloc just gave.
         unsafe { exports::bm_free(p, 16) };
