@@ -182,6 +182,11 @@ form.file.addEventListener("change", async () => {
   syncExport();
   $("inspect").disabled = !dropped || model;
   $("verdict").hidden = true;
+  // A large file takes seconds to prepare on one thread: say so before the page waits.
+  if (dropped) {
+    $("status").textContent = `preparing ${dropped.name} (${(dropped.bytes.length / 2 ** 20).toFixed(1)} MiB)…`;
+    await new Promise((painted) => requestAnimationFrame(() => setTimeout(painted, 0)));
+  }
   draw();
 });
 
