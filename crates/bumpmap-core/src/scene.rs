@@ -367,9 +367,29 @@ pub struct SceneObject {
     /// What the mesh and the normal map were made from, where they were made from an analytic
     /// surface: what a reference renderer evaluates instead. `None` for a loaded mesh.
     pub source: Option<SurfaceSource>,
-    /// A loaded mesh's ∂P/∂s and ∂P/∂t per vertex (`Mesh::st_derivatives`), where its material
-    /// has heights as geometry; a built-in surface's come from the surface itself.
-    pub st_derivatives: Option<Arc<Vec<[glam::Vec3; 2]>>>,
+    /// A loaded mesh's texture-space derivatives per vertex, where its material has heights as
+    /// geometry; a built-in surface's come from the surface itself.
+    pub st_derivatives: Option<Arc<StDerivatives>>,
+}
+
+/// A mesh's texture-space derivatives at each vertex: what a ray through its heights is
+/// marched and bent with.
+#[derive(Clone, Debug, PartialEq)]
+pub struct StDerivatives {
+    /// ∂P/∂s and ∂P/∂t (`Mesh::st_derivatives`).
+    pub first: Vec<[glam::Vec3; 2]>,
+    /// N·∂²P/∂s² and N·∂²P/∂t² (`Mesh::st_normal_curvature`): how the surface falls away from
+    /// its tangent plane along s and t, so silhouettes can be cut on any mesh.
+    pub second: Vec<glam::Vec2>,
+}
+
+impl StDerivatives {
+    /// Both, of `mesh`.
+    pub fn of(mesh: &bumpmap_math::mesh::Mesh) -> Self {
+        let first = mesh.st_derivatives();
+        let second = mesh.st_normal_curvature(&first);
+        StDerivatives { first, second }
+    }
 }
 
 impl SceneObject {

@@ -184,7 +184,7 @@ pub fn build(kind: &SceneKind, params: &SceneParams) -> Result<Scene, CoreError>
                         };
                         material.depth =
                             params.depth.unwrap_or_else(made).min(0.1 * frame.radius).max(frame.radius * 1e-7);
-                        Some(Arc::new(mesh.st_derivatives()))
+                        Some(Arc::new(crate::scene::StDerivatives::of(mesh)))
                     }
                     None => None,
                 };

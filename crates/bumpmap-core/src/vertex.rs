@@ -53,7 +53,8 @@ pub mod var {
     /// `∂(x, y)/∂(s, t)` in the tangent plane, `[P_s·T, P_t·T, P_s·B, P_t·B]` (4 slots).
     pub const TANGENT_FROM_TEX: usize = 34;
     /// How far the surface falls below its tangent plane, in heights per unit of s² and t²
-    /// (2 slots): `−½ N·∂²P/∂s² / depth`, likewise for t; zero on flat surfaces and meshes.
+    /// (2 slots): `−½ N·∂²P/∂s² / depth`, likewise for t; zero on flat surfaces, a fitted
+    /// quadric's on meshes (`bumpmap_math::mesh::Mesh::st_normal_curvature`).
     pub const CURVATURE: usize = 38;
     /// The vertex colour, linear RGBA (4 slots): what multiplies the base colour, for meshes
     /// with colours only (glTF `COLOR_0`); a pass reads it where its program says so.
@@ -100,7 +101,10 @@ fn texture_space(
             let fall = Vec2::new(-0.5 * k_u / (r.x * r.x), -0.5 * k_v / (r.y * r.y)) / depth;
             (p.dp_du / r.x, p.dp_dv / r.y, fall)
         }
-        (None, Some(d)) => (d[i][0], d[i][1], Vec2::ZERO),
+        (None, Some(d)) => {
+            // As for a surface: −½ N·∂²P/∂s² per unit of height (the mesh's fitted quadric).
+            (d.first[i][0], d.first[i][1], -0.5 * d.second[i] / depth)
+        }
         // Not built by `scenes::build` (which gives meshes their derivatives): unit texels.
         (None, None) => (frame.t, frame.b, Vec2::ZERO),
     };
