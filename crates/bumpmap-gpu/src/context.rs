@@ -30,6 +30,14 @@ impl Context {
     /// Opens the first adapter wgpu offers (honouring `WGPU_BACKEND`, `WGPU_ADAPTER_NAME` and
     /// `WGPU_POWER_PREF`) with its own limits.
     pub fn new() -> Result<Self, GpuError> {
+        // A browser's main thread may not wait (pollster's condvar panics there): the web gets
+        // the refusal, and `Auto` the CPU, until the backend opens asynchronously.
+        if cfg!(target_arch = "wasm32") {
+            return Err(GpuError::NoAdapter(
+                "the GPU backend waits on its device, which a web page may not do; it does not open on the web yet"
+                    .into(),
+            ));
+        }
         pollster::block_on(Self::open())
     }
 
