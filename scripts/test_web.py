@@ -155,6 +155,12 @@ class Chromium:
             raise RuntimeError(f"{expression}: {r['exceptionDetails']}")
         return r["result"].get("value")
 
+    def drawn(self, showing, timeout=60):
+        """The page's state once a frame showing `showing` is drawn (not while it says it is
+        preparing it)."""
+        return self.wait_for(f"bumpmap.state().status.includes({json.dumps(showing)})"
+                             " && bumpmap.state().status.includes('drawn in') && bumpmap.state()", timeout)
+
     def wait_for(self, expression, timeout=60):
         deadline = time.monotonic() + timeout
         while time.monotonic() < deadline:
@@ -264,7 +270,7 @@ def main():
         doc = chrome.send("DOM.getDocument")["root"]["nodeId"]
         node = chrome.send("DOM.querySelector", nodeId=doc, selector="input[name=file]")["nodeId"]
         chrome.send("DOM.setFileInputFiles", files=[str(heights)], nodeId=node)
-        state = chrome.wait_for("bumpmap.state().status.includes('heights.png') && bumpmap.state()")
+        state = chrome.drawn("heights.png")
         canvas = chrome.evaluate(CANVAS)
         w, h, native = cli_render(args.cli, work / "dropped.png", {
             "scene": "torus", "technique": "single-pass", "bump-scale": 4, "width": 512, "height": 512,
@@ -274,7 +280,7 @@ def main():
 
         # inspect's verdict on an image given through the file input: the command line's lines.
         chrome.send("DOM.setFileInputFiles", files=[str(work / "n.png")], nodeId=node)
-        chrome.wait_for("bumpmap.state().status.includes('n.png') && bumpmap.state()")
+        chrome.drawn("n.png")
         chrome.evaluate("document.getElementById('inspect').click()")
         verdict = chrome.wait_for("bumpmap.state().verdict")
         cli = subprocess.run([args.cli, "inspect", str(work / "n.png")], check=True, capture_output=True, text=True)
@@ -283,7 +289,7 @@ def main():
         # The same image drawn as the normal map it is.
         chrome.evaluate("const s = document.querySelector('select[name=\"image-is\"]'); s.value = 'normal-map';"
                         " s.dispatchEvent(new Event('input', {bubbles: true}))")
-        chrome.wait_for("bumpmap.state().status.includes('normal map: n.png') && bumpmap.state()")
+        chrome.drawn("normal map: n.png")
         w, h, native = cli_render(args.cli, work / "as_normal_map.png", {
             "scene": "torus", "technique": "single-pass", "bump-scale": 4, "width": 512, "height": 512,
             "normal-map": work / "n.png"})
@@ -297,7 +303,7 @@ def main():
         subprocess.run([args.cli, "tangents", str(ROOT / "crates/bumpmap-io/tests/data/mikktspace/cube.obj"),
                         "-o", str(cube)], check=True, capture_output=True)
         chrome.send("DOM.setFileInputFiles", files=[str(cube)], nodeId=node)
-        chrome.wait_for("bumpmap.state().status.includes('cube.glb') && bumpmap.state()")
+        chrome.drawn("cube.glb")
         w, h, native = cli_render(args.cli, work / "cube.png", {
             "scene": f"mesh:{cube}", "technique": "single-pass", "bump-scale": 4, "width": 512, "height": 512})
         value = psnr(base64.b64decode(chrome.evaluate(CANVAS)), native)
@@ -316,12 +322,12 @@ def main():
                 state = chrome.evaluate("bumpmap.state()")
             check(name in state["error"] and says in state["error"], f"{name}: a message in the page: {state['error']!r}")
         chrome.send("DOM.setFileInputFiles", files=[str(heights)], nodeId=node)
-        state = chrome.wait_for("!bumpmap.state().error && bumpmap.state()")
+        state = chrome.drawn("heights.png")
         check("heights.png" in state["status"], f"the page draws again after them: {state['status']}")
 
         # After a trap the page starts a fresh module and draws again.
         chrome.evaluate("bumpmap.trapForTest()")
-        state = chrome.wait_for("bumpmap.state().status.includes('bricks') && bumpmap.state()")
+        state = chrome.drawn("bricks")
         check("started again" in state["error"] and "drawn in" in state["status"],
               f"after a trap the module is started again and draws: {state['error']!r}, {state['status']!r}")
 
