@@ -121,11 +121,15 @@ fn together(t: &option_table::Together) -> String {
     }
 }
 
+/// What the page decodes at most: [`MAX_SIDE`] a side, 1 GiB for the decoder.
+fn limits() -> DecodeLimits {
+    DecodeLimits { max_dimension: MAX_SIDE, max_alloc: 1 << 30 }
+}
+
 /// The heights in `file`'s image (its luminance, as `normalmap` reads a colour image), no side
 /// over [`MAX_SIDE`].
 fn heights_of(file: Dropped) -> Result<HeightField, WebError> {
-    let limits = DecodeLimits { max_dimension: MAX_SIDE, max_alloc: 1 << 30 };
-    Ok(bumpmap_io::read_height_field(file.bytes, Path::new(file.name), Channel::Luminance, &limits)?)
+    Ok(bumpmap_io::read_height_field(file.bytes, Path::new(file.name), Channel::Luminance, &limits())?)
 }
 
 /// A frame as `bumpmap render` draws it with the options in `args` (`render`'s names:
@@ -173,6 +177,7 @@ pub struct Turn {
 pub struct View {
     frame: bumpmap::frame::PreparedFrame,
     renderer: Renderer,
+    /// The scene as prepared, whose light and camera each draw starts from.
     scene: bumpmap_core::Scene,
     orbit: bumpmap::motion::LightOrbit,
 }
@@ -188,8 +193,10 @@ impl View {
 
     /// The scene drawn with the light and the camera turned by `turn`.
     pub fn draw(&mut self, turn: Turn) -> Result<Rgba8Image, WebError> {
+        // Only the light and the camera move; the rest of the scene stays as prepared.
         let scene = &mut self.frame.prepared.scene;
-        *scene = self.scene.clone();
+        scene.lights.clone_from(&self.scene.lights);
+        scene.camera = self.scene.camera;
         // Unturned, the scene is exactly as prepared (a turn by zero still rounds).
         if turn.light_turns != 0.0 || turn.light_tilt != 0.0 {
             self.orbit.place(scene, turn.light_turns, turn.light_tilt);
@@ -214,8 +221,7 @@ fn prepare(args: &str, file: Option<Dropped>) -> Result<bumpmap::frame::Prepared
         }
         // The options name it as the normal map: drawn as it is, with its own levels.
         Some(file) if request.options.normal_map.is_some() => {
-            let limits = DecodeLimits { max_dimension: MAX_SIDE, max_alloc: 1 << 30 };
-            given.normal_map = Some(bumpmap_io::read_texture(file.bytes, Path::new(file.name), &limits)?);
+            given.normal_map = Some(bumpmap_io::read_texture(file.bytes, Path::new(file.name), &limits())?);
         }
         Some(file) => {
             if request.options.height_field.is_none() {
@@ -296,8 +302,7 @@ fn map_inputs(args: &str, file: Option<Dropped>, preset: &str) -> Result<(MapOpt
 /// assert!(verdict.contains("convention: opengl"), "{verdict}");
 /// ```
 pub fn inspect(file: Dropped) -> Result<String, WebError> {
-    let limits = DecodeLimits { max_dimension: MAX_SIDE, max_alloc: 1 << 30 };
-    let map = bumpmap::inspect::read_bytes(file.bytes, Path::new(file.name), &limits)?;
+    let map = bumpmap::inspect::read_bytes(file.bytes, Path::new(file.name), &limits())?;
     Ok(bumpmap::inspect::inspect_map(file.name, &map).lines().join("\n"))
 }
 
