@@ -182,6 +182,29 @@ fn the_per_pixel_decode_matches_the_per_vertex_frame_wherever_the_frames_agree()
 }
 
 #[test]
+fn the_per_pixel_decode_is_refused_in_words_where_the_light_is_in_the_per_vertex_frame() {
+    use bumpmap_core::CoreError;
+    use bumpmap_core::error::Feature;
+    use bumpmap_math::tangent::TangentDecode;
+    let params = SceneParams { decode: Some(TangentDecode::MikkTSpace), ..Default::default() };
+    let scene = scenes::build(&SceneKind::Torus, &params).unwrap();
+    let mut fb = Framebuffer::new(32, 32).unwrap();
+    let lean = Technique::SinglePass(SinglePassOptions {
+        specular_filter: bumpmap_core::technique::SpecularFilter::Lean,
+        ..Default::default()
+    });
+    for technique in [Technique::Kilgard(Default::default()), lean] {
+        let e = render(&scene, &technique, &mut fb).unwrap_err();
+        let said = e.to_string();
+        assert!(
+            matches!(e, bumpmap_cpu::CpuError::Core(CoreError::Unsupported { feature: Feature::PerPixelDecode, .. })),
+            "{said}"
+        );
+        assert!(said.contains("per-pixel decode"), "{said}");
+    }
+}
+
+#[test]
 fn maps_made_for_the_wall_match_its_tangent_space_map_however_the_texture_is_mirrored() {
     // The wall's texels are squares of the mean side, so the object-space map and Peercy's
     // surface-dependent map hold the tangent-space map's normals in other frames; a negative
