@@ -5,8 +5,9 @@ driven over the DevTools protocol on a pipe (standard library only):
 - the page loads its module and draws a first frame;
 - kilgard, single-pass and pom of the bricks on the wall, drawn in the page, match the
   command line's CPU renderer (`bumpmap render --backend cpu`) at 40 dB or more;
-- the normal map the page saves (PNG, or 16-bit KTX2 with its mips) is the file `bumpmap
-  normalmap` writes, byte for byte;
+- every file the page's save menu offers (the normal map as 8- or 16-bit PNG or KTX2 with its
+  mips, the heights, the ambient occlusion) is the file `bumpmap normalmap` writes, byte for
+  byte;
 - `inspect`'s verdict on an image given through the file input is the command line's;
 - a height field and a GLB given through the page's file input are drawn (against the command
   line with the same files and options), and a file that is not an image, a PNG that says it is
@@ -252,16 +253,33 @@ def main():
                   f"(red mean {lit:.1f}, CRC {zlib.crc32(got):08x})")
             drawn.append(got)
 
-        page = chrome.evaluate('bumpmap.normalMap("scale=4", "bricks@256")')
-        subprocess.run([args.cli, "normalmap", "bricks@256", "-o", str(work / "n.png"), "--scale", "4"],
-                       check=True, capture_output=True)
-        check(page["status"] == 0 and base64.b64decode(page["data"]) == (work / "n.png").read_bytes(),
-              "the normal map the page saves is normalmap's file, byte for byte")
-        page = chrome.evaluate('bumpmap.normalMap("scale=4", "bricks@256", "ktx2-16")')
-        subprocess.run([args.cli, "normalmap", "bricks@256", "-o", str(work / "n.ktx2"), "--scale", "4", "--mips",
-                        "--bits", "16"], check=True, capture_output=True)
-        check(page["status"] == 0 and base64.b64decode(page["data"]) == (work / "n.ktx2").read_bytes(),
-              "the 16-bit KTX2 with every level the page saves is normalmap's file, byte for byte")
+        # Every file the save menu offers, against the command line's.
+        made_by = {
+            "normal-png-8": ["-o", "{out}"],
+            "normal-png-16": ["-o", "{out}", "--bits", "16"],
+            "normal-ktx2-8": ["-o", "{out}", "--mips"],
+            "normal-ktx2-16": ["-o", "{out}", "--mips", "--bits", "16"],
+            "heights-png-16": ["-o", "{unused}", "--height-out", "{out}", "--bits", "16"],
+            "occlusion-png-8": ["-o", "{unused}", "--ao-out", "{out}"],
+        }
+        menu = chrome.evaluate("Array.from(document.querySelector('select[name=save-as]').options, o => o.value)")
+        check(sorted(menu) == sorted(made_by), f"the save menu offers the files tested here: {menu}")
+        for entry in menu:
+            page = chrome.evaluate(f'bumpmap.mapFile("scale=4", "bricks@256", "{entry}")')
+            out = work / f"{entry}.{'ktx2' if 'ktx2' in entry else 'png'}"
+            cli = [a.format(out=out, unused=work / "unused.png") for a in made_by.get(entry, [])]
+            subprocess.run([args.cli, "normalmap", "bricks@256", "--scale", "4", *cli], check=True, capture_output=True)
+            got = base64.b64decode(page["data"]) if page["status"] == 0 else page["data"].encode()
+            check(page["status"] == 0 and got == out.read_bytes(),
+                  f"{entry} as the page saves it is normalmap's file, byte for byte ({len(got)} bytes)")
+        # What the file input gives the page below: the normal map's PNG.
+        shutil.copy(work / "normal-png-8.png", work / "n.png")
+        # The button itself: the occlusion (seconds of horizons) made, saved and said.
+        chrome.evaluate("document.querySelector('select[name=save-as]').value = 'occlusion-png-8';"
+                        "document.getElementById('export').click(); true")
+        said = chrome.wait_for("bumpmap.state().status.startsWith('saved') && bumpmap.state()")
+        check(said["status"].startswith("saved bricks_ao.png") and not said["error"],
+              f"the save button names the file it saved: {said['status']}")
 
         # The user's own heights through the file input.
         heights = work / "heights.png"
@@ -348,6 +366,11 @@ def main():
         if args.screenshot:
             chrome.send("Page.navigate", url=url)
             chrome.wait_for("document.body && document.body.dataset.ready === 'yes'")
+            # The page as a user leaves it after saving a map the menu offers.
+            chrome.drawn("bricks")
+            chrome.evaluate("document.querySelector('select[name=save-as]').value = 'occlusion-png-8';"
+                            "document.getElementById('export').click(); true")
+            chrome.wait_for("bumpmap.state().status.startsWith('saved')")
             shot = chrome.send("Page.captureScreenshot", format="png")["data"]
             Path(args.screenshot).write_bytes(base64.b64decode(shot))
             print(f"wrote {args.screenshot}")

@@ -160,7 +160,7 @@ function redraw(again) {
   });
 }
 
-// Saving makes a normal map from heights: not from a model, nor from an image that is one.
+// Saving makes maps from heights: not from a model, nor from an image that is a normal map.
 function syncExport() {
   $("export").disabled = Boolean(dropped && (isModel(dropped.name) || form["image-is"].value === "normal-map"));
 }
@@ -209,30 +209,40 @@ canvas.addEventListener("pointermove", (e) => {
   redraw(false);
 });
 
-// The normal map as `bumpmap normalmap` writes it: `as` is png, ktx2-8 or ktx2-16.
-function normalMapFile(args, preset, as) {
-  const bits = as === "ktx2-16" ? "\nbits=16" : "";
-  const held = [utf8.encode(args + bits), dropped && utf8.encode(dropped.name), dropped && dropped.bytes, utf8.encode(preset)];
+// A file `bumpmap normalmap` writes, as the save menu names it: WHAT-CONTAINER-BITS, WHAT one of
+// normal, heights, occlusion (the library's MapFile, in its order).
+const MAP_FILES = ["normal-png", "normal-ktx2", "heights-png", "occlusion-png"];
+const SUFFIX = { "normal-png": "_normal.png", "normal-ktx2": "_normal.ktx2", "heights-png": "_heights.png", "occlusion-png": "_ao.png" };
+function mapFile(args, preset, as) {
+  const [what, container, bits] = as.split("-");
+  const which = MAP_FILES.indexOf(`${what}-${container}`);
+  const held = [utf8.encode(`${args}\nbits=${bits}`), dropped && utf8.encode(dropped.name), dropped && dropped.bytes, utf8.encode(preset)];
   const ptrs = held.map(put);
   try {
-    const status = bm.bm_normal_map(...ptrs.flat(), as === "png" ? 0 : 1);
+    const status = bm.bm_map_file(...ptrs.flat(), which);
     const answer = new Uint8Array(bm.memory.buffer, bm.bm_answer_ptr(), bm.bm_answer_len()).slice();
-    return { status, answer };
+    return { status, answer, suffix: SUFFIX[`${what}-${container}`] };
   } finally {
     for (const [ptr, len] of ptrs) if (ptr) bm.bm_free(ptr, len);
   }
 }
 
-$("export").addEventListener("click", () => guarded(() => {
+$("export").addEventListener("click", async () => {
   const as = form["save-as"].value;
-  const r = normalMapFile(`scale=${form["bump-scale"].value}`, heightsPreset(), as);
+  // The occlusion's horizons take seconds on one thread: say so before the page waits.
+  $("status").textContent = `making ${form["save-as"].selectedOptions[0].textContent}…`;
+  await new Promise((painted) => requestAnimationFrame(() => setTimeout(painted, 0)));
+  guarded(() => save(as));
+});
+function save(as) {
+  const r = mapFile(`scale=${form["bump-scale"].value}`, heightsPreset(), as);
   if (r.status !== 0) return showError(new TextDecoder().decode(r.answer));
   const a = document.createElement("a");
-  const ktx2 = as !== "png";
-  a.href = URL.createObjectURL(new Blob([r.answer], { type: ktx2 ? "image/ktx2" : "image/png" }));
-  a.download = `${(dropped ? dropped.name.replace(/\.[^.]*$/, "") : heightsPreset().replace(/[:@]/g, "_"))}_normal.${ktx2 ? "ktx2" : "png"}`;
+  a.href = URL.createObjectURL(new Blob([r.answer], { type: r.suffix.endsWith(".ktx2") ? "image/ktx2" : "image/png" }));
+  a.download = `${(dropped ? dropped.name.replace(/\.[^.]*$/, "") : heightsPreset().replace(/[:@]/g, "_"))}${r.suffix}`;
   a.click();
-}));
+  $("status").textContent = `saved ${a.download} (${(r.answer.length / 1024).toFixed(0)} KiB)`;
+}
 
 $("inspect").addEventListener("click", () => guarded(() => {
   const r = call("bm_inspect", utf8.encode(dropped.name), dropped.bytes);
@@ -262,8 +272,9 @@ window.bumpmap = {
     prepared = false; // the page's own scene is prepared again on its next draw
     return { status: r.status, width: r.width, height: r.height, data: r.status === 0 ? base64(r.answer) : new TextDecoder().decode(r.answer) };
   },
-  normalMap(args, preset, as = "png") {
-    const r = normalMapFile(args, preset, as);
+  // `as`: a value of the save menu (normal-png-8, heights-png-16, …).
+  mapFile(args, preset, as = "normal-png-8") {
+    const r = mapFile(args, preset, as);
     return { status: r.status, data: r.status === 0 ? base64(r.answer) : new TextDecoder().decode(r.answer) };
   },
   // Prepares and draws (`again`, the default) or draws the kept scene again, turned by `t`.

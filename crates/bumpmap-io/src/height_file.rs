@@ -19,7 +19,9 @@ use bumpmap_math::{HeightMips, Image};
 use crate::atomic::FileSet;
 use crate::error::IoError;
 use crate::image_file::DecodeLimits;
-use crate::image_file::{Png16, PngLayout, level_path, save_png_into, save_png16_samples_into};
+use crate::image_file::{
+    Png16, PngLayout, level_path, png_file_bytes, png16_file_bytes, save_png_into, save_png16_samples_into,
+};
 use crate::texture_file::{Level, TextureFormat, TextureLayout, write_dds_into, write_ktx2_into};
 use crate::texture_read::{StoredLevels, load_texture_within};
 
@@ -91,12 +93,12 @@ pub fn heights_files(path: &Path, levels: usize) -> Result<Vec<PathBuf>, IoError
 }
 
 /// `v` in [0, 1] rounded to 8 bits.
-fn unorm8(v: f32) -> u8 {
+pub(crate) fn unorm8(v: f32) -> u8 {
     (v.clamp(0.0, 1.0) * 255.0).round() as u8
 }
 
 /// `v` in [0, 1] rounded to 16 bits.
-fn unorm16(v: f32) -> u16 {
+pub(crate) fn unorm16(v: f32) -> u16 {
     (v.clamp(0.0, 1.0) * 65535.0).round() as u16
 }
 
@@ -144,6 +146,29 @@ pub fn write_heights_into(
         write_levels(set, &minmax_path(path), kind, bounds.iter().map(Level::Rg16).collect(), TextureFormat::Rg16)?;
     }
     Ok(())
+}
+
+/// One gray level of `values` in [0, 1] (`width`×`height`, row 0 first) at `bits`, as the PNG
+/// file [`write_heights_into`] writes for level 0 of a `.png` (and
+/// `horizon_file::write_gray_into` for an occlusion map), in memory: what a web page saves.
+///
+/// ```
+/// use bumpmap_io::height_file::{HeightBits, gray_png_bytes};
+/// let png = gray_png_bytes((2, 1), &[0.0, 1.0], HeightBits::Sixteen).unwrap();
+/// assert_eq!(&png[1..4], b"PNG");
+/// assert_eq!((png[24], png[25]), (16, 0), "16 bits a sample, gray");
+/// ```
+pub fn gray_png_bytes((width, height): (usize, usize), values: &[f32], bits: HeightBits) -> Result<Vec<u8>, IoError> {
+    match bits {
+        HeightBits::Eight => {
+            let bytes: Vec<u8> = values.iter().map(|&v| unorm8(v)).collect();
+            png_file_bytes(width, height, PngLayout::Gray8, &bytes)
+        }
+        HeightBits::Sixteen => {
+            let samples: Vec<u16> = values.iter().map(|&v| unorm16(v)).collect();
+            png16_file_bytes(width, height, Png16::Gray, &samples)
+        }
+    }
 }
 
 /// One set of levels into `path`: PNG files a level each, or one container.

@@ -18,7 +18,9 @@ use bumpmap_math::{HorizonLevel, HorizonMap, Image};
 
 use crate::atomic::FileSet;
 use crate::error::IoError;
-use crate::height_file::{Container, HeightBits, RgbaLevel, container, read_levels_checked, write_levels};
+use crate::height_file::{
+    Container, HeightBits, RgbaLevel, container, read_levels_checked, unorm8, unorm16, write_levels,
+};
 use crate::image_file::DecodeLimits;
 use crate::image_file::level_path;
 use crate::texture_file::{Level, TextureFormat};
@@ -83,16 +85,11 @@ pub fn write_gray_into(
     let kind = container(path)?;
     match bits {
         HeightBits::Eight => {
-            let image =
-                Image::new(width, height, values.iter().map(|&v| (v.clamp(0.0, 1.0) * 255.0).round() as u8).collect());
+            let image = Image::new(width, height, values.iter().map(|&v| unorm8(v)).collect());
             write_levels(set, path, kind, vec![Level::Gray8(&image)], TextureFormat::R8)
         }
         HeightBits::Sixteen => {
-            let image = Image::new(
-                width,
-                height,
-                values.iter().map(|&v| (v.clamp(0.0, 1.0) * 65535.0).round() as u16).collect(),
-            );
+            let image = Image::new(width, height, values.iter().map(|&v| unorm16(v)).collect());
             write_levels(set, path, kind, vec![Level::Gray16(&image)], TextureFormat::R16)
         }
     }

@@ -15,8 +15,8 @@ use crate::error::IoError;
 mod png_out;
 
 pub use png_out::{
-    Png16, PngLayout, level_path, png_bytes, png_file_bytes, save_apng_into, save_png, save_png_into, save_png16_into,
-    save_png16_samples_into,
+    Png16, PngLayout, level_path, png_bytes, png_file_bytes, png16_file_bytes, save_apng_into, save_png, save_png_into,
+    save_png16_into, save_png16_samples_into,
 };
 
 /// The largest width or height accepted for any image, in or out.

@@ -161,14 +161,15 @@ pub extern "C" fn bm_view_draw(light_turns: f32, light_tilt: f32, yaw: f32, pitc
     finish(drawn.map(|image| (image.as_bytes().to_vec(), image.width as u32, image.height as u32)))
 }
 
-/// [`crate::normal_map_png`] (`ktx2` 0) or [`crate::normal_map_ktx2`] (`ktx2` 1), the heights
-/// the file's, or the preset's that `preset` names: the answer is the file.
+/// [`crate::map_file`] of the file numbered `what` in [`crate::MapFile::ALL`] (0 the normal
+/// map's PNG, 1 its KTX2, 2 the heights' PNG, 3 the occlusion's PNG), the heights the file's,
+/// or the preset's that `preset` names: the answer is the file.
 ///
 /// # Safety
 /// Each pointer is null or has its length of readable bytes for the call ([`bm_alloc`]'s).
 #[unsafe(no_mangle)]
 #[allow(clippy::too_many_arguments)]
-pub unsafe extern "C" fn bm_normal_map(
+pub unsafe extern "C" fn bm_map_file(
     args: *const u8,
     args_len: usize,
     name: *const u8,
@@ -177,7 +178,7 @@ pub unsafe extern "C" fn bm_normal_map(
     file_len: usize,
     preset: *const u8,
     preset_len: usize,
-    ktx2: u32,
+    what: u32,
 ) -> u32 {
     // SAFETY: the caller's contract, passed on.
     let inputs = unsafe { inputs((args, args_len), (name, name_len), (file, file_len)) };
@@ -185,8 +186,10 @@ pub unsafe extern "C" fn bm_normal_map(
     let preset = unsafe { bytes(preset, preset_len) };
     finish(inputs.and_then(|(args, file)| {
         let preset = std::str::from_utf8(preset).map_err(|_| WebError::Usage("the preset is not UTF-8".into()))?;
-        let made = if ktx2 == 1 { crate::normal_map_ktx2 } else { crate::normal_map_png };
-        Ok((made(args, file, preset)?, 0, 0))
+        let what = *crate::MapFile::ALL
+            .get(what as usize)
+            .ok_or_else(|| WebError::Usage(format!("no map file numbered {what} (0 to 3)")))?;
+        Ok((crate::map_file(args, file, preset, what)?, 0, 0))
     }))
 }
 

@@ -9,8 +9,9 @@
 //!
 //! - [`render`]: a frame of a built-in scene on the CPU renderer (the emulated GeForce 256, one
 //!   thread in a browser), as RGBA8;
-//! - [`normal_map_png`], [`normal_map_ktx2`]: a height field's normal map as the PNG (level 0) or
-//!   the KTX2 (every level) `bumpmap normalmap` writes, byte for byte;
+//! - [`map_file`]: a height field's normal map as the PNG (level 0, 8 or 16 bits) or the KTX2
+//!   (every level) `bumpmap normalmap` writes, its heights or its ambient occlusion as the PNG
+//!   `--height-out` or `--ao-out` writes, byte for byte;
 //! - [`inspect`]: `bumpmap inspect`'s verdict on a normal map the user gave;
 //! - [`names`]: the closed sets the page's menus list (techniques, scenes, presets).
 //!
@@ -28,6 +29,7 @@ use bumpmap::maps::{Chain, MapOptions};
 use bumpmap::option_table::{self, FRAME, MAPS, Opt, SCENE};
 use bumpmap::options::{Given, SceneChoice};
 use bumpmap::{BackendChoice, Renderer, Rgba8Image};
+use bumpmap_io::image_file::Png16;
 use bumpmap_io::{Channel, DecodeLimits, HeightSource};
 use bumpmap_math::HeightField;
 
@@ -234,43 +236,73 @@ fn prepare(args: &str, file: Option<Dropped>) -> Result<bumpmap::frame::Prepared
     Ok(prepare_frame(&request, &given)?)
 }
 
-/// The PNG file `bumpmap normalmap HEIGHTS -o OUT.png` writes with the options in `args`
-/// (`normalmap`'s names: `scale=4`, `kernel=sobel3`, `y-convention=directx`, …; level 0, 8 bits),
-/// byte for byte. The heights are `file`'s, or the preset `preset` names (`bricks@256`).
-///
-/// ```
-/// let png = bumpmap_web::normal_map_png("scale=4", None, "bricks@64").unwrap();
-/// assert_eq!(&png[1..4], b"PNG");
-/// ```
-pub fn normal_map_png(args: &str, file: Option<Dropped>, preset: &str) -> Result<Vec<u8>, WebError> {
-    let (options, field) = map_inputs(args, file, preset)?;
-    if options.bits != 8 {
-        return Err(WebError::Value {
-            name: "bits".into(),
-            reason: "the page saves 8-bit PNGs (16 bits: KTX2)".into(),
-        });
-    }
-    let Chain::Rgba8(chain) = bumpmap::maps::normal_map(&options, false, &field)? else {
-        unreachable!("8 bits were checked")
-    };
-    let level = &chain.levels[0];
-    Ok(bumpmap_io::png_file_bytes(level.width, level.height, bumpmap_io::PngLayout::Rgba8, level.as_bytes())?)
+/// A file the page saves: one of the files `bumpmap normalmap HEIGHTS` writes, byte for byte.
+/// The bits are the options' (`bits=16`; 8 by default), as on the command line.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum MapFile {
+    /// The normal map, level 0, as `-o OUT.png` writes it.
+    NormalPng,
+    /// The normal map with every level down to 1×1, as `-o OUT.ktx2 --mips` writes it.
+    NormalKtx2,
+    /// The heights as geometry, level 0, as `--height-out H.png` writes `H.png`.
+    HeightsPng,
+    /// The ambient occlusion of the heights' horizons, as `--ao-out AO.png` writes it.
+    OcclusionPng,
 }
 
-/// The KTX2 file `bumpmap normalmap HEIGHTS -o OUT.ktx2 --mips` writes with the options in
-/// `args` (`bits=16` for 16 bits a channel): every level down to 1×1, byte for byte.
+impl MapFile {
+    /// Each file, in the order of its number in [`exports::bm_map_file`].
+    pub const ALL: [MapFile; 4] = [MapFile::NormalPng, MapFile::NormalKtx2, MapFile::HeightsPng, MapFile::OcclusionPng];
+}
+
+/// The file `what` of the heights in `file`, or of the preset `preset` names (`bricks@256`),
+/// made with `normalmap`'s options in `args` (`normalmap`'s names: `scale=4`, `kernel=sobel3`,
+/// `y-convention=directx`, `bits=16`, …).
 ///
 /// ```
-/// let ktx2 = bumpmap_web::normal_map_ktx2("bits=16", None, "bricks@64").unwrap();
+/// use bumpmap_web::{MapFile, map_file};
+/// let png = map_file("scale=4", None, "bricks@64", MapFile::NormalPng).unwrap();
+/// assert_eq!(&png[1..4], b"PNG");
+/// let ktx2 = map_file("bits=16", None, "bricks@64", MapFile::NormalKtx2).unwrap();
 /// assert_eq!(&ktx2[1..7], b"KTX 20");
+/// let heights = map_file("bits=16", None, "bricks@64", MapFile::HeightsPng).unwrap();
+/// assert_eq!((heights[24], heights[25]), (16, 0), "16 bits a sample, gray");
 /// ```
-pub fn normal_map_ktx2(args: &str, file: Option<Dropped>, preset: &str) -> Result<Vec<u8>, WebError> {
+pub fn map_file(args: &str, file: Option<Dropped>, preset: &str, what: MapFile) -> Result<Vec<u8>, WebError> {
+    use bumpmap_io::height_file::{HeightBits, gray_png_bytes};
     use bumpmap_io::texture_file::TextureFormat;
     let (options, field) = map_inputs(args, file, preset)?;
-    let chain = bumpmap::maps::normal_map(&options, true, &field)?;
-    let format = if options.bits == 16 { TextureFormat::Rgba16 } else { TextureFormat::Rgba8 };
-    let name = Path::new(file.map_or(preset, |f| f.name));
-    Ok(bumpmap_io::texture_file::ktx2_bytes(name, &bumpmap::maps::chain_layout(&chain), format)?)
+    let bits = HeightBits::of(options.bits);
+    match what {
+        MapFile::NormalPng => Ok(match bumpmap::maps::normal_map(&options, false, &field)? {
+            Chain::Rgba8(chain) => {
+                let level = &chain.levels[0];
+                bumpmap_io::png_file_bytes(level.width, level.height, bumpmap_io::PngLayout::Rgba8, level.as_bytes())?
+            }
+            Chain::Rgba16(chain) => {
+                let level = &chain.levels[0];
+                let samples = level.texels.as_flattened();
+                bumpmap_io::image_file::png16_file_bytes(level.width, level.height, Png16::Rgba, samples)?
+            }
+        }),
+        MapFile::NormalKtx2 => {
+            let chain = bumpmap::maps::normal_map(&options, true, &field)?;
+            let format = if options.bits == 16 { TextureFormat::Rgba16 } else { TextureFormat::Rgba8 };
+            let name = Path::new(file.map_or(preset, |f| f.name));
+            Ok(bumpmap_io::texture_file::ktx2_bytes(name, &bumpmap::maps::chain_layout(&chain), format)?)
+        }
+        MapFile::HeightsPng => {
+            let stored = bumpmap::maps::height_mips(&options, &field)?;
+            let level = &stored.mips.levels()[0];
+            Ok(gray_png_bytes((level.width, level.height), &level.texels, bits)?)
+        }
+        MapFile::OcclusionPng => {
+            let horizons = bumpmap::maps::horizon_map(&options, &field, &|_, _| {})?;
+            // Texels per unit of height: the normal map's own geometry, as `normalmap` has it.
+            let occlusion = horizons.ambient_occlusion(options.normals.scale.abs());
+            Ok(gray_png_bytes((horizons.width(), horizons.height()), &occlusion, bits)?)
+        }
+    }
 }
 
 /// `normalmap`'s options read from `args`, and the heights: `file`'s, or the preset's.
@@ -296,7 +328,7 @@ fn map_inputs(args: &str, file: Option<Dropped>, preset: &str) -> Result<(MapOpt
 /// its levels): the lines `bumpmap inspect FILE` prints.
 ///
 /// ```
-/// let png = bumpmap_web::normal_map_png("", None, "bricks@64").unwrap();
+/// let png = bumpmap_web::map_file("", None, "bricks@64", bumpmap_web::MapFile::NormalPng).unwrap();
 /// let file = bumpmap_web::Dropped { name: "bricks_normal.png", bytes: &png };
 /// let verdict = bumpmap_web::inspect(file).unwrap();
 /// assert!(verdict.contains("convention: opengl"), "{verdict}");
@@ -353,9 +385,9 @@ mod tests {
         assert!(e.is_usage() && e.to_string().starts_with("size:"), "{e}");
         let e = render("spot-cutoff=20", None).unwrap_err();
         assert!(e.is_usage() && e.to_string().contains("spot"), "needs --spot: {e}");
-        let e = normal_map_png("bits=16", None, "bricks").unwrap_err();
-        assert!(e.is_usage() && e.to_string().contains("8-bit"), "{e}");
-        let e = normal_map_png("", None, "brick").unwrap_err();
+        let e = map_file("bits=12", None, "bricks", MapFile::NormalPng).unwrap_err();
+        assert!(e.is_usage() && e.to_string().starts_with("bits:"), "{e}");
+        let e = map_file("", None, "brick", MapFile::HeightsPng).unwrap_err();
         assert!(e.is_usage() && e.to_string().contains("brick"), "{e}");
     }
 
@@ -364,7 +396,7 @@ mod tests {
         let file = Dropped { name: "notes.txt", bytes: b"not pixels" };
         let e = render("size=32", Some(file)).unwrap_err();
         assert!(!e.is_usage() && e.to_string().contains("notes.txt"), "{e}");
-        let e = normal_map_png("", Some(file), "bricks").unwrap_err();
+        let e = map_file("", Some(file), "bricks", MapFile::OcclusionPng).unwrap_err();
         assert!(e.to_string().contains("notes.txt"), "{e}");
     }
 

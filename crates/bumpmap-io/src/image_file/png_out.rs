@@ -117,8 +117,7 @@ pub fn save_apng_into(
     })
 }
 
-/// Stages a 16-bit RGBA PNG into `set`, a row at a time (PNG stores each channel big-endian),
-/// so no second copy of the image is made.
+/// Stages a 16-bit RGBA PNG into `set`.
 pub fn save_png16_into(set: &mut FileSet, path: &Path, image: &bumpmap_math::Rgba16Image) -> Result<(), IoError> {
     save_png16_samples_into(set, path, image.width, image.height, Png16::Rgba, image.texels.as_flattened())
 }
@@ -135,7 +134,7 @@ pub enum Png16 {
 }
 
 /// Stages a 16-bit PNG of `width`×`height` pixels of `color`'s channels (`samples`, row 0
-/// first) into `set`, a row at a time.
+/// first) into `set`.
 pub fn save_png16_samples_into(
     set: &mut FileSet,
     path: &Path,
@@ -144,28 +143,46 @@ pub fn save_png16_samples_into(
     color: Png16,
     samples: &[u16],
 ) -> Result<(), IoError> {
+    set.write(path, |w| write_png16(w, width, height, color, samples))
+}
+
+/// The bytes [`save_png16_samples_into`] writes, in memory (what a web page offers to save).
+pub fn png16_file_bytes(width: usize, height: usize, color: Png16, samples: &[u16]) -> Result<Vec<u8>, IoError> {
+    let mut out = Vec::new();
+    write_png16(&mut out, width, height, color, samples)
+        .map_err(|e| IoError::Texture { path: "a PNG in memory".into(), reason: e.to_string() })?;
+    Ok(out)
+}
+
+/// The 16-bit PNG encoding of the files this crate writes: fast compression, adaptive filters,
+/// a row at a time (PNG stores each channel big-endian), so no second copy of the image is made.
+fn write_png16(
+    w: impl std::io::Write,
+    width: usize,
+    height: usize,
+    color: Png16,
+    samples: &[u16],
+) -> std::io::Result<()> {
     let (color, channels) = match color {
         Png16::Gray => (png::ColorType::Grayscale, 1),
         Png16::Rgb => (png::ColorType::Rgb, 3),
         Png16::Rgba => (png::ColorType::Rgba, 4),
     };
     debug_assert_eq!(samples.len(), width * height * channels);
-    set.write(path, |w| {
-        let mut encoder = png::Encoder::new(w, width as u32, height as u32);
-        encoder.set_color(color);
-        encoder.set_depth(png::BitDepth::Sixteen);
-        encoder.set_compression(png::Compression::Fast);
-        encoder.set_filter(png::Filter::Adaptive);
-        let mut writer = encoder.write_header().map_err(std::io::Error::other)?;
-        let mut stream = writer.stream_writer_with_size(1 << 20).map_err(std::io::Error::other)?;
-        let mut row = Vec::with_capacity(width * channels * 2);
-        for texels in samples.chunks_exact((width * channels).max(1)) {
-            row.clear();
-            row.extend(texels.iter().flat_map(|c| c.to_be_bytes()));
-            std::io::Write::write_all(&mut stream, &row)?;
-        }
-        stream.finish().map_err(std::io::Error::other)
-    })
+    let mut encoder = png::Encoder::new(w, width as u32, height as u32);
+    encoder.set_color(color);
+    encoder.set_depth(png::BitDepth::Sixteen);
+    encoder.set_compression(png::Compression::Fast);
+    encoder.set_filter(png::Filter::Adaptive);
+    let mut writer = encoder.write_header().map_err(std::io::Error::other)?;
+    let mut stream = writer.stream_writer_with_size(1 << 20).map_err(std::io::Error::other)?;
+    let mut row = Vec::with_capacity(width * channels * 2);
+    for texels in samples.chunks_exact((width * channels).max(1)) {
+        row.clear();
+        row.extend(texels.iter().flat_map(|c| c.to_be_bytes()));
+        std::io::Write::write_all(&mut stream, &row)?;
+    }
+    stream.finish().map_err(std::io::Error::other)
 }
 
 /// The file of level `k` of a PNG output `out`: `out` itself for level 0, then `n.mip1.png`,
