@@ -18,7 +18,8 @@ pub fn run(args: &BakeArgs) -> Result<(), CliError> {
         displacement: args.height_out.clone(),
         curvature: args.curvature_out.clone(),
         low: args.low_out.clone(),
-    };
+    }
+    .with_maps_beside(&args.maps);
     let bar = ProgressBar::new(request.options.height as u64)
         .with_style(ProgressStyle::with_template("{bar:40} {pos}/{len} rows {elapsed}").expect("a valid template"));
     let done = bake_files(&args.high, &args.low, request, &outputs, &|rows, _| bar.set_position(rows as u64));

@@ -184,6 +184,43 @@ fn a_cage_file_is_where_the_rays_start() {
 }
 
 #[test]
+fn maps_named_by_list_go_beside_the_normal_map_and_an_out_flag_names_its_own() {
+    let dir = scratch("bake_maps");
+    let (high, low) = (dir.join("high.obj"), dir.join("low.obj"));
+    square_obj(&high, 48, waves, false);
+    square_obj(&low, 1, |_, _| 0.0, true);
+    let path = |name: &str| dir.join(name).to_str().unwrap().to_string();
+    let (h, l) = (path("high.obj"), path("low.obj"));
+    let args = ["bake", &h, &l, "-o", &path("n.png"), "--size", "32", "--ao-rays", "8"];
+    let o = bumpmap(&[&args[..], &["--maps", "object,ao,height,mask,low", "--mask-out", &path("missed.png")]].concat());
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert_eq!(
+        listing(&dir),
+        [
+            "high.obj",
+            "low.obj",
+            "missed.png",
+            "n.png",
+            "n_ao.png",
+            "n_height.png",
+            "n_height.range.json",
+            "n_low.glb",
+            "n_object.png",
+        ]
+    );
+    // Each is the map its --*-out flag writes: the object-space normals as RGB, the occlusion
+    // gray, the displacement 16-bit gray, LOW a glTF with the map as its normal texture.
+    assert!(matches!(image::open(dir.join("n_object.png")).unwrap(), image::DynamicImage::ImageRgb8(_)));
+    assert!(matches!(image::open(dir.join("n_ao.png")).unwrap(), image::DynamicImage::ImageLuma8(_)));
+    assert!(matches!(image::open(dir.join("n_height.png")).unwrap(), image::DynamicImage::ImageLuma16(_)));
+    assert!(gltf::import(dir.join("n_low.glb")).unwrap().0.materials().any(|m| m.normal_texture().is_some()));
+    // The same bake with the flag for the occlusion writes the same bytes.
+    let o = bumpmap(&[&args[..], &["--ao-out", &path("ao.png")]].concat());
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert_eq!(std::fs::read(dir.join("ao.png")).unwrap(), std::fs::read(dir.join("n_ao.png")).unwrap());
+}
+
+#[test]
 fn what_cannot_be_baked_is_refused_with_nothing_written() {
     let dir = scratch("bake_refused");
     let (high, low, bare, far) = (dir.join("high.obj"), dir.join("low.obj"), dir.join("bare.obj"), dir.join("far.obj"));
@@ -207,6 +244,12 @@ fn what_cannot_be_baked_is_refused_with_nothing_written() {
         (run(&high, &low, &["--ao-rays", "5000"]), 2, "--ao-rays"),
         (run(&high, &low, &["--mask-out", out.to_str().unwrap()]), 2, "two outputs of the bake"),
         (run(&high, &low, &["--mask-out", high.to_str().unwrap()]), 1, "high.obj"),
+        (run(&high, &low, &["--maps", "ao,bogus"]), 2, "'bogus' for '--maps"),
+        (
+            run(&high, &low, &["--maps", "mask", "--object-out", dir.join("n_mask.png").to_str().unwrap()]),
+            2,
+            "two outputs of the bake",
+        ),
         (
             run(&high, &low, &["--low-out", dir.join("l.glb").to_str().unwrap(), "--y-convention", "directx"]),
             2,

@@ -2,7 +2,7 @@
 
 use std::path::PathBuf;
 
-use bumpmap::bake::BakeRequest;
+use bumpmap::bake::{BakeMap, BakeRequest};
 use bumpmap::option_table::BAKE;
 use clap::Args;
 
@@ -13,12 +13,20 @@ rows!(
     Bake: BakeRequest = BAKE
 );
 
+/// `--maps`' values: the library's [`BakeMap`] names.
+fn bake_maps() -> impl clap::builder::TypedValueParser<Value = BakeMap> {
+    use clap::builder::TypedValueParser;
+    clap::builder::PossibleValuesParser::new(BakeMap::ALL.map(BakeMap::name))
+        .map(|name: String| BakeMap::parse(&name).expect("one of the names listed"))
+}
+
 /// `bumpmap bake`.
 #[derive(Args, Debug)]
 #[command(after_help = "Examples:\n  \
 bumpmap bake sculpt.glb game.glb -o game_normal.png\n  \
 bumpmap bake sculpt.obj game.obj -o n.png --size 2048 --spp 4 --extrude 0.05 --max-distance 0.05\n  \
 bumpmap bake high.glb low.glb -o n.png --low-out low_baked.glb --mask-out missed.png\n  \
+bumpmap bake high.glb low.glb -o n.png --maps ao,height,mask   # also n_ao.png, n_height.png, n_mask.png\n  \
 bumpmap render --scene mesh:low_baked.glb --technique single-pass   # the low-poly with its bake\n\n\
 Each texel of LOW's UV layout casts rays from the low-poly surface into the high-poly one: \
 from --extrude in front of LOW (the cage) inward as far as --max-distance behind it, the \
@@ -38,6 +46,9 @@ pub struct BakeArgs {
     /// How the bake is made and stored.
     #[command(flatten)]
     pub bake: Table<Bake>,
+    /// Also write these maps, each beside the normal map as STEM_MAP.png (-o n.png --maps ao,low: n_ao.png, n_low.glb); an --*-out flag below names a map's file instead. Comma-separated
+    #[arg(long, value_delimiter = ',', value_name = "MAP,...", value_parser = bake_maps())]
+    pub maps: Vec<BakeMap>,
     /// Also write the object-space normals (8-bit RGB PNG)
     #[arg(long = "object-out")]
     pub object_out: Option<PathBuf>,

@@ -32,7 +32,9 @@ use crate::maps::SaveError;
 
 mod write;
 
-pub use write::{BakeOutputs, BakedFiles, bake_files, curvature_range, displacement_range, range_file, tangent_chain};
+pub use write::{
+    BakeMap, BakeOutputs, BakedFiles, bake_files, curvature_range, displacement_range, range_file, tangent_chain,
+};
 
 /// Occlusion rays a sample casts for an occlusion map when the request names none.
 pub const DEFAULT_OCCLUSION_RAYS: u32 = 64;

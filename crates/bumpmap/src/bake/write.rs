@@ -48,6 +48,102 @@ pub struct BakeOutputs {
     pub low: Option<PathBuf>,
 }
 
+/// A map a bake writes besides the tangent-space normal map: `--maps`' names, each with the
+/// file it goes to beside the normal map when no file is named for it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum BakeMap {
+    /// [`BakeOutputs::object_space`], `STEM_object.png`.
+    ObjectSpace,
+    /// [`BakeOutputs::occlusion`], `STEM_ao.png`.
+    Occlusion,
+    /// [`BakeOutputs::displacement`], `STEM_height.png`.
+    Displacement,
+    /// [`BakeOutputs::curvature`], `STEM_curvature.png`.
+    Curvature,
+    /// [`BakeOutputs::mask`], `STEM_mask.png`.
+    Mask,
+    /// [`BakeOutputs::low`], `STEM_low.glb`.
+    Low,
+}
+
+impl BakeMap {
+    /// Every map, in the order the help lists them.
+    pub const ALL: [BakeMap; 6] = [
+        BakeMap::ObjectSpace,
+        BakeMap::Occlusion,
+        BakeMap::Displacement,
+        BakeMap::Curvature,
+        BakeMap::Mask,
+        BakeMap::Low,
+    ];
+
+    /// Its name, as `--maps` takes it.
+    pub fn name(self) -> &'static str {
+        match self {
+            BakeMap::ObjectSpace => "object",
+            BakeMap::Occlusion => "ao",
+            BakeMap::Displacement => "height",
+            BakeMap::Curvature => "curvature",
+            BakeMap::Mask => "mask",
+            BakeMap::Low => "low",
+        }
+    }
+
+    /// The map `name` names, if any.
+    pub fn parse(name: &str) -> Option<BakeMap> {
+        BakeMap::ALL.into_iter().find(|m| m.name().eq_ignore_ascii_case(name.trim()))
+    }
+
+    /// The file it goes to beside `normal_map`: `STEM_NAME.png` (`STEM_low.glb` for LOW), in
+    /// the normal map's folder.
+    ///
+    /// ```
+    /// use bumpmap::bake::BakeMap;
+    /// use std::path::Path;
+    /// assert_eq!(BakeMap::Occlusion.file_beside(Path::new("out/n.ktx2")), Path::new("out/n_ao.png"));
+    /// assert_eq!(BakeMap::Low.file_beside(Path::new("n.png")), Path::new("n_low.glb"));
+    /// ```
+    pub fn file_beside(self, normal_map: &Path) -> PathBuf {
+        let stem = normal_map.file_stem().unwrap_or_default().to_string_lossy();
+        let ext = if self == BakeMap::Low { "glb" } else { "png" };
+        normal_map.with_file_name(format!("{stem}_{}.{ext}", self.name()))
+    }
+
+    /// The output in `outputs` this map fills.
+    fn slot(self, outputs: &mut BakeOutputs) -> &mut Option<PathBuf> {
+        match self {
+            BakeMap::ObjectSpace => &mut outputs.object_space,
+            BakeMap::Occlusion => &mut outputs.occlusion,
+            BakeMap::Displacement => &mut outputs.displacement,
+            BakeMap::Curvature => &mut outputs.curvature,
+            BakeMap::Mask => &mut outputs.mask,
+            BakeMap::Low => &mut outputs.low,
+        }
+    }
+}
+
+impl BakeOutputs {
+    /// The outputs with each of `maps` that has no file yet written beside the normal map
+    /// ([`BakeMap::file_beside`]); a file already named for a map is kept.
+    ///
+    /// ```
+    /// use bumpmap::bake::{BakeMap, BakeOutputs};
+    /// use std::path::PathBuf;
+    /// let outputs = BakeOutputs { normal_map: "n.png".into(), mask: Some("missed.png".into()), ..Default::default() }
+    ///     .with_maps_beside(&[BakeMap::Occlusion, BakeMap::Mask]);
+    /// assert_eq!(outputs.occlusion, Some(PathBuf::from("n_ao.png")));
+    /// assert_eq!(outputs.mask, Some(PathBuf::from("missed.png")));
+    /// assert_eq!(outputs.curvature, None);
+    /// ```
+    pub fn with_maps_beside(mut self, maps: &[BakeMap]) -> BakeOutputs {
+        let normal_map = self.normal_map.clone();
+        for &map in maps {
+            map.slot(&mut self).get_or_insert_with(|| map.file_beside(&normal_map));
+        }
+        self
+    }
+}
+
 /// What [`bake_files`] did.
 #[derive(Debug)]
 pub struct BakedFiles {
