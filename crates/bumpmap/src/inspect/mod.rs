@@ -181,10 +181,18 @@ impl MapReport {
         let c = &i.convention;
         out.push(match c.convention {
             Ok(y) => format!(
-                "  convention: {} (green {}), confidence {:.2} (curl test){}",
+                "  convention: {} (green {}), confidence {:.2} (curl test{}){}",
                 y.name(),
                 if y == YConvention::YUp { "up" } else { "down" },
                 c.confidence,
+                if c.left_out > 0.0 {
+                    format!(
+                        ", its {:.0}% most abrupt stencils left out: seams of UV islands, as a baked map has",
+                        c.left_out * 100.0
+                    )
+                } else {
+                    String::new()
+                },
                 match self.made_with {
                     Some(Derivative::Kernel(k)) => format!("; its slopes fit the {} kernel best", k.name()),
                     Some(Derivative::Spectral) => "; no kernel fits its slopes better than the exact derivative".into(),
@@ -297,6 +305,7 @@ impl MapReport {
                 "curl_kernel": c.kernel.name(),
                 "made_with": self.made_with.map(|d| d.name()),
                 "mixed_energy": c.mixed_energy,
+                "left_out": c.left_out,
             },
             "mips": mips,
             "seam": {
