@@ -232,11 +232,25 @@ def main():
         check(state["error"] == "" and "drawn in" in state["status"], f"the page loads and draws: {state}")
         # Dragging: the kept scene drawn again with the light turned, and back where it was.
         first = chrome.evaluate(CANVAS)
-        moved = chrome.evaluate("bumpmap.draw({}, false, {light: [0.3, 0.4]}).status")
+        moved = chrome.evaluate("bumpmap.draw({}, false, {light: [0.3, 0.4]}).then(r => r.status)")
         turned = chrome.evaluate(CANVAS)
-        chrome.evaluate("bumpmap.draw({}, false, {light: [0, 0]}).status")
+        chrome.evaluate("bumpmap.draw({}, false, {light: [0, 0]}).then(r => r.status)")
         check(moved == 0 and turned != first and chrome.evaluate(CANVAS) == first,
               "a drag turns the light, drawing the kept scene, and turning it back gives the first frame")
+        # A real drag with the mouse: moves faster than frames are drawn come together, and the
+        # last one is drawn (the kept scene, not prepared again).
+        box = chrome.evaluate("(() => { const r = document.getElementById('frame').getBoundingClientRect();"
+                              " return [r.x + r.width / 2, r.y + r.height / 2]; })()")
+        chrome.evaluate("document.getElementById('status').textContent = 'before the drag'")
+        chrome.send("Input.dispatchMouseEvent", type="mousePressed", x=box[0], y=box[1], button="left", clickCount=1)
+        for step in range(1, 9):
+            chrome.send("Input.dispatchMouseEvent", type="mouseMoved", x=box[0] + 12 * step, y=box[1] - 6 * step,
+                        button="left", buttons=1)
+        chrome.send("Input.dispatchMouseEvent", type="mouseReleased", x=box[0] + 96, y=box[1] - 48, button="left",
+                    clickCount=1)
+        dragged = chrome.wait_for("bumpmap.state().status.includes('; drawn in') && bumpmap.state()")
+        check(chrome.evaluate(CANVAS) != first and not dragged["error"], f"a mouse drag moves the light: {dragged}")
+        chrome.evaluate("bumpmap.draw({}, false, {light: [0, 0]}).then(r => r.status)")
 
         options = {"scene": "wall", "size": 256, "light": "dir:0.4,0.5,1"}
         drawn = []  # each technique's frame, none the same as another's
@@ -277,6 +291,12 @@ def main():
         # The button itself: the occlusion (seconds of horizons) made, saved and said.
         chrome.evaluate("document.querySelector('select[name=save-as]').value = 'occlusion-png-8';"
                         "document.getElementById('export').click(); true")
+        # The module works in a worker: the page answers at once, still saying what it makes.
+        asked = time.monotonic()
+        meanwhile = chrome.evaluate("bumpmap.state().status")
+        answered_ms = (time.monotonic() - asked) * 1000
+        check(meanwhile.startswith("making") and answered_ms < 200,
+              f"the page answers while the worker makes the map: '{meanwhile}' in {answered_ms:.0f} ms")
         said = chrome.wait_for("bumpmap.state().status.startsWith('saved') && bumpmap.state()")
         check(said["status"].startswith("saved bricks_ao.png") and not said["error"],
               f"the save button names the file it saved: {said['status']}")
@@ -356,11 +376,11 @@ def main():
             chrome.wait_for("document.body && document.body.dataset.ready === 'yes'")
             for technique in ["single-pass", "pom"]:
                 for w, h in [(800, 600), (512, 512)]:
-                    draw = f'bumpmap.draw({{width: {w}, height: {h}, technique: "{technique}"}}).ms'
+                    draw = f'bumpmap.draw({{width: {w}, height: {h}, technique: "{technique}"}}).then(r => r.ms)'
                     times = sorted(chrome.evaluate(draw) for _ in range(7))
                     print(f"{technique} {w}x{h}: prepared and drawn, median {times[3]:.0f} ms, fastest {times[0]:.0f} ms")
                     # What a drag costs: the kept scene drawn with the light turned a little more.
-                    drag = "bumpmap.draw({}, false, {light: [Math.random(), 0.2]}).ms"
+                    drag = "bumpmap.draw({}, false, {light: [Math.random(), 0.2]}).then(r => r.ms)"
                     times = sorted(chrome.evaluate(drag) for _ in range(7))
                     print(f"{technique} {w}x{h}: drawn (a drag), median {times[3]:.0f} ms, fastest {times[0]:.0f} ms")
         if args.screenshot:

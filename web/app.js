@@ -1,77 +1,59 @@
 // The page: the controls become `bumpmap render`'s options as `name=value` lines, the module
-// (crates/bumpmap-web, built by scripts/web.sh) draws on the CPU, and the frame goes to the
-// canvas. Nothing here knows a technique, a scene or a default: the names come from the module,
-// the defaults and checks from the library's option table.
+// (crates/bumpmap-web, built by scripts/web.sh) draws on the CPU in a worker (worker.js), and
+// the frame goes to the canvas. Nothing here knows a technique, a scene or a default: the names
+// come from the module, the defaults and checks from the library's option table.
 
 const $ = (id) => document.getElementById(id);
 const form = $("controls");
 const canvas = $("frame");
-const utf8 = new TextEncoder();
+const text = (bytes) => new TextDecoder().decode(bytes);
 
-const module = await WebAssembly.compile(await (await fetch("bumpmap_web.wasm")).arrayBuffer());
-let bm = (await WebAssembly.instantiate(module, {})).exports;
-
-// Copies `data` into the module's memory; [pointer, length] (null for nothing).
-function put(data) {
-  if (!data || data.length === 0) return [0, 0];
-  const ptr = bm.bm_alloc(data.length);
-  if (ptr === 0) {
-    throw new Error(`the page's module cannot hold ${(data.length / 2 ** 20).toFixed(0)} MiB more (it has 4 GiB at most)`);
-  }
-  new Uint8Array(bm.memory.buffer, ptr, data.length).set(data);
-  return [ptr, data.length];
+// The module's thread: `ask(op, args)` is its answer, in the order asked.
+const worker = new Worker("worker.js", { type: "module" });
+const waiting = new Map();
+let asked = 0;
+worker.onmessage = ({ data }) => {
+  waiting.get(data.id)(data);
+  waiting.delete(data.id);
+};
+function ask(op, args = [], transfer = []) {
+  return new Promise((resolve) => {
+    const id = asked++;
+    waiting.set(id, resolve);
+    worker.postMessage({ id, op, args }, transfer);
+  });
 }
 
-// Runs `work`; what it threw is shown. A trap (the module aborted: out of its memory, most
-// likely) leaves the module unusable, so a fresh one is started and the picture drawn again.
-function guarded(work, failed = { status: 1, ms: 0 }) {
-  try {
-    return work();
-  } catch (e) {
-    if (e instanceof WebAssembly.RuntimeError) {
-      showError(`the module stopped (${e.message}), most likely out of its memory (4 GiB at most); it is started again`);
-      prepared = false;
-      WebAssembly.instantiate(module, {}).then((fresh) => {
-        bm = fresh.exports;
-        dropped = null;
-        form.file.value = "";
-        draw({}, true, true);
-      });
-    } else {
-      showError(e.message);
-    }
-    return failed;
+// Whether the worker failed the call, said in the page. A trap (the module aborted: out of its
+// memory, most likely) left it with a fresh module and no file: the page forgets the file too and
+// draws the controls' scene again, the message kept.
+async function failed(reply) {
+  if (reply.trapped) {
+    showError(`the module stopped (${reply.trapped}), most likely out of its memory (4 GiB at most); it is started again`);
+    prepared = false;
+    dropped = null;
+    form.file.value = "";
+    syncFile();
+    await draw({}, true, true);
+    return true;
   }
-}
-
-// Calls `fn` with the buffers `inputs` (Uint8Arrays or null) as pointer-length pairs, then
-// gives them back; the status and a copy of the answer.
-function call(fn, ...inputs) {
-  const held = inputs.map(put);
-  try {
-    const status = bm[fn](...held.flat());
-    const answer = new Uint8Array(bm.memory.buffer, bm.bm_answer_ptr(), bm.bm_answer_len()).slice();
-    return { status, answer, width: bm.bm_answer_width(), height: bm.bm_answer_height() };
-  } finally {
-    for (const [ptr, len] of held) if (ptr) bm.bm_free(ptr, len);
+  if (reply.error) {
+    showError(reply.error);
+    return true;
   }
-}
-
-// A closed set's names (0 techniques, 1 scenes, 2 presets), as the command line spells them.
-function names(set) {
-  bm.bm_names(set);
-  const text = new Uint8Array(bm.memory.buffer, bm.bm_answer_ptr(), bm.bm_answer_len());
-  return new TextDecoder().decode(text).split("\n");
+  return false;
 }
 
 function fill(select, list, chosen) {
   for (const name of list) select.add(new Option(name, name, false, name === chosen));
 }
-fill(form.technique, names(0), "single-pass");
-fill(form.scene, names(1), null); // the first: the command line's default scene
-fill(form.preset, names(2), "bricks");
+// A closed set's names (0 techniques, 1 scenes, 2 presets), as the command line spells them.
+const names = async (set) => text((await ask("names", [set])).answer).split("\n");
+fill(form.technique, await names(0), "single-pass");
+fill(form.scene, await names(1), null); // the first: the command line's default scene
+fill(form.preset, await names(2), "bricks");
 
-let dropped = null; // { name, bytes } of the user's own heights or model
+let dropped = null; // { name, size } of the user's own heights or model (its bytes are the worker's)
 // How far the picture has been dragged: the light (turns round, tilt up) and, with Shift or the
 // right button, the camera (yaw, pitch), as `bumpmap view`'s mouse turns them.
 const turn = { light: [0, 0], camera: [0, 0] };
@@ -98,66 +80,58 @@ function heightsPreset() {
 
 const isModel = (name) => /\.(glb|gltf|obj)$/i.test(name);
 
-function showError(text) {
-  $("error").hidden = !text;
-  $("error").textContent = text || "";
+function showError(message) {
+  $("error").hidden = !message;
+  $("error").textContent = message || "";
 }
 
 let prepared = false;
 
-// Prepares the scene the controls describe (its maps made once); false, with the message shown,
-// where it cannot be.
-function prepare(extra = {}) {
-  const name = dropped && utf8.encode(dropped.name);
-  const r = call("bm_view", utf8.encode(options(extra)), name, dropped && dropped.bytes);
-  prepared = r.status === 0;
-  if (!prepared) {
-    showError(new TextDecoder().decode(r.answer));
-    $("status").textContent = "";
-  }
-  return r.status;
-}
-
 // Prepares (unless only the light or camera moved) and draws; the status and the time taken.
 // `keepError` leaves a message shown by whatever called.
-function draw(extra = {}, again = true, keepError = false) {
-  return guarded(() => drawNow(extra, again, keepError));
-}
-
-function drawNow(extra, again, keepError) {
+async function draw(extra = {}, again = true, keepError = false) {
   const t0 = performance.now();
-  const status = again || !prepared ? prepare(extra) : 0;
-  if (status !== 0) return { status, ms: performance.now() - t0 };
-  bm.bm_view_draw(turn.light[0], turn.light[1], turn.camera[0], turn.camera[1]);
-  const answer = new Uint8Array(bm.memory.buffer, bm.bm_answer_ptr(), bm.bm_answer_len()).slice();
+  if (again || !prepared) {
+    const r = await ask("view", [options(extra)]);
+    if (await failed(r)) return { status: 1, ms: performance.now() - t0 };
+    prepared = r.status === 0;
+    if (!prepared) {
+      showError(text(r.answer));
+      $("status").textContent = "";
+      return { status: r.status, ms: performance.now() - t0 };
+    }
+  }
+  const r = await ask("draw", [[...turn.light, ...turn.camera]]);
+  if (await failed(r)) return { status: 1, ms: performance.now() - t0 };
   const ms = performance.now() - t0;
-  const [w, h] = [bm.bm_answer_width(), bm.bm_answer_height()];
-  if (w === 0) {
-    showError(new TextDecoder().decode(answer));
+  if (r.width === 0) {
+    showError(text(r.answer));
     return { status: 1, ms };
   }
   if (!keepError) showError("");
-  canvas.width = w;
-  canvas.height = h;
-  canvas.getContext("2d").putImageData(new ImageData(new Uint8ClampedArray(answer.buffer), w, h), 0, 0);
+  canvas.width = r.width;
+  canvas.height = r.height;
+  canvas.getContext("2d").putImageData(new ImageData(new Uint8ClampedArray(r.answer.buffer), r.width, r.height), 0, 0);
   const image = form["image-is"].value === "normal-map" ? "normal map" : "heights";
   const on = dropped && isModel(dropped.name) ? dropped.name : `the ${form.scene.value}, ${dropped ? image : "heights"}: ${dropped ? dropped.name : heightsPreset()}`;
   $("status").textContent = `${form.technique.value} on ${on}; ${again ? "prepared and drawn" : "drawn"} in ${ms.toFixed(0)} ms`;
   return { status: 0, ms };
 }
 
+// Draws again after a change, one frame at a time: changes made while a frame is drawn are
+// drawn together next (prepared again if any of them needs it).
 let pending = null;
-function redraw(again) {
-  if (pending !== null) {
-    pending = pending || again;
-    return;
-  }
-  pending = again;
-  requestAnimationFrame(() => {
+let drawing = false;
+async function redraw(again) {
+  pending = (pending ?? false) || again;
+  if (drawing) return;
+  drawing = true;
+  while (pending !== null) {
     const a = pending;
     pending = null;
-    draw({}, a);
-  });
+    await draw({}, a);
+  }
+  drawing = false;
 }
 
 // Saving makes maps from heights: not from a model, nor from an image that is a normal map.
@@ -165,14 +139,8 @@ function syncExport() {
   $("export").disabled = Boolean(dropped && (isModel(dropped.name) || form["image-is"].value === "normal-map"));
 }
 
-form.addEventListener("input", (e) => {
-  if (e.target.name === "image-is") syncExport();
-  if (e.target.name === "bump-scale") form["scale-shown"].value = e.target.value;
-  if (e.target.name !== "file") redraw(true);
-});
-form.file.addEventListener("change", async () => {
-  const file = form.file.files[0];
-  dropped = file ? { name: file.name, bytes: new Uint8Array(await file.arrayBuffer()) } : null;
+// The controls a file given (or taken away) turns on or off.
+function syncFile() {
   // A model is the scene: the built-in scenes and the presets wait until it is taken away.
   const model = Boolean(dropped && isModel(dropped.name));
   form.scene.disabled = model;
@@ -182,12 +150,22 @@ form.file.addEventListener("change", async () => {
   syncExport();
   $("inspect").disabled = !dropped || model;
   $("verdict").hidden = true;
-  // A large file takes seconds to prepare on one thread: say so before the page waits.
-  if (dropped) {
-    $("status").textContent = `preparing ${dropped.name} (${(dropped.bytes.length / 2 ** 20).toFixed(1)} MiB)…`;
-    await new Promise((painted) => requestAnimationFrame(() => setTimeout(painted, 0)));
-  }
-  draw();
+}
+
+form.addEventListener("input", (e) => {
+  if (e.target.name === "image-is") syncExport();
+  if (e.target.name === "bump-scale") form["scale-shown"].value = e.target.value;
+  if (e.target.name !== "file") redraw(true);
+});
+form.file.addEventListener("change", async () => {
+  const file = form.file.files[0];
+  const bytes = file ? new Uint8Array(await file.arrayBuffer()) : null;
+  dropped = file ? { name: file.name, size: bytes.length } : null;
+  syncFile();
+  // Sent once, moved rather than copied; a large file takes seconds to prepare: said meanwhile.
+  if (await failed(await ask("setFile", [file ? file.name : null, bytes], bytes ? [bytes.buffer] : []))) return;
+  if (dropped) $("status").textContent = `preparing ${dropped.name} (${(dropped.size / 2 ** 20).toFixed(1)} MiB)…`;
+  redraw(true);
 });
 
 let from = null; // where a drag started, and the turn then
@@ -213,69 +191,55 @@ canvas.addEventListener("pointermove", (e) => {
 // normal, heights, occlusion (the library's MapFile, in its order).
 const MAP_FILES = ["normal-png", "normal-ktx2", "heights-png", "occlusion-png"];
 const SUFFIX = { "normal-png": "_normal.png", "normal-ktx2": "_normal.ktx2", "heights-png": "_heights.png", "occlusion-png": "_ao.png" };
-function mapFile(args, preset, as) {
+async function mapFile(args, preset, as) {
   const [what, container, bits] = as.split("-");
   const which = MAP_FILES.indexOf(`${what}-${container}`);
-  const held = [utf8.encode(`${args}\nbits=${bits}`), dropped && utf8.encode(dropped.name), dropped && dropped.bytes, utf8.encode(preset)];
-  const ptrs = held.map(put);
-  try {
-    const status = bm.bm_map_file(...ptrs.flat(), which);
-    const answer = new Uint8Array(bm.memory.buffer, bm.bm_answer_ptr(), bm.bm_answer_len()).slice();
-    return { status, answer, suffix: SUFFIX[`${what}-${container}`] };
-  } finally {
-    for (const [ptr, len] of ptrs) if (ptr) bm.bm_free(ptr, len);
-  }
+  const r = await ask("mapFile", [`${args}\nbits=${bits}`, preset, which]);
+  return { ...r, suffix: SUFFIX[`${what}-${container}`] };
 }
 
 $("export").addEventListener("click", async () => {
-  const as = form["save-as"].value;
-  // The occlusion's horizons take seconds on one thread: say so before the page waits.
+  // The occlusion's horizons take seconds on one thread: said meanwhile.
   $("status").textContent = `making ${form["save-as"].selectedOptions[0].textContent}…`;
-  await new Promise((painted) => requestAnimationFrame(() => setTimeout(painted, 0)));
-  guarded(() => save(as));
-});
-function save(as) {
-  const r = mapFile(`scale=${form["bump-scale"].value}`, heightsPreset(), as);
-  if (r.status !== 0) return showError(new TextDecoder().decode(r.answer));
+  const r = await mapFile(`scale=${form["bump-scale"].value}`, heightsPreset(), form["save-as"].value);
+  if (await failed(r)) return;
+  if (r.status !== 0) return showError(text(r.answer));
   const a = document.createElement("a");
   a.href = URL.createObjectURL(new Blob([r.answer], { type: r.suffix.endsWith(".ktx2") ? "image/ktx2" : "image/png" }));
   a.download = `${(dropped ? dropped.name.replace(/\.[^.]*$/, "") : heightsPreset().replace(/[:@]/g, "_"))}${r.suffix}`;
   a.click();
   $("status").textContent = `saved ${a.download} (${(r.answer.length / 1024).toFixed(0)} KiB)`;
-}
+});
 
-$("inspect").addEventListener("click", () => guarded(() => {
-  const r = call("bm_inspect", utf8.encode(dropped.name), dropped.bytes);
-  const text = new TextDecoder().decode(r.answer);
-  if (r.status !== 0) return showError(text);
-  $("verdict").textContent = text;
+$("inspect").addEventListener("click", async () => {
+  const r = await ask("inspect");
+  if (await failed(r)) return;
+  if (r.status !== 0) return showError(text(r.answer));
+  $("verdict").textContent = text(r.answer);
   $("verdict").hidden = false;
-}));
+});
 
-$("backend").textContent = "CPU renderer in WebAssembly (the emulated GeForce 256, one thread); WebGPU is not used yet";
+$("backend").textContent = "CPU renderer in WebAssembly (the emulated GeForce 256, one thread, in a worker); WebGPU is not used yet";
 
 // What the tests drive (scripts/test_web.py): a frame or a normal map for given options, the
-// answer as base64 so it crosses the DevTools protocol as text.
+// answer as base64 so it crosses the DevTools protocol as text. Each returns a promise.
 function base64(u8) {
   let s = "";
   for (let i = 0; i < u8.length; i += 0x8000) s += String.fromCharCode(...u8.subarray(i, i + 0x8000));
   return btoa(s);
 }
 window.bumpmap = {
-  render(args) {
-    // As the controls would, without touching them or the kept scene's turn.
-    let r = call("bm_view", utf8.encode(args), null, null);
-    if (r.status === 0) {
-      bm.bm_view_draw(0, 0, 0, 0);
-      r = { status: 0, answer: new Uint8Array(bm.memory.buffer, bm.bm_answer_ptr(), bm.bm_answer_len()).slice(), width: bm.bm_answer_width(), height: bm.bm_answer_height() };
-    }
+  // As the controls would (without any file given), leaving the controls and the turn alone.
+  async render(args) {
+    let r = await ask("view", [args, false]);
+    if (r.status === 0) r = await ask("draw", [[0, 0, 0, 0]]);
     prepared = false; // the page's own scene is prepared again on its next draw
-    return { status: r.status, width: r.width, height: r.height, data: r.status === 0 ? base64(r.answer) : new TextDecoder().decode(r.answer) };
+    return { status: r.status, width: r.width, height: r.height, data: r.status === 0 ? base64(r.answer) : text(r.answer) };
   },
   // `as`: a value of the save menu (normal-png-8, heights-png-16, …).
-  mapFile(args, preset, as = "normal-png-8") {
-    const r = mapFile(args, preset, as);
-    return { status: r.status, data: r.status === 0 ? base64(r.answer) : new TextDecoder().decode(r.answer) };
+  async mapFile(args, preset, as = "normal-png-8") {
+    const r = await mapFile(args, preset, as);
+    return { status: r.status, data: r.status === 0 ? base64(r.answer) : text(r.answer) };
   },
   // Prepares and draws (`again`, the default) or draws the kept scene again, turned by `t`.
   draw: (extra = {}, again = true, t = null) => {
@@ -283,14 +247,12 @@ window.bumpmap = {
     return draw(extra, again);
   },
   // What the page does after a trap (as a module out of memory ends in), without one.
-  trapForTest: () => guarded(() => {
-    throw new WebAssembly.RuntimeError("unreachable (a test's)");
-  }),
+  trapForTest: async () => failed(await ask("trap")),
   state: () => ({
     status: $("status").textContent,
     error: $("error").hidden ? "" : $("error").textContent,
     verdict: $("verdict").hidden ? "" : $("verdict").textContent,
   }),
 };
-draw();
+await draw();
 document.body.dataset.ready = "yes";
