@@ -306,8 +306,10 @@ def render(**options):
     alpha holds a self-shadowing term, not coverage, and the command line's PNG leaves it out).
 
     ``progress``: a function called ``progress(done, total)`` on the calling thread as the
-    reference's tiles finish (at most every 50 ms), and once at the end with ``done == total``
-    (``1, 1`` for a technique, which counts no steps); an exception it raises stops the render.
+    steps finish (at most every 50 ms): the rows of the horizon map where the technique reads one
+    (``horizon``, a march's horizon shadow or occlusion), then the reference's tiles; and once at
+    the end with ``done == total`` (``1, 1`` for a technique that counts no steps). An exception
+    it raises, or Ctrl-C, stops the render at its next step.
     """
     return _bumpmap.render(_objects_as_options(options))
 

@@ -25,11 +25,17 @@ use pyo3::types::PyDict;
 use crate::errors::to_py;
 use crate::{arrays, interrupt, keywords};
 
-/// Sets up and prepares what `request` describes, with the inputs `given` in memory, and says
-/// what that noted as `render` says it (warnings through `warnings`, notes to the logger, once
-/// the work returns); returns the notes too, in Python's words.
-fn prepare(request: &FrameRequest, given: &Given) -> Result<(PreparedFrame, Vec<String>), Error> {
-    let prepared = bumpmap::frame::prepare_frame(request, given).map_err(|e| frame_err(e, &request.options, None))?;
+/// Sets up and prepares what `request` describes, with the inputs `given` in memory, a horizon
+/// map's rows told to `progress`, and says what that noted as `render` says it (warnings through
+/// `warnings`, notes to the logger, once the work returns); returns the notes too, in Python's
+/// words.
+fn prepare(
+    request: &FrameRequest,
+    given: &Given,
+    progress: &(dyn Fn(usize, usize) + Sync),
+) -> Result<(PreparedFrame, Vec<String>), Error> {
+    let prepared = bumpmap::frame::prepare_frame_told(request, given, progress)
+        .map_err(|e| frame_err(e, &request.options, None))?;
     let notes = say_frame_notes(&prepared).iter().map(|n| bumpmap_words::as_keywords(n)).collect();
     Ok((prepared, notes))
 }
@@ -42,9 +48,15 @@ fn open(backend: bumpmap::BackendChoice) -> Result<bumpmap::Renderer, Error> {
 }
 
 /// `render()`'s frame: what `request` describes prepared ([`prepare`]) and drawn on its
-/// backend, the reference's tiles told to `progress`; a black frame refused.
+/// backend, a horizon map's rows and then the reference's tiles told to `progress`; a black
+/// frame refused.
 pub fn draw(request: &FrameRequest, given: &Given, progress: Option<ReportFn>) -> Result<Frame, Error> {
-    let (prepared, _) = prepare(request, given)?;
+    let rows = |done: usize, total: usize| {
+        if let Some(f) = &progress {
+            f(done as u64, total as u64);
+        }
+    };
+    let (prepared, _) = prepare(request, given, &rows)?;
     let progress: Option<bumpmap::renderer::Progress> =
         progress.map(|f| Arc::new(move |done: usize, total: usize| f(done as u64, total as u64)) as _);
     let mut renderer = bumpmap::frame::renderer_for(request, progress).map_err(lib_err)?;
@@ -148,9 +160,20 @@ impl Renderer {
         }
         let (request, given) = keywords::render_request(py, "prepare", options, false)?;
         let technique = request.options.technique.technique.name().to_string();
-        // Its notes said once, when the scene is prepared; `Scene.notes` keeps them too.
-        let (prepared, notes) =
-            interrupt::run(py, move |_| prepare(&request, &given))?.map_err(|e| to_py("prepare", e))?;
+        // Its notes said once, when the scene is prepared; `Scene.notes` keeps them too. The
+        // horizon map's rows are told to nobody, but Ctrl-C stops the work at the next one.
+        let (prepared, notes) = interrupt::run_reporting(
+            py,
+            move |_, shown| {
+                prepare(&request, &given, &|done, total| {
+                    if let Some(f) = &shown {
+                        f(done as u64, total as u64);
+                    }
+                })
+            },
+            None,
+        )?
+        .map_err(|e| to_py("prepare", e))?;
         Ok(Scene {
             renderer: self.inner.clone(),
             prepared: Arc::new(Mutex::new(prepared.prepared)),

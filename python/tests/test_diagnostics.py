@@ -85,6 +85,23 @@ def test_progress_of_the_horizon_map_counts_its_rows():
         bumpmap.horizon_maps(heights, progress=stop)
 
 
+def test_progress_of_a_render_that_makes_a_horizon_map_counts_its_rows():
+    seen = []
+    told = bumpmap.render(technique="horizon", height_field="bricks@128", size=32, progress=lambda *a: seen.append(a))
+    # The horizon map's rows (the calling thread reads the count as it goes), ending at its total.
+    assert {t for _, t in seen} == {128} and seen[-1] == (128, 128), seen
+    assert np.array_equal(told, bumpmap.render(technique="horizon", height_field="bricks@128", size=32))
+
+    class Stop(Exception):
+        pass
+
+    def stop(done, total):
+        raise Stop(f"{done}/{total}")
+
+    with pytest.raises(Stop, match="/128"):
+        bumpmap.render(technique="horizon", height_field="bricks@128", size=32, progress=stop)
+
+
 def test_a_progress_function_that_raises_stops_the_call_with_its_exception():
     class Stop(Exception):
         pass

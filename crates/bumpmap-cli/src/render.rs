@@ -49,11 +49,15 @@ pub struct Drawn {
     pub inputs: Vec<PathBuf>,
 }
 
-/// Sets up and prepares what `request` describes ([`bumpmap::frame::prepare_frame`]), with the
-/// inputs `given` in memory in place of their options' files; what it refuses, in the flags'
-/// words.
-pub fn prepare_request(request: &FrameRequest, given: &crate::setup::Given) -> Result<PreparedFrame, CliError> {
-    bumpmap::frame::prepare_frame(request, given).map_err(|e| frame_err(e, &request.options, None))
+/// Sets up and prepares what `request` describes ([`bumpmap::frame::prepare_frame_told`]), with
+/// the inputs `given` in memory in place of their options' files, a horizon map's rows told to
+/// `progress`; what it refuses, in the flags' words.
+fn prepare_request(
+    request: &FrameRequest,
+    given: &crate::setup::Given,
+    progress: &(dyn Fn(usize, usize) + Sync),
+) -> Result<PreparedFrame, CliError> {
+    bumpmap::frame::prepare_frame_told(request, given, progress).map_err(|e| frame_err(e, &request.options, None))
 }
 
 /// Draws what `request` describes: the scene set up, the technique prepared, the frame drawn on
@@ -68,7 +72,8 @@ pub fn draw_request(
 ) -> Result<Drawn, CliError> {
     let name = request.options.technique.technique;
     // Preparing a large scene (its maps, the heights and their bounds) takes a minute at 16384²
-    // and tells no steps: a spinner with the time taken, on a terminal.
+    // and tells no steps: a spinner with the time taken, on a terminal; where a horizon map is
+    // made (minutes at 8192²), a bar of its rows.
     let spinner = match progress {
         crate::report::Progress::Bar => indicatif::ProgressBar::new_spinner().with_style(
             indicatif::ProgressStyle::with_template("preparing {msg} {spinner} {elapsed}").expect("valid template"),
@@ -77,7 +82,20 @@ pub fn draw_request(
     };
     spinner.set_message(name.to_string());
     spinner.enable_steady_tick(std::time::Duration::from_millis(250));
-    let prepared = prepare_request(request, given);
+    let as_bar = std::sync::Once::new();
+    let rows = |done: usize, total: usize| {
+        as_bar.call_once(|| {
+            spinner.set_style(
+                indicatif::ProgressStyle::with_template(
+                    "preparing {msg}: horizon map {bar:30} {pos}/{len} rows {elapsed}",
+                )
+                .expect("valid template"),
+            )
+        });
+        spinner.set_length(total as u64);
+        spinner.set_position(done as u64);
+    };
+    let prepared = prepare_request(request, given, &rows);
     spinner.finish_and_clear();
     let prepared = prepared?;
     say_frame_notes(&prepared);

@@ -312,8 +312,19 @@ impl HeightMips {
     /// The horizon map of level 0 (`crate::horizon`, heights wrapped around as the walk wraps
     /// them), made the first time it is asked for and kept: it does not depend on the depth.
     pub fn horizons(&self) -> Result<std::sync::Arc<HorizonMap>, HorizonError> {
+        self.horizons_told(&|_, _| {})
+    }
+
+    /// [`HeightMips::horizons`], telling `progress(rows done, rows)` as level 0's rows finish
+    /// where the map is made by this call (the long part: minutes for 8192²).
+    pub fn horizons_told(
+        &self,
+        progress: &(dyn Fn(usize, usize) + Sync),
+    ) -> Result<std::sync::Arc<HorizonMap>, HorizonError> {
         self.horizons
-            .get_or_init(|| HorizonMap::from_heights(&self.levels[0], Wrap::Repeat).map(std::sync::Arc::new))
+            .get_or_init(|| {
+                HorizonMap::from_heights_told(&self.levels[0], Wrap::Repeat, progress).map(std::sync::Arc::new)
+            })
             .clone()
     }
 

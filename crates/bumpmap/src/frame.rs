@@ -182,6 +182,16 @@ pub struct Frame {
 /// of their options' files. An impossible frame size and passes asked of a technique without
 /// them are refused before any file is read.
 pub fn prepare_frame(request: &FrameRequest, given: &Given) -> Result<PreparedFrame, FrameError> {
+    prepare_frame_told(request, given, &|_, _| {})
+}
+
+/// [`prepare_frame`], telling `progress(rows done, rows)` while a horizon map is made
+/// ([`Prepared::new_told`]).
+pub fn prepare_frame_told(
+    request: &FrameRequest,
+    given: &Given,
+    progress: &(dyn Fn(usize, usize) + Sync),
+) -> Result<PreparedFrame, FrameError> {
     let (width, height) = request.size;
     Renderer::check_size(width, height)?;
     let name = request.options.technique.technique;
@@ -189,7 +199,8 @@ pub fn prepare_frame(request: &FrameRequest, given: &Given) -> Result<PreparedFr
         return Err(FrameError::Passes { technique: name });
     }
     let set_up = request.options.set_up_given(given)?;
-    let prepared = Prepared::new(&set_up.spec, name, &set_up.options).map_err(|e| too_big(e, &set_up.spec))?;
+    let prepared =
+        Prepared::new_told(&set_up.spec, name, &set_up.options, progress).map_err(|e| too_big(e, &set_up.spec))?;
     let depth_notes = depth_notes(&request.options, &set_up.spec, &prepared);
     Ok(PreparedFrame { size: request.size, prepared, set_up, depth_notes })
 }

@@ -10,11 +10,11 @@
 use std::sync::Arc;
 
 use bumpmap_core::technique::ReferenceOptions;
-use bumpmap_core::{Scene, SceneSpec, Technique, TechniqueName, TechniqueOptions};
+use bumpmap_core::{BumpSource, CoreError, Scene, SceneSpec, Technique, TechniqueName, TechniqueOptions};
 use bumpmap_cpu::{CpuError, CpuRenderer, Framebuffer};
 #[cfg(feature = "gpu")]
 use bumpmap_gpu::GpuRenderer;
-use bumpmap_math::Rgba8Image;
+use bumpmap_math::{HeightMips, Rgba8Image};
 
 use crate::error::Error;
 
@@ -90,9 +90,64 @@ impl Prepared {
     /// Refuses, before any of them is made, maps that will not fit together
     /// ([`Prepared::bytes_needed`]).
     pub fn new(spec: &SceneSpec, name: TechniqueName, options: &TechniqueOptions) -> Result<Self, Error> {
+        Self::new_told(spec, name, options, &|_, _| {})
+    }
+
+    /// [`Prepared::new`], telling `progress(rows done, rows)` while the horizon map is made where
+    /// the technique reads one (`horizon`, a march's horizon shadow or occlusion) and the scene's
+    /// heights are a height field: the long part of preparing (minutes for 8192²). Other
+    /// techniques prepare without a word.
+    ///
+    /// ```
+    /// use std::sync::Arc;
+    /// use std::sync::atomic::{AtomicUsize, Ordering};
+    /// use bumpmap::{BackendChoice, BumpSource, HeightPreset, Prepared, Renderer, SceneKind, SceneSpec};
+    /// use bumpmap::{TechniqueName, TechniqueOptions};
+    ///
+    /// let mut spec = SceneSpec::new(SceneKind::Wall);
+    /// spec.params.bumps = BumpSource::Heights(Arc::new(HeightPreset::Bricks.render(64, 64)));
+    /// let (options, rows) = (TechniqueOptions::default(), AtomicUsize::new(0));
+    /// let told = Prepared::new_told(&spec, TechniqueName::Horizon, &options, &|done, total| {
+    ///     assert!(done <= total && total == 64);
+    ///     rows.fetch_max(done, Ordering::Relaxed);
+    /// })
+    /// .unwrap();
+    /// assert_eq!(rows.load(Ordering::Relaxed), 64, "every row of the horizon map told");
+    /// // The same maps as prepared without a word: the same frame.
+    /// let quiet = Prepared::new(&spec, TechniqueName::Horizon, &options).unwrap();
+    /// let mut renderer = Renderer::new(BackendChoice::Cpu).unwrap();
+    /// let frame = renderer.draw(&told, 48, 48).unwrap();
+    /// assert_eq!(frame.texels, renderer.draw(&quiet, 48, 48).unwrap().texels);
+    /// // A technique that reads no horizon map tells nothing.
+    /// Prepared::new_told(&spec, TechniqueName::Pom, &options, &|_, _| panic!("told")).unwrap();
+    /// ```
+    pub fn new_told(
+        spec: &SceneSpec,
+        name: TechniqueName,
+        options: &TechniqueOptions,
+        progress: &(dyn Fn(usize, usize) + Sync),
+    ) -> Result<Self, Error> {
         bumpmap_math::buffer::ensure_available(Self::bytes_needed(spec, name), "making its maps")
             .map_err(|source| Error::OutOfMemory { what: format!("preparing {name}"), source })?;
-        let (scene, technique) = name.prepare(spec, options)?;
+        let reads_horizons = matches!(
+            name.technique(options),
+            Technique::SinglePass(bumpmap_core::technique::SinglePassOptions { parallax: Some(p), .. })
+                if p.reads_horizons()
+        );
+        let params = &spec.params;
+        let (scene, technique) = match &params.bumps {
+            // The heights the scene would make, made here with their horizon map told.
+            BumpSource::Heights(field)
+                if reads_horizons && params.height_mips.is_none() && params.horizon_map.is_none() =>
+            {
+                let heights = HeightMips::from_field(field).map_err(CoreError::from)?;
+                heights.horizons_told(progress).map_err(CoreError::from)?;
+                let mut spec = spec.clone();
+                spec.params.height_mips = Some(Arc::new(heights));
+                name.prepare(&spec, options)?
+            }
+            _ => name.prepare(spec, options)?,
+        };
         Ok(Self { name, scene, technique })
     }
 
