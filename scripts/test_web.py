@@ -6,8 +6,8 @@ driven over the DevTools protocol on a pipe (standard library only):
 - kilgard, single-pass and pom of the bricks on the wall, drawn in the page, match the
   command line's CPU renderer (`bumpmap render --backend cpu`) at 40 dB or more;
 - every file the page's save menu offers (the normal map as 8- or 16-bit PNG or KTX2 with its
-  mips, the heights, the ambient occlusion) is the file `bumpmap normalmap` writes, byte for
-  byte;
+  mips, the heights, the ambient occlusion, the bent normals) is the file `bumpmap normalmap`
+  writes, byte for byte;
 - `inspect`'s verdict on an image given through the file input is the command line's;
 - a height field and a GLB given through the page's file input are drawn (against the command
   line with the same files and options), and a file that is not an image, a PNG that says it is
@@ -275,6 +275,7 @@ def main():
             "normal-ktx2-16": ["-o", "{out}", "--mips", "--bits", "16"],
             "heights-png-16": ["-o", "{unused}", "--height-out", "{out}", "--bits", "16"],
             "occlusion-png-8": ["-o", "{unused}", "--ao-out", "{out}"],
+            "bent-png-8": ["-o", "{unused}", "--bent-normals-out", "{out}"],
         }
         menu = chrome.evaluate("Array.from(document.querySelector('select[name=save-as]').options, o => o.value)")
         check(sorted(menu) == sorted(made_by), f"the save menu offers the files tested here: {menu}")

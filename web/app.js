@@ -188,9 +188,15 @@ canvas.addEventListener("pointermove", (e) => {
 });
 
 // A file `bumpmap normalmap` writes, as the save menu names it: WHAT-CONTAINER-BITS, WHAT one of
-// normal, heights, occlusion (the library's MapFile, in its order).
-const MAP_FILES = ["normal-png", "normal-ktx2", "heights-png", "occlusion-png"];
-const SUFFIX = { "normal-png": "_normal.png", "normal-ktx2": "_normal.ktx2", "heights-png": "_heights.png", "occlusion-png": "_ao.png" };
+// normal, heights, occlusion, bent (the library's MapFile, in its order).
+const MAP_FILES = ["normal-png", "normal-ktx2", "heights-png", "occlusion-png", "bent-png"];
+const SUFFIX = {
+  "normal-png": "_normal.png",
+  "normal-ktx2": "_normal.ktx2",
+  "heights-png": "_heights.png",
+  "occlusion-png": "_ao.png",
+  "bent-png": "_bent.png",
+};
 async function mapFile(args, preset, as) {
   const [what, container, bits] = as.split("-");
   const which = MAP_FILES.indexOf(`${what}-${container}`);

@@ -162,7 +162,8 @@ pub extern "C" fn bm_view_draw(light_turns: f32, light_tilt: f32, yaw: f32, pitc
 }
 
 /// [`crate::map_file`] of the file numbered `what` in [`crate::MapFile::ALL`] (0 the normal
-/// map's PNG, 1 its KTX2, 2 the heights' PNG, 3 the occlusion's PNG), the heights the file's,
+/// map's PNG, 1 its KTX2, 2 the heights' PNG, 3 the occlusion's PNG, 4 the bent normals' PNG),
+/// the heights the file's,
 /// or the preset's that `preset` names: the answer is the file.
 ///
 /// # Safety
@@ -186,9 +187,9 @@ pub unsafe extern "C" fn bm_map_file(
     let preset = unsafe { bytes(preset, preset_len) };
     finish(inputs.and_then(|(args, file)| {
         let preset = std::str::from_utf8(preset).map_err(|_| WebError::Usage("the preset is not UTF-8".into()))?;
-        let what = *crate::MapFile::ALL
-            .get(what as usize)
-            .ok_or_else(|| WebError::Usage(format!("no map file numbered {what} (0 to 3)")))?;
+        let what = *crate::MapFile::ALL.get(what as usize).ok_or_else(|| {
+            WebError::Usage(format!("no map file numbered {what} (0 to {})", crate::MapFile::ALL.len() - 1))
+        })?;
         Ok((crate::map_file(args, file, preset, what)?, 0, 0))
     }))
 }

@@ -10,8 +10,8 @@
 //! - [`render`]: a frame of a built-in scene on the CPU renderer (the emulated GeForce 256, one
 //!   thread in a browser), as RGBA8;
 //! - [`map_file`]: a height field's normal map as the PNG (level 0, 8 or 16 bits) or the KTX2
-//!   (every level) `bumpmap normalmap` writes, its heights or its ambient occlusion as the PNG
-//!   `--height-out` or `--ao-out` writes, byte for byte;
+//!   (every level) `bumpmap normalmap` writes, its heights, ambient occlusion or bent normals as
+//!   the PNG `--height-out`, `--ao-out` or `--bent-normals-out` writes, byte for byte;
 //! - [`inspect`]: `bumpmap inspect`'s verdict on a normal map the user gave;
 //! - [`names`]: the closed sets the page's menus list (techniques, scenes, presets).
 //!
@@ -248,11 +248,14 @@ pub enum MapFile {
     HeightsPng,
     /// The ambient occlusion of the heights' horizons, as `--ao-out AO.png` writes it.
     OcclusionPng,
+    /// The bent normals of the heights' horizons, as `--bent-normals-out B.png` writes it.
+    BentNormalsPng,
 }
 
 impl MapFile {
     /// Each file, in the order of its number in [`exports::bm_map_file`].
-    pub const ALL: [MapFile; 4] = [MapFile::NormalPng, MapFile::NormalKtx2, MapFile::HeightsPng, MapFile::OcclusionPng];
+    pub const ALL: [MapFile; 5] =
+        [MapFile::NormalPng, MapFile::NormalKtx2, MapFile::HeightsPng, MapFile::OcclusionPng, MapFile::BentNormalsPng];
 }
 
 /// The file `what` of the heights in `file`, or of the preset `preset` names (`bricks@256`),
@@ -274,17 +277,7 @@ pub fn map_file(args: &str, file: Option<Dropped>, preset: &str, what: MapFile) 
     let (options, field) = map_inputs(args, file, preset)?;
     let bits = HeightBits::of(options.bits);
     match what {
-        MapFile::NormalPng => Ok(match bumpmap::maps::normal_map(&options, false, &field)? {
-            Chain::Rgba8(chain) => {
-                let level = &chain.levels[0];
-                bumpmap_io::png_file_bytes(level.width, level.height, bumpmap_io::PngLayout::Rgba8, level.as_bytes())?
-            }
-            Chain::Rgba16(chain) => {
-                let level = &chain.levels[0];
-                let samples = level.texels.as_flattened();
-                bumpmap_io::image_file::png16_file_bytes(level.width, level.height, Png16::Rgba, samples)?
-            }
-        }),
+        MapFile::NormalPng => level0_png(&bumpmap::maps::normal_map(&options, false, &field)?),
         MapFile::NormalKtx2 => {
             let chain = bumpmap::maps::normal_map(&options, true, &field)?;
             let format = if options.bits == 16 { TextureFormat::Rgba16 } else { TextureFormat::Rgba8 };
@@ -302,7 +295,30 @@ pub fn map_file(args: &str, file: Option<Dropped>, preset: &str, what: MapFile) 
             let occlusion = horizons.ambient_occlusion(options.normals.scale.abs());
             Ok(gray_png_bytes((horizons.width(), horizons.height()), &occlusion, bits)?)
         }
+        MapFile::BentNormalsPng => {
+            let horizons = bumpmap::maps::horizon_map(&options, &field, &|_, _| {})?;
+            level0_png(&bumpmap::maps::bent_normals(&options, &horizons))
+        }
     }
+}
+
+/// Level 0 of `chain` as the PNG file a normal map's `-o OUT.png` is, at its bits.
+fn level0_png(chain: &Chain) -> Result<Vec<u8>, WebError> {
+    Ok(match chain {
+        Chain::Rgba8(chain) => {
+            let level = &chain.levels[0];
+            bumpmap_io::png_file_bytes(level.width, level.height, bumpmap_io::PngLayout::Rgba8, level.as_bytes())?
+        }
+        Chain::Rgba16(chain) => {
+            let level = &chain.levels[0];
+            bumpmap_io::image_file::png16_file_bytes(
+                level.width,
+                level.height,
+                Png16::Rgba,
+                level.texels.as_flattened(),
+            )?
+        }
+    })
 }
 
 /// `normalmap`'s options read from `args`, and the heights: `file`'s, or the preset's.
