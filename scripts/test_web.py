@@ -8,7 +8,8 @@ driven over the DevTools protocol on a pipe (standard library only):
 - every file the page's save menu offers (the normal map as 8- or 16-bit PNG or KTX2 with its
   mips, the heights, the ambient occlusion, the bent normals) is the file `bumpmap normalmap`
   writes, byte for byte;
-- `inspect`'s verdict on an image given through the file input is the command line's;
+- `inspect`'s verdict on an image given through the file input is the command line's, on a
+  float OpenEXR too;
 - a height field and a GLB given through the page's file input are drawn (against the command
   line with the same files and options), and a file that is not an image, a PNG that says it is
   16384² texels and a glTF without its buffers each give a message in the page and leave it
@@ -46,6 +47,34 @@ CANVAS = ("(() => { const c = document.getElementById('frame');"
           " const d = c.getContext('2d').getImageData(0, 0, c.width, c.height).data;"
           " let s = ''; for (let i = 0; i < d.length; i += 0x8000)"
           " s += String.fromCharCode(...d.subarray(i, i + 0x8000)); return btoa(s); })()")  # the same bytes in, wasm's f32 math against the native build's (FMA, libm)
+
+
+def exr_rgb(width, height, rgb):
+    """An uncompressed scanline OpenEXR file of 32-bit float R, G, B (`rgb`: row 0 first, three
+    floats a pixel), written from the format's specification: the page's reader is not asked to
+    read a file made by its own writer."""
+    def attribute(name, kind, value):
+        return name.encode() + b"\0" + kind.encode() + b"\0" + struct.pack("<i", len(value)) + value
+
+    def channel(name):
+        return name.encode() + b"\0" + struct.pack("<iB3xii", 2, 0, 1, 1)  # FLOAT, sampled 1×1
+
+    window = struct.pack("<iiii", 0, 0, width - 1, height - 1)
+    header = (attribute("channels", "chlist", b"".join(channel(c) for c in "BGR") + b"\0")
+              + attribute("compression", "compression", b"\0")
+              + attribute("dataWindow", "box2i", window) + attribute("displayWindow", "box2i", window)
+              + attribute("lineOrder", "lineOrder", b"\0")
+              + attribute("pixelAspectRatio", "float", struct.pack("<f", 1.0))
+              + attribute("screenWindowCenter", "v2f", struct.pack("<ff", 0.0, 0.0))
+              + attribute("screenWindowWidth", "float", struct.pack("<f", 1.0)) + b"\0")
+    start = 8 + len(header) + 8 * height
+    lines, offsets = [], []
+    for y in range(height):
+        row = rgb[3 * width * y:3 * width * (y + 1)]
+        data = b"".join(struct.pack(f"<{width}f", *row[k::3]) for k in (2, 1, 0))  # B, G, R
+        offsets.append(start + sum(len(line) for line in lines))
+        lines.append(struct.pack("<ii", y, len(data)) + data)
+    return b"\x76\x2f\x31\x01" + struct.pack("<i", 2) + header + struct.pack(f"<{height}Q", *offsets) + b"".join(lines)
 
 
 def png_rgba(data):
@@ -325,6 +354,20 @@ def main():
         cli = subprocess.run([args.cli, "inspect", str(work / "n.png")], check=True, capture_output=True, text=True)
         check(verdict.splitlines()[1:] == cli.stdout.strip().splitlines()[1:] and "convention: opengl" in verdict,
               f"inspect's verdict in the page is the command line's: {verdict.splitlines()[2:3]}")
+        # A float normal map (OpenEXR, decoded in the module): n.png's vectors, signed.
+        w, h, rgba = png_rgba((work / "n.png").read_bytes())
+        signed = [c / 127.5 - 1.0 for i, c in enumerate(rgba) if i % 4 != 3]
+        (work / "n_float.exr").write_bytes(exr_rgb(w, h, signed))
+        chrome.send("DOM.setFileInputFiles", files=[str(work / "n_float.exr")], nodeId=node)
+        chrome.wait_for("bumpmap.state().status.includes('n_float.exr') && bumpmap.state().status.includes('drawn in')")
+        chrome.evaluate("document.getElementById('inspect').click()")
+        verdict = chrome.wait_for("(bumpmap.state().verdict || bumpmap.state().error)")
+        cli = subprocess.run([args.cli, "inspect", str(work / "n_float.exr")], capture_output=True, text=True)
+        check(verdict.splitlines()[1:] == cli.stdout.strip().splitlines()[1:] and "floating point" in verdict
+              and "convention: opengl" in verdict,
+              f"inspect's verdict on an OpenEXR in the page is the command line's: {verdict.splitlines()[:3]}")
+        chrome.send("DOM.setFileInputFiles", files=[str(work / "n.png")], nodeId=node)
+        chrome.drawn("n.png")
         # The same image drawn as the normal map it is.
         chrome.evaluate("const s = document.querySelector('select[name=\"image-is\"]'); s.value = 'normal-map';"
                         " s.dispatchEvent(new Event('input', {bubbles: true}))")

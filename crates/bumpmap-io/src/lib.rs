@@ -40,5 +40,5 @@ pub use mesh_file::{
 };
 pub use texture_read::{
     AnyTexture, StoredLevels, StoredTexture, declared_size, load_any_texture, load_texture, load_texture_chain,
-    load_texture_within, read_texture,
+    load_texture_within, read_any_texture, read_texture,
 };

@@ -158,12 +158,18 @@ pub fn load_any_texture(path: &Path) -> Result<AnyTexture, IoError> {
 /// `limits` bound an image's decoding (a container's levels are bounded by its bytes: every
 /// level must be there before one is decoded).
 pub fn read_texture(bytes: &[u8], name: &Path, limits: &DecodeLimits) -> Result<StoredTexture, IoError> {
+    unorm_only(read_any_texture(bytes, name, limits)?, name)
+}
+
+/// [`load_any_texture`] for a file's bytes already in memory (floating point too: an EXR),
+/// named and bounded as [`read_texture`] is.
+pub fn read_any_texture(bytes: &[u8], name: &Path, limits: &DecodeLimits) -> Result<AnyTexture, IoError> {
     if bytes.starts_with(b"DDS ") {
-        read_dds(bytes, name)
+        read_dds(bytes, name).map(AnyTexture::Stored)
     } else if bytes.starts_with(&KTX2_IDENTIFIER) {
-        read_ktx2(bytes, name)
+        read_ktx2(bytes, name).map(AnyTexture::Stored)
     } else {
-        unorm_only(image_levels(crate::image_file::decode_bytes(bytes, name, limits)?), name)
+        Ok(image_levels(crate::image_file::decode_bytes(bytes, name, limits)?))
     }
 }
 

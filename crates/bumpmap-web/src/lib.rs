@@ -457,6 +457,22 @@ mod tests {
     }
 
     #[test]
+    fn a_float_normal_map_is_inspected_as_the_command_line_inspects_its_file() {
+        use bumpmap_math::{MipChain, MipMode, NormalMapOptions, YConvention};
+        let field = bumpmap_math::HeightPreset::Dimples.render(64, 64);
+        let options = NormalMapOptions { y_convention: YConvention::YDown, ..Default::default() };
+        let chain: MipChain = MipChain::from_height(&field, &options, MipMode::LengthInAlpha).unwrap();
+        // The vectors as signed floats, as a float normal map stores them.
+        let signed: Vec<f32> = chain.levels[0].texels.iter().flat_map(|t| t.map(|c| c as f32 / 127.5 - 1.0)).collect();
+        let image = image::Rgba32FImage::from_raw(64, 64, signed).unwrap();
+        let mut exr = std::io::Cursor::new(Vec::new());
+        image::DynamicImage::ImageRgba32F(image).write_to(&mut exr, image::ImageFormat::OpenExr).unwrap();
+        let file = Dropped { name: "dimples_normal.exr", bytes: exr.get_ref() };
+        let verdict = inspect(file).unwrap();
+        assert!(verdict.contains("floating point") && verdict.contains("convention: directx"), "{verdict}");
+    }
+
+    #[test]
     fn the_exports_answer_and_give_buffers_back() {
         assert_eq!(exports::bm_names(1), 0);
         assert!(exports::bm_answer_len() > 0 && exports::bm_answer_width() == 0);

@@ -109,10 +109,10 @@ pub fn read_file(path: &Path) -> Result<DecodedMap, Error> {
     decoded(bumpmap_io::load_any_texture(path)?, &path.display().to_string())
 }
 
-/// A map file's bytes already in memory (a DDS, a KTX2 or an image; not floating point), as
+/// A map file's bytes already in memory (a DDS, a KTX2 or an image, floating point too), as
 /// [`read_file`] reads the file; `name` is the file messages name, `limits` bound the decoding.
 pub fn read_bytes(bytes: &[u8], name: &Path, limits: &bumpmap_io::DecodeLimits) -> Result<DecodedMap, Error> {
-    decoded(AnyTexture::Stored(bumpmap_io::read_texture(bytes, name, limits)?), &name.display().to_string())
+    decoded(bumpmap_io::read_any_texture(bytes, name, limits)?, &name.display().to_string())
 }
 
 /// `texture` (named `what`) as vectors, refused where they and the inspection would not fit.
