@@ -36,6 +36,9 @@ build() {
     echo "building the native module for $1 (manylinux2014, zig)" >&2
     CARGO_PROFILE_RELEASE_DEBUG=false RUSTFLAGS="-C target-cpu=$1" maturin build --release --strip --quiet --zig --compatibility manylinux2014 \
         -m python/Cargo.toml -i "$PY" --target-dir "target/wheel-$1" --out "$STAGE/$1"
+    # CI builds once on a disk that has run out (lld's Bus error, 2026-12-08): its build folder
+    # (about 770 MB) goes once the wheel is out of it. Here it stays, for the next build.
+    if [ -n "${CI:-}" ]; then rm -rf "target/wheel-$1"; fi
 }
 build x86-64-v3
 build x86-64
