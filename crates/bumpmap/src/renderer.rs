@@ -136,9 +136,13 @@ impl Prepared {
         );
         let params = &spec.params;
         let (scene, technique) = match &params.bumps {
-            // The heights the scene would make, made here with their horizon map told.
+            // The heights the scene would make, made here with their horizon map told (one
+            // surface's: a model's parts make their own, untold).
             BumpSource::Heights(field)
-                if reads_horizons && params.height_mips.is_none() && params.horizon_map.is_none() =>
+                if reads_horizons
+                    && params.height_mips.is_none()
+                    && params.horizon_map.is_none()
+                    && params.parts.is_none() =>
             {
                 let heights = HeightMips::from_field(field).map_err(CoreError::from)?;
                 heights.horizons_told(progress).map_err(CoreError::from)?;
