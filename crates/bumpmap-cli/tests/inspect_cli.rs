@@ -136,6 +136,14 @@ fn signed_float_maps_are_read_as_such() {
     let v = json(&["inspect", "--json", s(&exr)]);
     assert_eq!(v[0]["stored"], "float-signed", "{v}");
     assert_eq!(v[0]["normal_map"], true, "{v}");
+    // A one-channel EXR (the heights `height` writes): a gray map, told as a gray PNG is, not an
+    // undecodable file.
+    let (png, heights) = (dir.join("n.png"), dir.join("h.exr"));
+    ok(&["normalmap", "bricks@64", "-o", s(&png)]);
+    ok(&["height", s(&png), "-o", s(&heights)]);
+    let v = json(&["inspect", "--json", s(&heights)]);
+    assert_eq!((v[0]["normal_map"].clone(), v[0]["kind"].clone()), (false.into(), "gray".into()), "{v}");
+    assert_eq!(bumpmap(&["inspect", "--strict", s(&heights)]).status.code(), Some(1));
 }
 
 #[test]

@@ -393,6 +393,28 @@ fn one_channel_exr(
     usable(field, name).map(Some)
 }
 
+/// A one-channel OpenEXR file ([`one_channel_exr`]: what `bumpmap height` writes) as gray
+/// floating-point RGBA, `(v, v, v, 1)`, for the readers that take any map (`inspect`); `None`
+/// for any other file.
+pub(crate) fn gray_exr_path(path: &Path) -> Result<Option<bumpmap_math::Image<[f32; 4]>>, IoError> {
+    Ok(one_channel_exr(path, path, Channel::Luminance, &DecodeLimits::default())?.map(|f| gray_rgba(&f)))
+}
+
+/// [`gray_exr_path`] of a file's bytes in memory, `name` naming it, `limits` bounding it.
+pub(crate) fn gray_exr_bytes(
+    bytes: &[u8],
+    name: &Path,
+    limits: &DecodeLimits,
+) -> Result<Option<bumpmap_math::Image<[f32; 4]>>, IoError> {
+    Ok(one_channel_exr(bytes, name, Channel::Luminance, limits)?.map(|f| gray_rgba(&f)))
+}
+
+/// Heights as gray RGBA, alpha 1.
+fn gray_rgba(field: &HeightField) -> bumpmap_math::Image<[f32; 4]> {
+    let texels = field.to_f32().into_iter().map(|v| [v, v, v, 1.0]).collect();
+    bumpmap_math::Image::new(field.width(), field.height(), texels)
+}
+
 /// A one-channel floating-point TIFF (what GIS and terrain tools write heights as), which
 /// `image` does not decode, read with the `tiff` crate; `None` for any other file. Its one
 /// channel answers to luminance and red; the sizes are checked before any pixel is read.

@@ -151,6 +151,9 @@ pub fn load_any_texture(path: &Path) -> Result<AnyTexture, IoError> {
         let bytes = std::fs::read(path).map_err(|source| IoError::Read { path: path.to_path_buf(), source })?;
         return read_texture(&bytes, path, &DecodeLimits::default()).map(AnyTexture::Stored);
     }
+    if let Some(gray) = crate::image_file::gray_exr_path(path)? {
+        return Ok(AnyTexture::Float(gray));
+    }
     Ok(image_levels(crate::image_file::decode_path(path)?))
 }
 
@@ -168,6 +171,8 @@ pub fn read_any_texture(bytes: &[u8], name: &Path, limits: &DecodeLimits) -> Res
         read_dds(bytes, name).map(AnyTexture::Stored)
     } else if bytes.starts_with(&KTX2_IDENTIFIER) {
         read_ktx2(bytes, name).map(AnyTexture::Stored)
+    } else if let Some(gray) = crate::image_file::gray_exr_bytes(bytes, name, limits)? {
+        Ok(AnyTexture::Float(gray))
     } else {
         Ok(image_levels(crate::image_file::decode_bytes(bytes, name, limits)?))
     }
