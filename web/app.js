@@ -187,21 +187,15 @@ canvas.addEventListener("pointermove", (e) => {
   redraw(false);
 });
 
-// A file `bumpmap normalmap` writes, as the save menu names it: WHAT-CONTAINER-BITS, WHAT one of
-// normal, heights, occlusion, bent (the library's MapFile, in its order).
-const MAP_FILES = ["normal-png", "normal-ktx2", "heights-png", "occlusion-png", "bent-png"];
-const SUFFIX = {
-  "normal-png": "_normal.png",
-  "normal-ktx2": "_normal.ktx2",
-  "heights-png": "_heights.png",
-  "occlusion-png": "_ao.png",
-  "bent-png": "_bent.png",
-};
+// The files `bumpmap normalmap` writes that the page saves, as the module names them (the
+// library's MapFile, in its order): [name, suffix of the saved file's name]. The save menu's
+// values are NAME-BITS.
+const MAP_FILES = (await names(3)).map((line) => line.split(" "));
 async function mapFile(args, preset, as) {
-  const [what, container, bits] = as.split("-");
-  const which = MAP_FILES.indexOf(`${what}-${container}`);
+  const bits = as.slice(as.lastIndexOf("-") + 1);
+  const which = MAP_FILES.findIndex(([name]) => `${name}-${bits}` === as);
   const r = await ask("mapFile", [`${args}\nbits=${bits}`, preset, which]);
-  return { ...r, suffix: SUFFIX[`${what}-${container}`] };
+  return { ...r, suffix: which >= 0 ? MAP_FILES[which][1] : "" };
 }
 
 $("export").addEventListener("click", async () => {

@@ -106,6 +106,29 @@ fn one_channel_openexr_heights_are_read() {
 }
 
 #[test]
+fn a_one_channel_openexr_is_a_gray_float_map_to_the_map_readers_and_a_nan_in_it_is_named() {
+    use bumpmap_io::{AnyTexture, read_any_texture};
+    use exr::prelude::*;
+    let one_channel = |values: Vec<f32>| {
+        let channels = AnyChannels::sort(vec![AnyChannel::new("Y", FlatSamples::F32(values))].into());
+        let mut bytes = std::io::Cursor::new(Vec::new());
+        Image::from_channels((3, 2), channels).write().to_buffered(&mut bytes).unwrap();
+        bytes.into_inner()
+    };
+    let name = Path::new("h.exr");
+    let values = vec![0.0, 0.25, 0.5, 0.75, 1.0, 0.5];
+    let AnyTexture::Float(gray) =
+        read_any_texture(&one_channel(values.clone()), name, &DecodeLimits::default()).unwrap()
+    else {
+        panic!("not read as floats")
+    };
+    assert_eq!(gray.texels, values.iter().map(|&v| [v, v, v, 1.0]).collect::<Vec<_>>());
+    let e = read_any_texture(&one_channel(vec![0.0, f32::NAN, 0.5, 0.5, 0.5, 0.5]), name, &DecodeLimits::default())
+        .unwrap_err();
+    assert!(e.to_string().contains("h.exr") && e.to_string().contains("(1, 0)"), "{e}");
+}
+
+#[test]
 fn a_tga_has_no_magic_bytes_and_is_named_by_its_extension() {
     // A TGA starts with no signature, so sniffing the bytes finds nothing; the name decides.
     let img = image::GrayImage::from_fn(5, 4, |x, y| image::Luma([(x * 40 + y * 7) as u8]));

@@ -208,14 +208,15 @@ pub unsafe extern "C" fn bm_inspect(name: *const u8, name_len: usize, file: *con
     }))
 }
 
-/// [`crate::names`] of set 0 (techniques), 1 (scenes) or 2 (presets): the answer is the names,
-/// one a line.
+/// [`crate::names`] of set 0 (techniques), 1 (scenes), 2 (presets) or 3 (the files saved): the
+/// answer is the names, one a line.
 #[unsafe(no_mangle)]
 pub extern "C" fn bm_names(set: u32) -> u32 {
     let set = match set {
         0 => Names::Techniques,
         1 => Names::Scenes,
         2 => Names::Presets,
+        3 => Names::MapFiles,
         other => return finish(Err(WebError::Usage(format!("no set of names {other}")))),
     };
     finish(Ok((crate::names(set).into_bytes(), 0, 0)))

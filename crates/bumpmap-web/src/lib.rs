@@ -253,6 +253,28 @@ pub enum MapFile {
 }
 
 impl MapFile {
+    /// Its name in the page's save menu (`WHAT-CONTAINER`; the menu adds the bits).
+    pub fn name(self) -> &'static str {
+        match self {
+            MapFile::NormalPng => "normal-png",
+            MapFile::NormalKtx2 => "normal-ktx2",
+            MapFile::HeightsPng => "heights-png",
+            MapFile::OcclusionPng => "occlusion-png",
+            MapFile::BentNormalsPng => "bent-png",
+        }
+    }
+
+    /// What the saved file's name ends with after the heights' own (`bricks_normal.png`).
+    pub fn suffix(self) -> &'static str {
+        match self {
+            MapFile::NormalPng => "_normal.png",
+            MapFile::NormalKtx2 => "_normal.ktx2",
+            MapFile::HeightsPng => "_heights.png",
+            MapFile::OcclusionPng => "_ao.png",
+            MapFile::BentNormalsPng => "_bent.png",
+        }
+    }
+
     /// Each file, in the order of its number in [`exports::bm_map_file`].
     pub const ALL: [MapFile; 5] =
         [MapFile::NormalPng, MapFile::NormalKtx2, MapFile::HeightsPng, MapFile::OcclusionPng, MapFile::BentNormalsPng];
@@ -363,6 +385,8 @@ pub enum Names {
     Scenes,
     /// The height-field presets.
     Presets,
+    /// The files the page saves ([`MapFile`], in its order): `NAME SUFFIX` a line.
+    MapFiles,
 }
 
 /// The names of `set`, one a line, as the command line spells them.
@@ -371,6 +395,7 @@ pub enum Names {
 /// use bumpmap_web::{Names, names};
 /// assert!(names(Names::Techniques).lines().any(|t| t == "kilgard"));
 /// assert!(names(Names::Scenes).lines().any(|s| s == "torus"));
+/// assert_eq!(names(Names::MapFiles).lines().next(), Some("normal-png _normal.png"));
 /// ```
 pub fn names(set: Names) -> String {
     use bumpmap::TechniqueName;
@@ -380,6 +405,7 @@ pub fn names(set: Names) -> String {
         Names::Scenes => SceneKind::BUILT_IN.iter().map(SceneKind::name).collect::<Vec<_>>().join("\n"),
         // `noise:SEED` as the help says it: the page asks for the seed.
         Names::Presets => bumpmap_math::HeightPreset::NAMES.split(", ").collect::<Vec<_>>().join("\n"),
+        Names::MapFiles => MapFile::ALL.map(|f| format!("{} {}", f.name(), f.suffix())).join("\n"),
     }
 }
 
@@ -477,6 +503,14 @@ mod tests {
         assert_eq!(exports::bm_names(1), 0);
         assert!(exports::bm_answer_len() > 0 && exports::bm_answer_width() == 0);
         assert_eq!(exports::bm_names(7), 2, "no such set");
+        let preset = b"bricks@16";
+        // SAFETY: null inputs with length 0, and the preset's bytes for the call.
+        let status = unsafe {
+            exports::bm_map_file(std::ptr::null(), 0, std::ptr::null(), 0, std::ptr::null(), 0, preset.as_ptr(), 9, 9)
+        };
+        let answer = unsafe { std::slice::from_raw_parts(exports::bm_answer_ptr(), exports::bm_answer_len()) };
+        assert_eq!(status, 2, "a usage error");
+        assert!(String::from_utf8_lossy(answer).contains("no map file numbered 9 (0 to 4)"));
         assert!(exports::bm_alloc(usize::MAX / 2).is_null(), "more than memory: null, not an abort");
         let p = exports::bm_alloc(16);
         // SAFETY: the pointer and length bm_alloc just gave.
